@@ -1,0 +1,260 @@
+// cyclone::RigidBody: the dynamics core, after "Game Physics Engine Development"
+// (Millington), on Eigen math types.
+//
+// Design note. The class keeps cyclone's split between characteristics (mass,
+// inertia, damping), state (position, orientation, velocity, rotation) and
+// derived data (world-space inverse inertia, transform). It differs from the
+// original where the original was wrong or unsafe:
+//  - every member has a documented default (the original left state undefined);
+//  - every setter and integrate() validate their input and throw
+//    std::invalid_argument naming the function and the value, leaving the body
+//    exactly as it was;
+//  - getPointInWorldSpace / getDirectionInWorldSpace convert body -> world;
+//  - the sleep threshold belongs to the body (no mutable global), so two worlds
+//    in one process never interfere;
+//  - the motion average is kept whether or not the body may sleep.
+// Setters of characteristics or state keep derived data current, so a getter
+// never returns stale data (calculateDerivedData() stays public for callers who
+// change state through a subclass).
+#pragma once
+
+#include "cyclone/core.h"
+#include "cyclone/precision.h"
+
+namespace cyclone {
+
+/// Default threshold of the motion average below which a body may sleep
+/// (unit: (m/s)^2 + (rad/s)^2). 0.01 is an RMS speed of 0.1 m/s: a body sliding
+/// at 0.5 m/s or spinning at 0.5 rad/s stays awake (cyclone's 0.3 sent it to sleep),
+/// while a body at rest falls asleep about one second after it stops.
+inline constexpr real kDefaultSleepEpsilon = 0.01;
+
+/// A rigid body: position and orientation with their first derivatives, mass and
+/// inertia, damping, accumulated force and torque, and sleep state.
+///
+/// Units are SI throughout: m, kg, s, rad, N, N m. Vectors are in world space unless
+/// a name says otherwise.
+class RigidBody {
+public:
+    /// A unit body at rest: mass 1 kg, inertia identity (kg m^2), at the origin,
+    /// identity orientation, no damping (1), no constant acceleration, awake, allowed to
+    /// sleep, sleep threshold kDefaultSleepEpsilon, motion average twice that threshold.
+    RigidBody();
+
+    // --- Integration and simulation ---------------------------------------------------
+
+    /// Recomputes the world transform and world inverse inertia from the state.
+    /// Setters already do this; call it after changing protected state in a subclass.
+    void calculateDerivedData();
+
+    /// Advances the body by `duration` seconds (>= 0, finite) with the first-order,
+    /// semi-implicit Newton-Euler scheme: velocities from forces, damping, then
+    /// positions from the new velocities; clears the accumulators and updates the
+    /// motion average. Puts the body to sleep when the average drops below the sleep
+    /// threshold and the body may sleep. A sleeping body and `duration == 0` change
+    /// nothing. Throws std::invalid_argument on a negative or non-finite duration.
+    void integrate(real duration);
+
+    /// As integrate(duration), but the body is put to sleep only if `mayFallAsleep` is
+    /// true. A world that sleeps whole islands at once passes false and decides itself.
+    void integrate(real duration, bool mayFallAsleep);
+
+    // --- Mass and inertia ---------------------------------------------------------------
+
+    /// Sets the mass (kg, finite, > 0).
+    void setMass(const real mass);
+    /// The mass (kg); infinity for a body of infinite mass.
+    real getMass() const;
+    /// Sets the inverse mass (1/kg, finite, >= 0; 0 makes the body immovable).
+    void setInverseMass(const real inverseMass);
+    /// The inverse mass (1/kg).
+    real getInverseMass() const;
+    /// True exactly when the inverse mass is > 0.
+    bool hasFiniteMass() const;
+
+    /// Sets the body-space inertia tensor (kg m^2; finite, symmetric, positive definite).
+    void setInertiaTensor(const Matrix3 &inertiaTensor);
+    /// Writes the body-space inertia tensor (kg m^2) into `inertiaTensor`.
+    void getInertiaTensor(Matrix3 *inertiaTensor) const;
+    /// The body-space inertia tensor (kg m^2).
+    Matrix3 getInertiaTensor() const;
+    /// Writes the world-space inertia tensor (kg m^2) into `inertiaTensor`.
+    void getInertiaTensorWorld(Matrix3 *inertiaTensor) const;
+    /// The world-space inertia tensor (kg m^2).
+    Matrix3 getInertiaTensorWorld() const;
+    /// Sets the body-space inverse inertia tensor (1/(kg m^2); finite, symmetric,
+    /// positive definite).
+    void setInverseInertiaTensor(const Matrix3 &inverseInertiaTensor);
+    /// Writes the body-space inverse inertia tensor into `inverseInertiaTensor`.
+    void getInverseInertiaTensor(Matrix3 *inverseInertiaTensor) const;
+    /// The body-space inverse inertia tensor (1/(kg m^2)).
+    Matrix3 getInverseInertiaTensor() const;
+    /// Writes the world-space inverse inertia tensor into `inverseInertiaTensor`.
+    void getInverseInertiaTensorWorld(Matrix3 *inverseInertiaTensor) const;
+    /// The world-space inverse inertia tensor (1/(kg m^2)).
+    Matrix3 getInverseInertiaTensorWorld() const;
+
+    // --- Damping ------------------------------------------------------------------------
+
+    /// Sets both dampings: the fraction of linear / angular velocity kept after one
+    /// second (each in [0, 1]; 1 means no damping).
+    void setDamping(const real linearDamping, const real angularDamping);
+    /// Sets the fraction of linear velocity kept after one second, in [0, 1].
+    void setLinearDamping(const real linearDamping);
+    /// The fraction of linear velocity kept after one second.
+    real getLinearDamping() const;
+    /// Sets the fraction of angular velocity kept after one second, in [0, 1].
+    void setAngularDamping(const real angularDamping);
+    /// The fraction of angular velocity kept after one second.
+    real getAngularDamping() const;
+
+    // --- Position and orientation -------------------------------------------------------
+
+    /// Sets the world-space position of the centre of mass (m, finite).
+    void setPosition(const Vector3 &position);
+    /// Sets the position by component (m, finite).
+    void setPosition(const real x, const real y, const real z);
+    /// Writes the position (m) into `position`.
+    void getPosition(Vector3 *position) const;
+    /// The position (m).
+    Vector3 getPosition() const;
+
+    /// Sets the orientation (finite components). It is normalised; (0,0,0,0) means
+    /// identity.
+    void setOrientation(const Quaternion &orientation);
+    /// Sets the orientation by component: r (w), i (x), j (y), k (z); normalised,
+    /// (0,0,0,0) means identity.
+    void setOrientation(const real r, const real i, const real j, const real k);
+    /// Writes the orientation into `orientation`.
+    void getOrientation(Quaternion *orientation) const;
+    /// The orientation (unit quaternion).
+    Quaternion getOrientation() const;
+    /// Writes the rotation matrix (body -> world directions) into `matrix`.
+    void getOrientation(Matrix3 *matrix) const;
+    /// Writes the rotation matrix (body -> world directions), row-major, into `matrix`.
+    void getOrientation(real matrix[9]) const;
+    /// Writes the body -> world transform into `transform`.
+    void getTransform(Matrix4 *transform) const;
+    /// Writes the body -> world transform, row-major 4x4 (last row 0 0 0 1).
+    void getTransform(real matrix[16]) const;
+    /// Writes the body -> world transform column-major (the transpose of
+    /// getTransform(real[16])), ready for OpenGL.
+    void getGLTransform(float matrix[16]) const;
+    /// The body -> world transform.
+    Matrix4 getTransform() const;
+
+    /// Converts a point from world space to body space.
+    Vector3 getPointInLocalSpace(const Vector3 &point) const;
+    /// Converts a point from body space to world space.
+    Vector3 getPointInWorldSpace(const Vector3 &point) const;
+    /// Converts a direction from world space to body space (no translation).
+    Vector3 getDirectionInLocalSpace(const Vector3 &direction) const;
+    /// Converts a direction from body space to world space (no translation).
+    Vector3 getDirectionInWorldSpace(const Vector3 &direction) const;
+
+    // --- Velocity and rotation ----------------------------------------------------------
+
+    /// Sets the world-space linear velocity (m/s, finite).
+    void setVelocity(const Vector3 &velocity);
+    /// Sets the linear velocity by component (m/s, finite).
+    void setVelocity(const real x, const real y, const real z);
+    /// Writes the linear velocity (m/s) into `velocity`.
+    void getVelocity(Vector3 *velocity) const;
+    /// The linear velocity (m/s).
+    Vector3 getVelocity() const;
+    /// Adds `deltaVelocity` (m/s, finite) to the linear velocity. Does not wake the body.
+    void addVelocity(const Vector3 &deltaVelocity);
+
+    /// Sets the world-space angular velocity (rad/s, finite).
+    void setRotation(const Vector3 &rotation);
+    /// Sets the angular velocity by component (rad/s, finite).
+    void setRotation(const real x, const real y, const real z);
+    /// Writes the angular velocity (rad/s) into `rotation`.
+    void getRotation(Vector3 *rotation) const;
+    /// The angular velocity (rad/s).
+    Vector3 getRotation() const;
+    /// Adds `deltaRotation` (rad/s, finite) to the angular velocity. Does not wake the body.
+    void addRotation(const Vector3 &deltaRotation);
+
+    // --- Sleep --------------------------------------------------------------------------
+
+    /// True if the body is awake and integrated.
+    bool getAwake() const { return isAwake; }
+    /// Wakes the body (motion average set to twice the sleep threshold, so it stays
+    /// awake about a second) or puts it to sleep (velocity and rotation zeroed).
+    void setAwake(const bool awake = true);
+    /// True if the body may fall asleep.
+    bool getCanSleep() const { return canSleep; }
+    /// Allows or forbids sleep; forbidding it wakes the body.
+    void setCanSleep(const bool canSleep = true);
+    /// The recency-weighted motion average, (m/s)^2 + (rad/s)^2.
+    real getMotion() const { return motion; }
+    /// Sets the sleep threshold of the motion average ((m/s)^2 + (rad/s)^2, finite, > 0).
+    void setSleepEpsilon(const real sleepEpsilon);
+    /// The sleep threshold of the motion average.
+    real getSleepEpsilon() const { return sleepEpsilon; }
+
+    // --- Dynamic quantities -------------------------------------------------------------
+
+    /// Writes the linear acceleration of the last integration step (m/s^2).
+    void getLastFrameAcceleration(Vector3 *linearAcceleration) const;
+    /// The linear acceleration of the last integration step (m/s^2).
+    Vector3 getLastFrameAcceleration() const;
+
+    // --- Forces, torques and constant acceleration --------------------------------------
+
+    /// Clears the accumulated force and torque (integrate() does it after each step).
+    void clearAccumulators();
+    /// Adds a world-space force (N, finite) at the centre of mass. Wakes a sleeping body
+    /// as setAwake(true) does.
+    void addForce(const Vector3 &force);
+    /// Adds a world-space force (N) at a world-space point (m): a force and a torque.
+    /// Wakes a sleeping body.
+    void addForceAtPoint(const Vector3 &force, const Vector3 &point);
+    /// Adds a world-space force (N) at a body-space point (m). Wakes a sleeping body.
+    void addForceAtBodyPoint(const Vector3 &force, const Vector3 &point);
+    /// Adds a world-space torque (N m, finite). Wakes a sleeping body.
+    void addTorque(const Vector3 &torque);
+    /// The accumulated force (N) for the next step.
+    Vector3 getAccumulatedForce() const { return forceAccum; }
+    /// The accumulated torque (N m) for the next step.
+    Vector3 getAccumulatedTorque() const { return torqueAccum; }
+
+    /// Sets the constant acceleration (m/s^2, finite), e.g. gravity.
+    void setAcceleration(const Vector3 &acceleration);
+    /// Sets the constant acceleration by component (m/s^2, finite).
+    void setAcceleration(const real x, const real y, const real z);
+    /// Writes the constant acceleration (m/s^2) into `acceleration`.
+    void getAcceleration(Vector3 *acceleration) const;
+    /// The constant acceleration (m/s^2).
+    Vector3 getAcceleration() const;
+
+protected:
+    // Characteristics.
+    real inverseMass;                 ///< 1/kg; 0 for an immovable body.
+    Matrix3 inverseInertiaTensor;     ///< Body space, 1/(kg m^2).
+    real linearDamping;               ///< Fraction of velocity kept after 1 s, [0, 1].
+    real angularDamping;              ///< Fraction of rotation kept after 1 s, [0, 1].
+
+    // State.
+    Vector3 position;                 ///< World-space centre of mass, m.
+    Quaternion orientation;           ///< Body -> world rotation, unit length.
+    Vector3 velocity;                 ///< World-space linear velocity, m/s.
+    Vector3 rotation;                 ///< World-space angular velocity, rad/s.
+
+    // Derived data.
+    Matrix3 inverseInertiaTensorWorld;  ///< World space, 1/(kg m^2).
+    real motion;                        ///< Recency-weighted mean of v.v + w.w.
+    real sleepEpsilon;                  ///< Sleep threshold of `motion`.
+    bool isAwake;                       ///< Integrated only when true.
+    bool canSleep;                      ///< False keeps the body awake.
+    Matrix4 transformMatrix;            ///< Body -> world transform.
+
+    // Accumulators.
+    Vector3 forceAccum;               ///< N, world space, cleared each step.
+    Vector3 torqueAccum;              ///< N m, world space, cleared each step.
+    Vector3 acceleration;             ///< Constant acceleration, m/s^2 (gravity).
+    Vector3 lastFrameAcceleration;    ///< Linear acceleration of the last step, m/s^2.
+};
+
+}  // namespace cyclone

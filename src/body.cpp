@@ -1,0 +1,362 @@
+#include "cyclone/body.h"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace cyclone {
+namespace {
+
+[[noreturn]] void refuse(const char *function, const std::string &what) {
+    throw std::invalid_argument(std::string("RigidBody::") + function + ": " + what);
+}
+
+std::string str(real value) {
+    std::ostringstream out;
+    out.precision(17);
+    out << value;
+    return out.str();
+}
+
+std::string str(const Vector3 &v) {
+    return "(" + str(v.x()) + ", " + str(v.y()) + ", " + str(v.z()) + ")";
+}
+
+void requireFinite(const char *function, const char *field, const Vector3 &v) {
+    if (!v.allFinite()) refuse(function, std::string(field) + " must be finite, got " + str(v));
+}
+
+void requireUnitInterval(const char *function, const char *field, real value) {
+    if (!(value >= 0 && value <= 1))
+        refuse(function, std::string(field) + " must be in [0, 1], got " + str(value));
+}
+
+// An inertia tensor or its inverse must be a finite, symmetric, positive definite matrix.
+void requireSymmetricPositiveDefinite(const char *function, const char *field, const Matrix3 &m) {
+    std::ostringstream shown;
+    shown.precision(17);
+    shown << "[" << m.row(0) << "; " << m.row(1) << "; " << m.row(2) << "]";
+    if (!m.allFinite()) refuse(function, std::string(field) + " must be finite, got " + shown.str());
+    const real scale = m.cwiseAbs().maxCoeff();
+    if ((m - m.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
+        refuse(function, std::string(field) + " must be symmetric, got " + shown.str());
+    const Eigen::LDLT<Matrix3> ldlt(m);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().minCoeff() > 0))
+        refuse(function, std::string(field) + " must be positive definite, got " + shown.str());
+}
+
+Quaternion normalisedOrientation(const char *function, const Quaternion &q) {
+    if (!q.coeffs().allFinite())
+        refuse(function, "orientation must be finite, got (" + str(q.w()) + ", " + str(q.x()) + ", " +
+                             str(q.y()) + ", " + str(q.z()) + ")");
+    const real norm = q.norm();
+    if (norm == 0) return Quaternion::Identity();
+    return Quaternion(q.coeffs() / norm);
+}
+
+}  // namespace
+
+RigidBody::RigidBody()
+    : inverseMass(1),
+      inverseInertiaTensor(Matrix3::Identity()),
+      linearDamping(1),
+      angularDamping(1),
+      position(Vector3::Zero()),
+      orientation(Quaternion::Identity()),
+      velocity(Vector3::Zero()),
+      rotation(Vector3::Zero()),
+      inverseInertiaTensorWorld(Matrix3::Identity()),
+      motion(2 * kDefaultSleepEpsilon),
+      sleepEpsilon(kDefaultSleepEpsilon),
+      isAwake(true),
+      canSleep(true),
+      transformMatrix(Matrix4::Identity()),
+      forceAccum(Vector3::Zero()),
+      torqueAccum(Vector3::Zero()),
+      acceleration(Vector3::Zero()),
+      lastFrameAcceleration(Vector3::Zero()) {}
+
+void RigidBody::calculateDerivedData() {
+    transformMatrix.linear() = orientation.toRotationMatrix();
+    transformMatrix.translation() = position;
+    const Matrix3 &r = transformMatrix.linear();
+    inverseInertiaTensorWorld = r * inverseInertiaTensor * r.transpose();
+}
+
+void RigidBody::integrate(real duration) { integrate(duration, true); }
+
+void RigidBody::integrate(real duration, bool mayFallAsleep) {
+    if (!std::isfinite(duration) || duration < 0)
+        refuse("integrate", "duration must be finite and >= 0, got " + str(duration));
+    if (!isAwake || duration == 0) return;
+
+    lastFrameAcceleration = acceleration + forceAccum * inverseMass;
+    const Vector3 angularAcceleration = inverseInertiaTensorWorld * torqueAccum;
+
+    velocity += lastFrameAcceleration * duration;
+    rotation += angularAcceleration * duration;
+    velocity *= std::pow(linearDamping, duration);
+    rotation *= std::pow(angularDamping, duration);
+
+    position += velocity * duration;
+    // q += 1/2 dt (0, w) q, then normalised: the seed's first-order orientation update.
+    const Quaternion spin(0, rotation.x() * duration, rotation.y() * duration, rotation.z() * duration);
+    orientation.coeffs() += 0.5 * (spin * orientation).coeffs();
+    orientation.normalize();
+
+    calculateDerivedData();
+    clearAccumulators();
+
+    const real currentMotion = velocity.squaredNorm() + rotation.squaredNorm();
+    const real bias = std::pow(real(0.5), duration);
+    motion = bias * motion + (1 - bias) * currentMotion;
+    if (mayFallAsleep && canSleep && motion < sleepEpsilon) {
+        setAwake(false);
+    } else if (motion > 10 * sleepEpsilon) {
+        motion = 10 * sleepEpsilon;
+    }
+}
+
+void RigidBody::setMass(const real mass) {
+    if (!std::isfinite(mass) || !(mass > 0)) refuse("setMass", "mass must be finite and > 0, got " + str(mass));
+    inverseMass = 1 / mass;
+}
+
+real RigidBody::getMass() const {
+    if (inverseMass == 0) return std::numeric_limits<real>::infinity();
+    return 1 / inverseMass;
+}
+
+void RigidBody::setInverseMass(const real newInverseMass) {
+    if (!std::isfinite(newInverseMass) || !(newInverseMass >= 0))
+        refuse("setInverseMass", "inverseMass must be finite and >= 0, got " + str(newInverseMass));
+    inverseMass = newInverseMass;
+}
+
+real RigidBody::getInverseMass() const { return inverseMass; }
+
+bool RigidBody::hasFiniteMass() const { return inverseMass > 0; }
+
+void RigidBody::setInertiaTensor(const Matrix3 &inertiaTensor) {
+    requireSymmetricPositiveDefinite("setInertiaTensor", "inertiaTensor", inertiaTensor);
+    const Matrix3 inverse = inertiaTensor.inverse();
+    inverseInertiaTensor = 0.5 * (inverse + inverse.transpose());
+    calculateDerivedData();
+}
+
+void RigidBody::getInertiaTensor(Matrix3 *inertiaTensor) const { *inertiaTensor = getInertiaTensor(); }
+
+Matrix3 RigidBody::getInertiaTensor() const { return inverseInertiaTensor.inverse(); }
+
+void RigidBody::getInertiaTensorWorld(Matrix3 *inertiaTensor) const { *inertiaTensor = getInertiaTensorWorld(); }
+
+Matrix3 RigidBody::getInertiaTensorWorld() const { return inverseInertiaTensorWorld.inverse(); }
+
+void RigidBody::setInverseInertiaTensor(const Matrix3 &inverseInertiaTensor_) {
+    requireSymmetricPositiveDefinite("setInverseInertiaTensor", "inverseInertiaTensor", inverseInertiaTensor_);
+    inverseInertiaTensor = inverseInertiaTensor_;
+    calculateDerivedData();
+}
+
+void RigidBody::getInverseInertiaTensor(Matrix3 *inverseInertiaTensor_) const {
+    *inverseInertiaTensor_ = inverseInertiaTensor;
+}
+
+Matrix3 RigidBody::getInverseInertiaTensor() const { return inverseInertiaTensor; }
+
+void RigidBody::getInverseInertiaTensorWorld(Matrix3 *inverseInertiaTensor_) const {
+    *inverseInertiaTensor_ = inverseInertiaTensorWorld;
+}
+
+Matrix3 RigidBody::getInverseInertiaTensorWorld() const { return inverseInertiaTensorWorld; }
+
+void RigidBody::setDamping(const real linear, const real angular) {
+    requireUnitInterval("setDamping", "linearDamping", linear);
+    requireUnitInterval("setDamping", "angularDamping", angular);
+    linearDamping = linear;
+    angularDamping = angular;
+}
+
+void RigidBody::setLinearDamping(const real linear) {
+    requireUnitInterval("setLinearDamping", "linearDamping", linear);
+    linearDamping = linear;
+}
+
+real RigidBody::getLinearDamping() const { return linearDamping; }
+
+void RigidBody::setAngularDamping(const real angular) {
+    requireUnitInterval("setAngularDamping", "angularDamping", angular);
+    angularDamping = angular;
+}
+
+real RigidBody::getAngularDamping() const { return angularDamping; }
+
+void RigidBody::setPosition(const Vector3 &newPosition) {
+    requireFinite("setPosition", "position", newPosition);
+    position = newPosition;
+    calculateDerivedData();
+}
+
+void RigidBody::setPosition(const real x, const real y, const real z) { setPosition(Vector3(x, y, z)); }
+
+void RigidBody::getPosition(Vector3 *out) const { *out = position; }
+
+Vector3 RigidBody::getPosition() const { return position; }
+
+void RigidBody::setOrientation(const Quaternion &newOrientation) {
+    orientation = normalisedOrientation("setOrientation", newOrientation);
+    calculateDerivedData();
+}
+
+void RigidBody::setOrientation(const real r, const real i, const real j, const real k) {
+    setOrientation(Quaternion(r, i, j, k));
+}
+
+void RigidBody::getOrientation(Quaternion *out) const { *out = orientation; }
+
+Quaternion RigidBody::getOrientation() const { return orientation; }
+
+void RigidBody::getOrientation(Matrix3 *matrix) const { *matrix = transformMatrix.linear(); }
+
+void RigidBody::getOrientation(real matrix[9]) const {
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) matrix[row * 3 + col] = transformMatrix.linear()(row, col);
+}
+
+void RigidBody::getTransform(Matrix4 *transform) const { *transform = transformMatrix; }
+
+void RigidBody::getTransform(real matrix[16]) const {
+    const auto &m = transformMatrix.matrix();
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col) matrix[row * 4 + col] = m(row, col);
+}
+
+void RigidBody::getGLTransform(float matrix[16]) const {
+    const auto &m = transformMatrix.matrix();
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) matrix[col * 4 + row] = static_cast<float>(m(row, col));
+}
+
+Matrix4 RigidBody::getTransform() const { return transformMatrix; }
+
+Vector3 RigidBody::getPointInLocalSpace(const Vector3 &point) const {
+    return transformMatrix.linear().transpose() * (point - transformMatrix.translation());
+}
+
+Vector3 RigidBody::getPointInWorldSpace(const Vector3 &point) const { return transformMatrix * point; }
+
+Vector3 RigidBody::getDirectionInLocalSpace(const Vector3 &direction) const {
+    return transformMatrix.linear().transpose() * direction;
+}
+
+Vector3 RigidBody::getDirectionInWorldSpace(const Vector3 &direction) const {
+    return transformMatrix.linear() * direction;
+}
+
+void RigidBody::setVelocity(const Vector3 &newVelocity) {
+    requireFinite("setVelocity", "velocity", newVelocity);
+    velocity = newVelocity;
+}
+
+void RigidBody::setVelocity(const real x, const real y, const real z) { setVelocity(Vector3(x, y, z)); }
+
+void RigidBody::getVelocity(Vector3 *out) const { *out = velocity; }
+
+Vector3 RigidBody::getVelocity() const { return velocity; }
+
+void RigidBody::addVelocity(const Vector3 &deltaVelocity) {
+    requireFinite("addVelocity", "deltaVelocity", deltaVelocity);
+    velocity += deltaVelocity;
+}
+
+void RigidBody::setRotation(const Vector3 &newRotation) {
+    requireFinite("setRotation", "rotation", newRotation);
+    rotation = newRotation;
+}
+
+void RigidBody::setRotation(const real x, const real y, const real z) { setRotation(Vector3(x, y, z)); }
+
+void RigidBody::getRotation(Vector3 *out) const { *out = rotation; }
+
+Vector3 RigidBody::getRotation() const { return rotation; }
+
+void RigidBody::addRotation(const Vector3 &deltaRotation) {
+    requireFinite("addRotation", "deltaRotation", deltaRotation);
+    rotation += deltaRotation;
+}
+
+void RigidBody::setAwake(const bool awake) {
+    if (awake) {
+        isAwake = true;
+        motion = 2 * sleepEpsilon;
+    } else {
+        isAwake = false;
+        velocity.setZero();
+        rotation.setZero();
+    }
+}
+
+void RigidBody::setCanSleep(const bool newCanSleep) {
+    canSleep = newCanSleep;
+    if (!canSleep && !isAwake) setAwake(true);
+}
+
+void RigidBody::setSleepEpsilon(const real newSleepEpsilon) {
+    if (!std::isfinite(newSleepEpsilon) || !(newSleepEpsilon > 0))
+        refuse("setSleepEpsilon", "sleepEpsilon must be finite and > 0, got " + str(newSleepEpsilon));
+    sleepEpsilon = newSleepEpsilon;
+}
+
+void RigidBody::getLastFrameAcceleration(Vector3 *linearAcceleration) const {
+    *linearAcceleration = lastFrameAcceleration;
+}
+
+Vector3 RigidBody::getLastFrameAcceleration() const { return lastFrameAcceleration; }
+
+void RigidBody::clearAccumulators() {
+    forceAccum.setZero();
+    torqueAccum.setZero();
+}
+
+void RigidBody::addForce(const Vector3 &force) {
+    requireFinite("addForce", "force", force);
+    forceAccum += force;
+    if (!isAwake) setAwake(true);
+}
+
+void RigidBody::addForceAtPoint(const Vector3 &force, const Vector3 &point) {
+    requireFinite("addForceAtPoint", "force", force);
+    requireFinite("addForceAtPoint", "point", point);
+    forceAccum += force;
+    torqueAccum += (point - position).cross(force);
+    if (!isAwake) setAwake(true);
+}
+
+void RigidBody::addForceAtBodyPoint(const Vector3 &force, const Vector3 &point) {
+    requireFinite("addForceAtBodyPoint", "force", force);
+    requireFinite("addForceAtBodyPoint", "point", point);
+    addForceAtPoint(force, getPointInWorldSpace(point));
+}
+
+void RigidBody::addTorque(const Vector3 &torque) {
+    requireFinite("addTorque", "torque", torque);
+    torqueAccum += torque;
+    if (!isAwake) setAwake(true);
+}
+
+void RigidBody::setAcceleration(const Vector3 &newAcceleration) {
+    requireFinite("setAcceleration", "acceleration", newAcceleration);
+    acceleration = newAcceleration;
+}
+
+void RigidBody::setAcceleration(const real x, const real y, const real z) {
+    setAcceleration(Vector3(x, y, z));
+}
+
+void RigidBody::getAcceleration(Vector3 *out) const { *out = acceleration; }
+
+Vector3 RigidBody::getAcceleration() const { return acceleration; }
+
+}  // namespace cyclone

@@ -1,0 +1,129 @@
+// What the user fills in: settings of a world, a body and a spring, with defaults and units.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "cyclone/body.h"
+#include "cyclone/core.h"
+#include "cyclone/world/shape.h"
+
+namespace cyclone {
+
+/// Integration scheme of a world's dynamic bodies.
+enum class Integrator {
+    NewtonEuler,  ///< The seed's first-order semi-implicit Newton-Euler ("newton-euler").
+};
+
+/// Settings of a World. Every field has a documented default; World validates them.
+struct WorldSettings {
+    /// Constant acceleration given to every dynamic body, m/s^2.
+    Vector3 gravity = Vector3(0, -9.81, 0);
+    /// Contact solver velocity iterations per step, >= 1.
+    int velocityIterations = 10;
+    /// Penetration-recovery (pseudo-velocity) iterations per step, >= 0.
+    int positionIterations = 4;
+    /// Sub-steps per step, >= 1: each repeats solve and integrate with dt / substeps.
+    int substeps = 1;
+    /// Whether bodies may fall asleep.
+    bool sleep = true;
+    /// Threshold of the motion average (v.v + w.w) below which an island may sleep,
+    /// (m/s)^2 + (rad/s)^2, > 0.
+    real sleepEpsilon = kDefaultSleepEpsilon;
+    /// Integration scheme.
+    Integrator integrator = Integrator::NewtonEuler;
+    /// Penetration the solver leaves alone so that resting contacts persist, m, >= 0.
+    real penetrationSlop = 0.005;
+    /// Fraction of the penetration beyond the slop removed per step, in (0, 1].
+    real penetrationRecovery = 0.2;
+    /// Approach speed below which restitution is ignored, m/s, >= 0.
+    real restitutionThreshold = 1.0;
+    /// Contact points up to this far apart are kept, so a tilting face keeps its
+    /// support without a contact appearing suddenly, m, >= 0.
+    real speculativeDistance = 0.02;
+    /// A pair whose relative pose moved less than this since its last narrowphase
+    /// reuses its manifold (m for translation; rad for rotation, scaled the same), >= 0.
+    real manifoldReuseTolerance = 0.001;
+    /// Whether impulses of the last step seed the solver (warm starting).
+    bool warmStarting = true;
+};
+
+/// Surface properties of a body.
+struct Material {
+    /// Coulomb friction coefficient, >= 0. A pair uses the geometric mean of its two.
+    real friction = 0.6;
+    /// Restitution in [0, 1]. A pair uses the larger of its two.
+    real restitution = 0;
+};
+
+/// Settings of a body to add to a World.
+struct BodySettings {
+    /// Unique within the world when not empty; used in reports and scene files.
+    std::string name;
+    /// Collision shape, in the body's frame.
+    Shape shape;
+    /// A static body never moves, has infinite mass and is not integrated.
+    bool isStatic = false;
+    /// Mass of a dynamic body, kg, finite, > 0.
+    real mass = 1;
+    /// Body-space inertia tensor, kg m^2, symmetric positive definite; empty means
+    /// computed from the shape and the mass.
+    std::optional<Matrix3> inertia;
+    /// World-space position of the centre of mass (the shape's origin), m.
+    Vector3 position = Vector3::Zero();
+    /// Orientation; normalised on add, (0,0,0,0) means identity.
+    Quaternion orientation = Quaternion::Identity();
+    /// World-space linear velocity, m/s.
+    Vector3 velocity = Vector3::Zero();
+    /// World-space angular velocity, rad/s.
+    Vector3 rotation = Vector3::Zero();
+    /// Fraction of linear velocity kept after one second, [0, 1]; 1 means none.
+    real linearDamping = 1;
+    /// Fraction of angular velocity kept after one second, [0, 1]; 1 means none.
+    real angularDamping = 1;
+    /// Friction and restitution.
+    Material material;
+    /// False keeps this body awake always.
+    bool canSleep = true;
+    /// Initial awake state.
+    bool awake = true;
+    /// Continuous collision detection for this body (fast, thin things).
+    bool ccd = false;
+};
+
+/// Handle of a body in a World. Stale handles (of removed bodies) are refused.
+struct BodyId {
+    std::uint32_t index = UINT32_MAX;
+    std::uint32_t generation = 0;
+    bool operator==(const BodyId &other) const { return index == other.index && generation == other.generation; }
+    bool operator!=(const BodyId &other) const { return !(*this == other); }
+};
+
+/// A damped spring between two bodies, or between a body and a fixed world point;
+/// a force generator on the cyclone model (Hooke's law plus damping along the spring).
+struct SpringSettings {
+    /// First body.
+    BodyId a;
+    /// Attachment on `a`, in a's body space, m.
+    Vector3 aPoint = Vector3::Zero();
+    /// Second body; empty anchors the spring at the world point `bPoint`.
+    std::optional<BodyId> b;
+    /// Attachment on `b` in b's body space, or the world anchor when `b` is empty, m.
+    Vector3 bPoint = Vector3::Zero();
+    /// Spring constant, N/m, > 0.
+    real stiffness = 100;
+    /// Damping along the spring, N s/m, >= 0.
+    real damping = 0;
+    /// Rest length, m, >= 0.
+    real restLength = 1;
+};
+
+/// Handle of a spring in a World.
+struct SpringId {
+    std::uint32_t index = UINT32_MAX;
+    std::uint32_t generation = 0;
+    bool operator==(const SpringId &other) const { return index == other.index && generation == other.generation; }
+};
+
+}  // namespace cyclone

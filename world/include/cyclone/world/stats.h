@@ -1,0 +1,43 @@
+// Per-step counters and timings, read after World::step (how a scene proves it pays
+// only for what it uses).
+#pragma once
+
+#include "cyclone/precision.h"
+
+namespace cyclone {
+
+/// Milliseconds spent in each stage of the last step.
+struct StageTimes {
+    double forces = 0;       ///< Gravity and springs.
+    double broadphase = 0;   ///< AABB updates and overlapping pairs.
+    double narrowphase = 0;  ///< FCL collide calls.
+    double manifolds = 0;    ///< Point matching, warm-start data, solver set-up.
+    double islands = 0;      ///< Island building and wake propagation.
+    double solve = 0;        ///< Velocity and position iterations.
+    double integrate = 0;    ///< RigidBody::integrate and position correction.
+    double sleep = 0;        ///< Island sleep decisions.
+    double total = 0;        ///< The whole step.
+};
+
+/// Counters of the last step.
+struct StepStats {
+    int bodies = 0;             ///< Bodies in the world (static and dynamic).
+    int awakeBodies = 0;        ///< Dynamic bodies awake after the step.
+    int integratedBodies = 0;   ///< Dynamic bodies integrated during the step.
+    int broadphasePairs = 0;    ///< Overlapping AABB pairs found (including plane pairs).
+    int pairsTested = 0;        ///< Pairs sent to FCL's narrowphase.
+    int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
+    int manifolds = 0;          ///< Contact manifolds given to the solver.
+    int contacts = 0;           ///< Contact points given to the solver.
+    int frictionRows = 0;       ///< Friction constraint rows (2 per point with friction).
+    int restitutionContacts = 0;///< Points that bounce this step.
+    int islands = 0;            ///< Islands of awake dynamic bodies.
+    int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
+    int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
+    int springs = 0;            ///< Springs evaluated.
+    int nonFiniteBodies = 0;    ///< Bodies whose state became non-finite (isolated).
+    real maxPenetration = 0;    ///< Deepest contact of the step, m.
+    StageTimes ms;              ///< Time per stage, ms.
+};
+
+}  // namespace cyclone

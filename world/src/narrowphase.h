@@ -1,0 +1,39 @@
+// Narrowphase: FCL contact detection between two placed shapes, turned into contact
+// manifolds of up to four well-spread points.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "collision_shape.h"
+
+namespace cyclone::detail {
+
+/// One contact point of a manifold, world space.
+struct ContactPoint {
+    Vector3 pointA = Vector3::Zero();  ///< On A's surface: A's deepest point into B, m.
+    Vector3 pointB = Vector3::Zero();  ///< On B's surface, m.
+    real depth = 0;                    ///< (pointA - pointB).normal: > 0 penetrating, < 0 apart, m.
+};
+
+/// Contact between two shapes along one normal.
+struct Manifold {
+    static constexpr int kMaxPoints = 4;
+    Vector3 normal = Vector3::UnitY();  ///< Unit, world space, pointing from A to B.
+    int count = 0;
+    std::array<ContactPoint, kMaxPoints> points;
+};
+
+struct NarrowphaseSettings {
+    /// Clipped points up to this far apart are kept (speculative contact), m, >= 0.
+    real speculativeDistance = 0.02;
+};
+
+/// Tests shapes `a` at `poseA` and `b` at `poseB` with fcl::collide (GST_LIBCCD) and
+/// appends one manifold per contact normal to `out` (none when apart; a mesh may give
+/// several). Returns the number appended. Normals point from A to B whatever order FCL
+/// used internally; near-zero normals are dropped.
+int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+            const NarrowphaseSettings &settings, std::vector<Manifold> &out);
+
+}  // namespace cyclone::detail
