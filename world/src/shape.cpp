@@ -1,0 +1,1 @@
+// Implemented in the collision work; placeholder so the tree configures.

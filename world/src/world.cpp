@@ -1,0 +1,1 @@
+// World implementation in progress.
