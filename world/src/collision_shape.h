@@ -36,6 +36,10 @@ public:
     const std::vector<std::vector<int>> &faces() const { return faces_; }
     /// Outward unit normal of each face, shape frame.
     const std::vector<Vector3> &faceNormals() const { return faceNormals_; }
+    /// Plane: outward unit normal, shape frame (the solid is normal.x <= planeOffset()).
+    const Vector3 &planeNormal() const { return planeNormal_; }
+    /// Plane: distance of the surface from the frame origin along planeNormal(), m.
+    real planeOffset() const { return planeOffset_; }
 
     /// The feature of this shape, placed at `pose`, that is furthest along the world
     /// direction `direction` (unit). `triangle` selects the triangle of a mesh (FCL's
@@ -51,6 +55,8 @@ private:
     std::vector<Vector3> vertices_;
     std::vector<std::vector<int>> faces_;
     std::vector<Vector3> faceNormals_;
+    Vector3 planeNormal_ = Vector3::UnitY();
+    real planeOffset_ = 0;
 };
 
 /// Validates and compiles a shape. Throws InvalidArgument with function "" and a field

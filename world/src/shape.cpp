@@ -1,1 +1,73 @@
-// Implemented in the collision work; placeholder so the tree configures.
+#include "cyclone/world/shape.h"
+
+#include <utility>
+
+namespace cyclone {
+
+Shape Shape::box(const Vector3 &halfExtents) {
+    Shape shape;
+    shape.type = ShapeType::Box;
+    shape.halfExtents = halfExtents;
+    return shape;
+}
+
+Shape Shape::sphere(real radius) {
+    Shape shape;
+    shape.type = ShapeType::Sphere;
+    shape.radius = radius;
+    return shape;
+}
+
+Shape Shape::capsule(real radius, real length) {
+    Shape shape;
+    shape.type = ShapeType::Capsule;
+    shape.radius = radius;
+    shape.length = length;
+    return shape;
+}
+
+Shape Shape::cylinder(real radius, real length) {
+    Shape shape;
+    shape.type = ShapeType::Cylinder;
+    shape.radius = radius;
+    shape.length = length;
+    return shape;
+}
+
+Shape Shape::convex(std::vector<Vector3> points) {
+    Shape shape;
+    shape.type = ShapeType::Convex;
+    shape.vertices = std::move(points);
+    return shape;
+}
+
+Shape Shape::plane(const Vector3 &normal, real offset) {
+    Shape shape;
+    shape.type = ShapeType::Plane;
+    shape.normal = normal;
+    shape.offset = offset;
+    return shape;
+}
+
+Shape Shape::mesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles) {
+    Shape shape;
+    shape.type = ShapeType::Mesh;
+    shape.vertices = std::move(vertices);
+    shape.triangles = std::move(triangles);
+    return shape;
+}
+
+const char *shapeTypeName(ShapeType type) {
+    switch (type) {
+        case ShapeType::Box: return "box";
+        case ShapeType::Sphere: return "sphere";
+        case ShapeType::Capsule: return "capsule";
+        case ShapeType::Cylinder: return "cylinder";
+        case ShapeType::Convex: return "convex";
+        case ShapeType::Plane: return "plane";
+        case ShapeType::Mesh: return "mesh";
+    }
+    return "unknown";
+}
+
+}  // namespace cyclone

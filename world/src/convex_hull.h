@@ -1,0 +1,30 @@
+// Convex hull of a point cloud (Qhull), with coplanar facets merged into polygon faces.
+#pragma once
+
+#include <vector>
+
+#include "cyclone/core.h"
+
+namespace cyclone::detail {
+
+/// A closed convex polyhedron.
+struct ConvexHull {
+    /// Hull vertices (the input points that are corners of the hull), m.
+    std::vector<Vector3> vertices;
+    /// Faces as loops of indices into `vertices`, counter-clockwise seen from outside.
+    std::vector<std::vector<int>> faces;
+    /// Outward unit normal of each face.
+    std::vector<Vector3> normals;
+};
+
+/// Computes the hull of `points` into `hull`. Returns false (hull empty) when the points
+/// span no volume: fewer than 4, or all (nearly) coplanar, relative to their extent.
+bool computeConvexHull(const std::vector<Vector3> &points, ConvexHull &hull);
+
+/// Volume (m^3) and inertia tensor of a unit-mass, uniform-density polyhedron about
+/// the frame origin (kg m^2), by decomposition into tetrahedra with apex at the origin.
+/// Faces must be counter-clockwise seen from outside.
+void polyhedronMassProperties(const std::vector<Vector3> &vertices, const std::vector<std::vector<int>> &faces,
+                              real &volume, Matrix3 &unitInertia);
+
+}  // namespace cyclone::detail
