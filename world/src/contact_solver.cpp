@@ -1,0 +1,119 @@
+#include "contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cyclone::detail {
+namespace {
+
+void fillRow(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
+             const Vector3 &d, SolverRow &row) {
+    row.rAxd = rA.cross(d);
+    row.rBxd = rB.cross(d);
+    row.angA = a.invInertia * row.rAxd;
+    row.angB = b.invInertia * row.rBxd;
+    const real k = a.invMass + b.invMass + row.rAxd.dot(row.angA) + row.rBxd.dot(row.angB);
+    row.mass = k > 0 ? 1 / k : 0;
+}
+
+// Relative velocity of B with respect to A along a row's direction.
+inline real relativeVelocity(const SolverBody &a, const SolverBody &b, const Vector3 &d, const SolverRow &row) {
+    return d.dot(b.v - a.v) + row.rBxd.dot(b.w) - row.rAxd.dot(a.w);
+}
+
+inline void applyImpulse(SolverBody &a, SolverBody &b, const Vector3 &d, const SolverRow &row, real impulse) {
+    a.v -= (a.invMass * impulse) * d;
+    a.w -= impulse * row.angA;
+    b.v += (b.invMass * impulse) * d;
+    b.w += impulse * row.angB;
+}
+
+}  // namespace
+
+void tangentBasis(const Vector3 &n, Vector3 &t1, Vector3 &t2) {
+    if (std::abs(n.x()) >= 0.57735) {
+        t1 = Vector3(n.y(), -n.x(), 0).normalized();
+    } else {
+        t1 = Vector3(0, n.z(), -n.y()).normalized();
+    }
+    t2 = n.cross(t1);
+}
+
+void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
+                 const SolverManifold &m, SolverPoint &p) {
+    fillRow(a, b, rA, rB, m.normal, p.normal);
+    fillRow(a, b, rA, rB, m.tangent[0], p.tangent[0]);
+    fillRow(a, b, rA, rB, m.tangent[1], p.tangent[1]);
+}
+
+void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds) {
+    for (const SolverManifold &m : manifolds) {
+        SolverBody &a = bodies[m.a];
+        SolverBody &b = bodies[m.b];
+        for (int i = 0; i < m.count; ++i) {
+            const SolverPoint &p = m.points[i];
+            applyImpulse(a, b, m.normal, p.normal, p.normal.impulse);
+            applyImpulse(a, b, m.tangent[0], p.tangent[0], p.tangent[0].impulse);
+            applyImpulse(a, b, m.tangent[1], p.tangent[1], p.tangent[1].impulse);
+        }
+    }
+}
+
+void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
+    for (SolverManifold &m : manifolds) {
+        SolverBody &a = bodies[m.a];
+        SolverBody &b = bodies[m.b];
+        // Friction first, so the normal rows (the ones that must hold) have the last word.
+        if (m.friction > 0) {
+            for (int i = 0; i < m.count; ++i) {
+                SolverPoint &p = m.points[i];
+                const real limit = m.friction * p.normal.impulse;
+                const real old0 = p.tangent[0].impulse;
+                const real old1 = p.tangent[1].impulse;
+                real new0 = old0 - p.tangent[0].mass * relativeVelocity(a, b, m.tangent[0], p.tangent[0]);
+                real new1 = old1 - p.tangent[1].mass * relativeVelocity(a, b, m.tangent[1], p.tangent[1]);
+                // Coulomb's cone, not a box: friction is isotropic in the contact plane.
+                const real magnitude2 = new0 * new0 + new1 * new1;
+                if (magnitude2 > limit * limit) {
+                    const real scale = limit / std::sqrt(magnitude2);
+                    new0 *= scale;
+                    new1 *= scale;
+                }
+                p.tangent[0].impulse = new0;
+                p.tangent[1].impulse = new1;
+                applyImpulse(a, b, m.tangent[0], p.tangent[0], new0 - old0);
+                applyImpulse(a, b, m.tangent[1], p.tangent[1], new1 - old1);
+            }
+        }
+        for (int i = 0; i < m.count; ++i) {
+            SolverPoint &p = m.points[i];
+            const real vn = relativeVelocity(a, b, m.normal, p.normal);
+            const real old = p.normal.impulse;
+            const real updated = std::max(old - p.normal.mass * (vn - p.velocityBias), real(0));
+            p.normal.impulse = updated;
+            applyImpulse(a, b, m.normal, p.normal, updated - old);
+        }
+    }
+}
+
+void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
+    for (SolverManifold &m : manifolds) {
+        SolverBody &a = bodies[m.a];
+        SolverBody &b = bodies[m.b];
+        for (int i = 0; i < m.count; ++i) {
+            SolverPoint &p = m.points[i];
+            if (p.pseudoTarget <= 0 && p.pseudoImpulse == 0) continue;
+            const real vn = m.normal.dot(b.pv - a.pv) + p.normal.rBxd.dot(b.pw) - p.normal.rAxd.dot(a.pw);
+            const real old = p.pseudoImpulse;
+            const real updated = std::max(old - p.normal.mass * (vn - p.pseudoTarget), real(0));
+            p.pseudoImpulse = updated;
+            const real delta = updated - old;
+            a.pv -= (a.invMass * delta) * m.normal;
+            a.pw -= delta * p.normal.angA;
+            b.pv += (b.invMass * delta) * m.normal;
+            b.pw += delta * p.normal.angB;
+        }
+    }
+}
+
+}  // namespace cyclone::detail

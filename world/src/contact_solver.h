@@ -1,0 +1,82 @@
+// The contact solver: sequential impulses with accumulated-impulse clamping, warm
+// starting, Coulomb friction on two tangents, restitution above a threshold, and
+// penetration recovery by pseudo-velocities (split impulse) that never add energy.
+//
+// Design note. The solver works on its own contiguous arrays (SolverBody,
+// SolverManifold) rather than on RigidBody: those are what every iteration touches.
+// World copies the predicted velocities in, and hands the result back to each body
+// through RigidBody::addVelocity / addRotation before RigidBody::integrate. Entry 0 of
+// the body array is the immovable "world" (zero inverse mass and inertia), which every
+// static body maps to, so the iterations need no branches for static contacts.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cyclone/core.h"
+
+namespace cyclone::detail {
+
+/// Velocity state of one awake dynamic body during the solve.
+struct SolverBody {
+    Vector3 v = Vector3::Zero();   ///< Linear velocity, m/s.
+    Vector3 w = Vector3::Zero();   ///< Angular velocity, rad/s.
+    Vector3 pv = Vector3::Zero();  ///< Pseudo linear velocity (penetration recovery only), m/s.
+    Vector3 pw = Vector3::Zero();  ///< Pseudo angular velocity, rad/s.
+    real invMass = 0;              ///< 1/kg.
+    Matrix3 invInertia = Matrix3::Zero();  ///< World space, 1/(kg m^2).
+};
+
+/// One constraint direction at a point: Jacobian terms and the accumulated impulse.
+struct SolverRow {
+    Vector3 rAxd;      ///< rA x d.
+    Vector3 rBxd;      ///< rB x d.
+    Vector3 angA;      ///< IA^-1 (rA x d).
+    Vector3 angB;      ///< IB^-1 (rB x d).
+    real mass = 0;     ///< Effective mass along d, kg.
+    real impulse = 0;  ///< Accumulated impulse, N s.
+};
+
+struct SolverPoint {
+    Vector3 localA;          ///< Anchor on A, A's body space, m.
+    Vector3 localB;          ///< Anchor on B, B's body space, m.
+    SolverRow normal;
+    SolverRow tangent[2];
+    real velocityBias = 0;   ///< Target normal velocity (restitution or speculative), m/s.
+    real depth = 0;          ///< Penetration at the start of the step, m (< 0: apart).
+    real pseudoImpulse = 0;  ///< Accumulated pseudo impulse, N s.
+    real pseudoTarget = 0;   ///< Target pseudo normal velocity, m/s.
+};
+
+struct SolverManifold {
+    int a = 0;  ///< Index into the SolverBody array (0 = static world).
+    int b = 0;
+    Vector3 normal;      ///< From A to B.
+    Vector3 tangent[2];
+    real friction = 0;
+    int count = 0;
+    SolverPoint points[4];
+};
+
+struct SolverSettings {
+    real penetrationSlop = 0.005;
+    real penetrationRecovery = 0.2;
+    real restitutionThreshold = 1.0;
+};
+
+/// Tangents of a normal: deterministic, so that the same normal gives the same basis
+/// every step and warm-started friction stays meaningful.
+void tangentBasis(const Vector3 &normal, Vector3 &t1, Vector3 &t2);
+
+/// Fills the Jacobian terms and effective masses of one point along n, t1, t2.
+void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
+                 const SolverManifold &m, SolverPoint &p);
+
+/// Applies the accumulated impulses (warm start).
+void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds);
+/// One Gauss-Seidel pass over friction and normal rows.
+void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds);
+/// One pass of penetration recovery on the pseudo-velocities.
+void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds);
+
+}  // namespace cyclone::detail

@@ -1,0 +1,83 @@
+#include "pair_cache.h"
+
+namespace cyclone::detail {
+
+std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &created) {
+    const std::uint64_t k = key(i, j);
+    const auto found = index_.find(k);
+    if (found != index_.end()) {
+        created = false;
+        return found->second;
+    }
+    created = true;
+    std::uint32_t slot;
+    if (!free_.empty()) {
+        slot = free_.back();
+        free_.pop_back();
+    } else {
+        slot = static_cast<std::uint32_t>(pairs_.size());
+        pairs_.emplace_back();
+    }
+    PairState &p = pairs_[slot];
+    p.a = std::min(i, j);
+    p.b = std::max(i, j);
+    p.manifolds.clear();
+    p.relativePose = Matrix4::Identity();
+    p.lastSeen = 0;
+    p.tested = false;
+    p.alive = true;
+    index_.emplace(k, slot);
+    return slot;
+}
+
+long PairCache::find(std::uint32_t i, std::uint32_t j) const {
+    const auto found = index_.find(key(i, j));
+    return found == index_.end() ? -1 : long(found->second);
+}
+
+void PairCache::remove(std::uint32_t pair) {
+    PairState &p = pairs_[pair];
+    if (!p.alive) return;
+    index_.erase(key(p.a, p.b));
+    p.alive = false;
+    p.manifolds.clear();
+    free_.push_back(pair);
+}
+
+void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &poseB) {
+    m.normal = poseA.linear() * m.localNormal;
+    for (int i = 0; i < m.count; ++i) {
+        PersistentPoint &p = m.points[i];
+        p.depth = (poseA * p.localA - poseB * p.localB).dot(m.normal);
+    }
+}
+
+void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,
+                   real matchDistance) {
+    ManifoldState old = state;
+    const bool sameNormal = old.count > 0 && old.normal.dot(fresh.normal) > 0.95;
+    state.normal = fresh.normal;
+    state.localNormal = poseA.linear().transpose() * fresh.normal;
+    state.count = fresh.count;
+    const real match2 = matchDistance * matchDistance;
+    for (int i = 0; i < fresh.count; ++i) {
+        PersistentPoint &p = state.points[i];
+        p.localA = poseA.inverse() * fresh.points[i].pointA;
+        p.localB = poseB.inverse() * fresh.points[i].pointB;
+        p.depth = fresh.points[i].depth;
+        p.normalImpulse = 0;
+        p.frictionImpulse.setZero();
+        if (!sameNormal) continue;
+        real best = match2;
+        for (int j = 0; j < old.count; ++j) {
+            const real d2 = (old.points[j].localA - p.localA).squaredNorm();
+            if (d2 < best) {
+                best = d2;
+                p.normalImpulse = old.points[j].normalImpulse;
+                p.frictionImpulse = old.points[j].frictionImpulse;
+            }
+        }
+    }
+}
+
+}  // namespace cyclone::detail

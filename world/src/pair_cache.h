@@ -1,0 +1,72 @@
+// Contact pairs that persist across steps: their manifolds, the anchors of each point
+// in both bodies' frames, and the impulses that warm-start the solver.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "cyclone/core.h"
+#include "narrowphase.h"
+
+namespace cyclone::detail {
+
+/// A contact point as it persists from one step to the next.
+struct PersistentPoint {
+    Vector3 localA = Vector3::Zero();  ///< Anchor on A, A's body space, m.
+    Vector3 localB = Vector3::Zero();  ///< Anchor on B, B's body space, m.
+    real depth = 0;                    ///< Penetration, m (< 0: apart, speculative).
+    real normalImpulse = 0;            ///< Last step's accumulated normal impulse, N s.
+    Vector3 frictionImpulse = Vector3::Zero();  ///< Last step's friction impulse, world, N s.
+};
+
+struct ManifoldState {
+    Vector3 normal = Vector3::UnitY();       ///< World space, from A to B.
+    Vector3 localNormal = Vector3::UnitY();  ///< The normal in A's body space.
+    int count = 0;
+    PersistentPoint points[Manifold::kMaxPoints];
+};
+
+struct PairState {
+    std::uint32_t a = 0;  ///< Body index of A (the smaller index).
+    std::uint32_t b = 0;  ///< Body index of B.
+    std::vector<ManifoldState> manifolds;
+    Matrix4 relativePose = Matrix4::Identity();  ///< A^-1 B at the last narrowphase.
+    std::uint64_t lastSeen = 0;   ///< Step in which the broadphase last reported the pair.
+    bool tested = false;          ///< Whether it has been through the narrowphase.
+    bool alive = false;
+    bool touching() const { return !manifolds.empty(); }
+};
+
+class PairCache {
+public:
+    /// The pair of bodies i and j (any order), created if new; returns its index.
+    std::uint32_t findOrAdd(std::uint32_t i, std::uint32_t j, bool &created);
+    /// Index of the pair of i and j, or -1.
+    long find(std::uint32_t i, std::uint32_t j) const;
+    void remove(std::uint32_t pair);
+    PairState &operator[](std::uint32_t pair) { return pairs_[pair]; }
+    const PairState &operator[](std::uint32_t pair) const { return pairs_[pair]; }
+    /// Every slot, alive or not (check PairState::alive).
+    std::size_t slots() const { return pairs_.size(); }
+
+private:
+    static std::uint64_t key(std::uint32_t i, std::uint32_t j) {
+        if (i > j) std::swap(i, j);
+        return (std::uint64_t(i) << 32) | j;
+    }
+    std::vector<PairState> pairs_;
+    std::vector<std::uint32_t> free_;
+    std::unordered_map<std::uint64_t, std::uint32_t> index_;
+};
+
+/// Refreshes `m` from the bodies' current poses using its anchors (no narrowphase):
+/// world normal from A's frame, depth from the anchors' separation along it.
+void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &poseB);
+
+/// Replaces `state` with `fresh`, carrying each old point's impulses to the new point
+/// whose anchor on A lies within `matchDistance` (warm starting).
+void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,
+                   real matchDistance);
+
+}  // namespace cyclone::detail

@@ -1,0 +1,42 @@
+// Refusing bad input with a message that names the function, the field and the value.
+#pragma once
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "cyclone/core.h"
+#include "cyclone/world/error.h"
+
+namespace cyclone::detail {
+
+inline std::string show(real value) {
+    std::ostringstream out;
+    out.precision(17);
+    out << value;
+    return out.str();
+}
+
+inline std::string show(const Vector3 &v) { return "[" + show(v.x()) + ", " + show(v.y()) + ", " + show(v.z()) + "]"; }
+
+[[noreturn]] inline void refuse(const std::string &function, const std::string &field, const std::string &problem) {
+    throw InvalidArgument(function, field, problem);
+}
+
+inline void requireFinite(const char *function, const char *field, const Vector3 &v) {
+    if (!v.allFinite()) refuse(function, field, "must be finite, got " + show(v));
+}
+
+inline void requirePositive(const char *function, const char *field, real value) {
+    if (!std::isfinite(value) || !(value > 0)) refuse(function, field, "must be finite and > 0, got " + show(value));
+}
+
+inline void requireNonNegative(const char *function, const char *field, real value) {
+    if (!std::isfinite(value) || !(value >= 0)) refuse(function, field, "must be finite and >= 0, got " + show(value));
+}
+
+inline void requireUnit(const char *function, const char *field, real value) {
+    if (!(value >= 0 && value <= 1)) refuse(function, field, "must be in [0, 1], got " + show(value));
+}
+
+}  // namespace cyclone::detail

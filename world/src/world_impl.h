@@ -1,0 +1,116 @@
+// The World's private state and its step stages.
+//
+// Design note. Bodies live in one vector of records indexed by BodyId::index (removed
+// slots are reused; the generation tells stale handles apart). Contact pairs persist in
+// a PairCache across steps so that impulses warm-start the solver and sleeping pairs keep
+// their manifolds. A step simulates the bodies awake when it starts ("simulated"): a
+// body woken during the step (touched by an awake body) acts as immovable for the rest
+// of that step and moves from the next one.
+#pragma once
+
+#include <fcl/fcl.h>
+
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "broadphase.h"
+#include "collision_shape.h"
+#include "contact_solver.h"
+#include "cyclone/world/world.h"
+#include "narrowphase.h"
+#include "pair_cache.h"
+
+namespace cyclone {
+
+struct BodyRecord {
+    RigidBody body;
+    std::shared_ptr<const detail::CollisionShape> shape;
+    std::unique_ptr<fcl::CollisionObjectd> object;  ///< Null for planes.
+    std::string name;
+    Material material;
+    std::uint32_t generation = 0;
+    bool alive = false;
+    bool isStatic = false;
+    bool isPlane = false;
+    bool ccd = false;
+    bool quarantined = false;   ///< State went non-finite: out of collision and solve.
+    bool simulated = false;     ///< Awake dynamic body at the start of this step.
+    detail::Tree tree = detail::Tree::None;
+    int sleepingIsland = -1;    ///< Index in sleepingIslands_ while asleep.
+    int island = -1;            ///< Island of the last step (-1: none).
+    int solverIndex = 0;        ///< Index in the solver arrays (0: immovable).
+    real boundingRadius = 0;    ///< Farthest point of the shape from its origin, m.
+};
+
+struct SpringRecord {
+    SpringSettings settings;
+    std::uint32_t generation = 0;
+    bool alive = false;
+};
+
+struct World::Impl {
+    WorldSettings settings;
+    std::vector<BodyRecord> bodies;
+    std::vector<std::uint32_t> freeBodies;
+    std::vector<std::uint32_t> order;  ///< Live bodies in the order they were added.
+    std::vector<std::uint32_t> planes;
+    std::unordered_map<std::string, std::uint32_t> names;
+    std::vector<SpringRecord> springs;
+    std::vector<std::uint32_t> freeSprings;
+
+    detail::Broadphase broadphase;
+    detail::PairCache pairs;
+    std::vector<std::vector<std::uint32_t>> sleepingIslands;
+    std::vector<int> freeSleepingIslands;
+
+    // Scratch of a step, kept to avoid allocation in steady state.
+    std::vector<std::uint32_t> simulatedBodies;
+    std::vector<fcl::CollisionObjectd *> movedObjects;
+    std::vector<detail::CandidatePair> candidates;
+    std::vector<detail::Manifold> fresh;
+    std::vector<std::uint32_t> touchingPairs;
+    std::vector<detail::SolverBody> solverBodies;
+    std::vector<detail::SolverManifold> solverManifolds;
+    std::vector<std::uint32_t> solverSource;  ///< Pair index and manifold of each solver manifold.
+    std::vector<int> islandParent;
+    std::vector<int> islandStart;
+    std::vector<std::uint32_t> islandBodies;
+    std::vector<Vector3> savedForces;
+    std::vector<Vector3> savedTorques;
+
+    std::uint64_t stepCount = 0;
+    StepStats stats;
+
+    explicit Impl(const WorldSettings &s) : settings(s) {}
+
+    // Lookup and validation.
+    BodyRecord &record(BodyId id, const char *function);
+    const BodyRecord &record(BodyId id, const char *function) const;
+    BodyRecord &dynamicRecord(BodyId id, const char *function);
+    BodyId idOf(std::uint32_t index) const { return {index, bodies[index].generation}; }
+    bool isDynamic(std::uint32_t index) const { return !bodies[index].isStatic; }
+
+    // Sleep and wake.
+    void wake(std::uint32_t index);
+    void sleepIsland(const std::uint32_t *members, int count);
+    void setTree(std::uint32_t index, detail::Tree tree);
+    void refreshCollisionObject(std::uint32_t index);
+
+    // The step, stage by stage.
+    void step(real dt);
+    void applyForces();
+    void updateBroadphase();
+    void runNarrowphase();
+    void buildManifolds(real dt);
+    void buildIslands();
+    void solve(real h, bool firstSubstep);
+    void integrate(real h);
+    void correctPositions(real h);
+    void updateSleep();
+    void storeImpulses();
+    void quarantine(std::uint32_t index);
+};
+
+}  // namespace cyclone

@@ -1,0 +1,470 @@
+// World::step, stage by stage: forces -> broadphase -> narrowphase -> manifolds ->
+// islands -> solve -> integrate -> sleep.
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "validation.h"
+#include "world_impl.h"
+
+namespace cyclone {
+
+using detail::Tree;
+
+namespace {
+
+class StageTimer {
+public:
+    double lap() {
+        const auto now = std::chrono::steady_clock::now();
+        const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+        last_ = now;
+        return ms;
+    }
+
+private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+bool stateFinite(const RigidBody &body) {
+    return body.getPosition().allFinite() && body.getOrientation().coeffs().allFinite() &&
+           body.getVelocity().allFinite() && body.getRotation().allFinite() &&
+           std::isfinite(body.getVelocity().squaredNorm() + body.getRotation().squaredNorm());
+}
+
+// The velocity RigidBody::integrate(h) will reach from the accumulated force and the
+// constant acceleration, before contact impulses: (v + a h) * damping^h.
+void predictVelocity(const RigidBody &body, real h, Vector3 &v, Vector3 &w) {
+    const Vector3 a = body.getAcceleration() + body.getAccumulatedForce() * body.getInverseMass();
+    const Vector3 alpha = body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque();
+    v = (body.getVelocity() + a * h) * std::pow(body.getLinearDamping(), h);
+    w = (body.getRotation() + alpha * h) * std::pow(body.getAngularDamping(), h);
+}
+
+int findRoot(std::vector<int> &parent, int i) {
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    return i;
+}
+
+}  // namespace
+
+void World::Impl::step(real dt) {
+    StageTimer timer;
+    stats = StepStats();
+    ++stepCount;
+
+    applyForces();
+    stats.ms.forces = timer.lap();
+    updateBroadphase();
+    stats.ms.broadphase = timer.lap();
+    runNarrowphase();
+    stats.ms.narrowphase = timer.lap();
+    buildManifolds(dt);
+    stats.ms.manifolds = timer.lap();
+    buildIslands();
+    stats.ms.islands = timer.lap();
+
+    const real h = dt / settings.substeps;
+    for (int substep = 0; substep < settings.substeps; ++substep) {
+        solve(h, substep == 0);
+        stats.ms.solve += timer.lap();
+        integrate(h);
+        correctPositions(h);
+        stats.ms.integrate += timer.lap();
+    }
+    storeImpulses();
+    stats.ms.solve += timer.lap();
+
+    updateSleep();
+    stats.ms.sleep = timer.lap();
+
+    stats.integratedBodies = static_cast<int>(simulatedBodies.size());
+    stats.bodies = static_cast<int>(order.size());
+    for (std::uint32_t index : order) {
+        const BodyRecord &r = bodies[index];
+        if (!r.isStatic && r.body.getAwake() && !r.quarantined) ++stats.awakeBodies;
+        if (r.quarantined) ++stats.nonFiniteBodies;
+    }
+    stats.ms.total = stats.ms.forces + stats.ms.broadphase + stats.ms.narrowphase + stats.ms.manifolds +
+                     stats.ms.islands + stats.ms.solve + stats.ms.integrate + stats.ms.sleep;
+}
+
+// --- forces -------------------------------------------------------------------------------
+
+void World::Impl::applyForces() {
+    simulatedBodies.clear();
+    for (std::uint32_t index : order) {
+        BodyRecord &r = bodies[index];
+        r.simulated = !r.isStatic && !r.quarantined && r.body.getAwake();
+        if (!r.simulated) continue;
+        if (!r.body.getAccumulatedForce().allFinite() || !r.body.getAccumulatedTorque().allFinite()) {
+            quarantine(index);
+            continue;
+        }
+        r.solverIndex = static_cast<int>(simulatedBodies.size()) + 1;
+        simulatedBodies.push_back(index);
+    }
+    for (SpringRecord &s : springs) {
+        if (!s.alive) continue;
+        BodyRecord &a = bodies[s.settings.a.index];
+        BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
+        const bool bSimulated = b && b->simulated;
+        if (!a.simulated && !bSimulated) continue;
+        // A spring joins its bodies: one awake end wakes the other.
+        if (!a.simulated) wake(s.settings.a.index);
+        if (b && !b->simulated) wake(s.settings.b->index);
+        const Vector3 pa = a.body.getPointInWorldSpace(s.settings.aPoint);
+        const Vector3 pb = b ? b->body.getPointInWorldSpace(s.settings.bPoint) : s.settings.bPoint;
+        const Vector3 d = pa - pb;
+        const real length = d.norm();
+        if (!(length > 1e-12)) continue;
+        const Vector3 dir = d / length;
+        const Vector3 va = a.body.getVelocity() + a.body.getRotation().cross(pa - a.body.getPosition());
+        const Vector3 vb = b ? Vector3(b->body.getVelocity() + b->body.getRotation().cross(pb - b->body.getPosition()))
+                             : Vector3::Zero();
+        const Vector3 force = -(s.settings.stiffness * (length - s.settings.restLength) +
+                                s.settings.damping * (va - vb).dot(dir)) * dir;
+        if (!force.allFinite()) continue;
+        if (a.simulated) a.body.addForceAtPoint(force, pa);
+        if (bSimulated) b->body.addForceAtPoint(-force, pb);
+        ++stats.springs;
+    }
+    if (settings.substeps > 1) {
+        savedForces.resize(simulatedBodies.size());
+        savedTorques.resize(simulatedBodies.size());
+        for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+            savedForces[k] = bodies[simulatedBodies[k]].body.getAccumulatedForce();
+            savedTorques[k] = bodies[simulatedBodies[k]].body.getAccumulatedTorque();
+        }
+    }
+}
+
+// --- broadphase ---------------------------------------------------------------------------
+
+void World::Impl::updateBroadphase() {
+    movedObjects.clear();
+    for (std::uint32_t index : simulatedBodies) {
+        BodyRecord &r = bodies[index];
+        if (!r.object) continue;
+        r.object->setTransform(r.body.getTransform());
+        r.object->computeAABB();
+        movedObjects.push_back(r.object.get());
+    }
+    broadphase.refitAwake(movedObjects);
+    candidates.clear();
+    broadphase.findPairs(candidates);
+
+    // Planes stay out of the trees: test each awake body's AABB against each plane.
+    for (std::uint32_t plane : planes) {
+        const Shape &p = bodies[plane].shape->shape();
+        const Vector3 n = p.normal.normalized();
+        const real offset = p.offset / p.normal.norm();
+        for (std::uint32_t index : simulatedBodies) {
+            const BodyRecord &r = bodies[index];
+            if (!r.object) continue;
+            const fcl::AABBd &box = r.object->getAABB();
+            const Vector3 centre = box.center();
+            const Vector3 half = 0.5 * (box.max_ - box.min_);
+            const real lowest = n.dot(centre) - n.cwiseAbs().dot(half);
+            if (lowest <= offset + settings.speculativeDistance) candidates.push_back({plane, index});
+        }
+    }
+    stats.broadphasePairs = static_cast<int>(candidates.size());
+}
+
+// --- narrowphase --------------------------------------------------------------------------
+
+void World::Impl::runNarrowphase() {
+    const detail::NarrowphaseSettings np{settings.speculativeDistance};
+    touchingPairs.clear();
+    for (const detail::CandidatePair &c : candidates) {
+        if (bodies[c.a].isStatic && bodies[c.b].isStatic) continue;
+        bool created = false;
+        const std::uint32_t p = pairs.findOrAdd(c.a, c.b, created);
+        detail::PairState &pair = pairs[p];
+        if (pair.lastSeen == stepCount) continue;  // reported twice
+        pair.lastSeen = stepCount;
+        BodyRecord &a = bodies[pair.a];
+        BodyRecord &b = bodies[pair.b];
+        const Matrix4 poseA = a.body.getTransform();
+        const Matrix4 poseB = b.body.getTransform();
+        const Matrix4 relative = poseA.inverse() * poseB;
+
+        bool reuse = false;
+        if (pair.tested && settings.manifoldReuseTolerance > 0) {
+            const real shift = (relative.translation() - pair.relativePose.translation()).norm();
+            const Eigen::AngleAxis<real> turn(relative.linear() * pair.relativePose.linear().transpose());
+            const real radius = std::max(a.boundingRadius, b.boundingRadius);
+            reuse = shift + std::abs(turn.angle()) * radius < settings.manifoldReuseTolerance;
+        }
+        if (reuse) {
+            for (detail::ManifoldState &m : pair.manifolds) detail::refreshFromAnchors(m, poseA, poseB);
+            ++stats.pairsReused;
+        } else {
+            fresh.clear();
+            const int n = detail::collide(*a.shape, poseA, *b.shape, poseB, np, fresh);
+            ++stats.pairsTested;
+            pair.tested = true;
+            pair.relativePose = relative;
+            const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
+                                       b.isPlane ? a.boundingRadius : b.boundingRadius);
+            const real matchDistance = std::clamp(0.1 * size, real(0.001), real(0.05));
+            // At most four manifolds per pair (a mesh may report more normals).
+            const int kept = std::min(n, 4);
+            pair.manifolds.resize(kept);
+            for (int k = 0; k < kept; ++k) detail::mergeManifold(pair.manifolds[k], fresh[k], poseA, poseB, matchDistance);
+        }
+        if (!pair.touching()) continue;
+        touchingPairs.push_back(p);
+        // A new contact with an awake body wakes a sleeping one (from the next step on).
+        if (a.simulated && !b.isStatic && !b.simulated) wake(pair.b);
+        if (b.simulated && !a.isStatic && !a.simulated) wake(pair.a);
+    }
+
+    // Pairs with an awake member that the broadphase no longer reports have separated.
+    for (std::uint32_t p = 0; p < pairs.slots(); ++p) {
+        detail::PairState &pair = pairs[p];
+        if (!pair.alive || pair.lastSeen == stepCount) continue;
+        if (bodies[pair.a].simulated || bodies[pair.b].simulated) pairs.remove(p);
+    }
+}
+
+// --- manifolds ----------------------------------------------------------------------------
+
+void World::Impl::buildManifolds(real) {
+    solverManifolds.clear();
+    solverSource.clear();
+    for (std::uint32_t p : touchingPairs) {
+        const detail::PairState &pair = pairs[p];
+        const BodyRecord &a = bodies[pair.a];
+        const BodyRecord &b = bodies[pair.b];
+        const int ia = a.simulated ? a.solverIndex : 0;
+        const int ib = b.simulated ? b.solverIndex : 0;
+        if (ia == 0 && ib == 0) continue;
+        const real friction = std::sqrt(a.material.friction * b.material.friction);
+        for (std::size_t k = 0; k < pair.manifolds.size(); ++k) {
+            const detail::ManifoldState &m = pair.manifolds[k];
+            if (m.count == 0) continue;
+            detail::SolverManifold &sm = solverManifolds.emplace_back();
+            sm.a = ia;
+            sm.b = ib;
+            sm.normal = m.normal;
+            detail::tangentBasis(sm.normal, sm.tangent[0], sm.tangent[1]);
+            sm.friction = friction;
+            sm.count = m.count;
+            for (int i = 0; i < m.count; ++i) {
+                const detail::PersistentPoint &src = m.points[i];
+                detail::SolverPoint &dst = sm.points[i];
+                dst.localA = src.localA;
+                dst.localB = src.localB;
+                dst.depth = src.depth;
+                const bool warm = settings.warmStarting;
+                dst.normal.impulse = warm ? src.normalImpulse : 0;
+                dst.tangent[0].impulse = warm ? src.frictionImpulse.dot(sm.tangent[0]) : 0;
+                dst.tangent[1].impulse = warm ? src.frictionImpulse.dot(sm.tangent[1]) : 0;
+                stats.maxPenetration = std::max(stats.maxPenetration, src.depth);
+            }
+            solverSource.push_back((p << 2) | static_cast<std::uint32_t>(k));
+            ++stats.manifolds;
+            stats.contacts += m.count;
+            if (friction > 0) stats.frictionRows += 2 * m.count;
+        }
+    }
+}
+
+// --- islands ------------------------------------------------------------------------------
+
+void World::Impl::buildIslands() {
+    const int n = static_cast<int>(simulatedBodies.size());
+    islandParent.resize(n);
+    std::iota(islandParent.begin(), islandParent.end(), 0);
+    auto unite = [&](int x, int y) {
+        x = findRoot(islandParent, x);
+        y = findRoot(islandParent, y);
+        if (x != y) islandParent[std::max(x, y)] = std::min(x, y);
+    };
+    for (const detail::SolverManifold &m : solverManifolds)
+        if (m.a > 0 && m.b > 0) unite(m.a - 1, m.b - 1);
+    for (const SpringRecord &s : springs) {
+        if (!s.alive || !s.settings.b) continue;
+        const BodyRecord &a = bodies[s.settings.a.index];
+        const BodyRecord &b = bodies[s.settings.b->index];
+        if (a.simulated && b.simulated) unite(a.solverIndex - 1, b.solverIndex - 1);
+    }
+    // Compact roots into island numbers, then lay the members out island by island.
+    islandStart.assign(n + 1, 0);
+    int islands = 0;
+    for (int k = 0; k < n; ++k) {
+        const int root = findRoot(islandParent, k);
+        if (root == k) bodies[simulatedBodies[k]].island = islands++;
+        else bodies[simulatedBodies[k]].island = bodies[simulatedBodies[root]].island;
+    }
+    islandStart.assign(islands + 1, 0);
+    for (int k = 0; k < n; ++k) ++islandStart[bodies[simulatedBodies[k]].island + 1];
+    for (int i = 0; i < islands; ++i) islandStart[i + 1] += islandStart[i];
+    islandBodies.resize(n);
+    std::vector<int> &cursor = islandParent;  // reused as scratch
+    cursor.assign(islandStart.begin(), islandStart.end() - 1);
+    for (int k = 0; k < n; ++k) islandBodies[cursor[bodies[simulatedBodies[k]].island]++] = simulatedBodies[k];
+    stats.islands = islands;
+}
+
+// --- solve --------------------------------------------------------------------------------
+
+void World::Impl::solve(real h, bool firstSubstep) {
+    solverBodies.resize(simulatedBodies.size() + 1);
+    solverBodies[0] = detail::SolverBody();
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        detail::SolverBody &sb = solverBodies[k + 1];
+        if (r.quarantined) {
+            sb = detail::SolverBody();  // immovable from now on: its NaN reaches no one
+            continue;
+        }
+        if (!firstSubstep) {
+            r.body.addForce(savedForces[k]);
+            r.body.addTorque(savedTorques[k]);
+        }
+        predictVelocity(r.body, h, sb.v, sb.w);
+        sb.pv.setZero();
+        sb.pw.setZero();
+        sb.invMass = r.body.getInverseMass();
+        sb.invInertia = r.body.getInverseInertiaTensorWorld();
+    }
+
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        detail::SolverManifold &m = solverManifolds[s];
+        const detail::PairState &pair = pairs[solverSource[s] >> 2];
+        const RigidBody &a = bodies[pair.a].body;
+        const RigidBody &b = bodies[pair.b].body;
+        const real restitution = std::max(bodies[pair.a].material.restitution, bodies[pair.b].material.restitution);
+        for (int i = 0; i < m.count; ++i) {
+            detail::SolverPoint &p = m.points[i];
+            const Vector3 pa = a.getTransform() * p.localA;
+            const Vector3 pb = b.getTransform() * p.localB;
+            if (!firstSubstep) p.depth = (pa - pb).dot(m.normal);
+            const Vector3 c = 0.5 * (pa + pb);
+            detail::prepareRows(solverBodies[m.a], solverBodies[m.b], c - a.getPosition(), c - b.getPosition(), m, p);
+            const detail::SolverBody &sa = solverBodies[m.a];
+            const detail::SolverBody &sb = solverBodies[m.b];
+            const real vn = m.normal.dot(sb.v - sa.v) + p.normal.rBxd.dot(sb.w) - p.normal.rAxd.dot(sa.w);
+            p.velocityBias = 0;
+            if (p.depth < 0) {
+                // Apart: the bodies may close the gap during this step, no more.
+                p.velocityBias = p.depth / h;
+            } else if (restitution > 0 && vn < -settings.restitutionThreshold) {
+                p.velocityBias = -restitution * vn;
+                if (firstSubstep) ++stats.restitutionContacts;
+            }
+        }
+    }
+
+    if (settings.warmStarting) detail::warmStart(solverBodies, solverManifolds);
+    for (int it = 0; it < settings.velocityIterations; ++it) detail::solveVelocities(solverBodies, solverManifolds);
+    stats.velocityIterations += settings.velocityIterations;
+
+    // Hand the result to the bodies: integrate(h) will turn v into (v + a h) d^h, so the
+    // change to give now is the solver's change divided by the damping factor.
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        if (r.quarantined) continue;
+        const detail::SolverBody &sb = solverBodies[k + 1];
+        Vector3 v, w;
+        predictVelocity(r.body, h, v, w);
+        const real linear = std::pow(r.body.getLinearDamping(), h);
+        const real angular = std::pow(r.body.getAngularDamping(), h);
+        if (linear > 0) r.body.addVelocity((sb.v - v) / linear);
+        if (angular > 0) r.body.addRotation((sb.w - w) / angular);
+    }
+}
+
+void World::Impl::storeImpulses() {
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        const detail::SolverManifold &m = solverManifolds[s];
+        detail::PairState &pair = pairs[solverSource[s] >> 2];
+        const std::size_t k = solverSource[s] & 3;
+        if (!pair.alive || k >= pair.manifolds.size()) continue;  // a body was quarantined
+        detail::ManifoldState &state = pair.manifolds[k];
+        for (int i = 0; i < m.count; ++i) {
+            const detail::SolverPoint &p = m.points[i];
+            state.points[i].normalImpulse = p.normal.impulse;
+            state.points[i].frictionImpulse = p.tangent[0].impulse * m.tangent[0] + p.tangent[1].impulse * m.tangent[1];
+        }
+    }
+}
+
+// --- integrate ----------------------------------------------------------------------------
+
+void World::Impl::integrate(real h) {
+    for (std::uint32_t index : simulatedBodies) {
+        BodyRecord &r = bodies[index];
+        if (r.quarantined) continue;
+        r.body.integrate(h, false);
+        if (!stateFinite(r.body)) quarantine(index);
+    }
+}
+
+void World::Impl::correctPositions(real h) {
+    if (settings.positionIterations == 0 || solverManifolds.empty()) return;
+    bool needed = false;
+    for (detail::SolverManifold &m : solverManifolds) {
+        const detail::PairState &pair = pairs[solverSource[&m - solverManifolds.data()] >> 2];
+        const Matrix4 &poseA = bodies[pair.a].body.getTransform();
+        const Matrix4 &poseB = bodies[pair.b].body.getTransform();
+        for (int i = 0; i < m.count; ++i) {
+            detail::SolverPoint &p = m.points[i];
+            const real depth = (poseA * p.localA - poseB * p.localB).dot(m.normal);
+            p.pseudoImpulse = 0;
+            p.pseudoTarget = settings.penetrationRecovery * std::max(depth - settings.penetrationSlop, real(0)) / h;
+            needed = needed || p.pseudoTarget > 0;
+        }
+    }
+    if (!needed) return;
+    for (int it = 0; it < settings.positionIterations; ++it)
+        detail::solvePseudoVelocities(solverBodies, solverManifolds);
+    stats.positionIterations += settings.positionIterations;
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        const detail::SolverBody &sb = solverBodies[k + 1];
+        if (r.quarantined || (sb.pv.isZero(0) && sb.pw.isZero(0))) continue;
+        r.body.setPosition(r.body.getPosition() + sb.pv * h);
+        Quaternion q = r.body.getOrientation();
+        const Quaternion spin(0, sb.pw.x() * h, sb.pw.y() * h, sb.pw.z() * h);
+        q.coeffs() += 0.5 * (spin * q).coeffs();
+        r.body.setOrientation(q);
+    }
+}
+
+// --- sleep --------------------------------------------------------------------------------
+
+void World::Impl::updateSleep() {
+    if (!settings.sleep) return;
+    const int islands = static_cast<int>(islandStart.size()) - 1;
+    for (int i = 0; i < islands; ++i) {
+        const int start = islandStart[i];
+        const int end = islandStart[i + 1];
+        bool still = true;
+        for (int k = start; k < end && still; ++k) {
+            const BodyRecord &r = bodies[islandBodies[k]];
+            still = !r.quarantined && r.body.getAwake() && r.body.getCanSleep() &&
+                    r.body.getMotion() < r.body.getSleepEpsilon();
+        }
+        if (still) sleepIsland(islandBodies.data() + start, end - start);
+    }
+}
+
+void World::Impl::quarantine(std::uint32_t index) {
+    BodyRecord &r = bodies[index];
+    r.quarantined = true;
+    r.simulated = false;
+    setTree(index, Tree::None);
+    for (std::uint32_t p = 0; p < pairs.slots(); ++p) {
+        detail::PairState &pair = pairs[p];
+        if (pair.alive && (pair.a == index || pair.b == index)) pairs.remove(p);
+    }
+}
+
+}  // namespace cyclone
