@@ -1,0 +1,33 @@
+// The benchmark scenes, each described once as World settings plus a list of bodies;
+// every engine of the benchmark builds its own world from this description.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cyclone/world/settings.h"
+
+namespace cyclone::bench {
+
+/// One benchmark scene.
+struct Scene {
+    /// Short name used on the command line, e.g. "pyramid20".
+    std::string name;
+    /// One line saying what the scene is.
+    std::string description;
+    /// Gravity, solver iterations, sleep, ... of the scene.
+    WorldSettings world;
+    /// Every body, static ones included, in the order they are added.
+    std::vector<BodySettings> bodies;
+    /// Index in `bodies` of the body whose drift is reported (a pyramid's top box), or
+    /// -1 when drift means nothing for the scene (bodies that fall or bounce by design).
+    int tracked = -1;
+};
+
+/// Names of every scene, in the order the benchmark runs them.
+std::vector<std::string> sceneNames();
+
+/// The scene called `name`; throws std::invalid_argument for an unknown name.
+Scene makeScene(const std::string &name);
+
+}  // namespace cyclone::bench
