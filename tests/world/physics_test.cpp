@@ -1,0 +1,161 @@
+// Physics against closed forms: free fall, friction on an incline, rolling, stacking.
+#include <cmath>
+
+#include "world_fixture.h"
+
+namespace cyclone::test {
+namespace {
+
+// Semi-implicit Euler under constant g: v_n = -g n dt, y_n = y0 - g dt^2 n (n + 1) / 2.
+TEST(Physics, FreeFallFollowsTheSeedIntegratorExactly) {
+    WorldFixture f;
+    const BodyId ball = f.sphere(Vector3(0, 100, 0), 0.5);
+    const int n = 60;
+    for (int i = 0; i < n; ++i) f.world.step(kDt);
+    EXPECT_NEAR(f.world.body(ball).getVelocity().y(), -9.81 * n * kDt, 1e-12);
+    EXPECT_NEAR(f.position(ball).y(), 100 - 9.81 * kDt * kDt * n * (n + 1) / 2, 1e-9);
+}
+
+struct Incline {
+    WorldFixture f;
+    Quaternion tilt;
+    Vector3 downhill;
+    BodyId body;
+
+    // A static ramp tilted by `degrees` about z with the body resting on its surface.
+    Incline(double degrees, real friction, const BodySettings &settings) {
+        tilt = Quaternion(Eigen::AngleAxis<real>(degrees * kPi / 180, Vector3::UnitZ()));
+        f.staticBox(Vector3::Zero(), Vector3(20, 0.25, 3), tilt, friction);
+        const Vector3 up = tilt * Vector3::UnitY();
+        downhill = tilt * -Vector3::UnitX();
+        BodySettings s = settings;
+        s.orientation = tilt;
+        s.material.friction = friction;
+        s.canSleep = false;
+        const real lift = s.shape.type == ShapeType::Sphere ? s.shape.radius : s.shape.halfExtents.y();
+        s.position = up * (0.25 + lift) + downhill * -10.0;
+        body = f.world.addBody(s);
+    }
+
+    // Mean acceleration along the slope over `seconds`, after `settle` seconds: the change
+    // of velocity over the interval (exact for a constant acceleration).
+    double acceleration(double settle, double seconds) {
+        f.simulate(settle);
+        const double v0 = f.world.body(body).getVelocity().dot(downhill);
+        f.simulate(seconds);
+        const double v1 = f.world.body(body).getVelocity().dot(downhill);
+        return (v1 - v0) / seconds;
+    }
+};
+
+BodySettings smallBox() {
+    BodySettings s;
+    s.shape = Shape::box(Vector3(0.25, 0.25, 0.25));
+    return s;
+}
+
+// Coulomb: a = g (sin 30 - 0.3 cos 30) = 9.81 (0.5 - 0.2598) = 2.356 m/s^2.
+TEST(Physics, BoxSlidesDownInclineAtCoulombAcceleration) {
+    Incline incline(30, 0.3, smallBox());
+    const double expected = 9.81 * (std::sin(kPi / 6) - 0.3 * std::cos(kPi / 6));
+    EXPECT_NEAR(incline.acceleration(0.25, 1.0), expected, 0.05 * expected);
+}
+
+// tan 30 = 0.577 < 0.7: static friction holds the box.
+TEST(Physics, BoxHoldsOnInclineWithHighFriction) {
+    Incline incline(30, 0.7, smallBox());
+    incline.f.simulate(0.25);
+    const Vector3 start = incline.f.position(incline.body);
+    incline.f.simulate(2);
+    EXPECT_LT((incline.f.position(incline.body) - start).norm(), 0.005);
+}
+
+// Rolling without slipping, solid sphere: a = g sin(theta) / (1 + 2/5) = 5/7 g sin(theta)
+// = 3.504 m/s^2 at 30 degrees (needs mu >= 2/7 tan 30 = 0.165).
+TEST(Physics, SphereRollsDownInclineAtFiveSevenths) {
+    BodySettings s;
+    s.shape = Shape::sphere(0.25);
+    Incline incline(30, 0.6, s);
+    const double expected = 5.0 / 7.0 * 9.81 * std::sin(kPi / 6);
+    EXPECT_NEAR(incline.acceleration(0.25, 1.0), expected, 0.05 * expected);
+}
+
+TEST(Physics, BoxRestsOnPlaneWithoutDrift) {
+    WorldSettings settings;
+    settings.sleep = false;
+    WorldFixture f(settings);
+    f.ground();
+    const BodyId box = f.box(Vector3(0, 0.5, 0));
+    f.simulate(5);
+    // It sinks at most by the penetration slop (5 mm) plus one step of gravity.
+    EXPECT_NEAR(f.position(box).y(), 0.5, 0.006);
+    EXPECT_LT(std::hypot(f.position(box).x(), f.position(box).z()), 1e-4);
+    EXPECT_LT(f.world.body(box).getVelocity().norm(), 1e-3);
+}
+
+TEST(Physics, TwelveBoxTowerWithOffsetsStands) {
+    WorldSettings settings;
+    settings.sleep = false;
+    WorldFixture f(settings);
+    f.ground();
+    BodyId top;
+    for (int i = 0; i < 12; ++i) top = f.box(Vector3(i % 2 ? 0.01 : -0.01, 0.5 + i, 0));
+    const Vector3 start = f.position(top);
+    f.simulate(10);
+    EXPECT_LT((f.position(top) - start).norm(), 0.05);
+}
+
+TEST(Physics, HeavyBoxOnLightBoxStaysPut) {
+    WorldSettings settings;
+    settings.sleep = false;
+    WorldFixture f(settings);
+    f.ground();
+    f.box(Vector3(0, 0.5, 0), Vector3(0.5, 0.5, 0.5), 1);
+    const BodyId heavy = f.box(Vector3(0, 1.5, 0), Vector3(0.5, 0.5, 0.5), 100);
+    f.simulate(5);
+    EXPECT_NEAR(f.position(heavy).y(), 1.5, 0.02);
+    EXPECT_LT(std::hypot(f.position(heavy).x(), f.position(heavy).z()), 0.01);
+}
+
+// Without friction nothing opposes sliding: the speed is kept, and no friction rows exist.
+TEST(Physics, FrictionlessBoxKeepsSliding) {
+    WorldSettings settings;
+    settings.sleep = false;
+    WorldFixture f(settings);
+    f.ground(0);
+    const BodyId box = f.box(Vector3(0, 0.5, 0), Vector3(0.5, 0.5, 0.5), 1, 0);
+    f.simulate(0.2);
+    f.world.setVelocity(box, Vector3(2, f.world.body(box).getVelocity().y(), 0));
+    f.simulate(1);
+    EXPECT_NEAR(f.world.body(box).getVelocity().x(), 2, 1e-6);
+    EXPECT_GT(f.world.stats().contacts, 0);
+    EXPECT_EQ(f.world.stats().frictionRows, 0);
+    EXPECT_EQ(f.world.stats().restitutionContacts, 0);
+}
+
+// A ball dropped from 2 m with e = 0.5 rebounds to about e^2 h = 0.5 m.
+TEST(Physics, BouncingBallReachesRestitutionHeight) {
+    WorldSettings settings;
+    settings.sleep = false;
+    WorldFixture f(settings);
+    f.ground();
+    BodySettings s;
+    s.shape = Shape::sphere(0.1);
+    s.position = Vector3(0, 2.1, 0);
+    s.material.restitution = 0.5;
+    const BodyId ball = f.world.addBody(s);
+    double apex = 0;
+    bool bounced = false;
+    // Falling 2 m takes 0.64 s and rising 0.5 m 0.32 s: 1.1 s covers the first bounce.
+    for (int i = 0; i < 264; ++i) {
+        f.world.step(1.0 / 240.0);
+        const double v = f.world.body(ball).getVelocity().y();
+        if (v > 0) bounced = true;
+        if (bounced) apex = std::max(apex, f.position(ball).y() - 0.1);
+    }
+    EXPECT_TRUE(bounced);
+    EXPECT_NEAR(apex, 0.5, 0.05);
+}
+
+}  // namespace
+}  // namespace cyclone::test

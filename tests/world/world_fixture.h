@@ -1,0 +1,66 @@
+// A small fixture for World tests: create bodies in one line, simulate, predict.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include "cyclone/world.h"
+
+namespace cyclone::test {
+
+inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kDt = 1.0 / 60.0;
+
+struct WorldFixture {
+    World world;
+
+    explicit WorldFixture(const WorldSettings &settings = WorldSettings()) : world(settings) {}
+
+    BodyId ground(real friction = 0.6) {
+        BodySettings s;
+        s.name = "ground";
+        s.isStatic = true;
+        s.shape = Shape::plane(Vector3::UnitY(), 0);
+        s.material.friction = friction;
+        return world.addBody(s);
+    }
+
+    BodyId box(const Vector3 &position, const Vector3 &half = Vector3(0.5, 0.5, 0.5), real mass = 1,
+               real friction = 0.6) {
+        BodySettings s;
+        s.shape = Shape::box(half);
+        s.position = position;
+        s.mass = mass;
+        s.material.friction = friction;
+        return world.addBody(s);
+    }
+
+    BodyId sphere(const Vector3 &position, real radius = 0.5, real mass = 1) {
+        BodySettings s;
+        s.shape = Shape::sphere(radius);
+        s.position = position;
+        s.mass = mass;
+        return world.addBody(s);
+    }
+
+    BodyId staticBox(const Vector3 &position, const Vector3 &half, const Quaternion &q = Quaternion::Identity(),
+                     real friction = 0.6) {
+        BodySettings s;
+        s.isStatic = true;
+        s.shape = Shape::box(half);
+        s.position = position;
+        s.orientation = q;
+        s.material.friction = friction;
+        return world.addBody(s);
+    }
+
+    /// Steps for `seconds` at `dt`.
+    void simulate(double seconds, double dt = kDt) {
+        const int steps = static_cast<int>(std::lround(seconds / dt));
+        for (int i = 0; i < steps; ++i) world.step(dt);
+    }
+
+    bool awake(BodyId id) const { return world.body(id).getAwake(); }
+    Vector3 position(BodyId id) const { return world.body(id).getPosition(); }
+};
+
+}  // namespace cyclone::test
