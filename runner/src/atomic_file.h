@@ -1,0 +1,35 @@
+// Output files written whole or not at all: the text goes to PATH.tmp-<pid>, which is
+// renamed to PATH only once it has been written and closed without error.
+#pragma once
+
+#include <fstream>
+#include <string>
+
+namespace cyclone::scene {
+
+class AtomicFile {
+public:
+    /// Creates the temporary file next to `path`; throws std::runtime_error naming the
+    /// path and the reason when it cannot.
+    explicit AtomicFile(std::string path);
+    /// Removes the temporary file unless commit() succeeded.
+    ~AtomicFile();
+    AtomicFile(const AtomicFile &) = delete;
+    AtomicFile &operator=(const AtomicFile &) = delete;
+
+    /// Where the content goes.
+    std::ostream &stream() { return out_; }
+    /// Closes the temporary file and renames it to the path; throws std::runtime_error
+    /// (and removes it) on any write, close or rename error.
+    void commit();
+    /// The final path.
+    const std::string &path() const { return path_; }
+
+private:
+    std::string path_;
+    std::string temporary_;
+    std::ofstream out_;
+    bool committed_ = false;
+};
+
+}  // namespace cyclone::scene

@@ -1,0 +1,345 @@
+#include "cli.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <new>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "report.h"
+#include "run_loop.h"
+#include "scene_loader.h"
+#include "scene_world.h"
+#include "summary.h"
+
+#ifndef CYCLONE_VERSION
+#define CYCLONE_VERSION "unknown"
+#endif
+
+namespace cyclone::scene {
+
+const char *const kHelpText =
+    "cyclone-world: run a cyclone scene file (JSON) and tell what happened.\n"
+    "\n"
+    "Usage:\n"
+    "  cyclone-world run SCENE.json [options]     step the scene; print a one-line result\n"
+    "  cyclone-world report SCENE.json [options]  step the scene; print a short report: bodies,\n"
+    "                                             steps, ms per step (median/mean/max), when\n"
+    "                                             everything fell asleep, drift of the highest\n"
+    "                                             dynamic body, deepest penetration\n"
+    "  cyclone-world help | --help | -h           this text\n"
+    "  cyclone-world --version                    the version\n"
+    "\n"
+    "Options of run and report (also as --option=VALUE):\n"
+    "  --steps N           steps to take, 0..100000000; overrides settings.steps (default 600)\n"
+    "  --dt S              fixed step in seconds, finite and > 0; overrides settings.dt\n"
+    "                      (default 1/60)\n"
+    "  --summary OUT.json  write the run's summary (JSON): scene, steps, dt, wall_seconds,\n"
+    "                      step_ms, metrics, the final state of every body\n"
+    "  --trace OUT.csv     write a per-step trace (CSV), one row per dynamic body:\n"
+    "                      step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,awake\n"
+    "  --every K           trace only every K-th step (steps K-1, 2K-1, ... counted from 0)\n"
+    "                      and the last step; K >= 1, default 1\n"
+    "  --quiet             no result line on stdout (run) and no progress on stderr\n"
+    "\n"
+    "A scene holds settings, bodies, springs and events; see the scene-format contract.\n"
+    "Events of step k act at the start of step k. Output files are written whole or not at\n"
+    "all. Progress goes to stderr only when stderr is a terminal.\n"
+    "\n"
+    "Exit status:\n"
+    "  0  the run completed\n"
+    "  2  bad command line, or a scene that cannot be run: one line on stderr,\n"
+    "     FILE: PATH: message (e.g. tower.json: bodies[3].mass: must be finite and > 0,\n"
+    "     got -1), and no output file written\n"
+    "  3  a body's state became NaN or infinite: the run stops, stderr says where, and the\n"
+    "     summary is written with \"non_finite\": true\n";
+
+namespace {
+
+constexpr std::int64_t kMaxEvery = kMaxSteps;
+// A scene file larger than this is refused rather than read.
+constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{1} << 30;
+
+// Names from the command line or a file system go into one-line messages.
+std::string oneLine(std::string text) {
+    for (char &c : text) {
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    }
+    return text;
+}
+
+[[noreturn]] void usage(const std::string &problem) {
+    throw UsageError("cyclone-world: " + oneLine(problem) + " (see cyclone-world --help)");
+}
+
+std::int64_t parseCount(const std::string &flag, const std::string &text, std::int64_t min, std::int64_t max) {
+    const std::string range = std::to_string(min) + ".." + std::to_string(max);
+    if (text.empty() || text.size() > 18 || text.find_first_not_of("0123456789") != std::string::npos) {
+        usage(flag + " needs a whole number in " + range + ", got '" + text + "'");
+    }
+    const std::int64_t value = std::stoll(text);
+    if (value < min || value > max) usage(flag + " needs a whole number in " + range + ", got " + text);
+    return value;
+}
+
+double parseStep(const std::string &flag, const std::string &text) {
+    char *end = nullptr;
+    errno = 0;
+    const double value = text.empty() ? 0 : std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(value) || !(value > 0)) {
+        usage(flag + " needs a finite number of seconds > 0, got '" + text + "'");
+    }
+    return value;
+}
+
+std::string sceneStem(const std::string &path) {
+    std::string stem = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
+    const std::string extension = ".json";
+    if (stem.size() > extension.size() && stem.compare(stem.size() - extension.size(), extension.size(), extension) == 0) {
+        stem.resize(stem.size() - extension.size());
+    }
+    return stem;
+}
+
+// Reads the whole scene file; throws std::runtime_error with the reason.
+std::string readFile(const std::string &path) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) throw std::runtime_error(std::string("cannot read: ") + std::strerror(errno));
+    if (S_ISDIR(info.st_mode)) throw std::runtime_error("cannot read: is a directory");
+    if (static_cast<std::uintmax_t>(info.st_size) > kMaxSceneBytes) {
+        throw std::runtime_error("cannot read: larger than 1 GiB");
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(std::string("cannot read: ") + std::strerror(errno));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw std::runtime_error("cannot read: read error");
+    return text.str();
+}
+
+// Progress on one terminal line, at most a few times a second.
+class Progress {
+public:
+    explicit Progress(std::ostream &err) : err_(err) {}
+    ~Progress() {
+        if (shown_) err_ << "\r\033[K" << std::flush;
+    }
+    void operator()(std::int64_t done, std::int64_t total) {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last_ < std::chrono::milliseconds(250)) return;
+        last_ = now;
+        shown_ = true;
+        err_ << "\rcyclone-world: step " << done << "/" << total << " ("
+             << (total ? 100 * done / total : 100) << "%)" << std::flush;
+    }
+
+private:
+    std::ostream &err_;
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+    bool shown_ = false;
+};
+
+int refuse(std::ostream &err, const std::string &file, const std::string &place, const std::string &message) {
+    err << oneLine(file) << ": " << oneLine(place) << ": " << oneLine(message) << "\n";
+    return kExitRefused;
+}
+
+int runLoaded(const std::string &text, const Invocation &invocation, std::ostream &out, std::ostream &err,
+              bool progress) {
+    const std::string &file = invocation.scene;
+    Scene scene;
+    std::unique_ptr<SceneWorld> built;
+    try {
+        scene = loadScene(text, sceneStem(file));
+        if (invocation.steps) scene.steps = *invocation.steps;
+        if (invocation.dt) scene.dt = *invocation.dt;
+        built = std::make_unique<SceneWorld>(buildWorld(scene));
+    } catch (const SceneError &error) {
+        return refuse(err, file, error.path(), error.message());
+    }
+
+    std::unique_ptr<AtomicFile> summaryFile;
+    std::unique_ptr<AtomicFile> traceFile;
+    std::unique_ptr<TraceWriter> trace;
+    try {
+        if (!invocation.summary.empty()) summaryFile = std::make_unique<AtomicFile>(invocation.summary);
+        if (!invocation.trace.empty()) {
+            traceFile = std::make_unique<AtomicFile>(invocation.trace);
+            trace = std::make_unique<TraceWriter>(traceFile->stream());
+        }
+    } catch (const std::exception &error) {
+        err << "cyclone-world: " << oneLine(error.what()) << "\n";
+        return kExitRefused;
+    }
+
+    RunOptions options;
+    options.steps = scene.steps;
+    options.dt = scene.dt;
+    options.traceEvery = invocation.every;
+    options.trace = trace.get();
+    std::unique_ptr<Progress> meter;
+    if (progress && !invocation.quiet) {
+        meter = std::make_unique<Progress>(err);
+        options.progress = [&meter](std::int64_t done, std::int64_t total) { (*meter)(done, total); };
+    }
+
+    RunResult result;
+    try {
+        result = runScene(scene, *built, options);
+    } catch (const SceneError &error) {
+        meter.reset();
+        return refuse(err, file, error.path(), error.message());
+    } catch (const std::exception &error) {
+        meter.reset();
+        return refuse(err, file, "run", error.what());
+    }
+    meter.reset();
+
+    try {
+        if (summaryFile) {
+            summaryFile->stream()
+                << summaryJson(scene, *built, result).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
+                << "\n";
+            summaryFile->commit();
+        }
+        if (traceFile) traceFile->commit();
+    } catch (const std::exception &error) {
+        err << "cyclone-world: " << oneLine(error.what()) << "\n";
+        return kExitRefused;
+    }
+
+    if (invocation.command == Invocation::Command::Report) {
+        writeReport(out, file, scene, *built, result);
+    } else if (!invocation.quiet) {
+        out << resultLine(scene, *built, result) << "\n";
+    }
+    if (result.nonFinite) {
+        err << oneLine(file) << ": " << oneLine(result.nonFiniteWhat) << "; run stopped"
+            << (summaryFile ? ", summary has \"non_finite\": true" : "") << "\n";
+        return kExitNonFinite;
+    }
+    return kExitOk;
+}
+
+}  // namespace
+
+Invocation parseCommandLine(const std::vector<std::string> &args) {
+    Invocation invocation;
+    if (args.empty()) usage("missing command: run, report or help");
+    const std::string &command = args[0];
+    if (command == "help" || command == "--help" || command == "-h") {
+        invocation.command = Invocation::Command::Help;
+        return invocation;
+    }
+    if (command == "--version") {
+        invocation.command = Invocation::Command::Version;
+        return invocation;
+    }
+    if (command == "run") {
+        invocation.command = Invocation::Command::Run;
+    } else if (command == "report") {
+        invocation.command = Invocation::Command::Report;
+    } else {
+        usage("unknown command '" + command + "'; commands: run, report, help");
+    }
+
+    bool haveSteps = false, haveDt = false, haveEvery = false;
+    for (std::size_t i = 1; i < args.size(); ++i) {
+        std::string arg = args[i];
+        if (arg == "--help" || arg == "-h") {
+            invocation.command = Invocation::Command::Help;
+            return invocation;
+        }
+        if (arg.size() < 2 || arg.compare(0, 2, "--") != 0) {
+            if (!invocation.scene.empty()) usage("one scene file only, got '" + invocation.scene + "' and '" + arg + "'");
+            if (arg.empty()) usage("the scene file name is empty");
+            invocation.scene = arg;
+            continue;
+        }
+        if (arg == "--quiet") {
+            invocation.quiet = true;
+            continue;
+        }
+        std::string value;
+        const auto equals = arg.find('=');
+        if (equals != std::string::npos) {
+            value = arg.substr(equals + 1);
+            arg.resize(equals);
+        } else if (arg == "--steps" || arg == "--dt" || arg == "--summary" || arg == "--trace" || arg == "--every") {
+            if (i + 1 >= args.size()) usage(arg + " needs a value");
+            value = args[++i];
+        }
+        const auto once = [&](bool &seen) {
+            if (seen) usage(arg + " given twice");
+            seen = true;
+        };
+        bool seenSummary = !invocation.summary.empty(), seenTrace = !invocation.trace.empty();
+        if (arg == "--steps") {
+            once(haveSteps);
+            invocation.steps = parseCount(arg, value, 0, kMaxSteps);
+        } else if (arg == "--dt") {
+            once(haveDt);
+            invocation.dt = parseStep(arg, value);
+        } else if (arg == "--every") {
+            once(haveEvery);
+            invocation.every = parseCount(arg, value, 1, kMaxEvery);
+        } else if (arg == "--summary" || arg == "--trace") {
+            once(arg == "--summary" ? seenSummary : seenTrace);
+            if (value.empty()) usage(arg + " needs a file name");
+            (arg == "--summary" ? invocation.summary : invocation.trace) = value;
+        } else {
+            usage("unknown option '" + arg + "'");
+        }
+    }
+    if (invocation.scene.empty()) usage(command + " needs a scene file: cyclone-world " + command + " SCENE.json");
+    if (!invocation.summary.empty() && invocation.summary == invocation.trace) {
+        usage("--summary and --trace name the same file '" + invocation.summary + "'");
+    }
+    return invocation;
+}
+
+int runSceneText(const std::string &text, const Invocation &invocation, std::ostream &out, std::ostream &err,
+                 bool progress) {
+    try {
+        return runLoaded(text, invocation, out, err, progress);
+    } catch (const std::bad_alloc &) {
+        return refuse(err, invocation.scene, "(top level)", "out of memory");
+    } catch (const std::exception &error) {
+        return refuse(err, invocation.scene, "(top level)", error.what());
+    } catch (...) {
+        return refuse(err, invocation.scene, "(top level)", "unexpected error");
+    }
+}
+
+int runCommandLine(const std::vector<std::string> &args, std::ostream &out, std::ostream &err, bool progress) {
+    Invocation invocation;
+    try {
+        invocation = parseCommandLine(args);
+    } catch (const UsageError &error) {
+        err << error.what() << "\n";
+        return kExitRefused;
+    }
+    switch (invocation.command) {
+    case Invocation::Command::Help: out << kHelpText; return kExitOk;
+    case Invocation::Command::Version: out << "cyclone-world " << CYCLONE_VERSION << "\n"; return kExitOk;
+    case Invocation::Command::Run:
+    case Invocation::Command::Report: break;
+    }
+    std::string text;
+    try {
+        text = readFile(invocation.scene);
+    } catch (const std::exception &error) {
+        err << oneLine(invocation.scene) << ": " << oneLine(error.what()) << "\n";
+        return kExitRefused;
+    }
+    return runSceneText(text, invocation, out, err, progress);
+}
+
+}  // namespace cyclone::scene

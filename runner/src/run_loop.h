@@ -1,0 +1,65 @@
+// The run: events of step k applied at the start of step k through the World API, the
+// step timed, the trace recorded, sleep and non-finite state watched after every step.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene.h"
+#include "scene_world.h"
+#include "trace_writer.h"
+
+namespace cyclone::scene {
+
+struct RunOptions {
+    /// Steps to take, in [0, kMaxSteps].
+    std::int64_t steps = 600;
+    /// Fixed step, s, finite, > 0.
+    real dt = 1.0 / 60.0;
+    /// Trace every K-th step (steps K-1, 2K-1, ... 0-based) and always the last one, >= 1.
+    std::int64_t traceEvery = 1;
+    /// Where trace rows go; none when null.
+    TraceWriter *trace = nullptr;
+    /// Called after each step with the steps done and the steps asked for.
+    std::function<void(std::int64_t done, std::int64_t total)> progress;
+};
+
+/// Median, mean and largest time of one World::step, ms (0 when no step was taken).
+struct StepTimes {
+    double median = 0;
+    double mean = 0;
+    double max = 0;
+};
+
+struct RunResult {
+    /// Steps actually taken (fewer than asked when the state became non-finite).
+    std::int64_t steps = 0;
+    /// The step used, s.
+    real dt = 0;
+    /// Wall-clock time of the whole run loop, s.
+    double wallSeconds = 0;
+    /// Time of each World::step, ms.
+    std::vector<double> stepMs;
+    /// First step (0-based) after which no dynamic body was awake; empty if none.
+    std::optional<std::int64_t> firstAllAsleepStep;
+    /// Deepest contact over every step of the run, m.
+    real maxPenetrationOfRun = 0;
+    /// True when some body's state became NaN or infinite; the run stopped there.
+    bool nonFinite = false;
+    /// What became non-finite, for the message: body, step and quantity.
+    std::string nonFiniteWhat;
+};
+
+StepTimes stepTimes(const std::vector<double> &stepMs);
+
+/// Whether position, orientation, velocity and rotation are all finite.
+bool hasFiniteState(const RigidBody &body);
+
+/// Runs `world` (built from `scene`). Throws SceneError at an event's path if the World
+/// refuses an event, std::runtime_error if a step fails with the state still finite.
+RunResult runScene(const Scene &scene, SceneWorld &world, const RunOptions &options);
+
+}  // namespace cyclone::scene

@@ -1,0 +1,506 @@
+#include "scene_loader.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+namespace cyclone::scene {
+
+using nlohmann::json;
+
+namespace {
+
+[[noreturn]] void fail(const std::string &path, const std::string &message) { throw SceneError(path, message); }
+
+std::string formatNumber(double value) {
+    if (std::isnan(value)) return "nan";
+    if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+    char buffer[32];
+    // The shortest text that reads back as the same double.
+    for (int precision = 1; precision <= 17; ++precision) {
+        std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
+        if (std::strtod(buffer, nullptr) == value) break;
+    }
+    return buffer;
+}
+
+// What a wrong value is, for "must be X, got Y".
+std::string describe(const json &value) {
+    switch (value.type()) {
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return value.get<bool>() ? "true" : "false";
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned: return value.dump();
+    case json::value_t::number_float: return formatNumber(value.get<double>());
+    case json::value_t::string: {
+        const auto &text = value.get_ref<const std::string &>();
+        constexpr std::size_t kShown = 40;
+        return "string " + (text.size() > kShown ? jsonQuoted(text.substr(0, kShown)) + "..." : jsonQuoted(text));
+    }
+    case json::value_t::array: return "an array of " + std::to_string(value.size());
+    case json::value_t::object: return "an object";
+    default: return "a value of type " + std::string(value.type_name());
+    }
+}
+
+const json *member(const json &object, const char *key) {
+    const auto it = object.find(key);
+    return it == object.end() ? nullptr : &*it;
+}
+
+const json &required(const json &object, const std::string &path, const char *key) {
+    const json *value = member(object, key);
+    if (!value) fail(memberPath(path, key), "required field missing");
+    return *value;
+}
+
+void expectObject(const json &value, const std::string &path) {
+    if (!value.is_object()) fail(path, "must be an object, got " + describe(value));
+}
+
+void expectArray(const json &value, const std::string &path, std::size_t maxSize) {
+    if (!value.is_array()) fail(path, "must be an array, got " + describe(value));
+    if (value.size() > maxSize) {
+        fail(path, "has " + std::to_string(value.size()) + " elements, at most " + std::to_string(maxSize) +
+                       " are allowed");
+    }
+}
+
+enum class Range { Any, Positive, NonNegative, Unit };
+
+real readNumber(const json &value, const std::string &path, Range range = Range::Any) {
+    if (!value.is_number()) fail(path, "must be a number, got " + describe(value));
+    const real x = value.get<real>();
+    switch (range) {
+    case Range::Any:
+        if (!std::isfinite(x)) fail(path, "must be finite, got " + describe(value));
+        break;
+    case Range::Positive:
+        if (!(std::isfinite(x) && x > 0)) fail(path, "must be finite and > 0, got " + describe(value));
+        break;
+    case Range::NonNegative:
+        if (!(std::isfinite(x) && x >= 0)) fail(path, "must be finite and >= 0, got " + describe(value));
+        break;
+    case Range::Unit:
+        if (!(x >= 0 && x <= 1)) fail(path, "must be in [0, 1], got " + describe(value));
+        break;
+    }
+    return x;
+}
+
+std::int64_t readInteger(const json &value, const std::string &path, std::int64_t min, std::int64_t max) {
+    if (!value.is_number()) fail(path, "must be an integer, got " + describe(value));
+    const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+    if (value.is_number_unsigned()) {
+        const auto x = value.get<std::uint64_t>();
+        if (x > static_cast<std::uint64_t>(max)) fail(path, "must be an integer in " + range + ", got " + describe(value));
+        return static_cast<std::int64_t>(x);
+    }
+    if (value.is_number_integer()) {
+        const auto x = value.get<std::int64_t>();
+        if (x < min || x > max) fail(path, "must be an integer in " + range + ", got " + describe(value));
+        return x;
+    }
+    const double x = value.get<double>();
+    if (!std::isfinite(x) || x != std::floor(x)) fail(path, "must be an integer, got " + describe(value));
+    if (x < static_cast<double>(min) || x > static_cast<double>(max)) {
+        fail(path, "must be an integer in " + range + ", got " + describe(value));
+    }
+    return static_cast<std::int64_t>(x);
+}
+
+bool readBool(const json &value, const std::string &path) {
+    if (!value.is_boolean()) fail(path, "must be true or false, got " + describe(value));
+    return value.get<bool>();
+}
+
+const std::string &readString(const json &value, const std::string &path) {
+    if (!value.is_string()) fail(path, "must be a string, got " + describe(value));
+    return value.get_ref<const std::string &>();
+}
+
+Vector3 readVector3(const json &value, const std::string &path, Range range = Range::Any) {
+    if (!value.is_array() || value.size() != 3) fail(path, "must be an array of 3 numbers, got " + describe(value));
+    Vector3 v;
+    for (int i = 0; i < 3; ++i) v[i] = readNumber(value[i], elementPath(path, i), range);
+    return v;
+}
+
+// Every optional field: read it with `read` when present, else keep the default.
+template <typename T, typename Read>
+void readOptional(const json &object, const std::string &path, const char *key, T &target, Read read) {
+    if (const json *value = member(object, key)) target = read(*value, memberPath(path, key));
+}
+
+Quaternion readOrientation(const json &value, const std::string &path) {
+    if (!value.is_array() || value.size() != 4) {
+        fail(path, "must be an array of 4 numbers [r, i, j, k], got " + describe(value));
+    }
+    real q[4];
+    real largest = 0;
+    for (int i = 0; i < 4; ++i) {
+        q[i] = readNumber(value[i], elementPath(path, i));
+        largest = std::max(largest, std::abs(q[i]));
+    }
+    if (largest == 0) return Quaternion::Identity();
+    // Scaled first so that the norm of huge components does not overflow.
+    Quaternion result(q[0] / largest, q[1] / largest, q[2] / largest, q[3] / largest);
+    result.normalize();
+    return result;
+}
+
+Matrix3 readInertia(const json &value, const std::string &path) {
+    if (!value.is_array() || value.size() != 3) {
+        fail(path, "must be 3 rows of 3 numbers, got " + describe(value));
+    }
+    Matrix3 inertia;
+    for (int r = 0; r < 3; ++r) {
+        const std::string rowPath = elementPath(path, r);
+        const json &row = value[r];
+        if (!row.is_array() || row.size() != 3) fail(rowPath, "must be a row of 3 numbers, got " + describe(row));
+        for (int c = 0; c < 3; ++c) inertia(r, c) = readNumber(row[c], elementPath(rowPath, c));
+    }
+    const real scale = inertia.cwiseAbs().maxCoeff();
+    if (!std::isfinite(scale) || scale == 0) fail(path, "must be symmetric positive definite, got all zeros");
+    const Matrix3 unit = inertia / scale;
+    if ((unit - unit.transpose()).cwiseAbs().maxCoeff() > 1e-9) fail(path, "must be symmetric");
+    const Eigen::SelfAdjointEigenSolver<Matrix3> solver(unit, Eigen::EigenvaluesOnly);
+    if (solver.info() != Eigen::Success || !(solver.eigenvalues().minCoeff() > 1e-12)) {
+        fail(path, "must be positive definite");
+    }
+    return inertia;
+}
+
+std::vector<Vector3> readPoints(const json &value, const std::string &path, std::size_t minimum) {
+    expectArray(value, path, kMaxShapePoints);
+    if (value.size() < minimum) {
+        fail(path, "needs at least " + std::to_string(minimum) + " points, got " + std::to_string(value.size()));
+    }
+    std::vector<Vector3> points;
+    points.reserve(value.size());
+    for (std::size_t i = 0; i < value.size(); ++i) points.push_back(readVector3(value[i], elementPath(path, i)));
+    return points;
+}
+
+// A hull needs volume: the points must not all lie on one plane (or line, or point).
+bool spansVolume(const std::vector<Vector3> &points) {
+    real scale = 0;
+    for (const auto &p : points) scale = std::max(scale, (p - points[0]).cwiseAbs().maxCoeff());
+    if (!(scale > 0) || !std::isfinite(scale)) return false;
+    std::vector<Vector3> unit;
+    unit.reserve(points.size());
+    for (const auto &p : points) unit.push_back((p - points[0]) / scale);
+    std::size_t far = 0;
+    for (std::size_t i = 0; i < unit.size(); ++i) {
+        if (unit[i].squaredNorm() > unit[far].squaredNorm()) far = i;
+    }
+    const Vector3 axis = unit[far].normalized();
+    std::size_t off = 0;
+    real offDistance = 0;
+    for (std::size_t i = 0; i < unit.size(); ++i) {
+        const real d = (unit[i] - axis * axis.dot(unit[i])).norm();
+        if (d > offDistance) {
+            offDistance = d;
+            off = i;
+        }
+    }
+    if (offDistance < 1e-9) return false;
+    const Vector3 normal = axis.cross(unit[off]).normalized();
+    real height = 0;
+    for (const auto &p : unit) height = std::max(height, std::abs(normal.dot(p)));
+    return height > 1e-9;
+}
+
+Shape readShape(const json &value, const std::string &path, bool isStatic) {
+    expectObject(value, path);
+    const std::string typePath = memberPath(path, "type");
+    const std::string &type = readString(required(value, path, "type"), typePath);
+    Shape shape;
+    const auto radius = [&] { return readNumber(required(value, path, "radius"), memberPath(path, "radius"), Range::Positive); };
+    if (type == "box") {
+        shape.type = ShapeType::Box;
+        shape.halfExtents = readVector3(required(value, path, "half_extents"), memberPath(path, "half_extents"), Range::Positive);
+    } else if (type == "sphere") {
+        shape.type = ShapeType::Sphere;
+        shape.radius = radius();
+    } else if (type == "capsule") {
+        shape.type = ShapeType::Capsule;
+        shape.radius = radius();
+        shape.length = readNumber(required(value, path, "length"), memberPath(path, "length"), Range::NonNegative);
+    } else if (type == "cylinder") {
+        shape.type = ShapeType::Cylinder;
+        shape.radius = radius();
+        shape.length = readNumber(required(value, path, "length"), memberPath(path, "length"), Range::Positive);
+    } else if (type == "convex") {
+        shape.type = ShapeType::Convex;
+        const std::string pointsPath = memberPath(path, "vertices");
+        shape.vertices = readPoints(required(value, path, "vertices"), pointsPath, 4);
+        if (!spansVolume(shape.vertices)) fail(pointsPath, "must hold 4 or more points not all on one plane");
+    } else if (type == "plane" || type == "mesh") {
+        if (!isStatic) fail(typePath, "a " + type + " is for static bodies only; add \"static\": true");
+        if (type == "plane") {
+            shape.type = ShapeType::Plane;
+            const std::string normalPath = memberPath(path, "normal");
+            shape.normal = readVector3(required(value, path, "normal"), normalPath);
+            if (shape.normal.cwiseAbs().maxCoeff() == 0) fail(normalPath, "must not be zero");
+            shape.offset = readNumber(required(value, path, "offset"), memberPath(path, "offset"));
+        } else {
+            shape.type = ShapeType::Mesh;
+            shape.vertices = readPoints(required(value, path, "vertices"), memberPath(path, "vertices"), 3);
+            const std::string trianglesPath = memberPath(path, "triangles");
+            const json &triangles = required(value, path, "triangles");
+            expectArray(triangles, trianglesPath, kMaxShapePoints);
+            if (triangles.empty()) fail(trianglesPath, "needs at least 1 triangle");
+            const auto last = static_cast<std::int64_t>(shape.vertices.size()) - 1;
+            for (std::size_t t = 0; t < triangles.size(); ++t) {
+                const std::string trianglePath = elementPath(trianglesPath, t);
+                const json &triangle = triangles[t];
+                if (!triangle.is_array() || triangle.size() != 3) {
+                    fail(trianglePath, "must be 3 vertex indices [i, j, k], got " + describe(triangle));
+                }
+                std::array<int, 3> indices{};
+                for (int k = 0; k < 3; ++k) {
+                    indices[k] = static_cast<int>(readInteger(triangle[k], elementPath(trianglePath, k), 0, last));
+                }
+                if (indices[0] == indices[1] || indices[1] == indices[2] || indices[0] == indices[2]) {
+                    fail(trianglePath, "must name 3 different vertices");
+                }
+                shape.triangles.push_back(indices);
+            }
+        }
+    } else {
+        fail(typePath, "unknown shape type " + jsonQuoted(type) +
+                           "; known: box, sphere, capsule, cylinder, convex, plane, mesh");
+    }
+    return shape;
+}
+
+WorldSettings readSettings(const json &value, const std::string &path, Scene &scene) {
+    expectObject(value, path);
+    WorldSettings settings;
+    const auto iterations = [](std::int64_t min) {
+        return [min](const json &v, const std::string &p) { return static_cast<int>(readInteger(v, p, min, kMaxIterations)); };
+    };
+    readOptional(value, path, "gravity", settings.gravity, [](const json &v, const std::string &p) { return readVector3(v, p); });
+    readOptional(value, path, "dt", scene.dt, [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); });
+    readOptional(value, path, "steps", scene.steps, [](const json &v, const std::string &p) { return readInteger(v, p, 0, kMaxSteps); });
+    readOptional(value, path, "velocity_iterations", settings.velocityIterations, iterations(1));
+    readOptional(value, path, "position_iterations", settings.positionIterations, iterations(0));
+    readOptional(value, path, "substeps", settings.substeps, iterations(1));
+    readOptional(value, path, "sleep", settings.sleep, readBool);
+    readOptional(value, path, "sleep_epsilon", settings.sleepEpsilon,
+             [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); });
+    if (const json *integrator = member(value, "integrator")) {
+        const std::string integratorPath = memberPath(path, "integrator");
+        const std::string &name = readString(*integrator, integratorPath);
+        const auto *row = std::find_if(std::begin(kIntegrators), std::end(kIntegrators),
+                                       [&](const IntegratorName &entry) { return name == entry.name; });
+        if (row == std::end(kIntegrators)) {
+            std::string known;
+            for (const auto &entry : kIntegrators) known += (known.empty() ? "" : ", ") + jsonQuoted(entry.name);
+            fail(integratorPath, "unknown integrator " + jsonQuoted(name) + "; known: " + known);
+        }
+        settings.integrator = row->integrator;
+    }
+    return settings;
+}
+
+SceneBody readBody(const json &value, const std::string &path) {
+    expectObject(value, path);
+    SceneBody body;
+    body.path = path;
+    BodySettings &settings = body.settings;
+    const std::string namePath = memberPath(path, "name");
+    settings.name = readString(required(value, path, "name"), namePath);
+    if (settings.name.empty()) fail(namePath, "must not be empty");
+    readOptional(value, path, "static", settings.isStatic, readBool);
+    settings.shape = readShape(required(value, path, "shape"), memberPath(path, "shape"), settings.isStatic);
+    const auto positive = [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); };
+    const auto finite = [](const json &v, const std::string &p) { return readNumber(v, p); };
+    const auto unit = [](const json &v, const std::string &p) { return readNumber(v, p, Range::Unit); };
+    const auto vector = [](const json &v, const std::string &p) { return readVector3(v, p); };
+    // A static body has infinite mass whatever the file says; a mass it gives must still
+    // be a number.
+    readOptional(value, path, "mass", settings.mass, settings.isStatic ? +finite : +positive);
+    if (const json *inertia = member(value, "inertia")) {
+        const Matrix3 tensor = readInertia(*inertia, memberPath(path, "inertia"));
+        if (!settings.isStatic) settings.inertia = tensor;
+    }
+    if (settings.isStatic) settings.mass = 1;
+    readOptional(value, path, "position", settings.position, vector);
+    readOptional(value, path, "orientation", settings.orientation, readOrientation);
+    readOptional(value, path, "velocity", settings.velocity, vector);
+    readOptional(value, path, "rotation", settings.rotation, vector);
+    readOptional(value, path, "linear_damping", settings.linearDamping, unit);
+    readOptional(value, path, "angular_damping", settings.angularDamping, unit);
+    readOptional(value, path, "friction", settings.material.friction,
+             [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegative); });
+    readOptional(value, path, "restitution", settings.material.restitution, unit);
+    readOptional(value, path, "can_sleep", settings.canSleep, readBool);
+    readOptional(value, path, "awake", settings.awake, readBool);
+    readOptional(value, path, "ccd", settings.ccd, readBool);
+    return body;
+}
+
+using NameIndex = std::unordered_map<std::string, std::size_t>;
+
+std::size_t readBodyName(const json &value, const std::string &path, const NameIndex &names) {
+    const std::string &name = readString(value, path);
+    const auto it = names.find(name);
+    if (it == names.end()) fail(path, "no body named " + jsonQuoted(name));
+    return it->second;
+}
+
+SceneSpring readSpring(const json &value, const std::string &path, const NameIndex &names) {
+    expectObject(value, path);
+    SceneSpring spring;
+    spring.path = path;
+    SpringSettings &settings = spring.settings;
+    spring.a = readBodyName(required(value, path, "a"), memberPath(path, "a"), names);
+    if (const json *b = member(value, "b"); b && !b->is_null()) {
+        const std::string bPath = memberPath(path, "b");
+        spring.b = readBodyName(*b, bPath, names);
+        if (*spring.b == spring.a) fail(bPath, "must name a different body than a (or be null for an anchored spring)");
+    }
+    const auto vector = [](const json &v, const std::string &p) { return readVector3(v, p); };
+    readOptional(value, path, "a_point", settings.aPoint, vector);
+    readOptional(value, path, "b_point", settings.bPoint, vector);
+    readOptional(value, path, "stiffness", settings.stiffness,
+             [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); });
+    const auto nonNegative = [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegative); };
+    readOptional(value, path, "damping", settings.damping, nonNegative);
+    readOptional(value, path, "rest_length", settings.restLength, nonNegative);
+    return spring;
+}
+
+struct EventAction {
+    const char *key;
+    EventKind kind;
+    const char *valueKey;  // the vector it sets, or nullptr
+};
+constexpr EventAction kEventActions[] = {
+    {"remove", EventKind::Remove, nullptr},
+    {"set_velocity", EventKind::SetVelocity, "velocity"},
+    {"set_rotation", EventKind::SetRotation, "rotation"},
+    {"set_position", EventKind::SetPosition, "position"},
+    {"apply_impulse", EventKind::ApplyImpulse, "impulse"},
+    {"set_awake", EventKind::SetAwake, nullptr},
+};
+
+SceneEvent readEvent(const json &value, const std::string &path, const Scene &scene, const NameIndex &names) {
+    expectObject(value, path);
+    SceneEvent event;
+    event.path = path;
+    event.step = readInteger(required(value, path, "step"), memberPath(path, "step"), 0, kMaxSteps);
+    const EventAction *action = nullptr;
+    for (const auto &candidate : kEventActions) {
+        if (!member(value, candidate.key)) continue;
+        if (action) {
+            fail(memberPath(path, candidate.key),
+                 "an event does one thing; this one already has " + jsonQuoted(action->key));
+        }
+        action = &candidate;
+    }
+    if (!action) {
+        fail(path, "needs one of \"remove\", \"set_velocity\", \"set_rotation\", \"set_position\", "
+                   "\"apply_impulse\", \"set_awake\"");
+    }
+    event.kind = action->kind;
+    const std::string targetPath = memberPath(path, action->key);
+    event.body = readBodyName(value[action->key], targetPath, names);
+    const BodySettings &target = scene.bodies[event.body].settings;
+    if (target.isStatic && event.kind != EventKind::Remove) {
+        fail(targetPath, "body " + jsonQuoted(target.name) + " is static; only \"remove\" applies to it");
+    }
+    if (action->valueKey) {
+        event.value = readVector3(required(value, path, action->valueKey), memberPath(path, action->valueKey));
+    }
+    if (event.kind == EventKind::ApplyImpulse) {
+        if (const json *point = member(value, "point")) event.point = readVector3(*point, memberPath(path, "point"));
+    }
+    if (event.kind == EventKind::SetAwake) {
+        event.awake = readBool(required(value, path, "awake"), memberPath(path, "awake"));
+    }
+    return event;
+}
+
+// Events run by step, then in file order; one that names a body an earlier event removed
+// could not be applied, so it is refused now rather than in the middle of a run.
+void checkRemovals(const Scene &scene) {
+    std::vector<std::size_t> order(scene.events.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t x, std::size_t y) { return scene.events[x].step < scene.events[y].step; });
+    std::map<std::size_t, const SceneEvent *> removedBy;
+    for (std::size_t i : order) {
+        const SceneEvent &event = scene.events[i];
+        const auto removed = removedBy.find(event.body);
+        if (removed != removedBy.end()) {
+            fail(memberPath(event.path, eventKindName(event.kind)),
+                 "body " + jsonQuoted(scene.bodies[event.body].settings.name) + " was removed by " +
+                     removed->second->path + " at step " + std::to_string(removed->second->step));
+        }
+        if (event.kind == EventKind::Remove) removedBy[event.body] = &event;
+    }
+}
+
+}  // namespace
+
+const char *eventKindName(EventKind kind) {
+    for (const auto &action : kEventActions) {
+        if (action.kind == kind) return action.key;
+    }
+    return "?";
+}
+
+Scene loadScene(const std::string &text, const std::string &fallbackName) {
+    return loadScene(parseJsonDocument(text), fallbackName);
+}
+
+Scene loadScene(const json &document, const std::string &fallbackName) {
+    const std::string root;
+    if (!document.is_object()) fail(kTopLevelPath, "must be an object, got " + describe(document));
+    Scene scene;
+    scene.name = fallbackName;
+    if (const json *name = member(document, "name")) {
+        const std::string &text = readString(*name, "name");
+        if (!text.empty()) scene.name = text;
+    }
+    if (const json *settings = member(document, "settings")) scene.world = readSettings(*settings, "settings", scene);
+
+    const json &bodies = required(document, root, "bodies");
+    expectArray(bodies, "bodies", kMaxBodies);
+    NameIndex names;
+    scene.bodies.reserve(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        SceneBody body = readBody(bodies[i], elementPath("bodies", i));
+        const auto [it, inserted] = names.emplace(body.settings.name, i);
+        if (!inserted) {
+            fail(memberPath(body.path, "name"), "duplicate name " + jsonQuoted(body.settings.name) + ", also " +
+                                                     scene.bodies[it->second].path + ".name");
+        }
+        scene.bodies.push_back(std::move(body));
+    }
+
+    if (const json *springs = member(document, "springs")) {
+        expectArray(*springs, "springs", kMaxSprings);
+        for (std::size_t i = 0; i < springs->size(); ++i) {
+            scene.springs.push_back(readSpring((*springs)[i], elementPath("springs", i), names));
+        }
+    }
+    if (const json *events = member(document, "events")) {
+        expectArray(*events, "events", kMaxEvents);
+        for (std::size_t i = 0; i < events->size(); ++i) {
+            scene.events.push_back(readEvent((*events)[i], elementPath("events", i), scene, names));
+        }
+        checkRemovals(scene);
+    }
+    return scene;
+}
+
+}  // namespace cyclone::scene

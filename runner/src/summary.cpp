@@ -1,0 +1,58 @@
+#include "summary.h"
+
+namespace cyclone::scene {
+
+using nlohmann::ordered_json;
+
+namespace {
+
+ordered_json vector3(const Vector3 &v) { return ordered_json::array({v.x(), v.y(), v.z()}); }
+
+}  // namespace
+
+int awakeDynamicBodies(const World &world) {
+    int awake = 0;
+    for (const BodyId id : world.bodies()) {
+        if (!world.isStatic(id) && world.body(id).getAwake()) ++awake;
+    }
+    return awake;
+}
+
+ordered_json summaryJson(const Scene &scene, const SceneWorld &built, const RunResult &result) {
+    const World &world = built.world;
+    const StepTimes times = stepTimes(result.stepMs);
+    ordered_json summary;
+    summary["scene"] = scene.name;
+    summary["steps"] = result.steps;
+    summary["dt"] = result.dt;
+    summary["wall_seconds"] = result.wallSeconds;
+    summary["step_ms"] = {{"median", times.median}, {"mean", times.mean}, {"max", times.max}};
+    ordered_json metrics;
+    metrics["awake_bodies"] = awakeDynamicBodies(world);
+    metrics["contacts"] = world.stats().contacts;
+    metrics["max_penetration"] = world.stats().maxPenetration;
+    metrics["kinetic_energy"] = world.kineticEnergy();
+    metrics["first_all_asleep_step"] =
+        result.firstAllAsleepStep ? ordered_json(*result.firstAllAsleepStep) : ordered_json(nullptr);
+    metrics["non_finite"] = result.nonFinite;
+    summary["metrics"] = std::move(metrics);
+    ordered_json bodies = ordered_json::array();
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        const BodyId id = built.ids[i];
+        if (!world.contains(id)) continue;
+        const RigidBody &body = world.body(id);
+        const Quaternion q = body.getOrientation();
+        ordered_json entry;
+        entry["name"] = scene.bodies[i].settings.name;
+        entry["position"] = vector3(body.getPosition());
+        entry["orientation"] = ordered_json::array({q.w(), q.x(), q.y(), q.z()});
+        entry["velocity"] = vector3(body.getVelocity());
+        entry["rotation"] = vector3(body.getRotation());
+        entry["awake"] = body.getAwake();
+        bodies.push_back(std::move(entry));
+    }
+    summary["bodies"] = std::move(bodies);
+    return summary;
+}
+
+}  // namespace cyclone::scene

@@ -1,0 +1,19 @@
+// The run summary (JSON), field for field as the scene-format contract gives it.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "run_loop.h"
+#include "scene.h"
+#include "scene_world.h"
+
+namespace cyclone::scene {
+
+/// Dynamic bodies of the world awake now.
+int awakeDynamicBodies(const World &world);
+
+/// The summary of a run: scene, steps, dt, wall_seconds, step_ms, metrics and the bodies
+/// still in the world, in scene order. Non-finite numbers appear as null.
+nlohmann::ordered_json summaryJson(const Scene &scene, const SceneWorld &world, const RunResult &result);
+
+}  // namespace cyclone::scene
