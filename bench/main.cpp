@@ -63,10 +63,7 @@ struct Options {
 };
 
 std::vector<std::string> availableEngines() {
-    std::vector<std::string> engines;
-#ifdef CYCLONE_BENCH_HAVE_WORLD
-    engines.push_back("cyclone");
-#endif
+    std::vector<std::string> engines{"cyclone"};
 #ifdef CYCLONE_BENCH_HAVE_BULLET
     engines.push_back("bullet");
 #endif
@@ -74,9 +71,7 @@ std::vector<std::string> availableEngines() {
 }
 
 std::unique_ptr<Engine> makeEngine(const std::string &name, const Scene &scene) {
-#ifdef CYCLONE_BENCH_HAVE_WORLD
     if (name == "cyclone") return makeCycloneEngine(scene);
-#endif
 #ifdef CYCLONE_BENCH_HAVE_BULLET
     if (name == "bullet") return makeBulletEngine(scene);
 #endif
@@ -478,10 +473,8 @@ bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
     if (options.engines.empty()) options.engines = built;
     for (const std::string &engine : options.engines) {
         if (std::find(built.begin(), built.end(), engine) == built.end()) {
-            std::cerr << "cyclone-bench: --engine " << engine << " is not built in (configure with "
-                      << (engine == "bullet" ? "libbullet-dev installed and -DCYCLONE_BENCH_BULLET=ON"
-                                             : "-DCYCLONE_BUILD_WORLD=ON")
-                      << ")\n";
+            std::cerr << "cyclone-bench: --engine " << engine
+                      << " is not built in (install libbullet-dev and configure with -DCYCLONE_BENCH_BULLET=ON)\n";
             return false;
         }
     }

@@ -36,51 +36,6 @@ private:
     std::uint64_t state_;
 };
 
-Shape boxShape(const Vector3 &halfExtents) {
-    Shape s;
-    s.type = ShapeType::Box;
-    s.halfExtents = halfExtents;
-    return s;
-}
-
-Shape sphereShape(real radius) {
-    Shape s;
-    s.type = ShapeType::Sphere;
-    s.radius = radius;
-    return s;
-}
-
-Shape capsuleShape(real radius, real length) {
-    Shape s;
-    s.type = ShapeType::Capsule;
-    s.radius = radius;
-    s.length = length;
-    return s;
-}
-
-Shape cylinderShape(real radius, real length) {
-    Shape s;
-    s.type = ShapeType::Cylinder;
-    s.radius = radius;
-    s.length = length;
-    return s;
-}
-
-Shape convexShape(std::vector<Vector3> points) {
-    Shape s;
-    s.type = ShapeType::Convex;
-    s.vertices = std::move(points);
-    return s;
-}
-
-Shape planeShape(const Vector3 &normal, real offset) {
-    Shape s;
-    s.type = ShapeType::Plane;
-    s.normal = normal;
-    s.offset = offset;
-    return s;
-}
-
 BodySettings staticBody(std::string name, Shape shape, const Vector3 &position) {
     BodySettings b;
     b.name = std::move(name);
@@ -90,7 +45,7 @@ BodySettings staticBody(std::string name, Shape shape, const Vector3 &position) 
     return b;
 }
 
-BodySettings ground() { return staticBody("ground", planeShape(Vector3::UnitY(), 0), Vector3::Zero()); }
+BodySettings ground() { return staticBody("ground", Shape::plane(Vector3::UnitY(), 0), Vector3::Zero()); }
 
 BodySettings dynamicBody(std::string name, Shape shape, const Vector3 &position) {
     BodySettings b;
@@ -138,7 +93,7 @@ Scene pyramid(int base) {
             const real x = (i - (count - 1) / 2.0) * 1.05;
             const real y = 0.5 + layer;
             scene.bodies.push_back(dynamicBody("box" + std::to_string(layer) + "_" + std::to_string(i),
-                                               boxShape(Vector3(0.5, 0.5, 0.5)), Vector3(x, y, 0)));
+                                               Shape::box(Vector3(0.5, 0.5, 0.5)), Vector3(x, y, 0)));
         }
     }
     scene.tracked = static_cast<int>(scene.bodies.size()) - 1;
@@ -155,13 +110,13 @@ Scene mixed() {
         "10 m x 10 m walled box, sleep on";
     scene.bodies.push_back(ground());
     const real inner = 5, thickness = 0.25, height = 3;
-    scene.bodies.push_back(staticBody("wall_x-", boxShape(Vector3(thickness, height, inner + 2 * thickness)),
+    scene.bodies.push_back(staticBody("wall_x-", Shape::box(Vector3(thickness, height, inner + 2 * thickness)),
                                       Vector3(-inner - thickness, height, 0)));
-    scene.bodies.push_back(staticBody("wall_x+", boxShape(Vector3(thickness, height, inner + 2 * thickness)),
+    scene.bodies.push_back(staticBody("wall_x+", Shape::box(Vector3(thickness, height, inner + 2 * thickness)),
                                       Vector3(inner + thickness, height, 0)));
-    scene.bodies.push_back(staticBody("wall_z-", boxShape(Vector3(inner, height, thickness)),
+    scene.bodies.push_back(staticBody("wall_z-", Shape::box(Vector3(inner, height, thickness)),
                                       Vector3(0, height, -inner - thickness)));
-    scene.bodies.push_back(staticBody("wall_z+", boxShape(Vector3(inner, height, thickness)),
+    scene.bodies.push_back(staticBody("wall_z+", Shape::box(Vector3(inner, height, thickness)),
                                       Vector3(0, height, inner + thickness)));
 
     Random random(0x5EEDC1C10E5ull);
@@ -174,13 +129,13 @@ Scene mixed() {
                 Shape shape;
                 switch (index % 5) {
                 case 0:
-                    shape = boxShape(Vector3(random.uniform(0.2, 0.35), random.uniform(0.2, 0.35),
+                    shape = Shape::box(Vector3(random.uniform(0.2, 0.35), random.uniform(0.2, 0.35),
                                              random.uniform(0.2, 0.35)));
                     break;
-                case 1: shape = sphereShape(random.uniform(0.25, 0.35)); break;
-                case 2: shape = capsuleShape(0.2, random.uniform(0.3, 0.4)); break;
-                case 3: shape = cylinderShape(random.uniform(0.25, 0.3), random.uniform(0.4, 0.6)); break;
-                default: shape = convexShape(rocks[static_cast<std::size_t>(index / 5 % 5)]); break;
+                case 1: shape = Shape::sphere(random.uniform(0.25, 0.35)); break;
+                case 2: shape = Shape::capsule(0.2, random.uniform(0.3, 0.4)); break;
+                case 3: shape = Shape::cylinder(random.uniform(0.25, 0.3), random.uniform(0.4, 0.6)); break;
+                default: shape = Shape::convex(rocks[static_cast<std::size_t>(index / 5 % 5)]); break;
                 }
                 const Vector3 position((column - 4.5) * 0.95, 1 + layer, (row - 4.5) * 0.95);
                 BodySettings body = dynamicBody("body" + std::to_string(index), std::move(shape), position);
@@ -195,7 +150,7 @@ Scene mixed() {
 // The bouncing sphere of the sleeping scene: dropped from 5 m with restitution 0.9
 // (the ground has 0; a pair bounces with the larger of its two), never allowed to sleep.
 BodySettings bouncingSphere() {
-    BodySettings sphere = dynamicBody("sphere", sphereShape(0.5), Vector3(-30, 5, 0));
+    BodySettings sphere = dynamicBody("sphere", Shape::sphere(0.5), Vector3(-30, 5, 0));
     sphere.material.restitution = 0.9;
     sphere.canSleep = false;
     return sphere;
@@ -214,7 +169,7 @@ Scene sleeping() {
             for (int level = 0; level < 10; ++level) {
                 BodySettings box = dynamicBody(
                     "box" + std::to_string(row) + "_" + std::to_string(column) + "_" + std::to_string(level),
-                    boxShape(Vector3(0.5, 0.5, 0.5)), Vector3((column - 4.5) * 2, 0.5 + level, (row - 4.5) * 2));
+                    Shape::box(Vector3(0.5, 0.5, 0.5)), Vector3((column - 4.5) * 2, 0.5 + level, (row - 4.5) * 2));
                 box.awake = false;
                 scene.bodies.push_back(std::move(box));
             }
