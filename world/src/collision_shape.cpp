@@ -29,6 +29,18 @@ constexpr real kCapCosine = 0.9659258262890683;
 // it, the direction of tilt is noise and the fixed vertices alone keep contacts steady.
 constexpr real kRimPointSine = 0.01745240643728351;
 constexpr int kCapVertices = 16;
+
+// The cap polygon's vertex directions, computed once.
+struct CapCircle {
+    real cosine[kCapVertices];
+    real sine[kCapVertices];
+    CapCircle() {
+        for (int i = 0; i < kCapVertices; ++i) {
+            cosine[i] = std::cos(2 * kPi * i / kCapVertices);
+            sine[i] = std::sin(2 * kPi * i / kCapVertices);
+        }
+    }
+};
 // Half size of the square a plane gives as its feature, m. The narrowphase treats a
 // plane as unbounded and never clips against these corners.
 constexpr real kPlaneFeatureHalfSize = 1000;
@@ -267,10 +279,11 @@ void CollisionShape::supportingFeature(const Matrix4 &pose, const Vector3 &direc
                     rimAngle = std::atan2(perpendicular.dot(v), perpendicular.dot(u));
                     if (rimAngle < 0) rimAngle += 2 * kPi;
                 }
+                static const CapCircle circle;
                 int n = 0;
                 for (int i = 0; i < kCapVertices; ++i) {
                     const real angle = i * step;
-                    out.points[n++] = capCentre + r * (std::cos(angle) * u + std::sin(angle) * v);
+                    out.points[n++] = capCentre + r * (circle.cosine[i] * u + circle.sine[i] * v);
                     if (rimAngle > angle + 1e-6 && rimAngle < angle + step - 1e-6)
                         out.points[n++] = capCentre + r * (perpendicular / tilt);
                 }
@@ -327,6 +340,57 @@ void CollisionShape::supportingFeature(const Matrix4 &pose, const Vector3 &direc
             break;
         }
     }
+}
+
+Vector3 CollisionShape::supportPoint(const Matrix4 &pose, const Vector3 &direction, int triangle) const {
+    const Matrix3 rotation = pose.linear();
+    const Vector3 origin = pose.translation();
+    switch (shape_.type) {
+        case ShapeType::Box: {
+            const Vector3 local = rotation.transpose() * direction;
+            Vector3 corner;
+            for (int k = 0; k < 3; ++k) corner[k] = local[k] >= 0 ? shape_.halfExtents[k] : -shape_.halfExtents[k];
+            return rotation * corner + origin;
+        }
+        case ShapeType::Sphere:
+            return origin + shape_.radius * direction;
+        case ShapeType::Capsule: {
+            const Vector3 axis = rotation.col(2);
+            const real end = axis.dot(direction) >= 0 ? shape_.length / 2 : -shape_.length / 2;
+            return origin + end * axis + shape_.radius * direction;
+        }
+        case ShapeType::Cylinder: {
+            const Vector3 axis = rotation.col(2);
+            const real along = axis.dot(direction);
+            const Vector3 perpendicular = direction - along * axis;
+            const real tilt = perpendicular.norm();
+            Vector3 p = origin + axis * (along >= 0 ? shape_.length / 2 : -shape_.length / 2);
+            if (tilt > 1e-12) p += shape_.radius / tilt * perpendicular;
+            return p;
+        }
+        case ShapeType::Convex: {
+            const Vector3 local = rotation.transpose() * direction;
+            size_t best = 0;
+            real bestDot = vertices_[0].dot(local);
+            for (size_t i = 1; i < vertices_.size(); ++i) {
+                const real d = vertices_[i].dot(local);
+                if (d > bestDot) bestDot = d, best = i;
+            }
+            return rotation * vertices_[best] + origin;
+        }
+        case ShapeType::Plane:
+            return origin + planeOffset_ * (rotation * planeNormal_);
+        case ShapeType::Mesh: {
+            if (triangle < 0 || triangle >= static_cast<int>(faces_.size())) return origin;
+            const Vector3 local = rotation.transpose() * direction;
+            const std::vector<int> &t = faces_[triangle];
+            int best = t[0];
+            for (int i = 1; i < 3; ++i)
+                if (vertices_[t[i]].dot(local) > vertices_[best].dot(local)) best = t[i];
+            return rotation * vertices_[best] + origin;
+        }
+    }
+    return origin;
 }
 
 }  // namespace cyclone::detail

@@ -47,6 +47,12 @@ public:
     void supportingFeature(const Matrix4 &pose, const Vector3 &direction, int triangle,
                            SupportFeature &out) const;
 
+    /// The point of this shape, placed at `pose`, furthest along the world direction
+    /// `direction` (unit): exact for every solid shape; a mesh uses its triangle
+    /// `triangle`; a plane, unbounded, gives the point of its surface nearest the pose
+    /// origin.
+    Vector3 supportPoint(const Matrix4 &pose, const Vector3 &direction, int triangle) const;
+
 private:
     friend std::shared_ptr<const CollisionShape> compileShape(const Shape &shape);
     Shape shape_;

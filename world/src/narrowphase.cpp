@@ -1,1 +1,502 @@
-// Implemented in the collision work; placeholder so the tree configures.
+// Narrowphase: FCL says whether two shapes touch; the manifold is built here.
+//
+// FCL (libccd) returns one contact for most pairs, and its normal comes from MPR for
+// curved shapes and convex polytopes: close, but tilted enough to rock a box resting on
+// a face, and for box-triangle pairs often far off. So FCL's normal is one candidate
+// among the normals of the two supporting faces, and the candidate along which the
+// shapes' projections overlap least wins: that overlap is the separating-axis bound on
+// the penetration, and a smaller bound is a better estimate of it. Ties go to a face, so
+// resting contacts get the exact face normal.
+//
+// The manifold is clipped as in Jolt's ManifoldBetweenTwoFaces: the incident feature is
+// clipped against the side planes of the reference face extruded along the normal, each
+// clipped point's depth is measured along the normal to the reference plane, points
+// within the speculative distance are kept and reduced to four well-spread ones. A plane
+// is an unbounded reference face with an exact normal and is never clipped against.
+//
+// Meshes give one FCL contact per triangle. A contact whose normal is its triangle's
+// normal is a face contact and claims the triangle's vertices; an edge or vertex contact
+// on vertices that face contacts already claimed is an internal edge of a surface
+// (two triangles of a floor) and is dropped, as in Jolt's InternalEdgeRemovingCollector.
+// The remaining contacts are merged into one manifold per normal.
+//
+// Everything here lives in fixed-size arrays on the stack; only FCL allocates.
+#include "narrowphase.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cyclone::detail {
+namespace {
+
+constexpr int kMaxFclContacts = 16;
+// Clipping a polygon against a polygon adds at most one vertex per side plane.
+constexpr int kMaxClipped = 2 * SupportFeature::kMaxPoints + 2;
+// Points reduced to four per contact, before merging a mesh's contacts.
+constexpr int kMaxMerged = kMaxFclContacts * Manifold::kMaxPoints;
+// FCL normals shorter than this are meaningless (coincident centres).
+constexpr real kMinNormalLength = 1e-9;
+// A face candidate wins a tie within this overlap (m): exact face normals for resting.
+constexpr real kFacePreference = 1e-9;
+// Points closer than this are one point; areas below it times a length are zero, m.
+constexpr real kPointTolerance = 1e-6;
+// Two segments whose directions differ by less than 2 degrees are parallel: sin(2 deg).
+constexpr real kParallelSine = 0.03489949670250097;
+// A mesh contact whose normal is within 0.5 degrees of its triangle's is a face contact:
+// cos(0.5 deg).
+constexpr real kFaceCosine = 0.9999619230641713;
+// Mesh contacts whose normals agree within 2 degrees share a manifold: cos(2 deg).
+constexpr real kMergeCosine = 0.9993908270190958;
+
+fcl::CollisionRequestd makeRequest(size_t maxContacts) {
+    fcl::CollisionRequestd request(maxContacts, true);
+    request.gjk_solver_type = fcl::GST_LIBCCD;
+    return request;
+}
+
+// Candidate contact points; plain storage, filled before it is read.
+struct PointSet {
+    struct Point {
+        Vector3 pointA, pointB;
+        real depth;
+    };
+    int count = 0;
+    Point points[kMaxMerged];
+
+    void add(const Vector3 &pointA, const Vector3 &pointB, real depth) {
+        if (count == kMaxMerged) return;
+        Point &p = points[count++];
+        p.pointA = pointA;
+        p.pointB = pointB;
+        p.depth = depth;
+    }
+};
+
+// The two shapes of a test, their poses and the triangles FCL reported (-1 for none).
+struct Pair {
+    const CollisionShape &a;
+    const Matrix4 &poseA;
+    int triangleA;
+    const CollisionShape &b;
+    const Matrix4 &poseB;
+    int triangleB;
+    real speculative;
+
+    // Separating-axis overlap along n (A to B): how far B must move along n to clear A.
+    real overlap(const Vector3 &n) const {
+        return (a.supportPoint(poseA, n, triangleA) - b.supportPoint(poseB, -n, triangleB)).dot(n);
+    }
+};
+
+// Unit normal of a counter-clockwise polygon (Newell), relative to its first point so
+// that far-from-origin faces keep their precision.
+Vector3 polygonNormal(const SupportFeature &f) {
+    Vector3 sum = Vector3::Zero();
+    for (int i = 1; i + 1 < f.count; ++i) sum += (f.points[i] - f.points[0]).cross(f.points[i + 1] - f.points[0]);
+    const real length = sum.norm();
+    return length > 0 ? Vector3(sum / length) : Vector3::Zero();
+}
+
+// Keeps at most four points of `in`: the deepest, the farthest from it, the one
+// spanning the largest triangle with those two, and the one adding the most area.
+void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &out) {
+    out.count = 0;
+    if (count <= 0) return;
+    int chosen[4] = {0, -1, -1, -1};
+    for (int i = 1; i < count; ++i)
+        if (in[i].depth > in[chosen[0]].depth) chosen[0] = i;
+    const Vector3 p0 = in[chosen[0]].pointB;
+    real best = kPointTolerance * kPointTolerance;
+    for (int i = 0; i < count; ++i) {
+        const real d = (in[i].pointB - p0).squaredNorm();
+        if (d > best) best = d, chosen[1] = i;
+    }
+    int found = 1;
+    if (chosen[1] >= 0) {
+        found = 2;
+        const Vector3 edge = in[chosen[1]].pointB - p0;
+        best = kPointTolerance * edge.norm();
+        for (int i = 0; i < count; ++i) {
+            const real area = std::abs(edge.cross(in[i].pointB - p0).dot(n));
+            if (area > best) best = area, chosen[2] = i;
+        }
+        if (chosen[2] >= 0) {
+            found = 3;
+            const Vector3 corners[3] = {p0, in[chosen[1]].pointB, in[chosen[2]].pointB};
+            const real orientation = (corners[1] - corners[0]).cross(corners[2] - corners[0]).dot(n) > 0 ? 1 : -1;
+            best = kPointTolerance * edge.norm();
+            for (int i = 0; i < count; ++i) {
+                real added = 0;
+                for (int e = 0; e < 3; ++e) {
+                    const Vector3 &from = corners[e];
+                    const Vector3 &to = corners[(e + 1) % 3];
+                    added += std::max<real>(0, -orientation * (to - from).cross(in[i].pointB - from).dot(n));
+                }
+                if (added > best) best = added, chosen[3] = i;
+            }
+            if (chosen[3] >= 0) found = 4;
+        }
+    }
+    out.normal = n;
+    for (int k = 0; k < found; ++k) {
+        ContactPoint &p = out.points[out.count++];
+        p.pointA = in[chosen[k]].pointA;
+        p.pointB = in[chosen[k]].pointB;
+        p.depth = in[chosen[k]].depth;
+    }
+}
+
+// One point: the support point of whichever feature is a point, depth by overlap.
+void pointContact(const Pair &pair, const Vector3 &n, bool pointOnB, PointSet &out) {
+    const real depth = pair.overlap(n);
+    if (!(depth > -pair.speculative)) return;
+    if (pointOnB) {
+        const Vector3 pointB = pair.b.supportPoint(pair.poseB, -n, pair.triangleB);
+        out.add(pointB + depth * n, pointB, depth);
+    } else {
+        const Vector3 pointA = pair.a.supportPoint(pair.poseA, n, pair.triangleA);
+        out.add(pointA, pointA - depth * n, depth);
+    }
+}
+
+// Adds incident point q with its depth along n to the reference plane (point origin,
+// outward normal plane), if within the speculative distance.
+void addClipped(const Vector3 &q, const Vector3 &n, const Vector3 &origin, const Vector3 &plane, bool referenceOnA,
+                real speculative, PointSet &out) {
+    const real along = n.dot(plane);
+    if (std::abs(along) < kPointTolerance) return;
+    if (referenceOnA) {
+        // q is on B; A's face is at q + t n.
+        const real t = (origin - q).dot(plane) / along;
+        if (t > -speculative) out.add(q + t * n, q, t);
+    } else {
+        // q is on A; B's face is at q - t n.
+        const real t = (q - origin).dot(plane) / along;
+        if (t > -speculative) out.add(q, q - t * n, t);
+    }
+}
+
+// Segment against segment: parallel ones give their overlap, crossing ones one point.
+void clipSegments(const Pair &pair, const Vector3 &n, const SupportFeature &fa, const SupportFeature &fb,
+                  PointSet &out) {
+    const Vector3 &p0 = fa.points[0];
+    const Vector3 u = fa.points[1] - p0;
+    const Vector3 v = fb.points[1] - fb.points[0];
+    const real lu = u.norm();
+    const real lv = v.norm();
+    if (lu < kPointTolerance || lv < kPointTolerance) return pointContact(pair, n, false, out);
+    if (u.cross(v).norm() > kParallelSine * lu * lv) {
+        // Closest points of the two lines, clamped to the segments.
+        const Vector3 w = p0 - fb.points[0];
+        const real uu = lu * lu, uv = u.dot(v), vv = lv * lv, uw = u.dot(w), vw = v.dot(w);
+        const real denominator = uu * vv - uv * uv;
+        real s = std::clamp((uv * vw - vv * uw) / denominator, real(0), real(1));
+        const real t = std::clamp((uv * s + vw) / vv, real(0), real(1));
+        s = std::clamp((uv * t - uw) / uu, real(0), real(1));
+        const Vector3 pointA = p0 + s * u;
+        const real depth = pair.overlap(n);
+        if (depth > -pair.speculative) out.add(pointA, pointA - depth * n, depth);
+        return;
+    }
+    // Parallel: A's segment is the reference; its "face" is the plane through it
+    // that is closest to perpendicular to n.
+    const Vector3 axis = u / lu;
+    Vector3 plane = n - n.dot(axis) * axis;
+    if (plane.norm() < kPointTolerance) return pointContact(pair, n, false, out);
+    plane.normalize();
+    const Vector3 &q0 = fb.points[0];
+    const real s0 = (q0 - p0).dot(axis);
+    const real s1 = (fb.points[1] - p0).dot(axis);
+    const real ds = s1 - s0;
+    if (std::abs(ds) < kPointTolerance) return;
+    const real lo = std::max<real>(0, std::min(s0, s1));
+    const real hi = std::min<real>(lu, std::max(s0, s1));
+    if (hi < lo) return;
+    addClipped(q0 + (lo - s0) / ds * v, n, p0, plane, true, pair.speculative, out);
+    if (hi - lo > kPointTolerance) addClipped(q0 + (hi - s0) / ds * v, n, p0, plane, true, pair.speculative, out);
+}
+
+// Clips the incident feature against the side planes of the reference polygon,
+// extruded along n; `w` is the reference face's outward side of n (n on A, -n on B).
+void clipAgainstFace(const SupportFeature &reference, const Vector3 &w, bool clipSides,
+                     const SupportFeature &incident, Vector3 *buffer, Vector3 *scratch, int &count) {
+    count = incident.count;
+    std::copy(incident.points, incident.points + count, buffer);
+    if (!clipSides) return;
+    const bool segment = count == 2;
+    for (int e = 0; e < reference.count && count > 0; ++e) {
+        const Vector3 &origin = reference.points[e];
+        const Vector3 side = (reference.points[(e + 1) % reference.count] - origin).cross(w);
+        if (side.squaredNorm() < kPointTolerance * kPointTolerance * kPointTolerance * kPointTolerance) continue;
+        if (segment) {
+            const real d0 = (buffer[0] - origin).dot(side);
+            const real d1 = (buffer[1] - origin).dot(side);
+            if (d0 > 0 && d1 > 0) {
+                count = 0;
+            } else if (d0 > 0) {
+                buffer[0] += d0 / (d0 - d1) * (buffer[1] - buffer[0]);
+            } else if (d1 > 0) {
+                buffer[1] += d1 / (d1 - d0) * (buffer[0] - buffer[1]);
+            }
+            continue;
+        }
+        // Sutherland-Hodgman against one plane.
+        int kept = 0;
+        for (int i = 0; i < count; ++i) {
+            const Vector3 &current = buffer[i];
+            const Vector3 &next = buffer[(i + 1) % count];
+            const real dc = (current - origin).dot(side);
+            const real dn = (next - origin).dot(side);
+            if (dc <= 0 && kept < kMaxClipped) scratch[kept++] = current;
+            if ((dc < 0 && dn > 0) || (dc > 0 && dn < 0))
+                if (kept < kMaxClipped) scratch[kept++] = current + dc / (dc - dn) * (next - current);
+        }
+        count = kept;
+        std::copy(scratch, scratch + count, buffer);
+    }
+}
+
+// Builds the contact points of features fa (A's along n) and fb (B's along -n).
+void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, const SupportFeature &fb,
+                  PointSet &out) {
+    const int before = out.count;
+    if (fa.count <= 1 || fb.count <= 1) {
+        pointContact(pair, n, fb.count == 1 && fa.count != 1, out);
+    } else if (fa.count == 2 && fb.count == 2) {
+        clipSegments(pair, n, fa, fb, out);
+    } else {
+        const real alignA = fa.count >= 3 ? polygonNormal(fa).dot(n) : -2;
+        const real alignB = fb.count >= 3 ? -polygonNormal(fb).dot(n) : -2;
+        const bool referenceOnA = alignA >= alignB;
+        const SupportFeature &reference = referenceOnA ? fa : fb;
+        const SupportFeature &incident = referenceOnA ? fb : fa;
+        const CollisionShape &referenceShape = referenceOnA ? pair.a : pair.b;
+        const bool unbounded = referenceShape.shape().type == ShapeType::Plane;
+        Vector3 buffer[kMaxClipped];
+        Vector3 scratch[kMaxClipped];
+        int count = 0;
+        clipAgainstFace(reference, referenceOnA ? n : Vector3(-n), !unbounded, incident, buffer, scratch, count);
+        const Vector3 plane = polygonNormal(reference);
+        for (int i = 0; i < count; ++i)
+            addClipped(buffer[i], n, reference.points[0], plane, referenceOnA, pair.speculative, out);
+    }
+    if (out.count == before) pointContact(pair, n, false, out);
+}
+
+// A plane against anything: exact normal, every incident point measured to the plane.
+int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
+    const CollisionShape &plane = planeIsA ? pair.a : pair.b;
+    const Matrix4 &planePose = planeIsA ? pair.poseA : pair.poseB;
+    const CollisionShape &other = planeIsA ? pair.b : pair.a;
+    const Matrix4 &otherPose = planeIsA ? pair.poseB : pair.poseA;
+    const int triangle = planeIsA ? pair.triangleB : pair.triangleA;
+    const Vector3 up = planePose.linear() * plane.planeNormal();
+    const real level = up.dot(planePose.translation()) + plane.planeOffset();
+    SupportFeature feature;
+    other.supportingFeature(otherPose, -up, triangle, feature);
+    PointSet points;
+    for (int i = 0; i < feature.count; ++i) {
+        const Vector3 &q = feature.points[i];
+        const real t = level - q.dot(up);
+        if (!(t > -pair.speculative)) continue;
+        if (planeIsA)
+            points.add(q + t * up, q, t);
+        else
+            points.add(q, q + t * up, t);
+    }
+    if (points.count == 0) {
+        const Vector3 q = other.supportPoint(otherPose, -up, triangle);
+        const real t = level - q.dot(up);
+        if (!(t > -pair.speculative)) return 0;
+        if (planeIsA)
+            points.add(q + t * up, q, t);
+        else
+            points.add(q, q + t * up, t);
+    }
+    Manifold manifold;
+    reduce(points.points, points.count, planeIsA ? up : Vector3(-up), manifold);
+    out.push_back(manifold);
+    return 1;
+}
+
+// The normal of one FCL contact: FCL's or a supporting face's, the least overlap.
+// Leaves the features along the chosen normal in fa and fb.
+Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, SupportFeature &fa, SupportFeature &fb) {
+    pair.a.supportingFeature(pair.poseA, fclNormal, pair.triangleA, fa);
+    pair.b.supportingFeature(pair.poseB, -fclNormal, pair.triangleB, fb);
+    Vector3 best = fclNormal;
+    real bestOverlap = pair.overlap(fclNormal);
+    bool changed = false;
+    for (int side = 0; side < 2; ++side) {
+        const SupportFeature &f = side == 0 ? fa : fb;
+        if (f.count < 3) continue;
+        const Vector3 candidate = side == 0 ? polygonNormal(f) : Vector3(-polygonNormal(f));
+        if (!(candidate.dot(fclNormal) > 0)) continue;
+        const real o = pair.overlap(candidate);
+        if (o <= bestOverlap + kFacePreference) {
+            changed = changed || candidate != best;
+            best = candidate;
+            bestOverlap = o;
+        }
+    }
+    if (changed) {
+        pair.a.supportingFeature(pair.poseA, best, pair.triangleA, fa);
+        pair.b.supportingFeature(pair.poseB, -best, pair.triangleB, fb);
+    }
+    return best;
+}
+
+// One contact reported by FCL, oriented from A to B.
+struct RawContact {
+    Vector3 normal;
+    real depth;
+    int triangleA;
+    int triangleB;
+};
+
+struct MeshContact {
+    Vector3 normal;
+    real depth;
+    int triangleA;
+    int triangleB;
+    bool face;
+    bool kept;
+    Manifold points;
+};
+
+int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                 real speculative, const RawContact *raw, int rawCount, std::vector<Manifold> &out) {
+    // The mesh whose triangles claim vertices: B when it is a mesh, else A.
+    const bool meshIsB = b.shape().type == ShapeType::Mesh;
+    const CollisionShape &mesh = meshIsB ? b : a;
+    const Matrix4 &meshPose = meshIsB ? poseB : poseA;
+
+    MeshContact contacts[kMaxFclContacts];
+    int count = 0;
+    for (int i = 0; i < rawCount; ++i) {
+        const Pair pair{a, poseA, raw[i].triangleA, b, poseB, raw[i].triangleB, speculative};
+        MeshContact &c = contacts[count];
+        SupportFeature fa, fb;
+        c.normal = chooseNormal(pair, raw[i].normal, fa, fb);
+        c.triangleA = raw[i].triangleA;
+        c.triangleB = raw[i].triangleB;
+        const int triangle = meshIsB ? c.triangleB : c.triangleA;
+        if (triangle < 0 || triangle >= static_cast<int>(mesh.faces().size())) continue;
+        const Vector3 triangleNormal = meshPose.linear() * mesh.faceNormals()[triangle];
+        c.face = std::abs(triangleNormal.dot(c.normal)) > kFaceCosine;
+        PointSet points;
+        clipFeatures(pair, c.normal, fa, fb, points);
+        reduce(points.points, points.count, c.normal, c.points);
+        if (c.points.count == 0) continue;
+        c.depth = c.points.points[0].depth;
+        c.kept = true;
+        ++count;
+    }
+
+    // Face contacts first, then the rest deepest first, as Jolt orders them.
+    std::sort(contacts, contacts + count, [](const MeshContact &x, const MeshContact &y) {
+        return x.face != y.face ? x.face : x.depth > y.depth;
+    });
+    int claimed[3 * kMaxFclContacts];
+    int claimedCount = 0;
+    auto isClaimed = [&](int vertex) { return std::find(claimed, claimed + claimedCount, vertex) != claimed + claimedCount; };
+    for (int i = 0; i < count; ++i) {
+        MeshContact &c = contacts[i];
+        const std::vector<int> &t = mesh.faces()[meshIsB ? c.triangleB : c.triangleA];
+        if (!c.face) {
+            // The triangle's feature touching the other shape: its vertices furthest
+            // towards that shape.
+            const Vector3 towards = meshPose.linear().transpose() * (meshIsB ? Vector3(-c.normal) : c.normal);
+            real top = -1e300;
+            for (int k = 0; k < 3; ++k) top = std::max(top, mesh.vertices()[t[k]].dot(towards));
+            bool covered = true;
+            for (int k = 0; k < 3; ++k)
+                if (mesh.vertices()[t[k]].dot(towards) > top - kPointTolerance && !isClaimed(t[k])) covered = false;
+            if (covered) {
+                c.kept = false;
+                continue;
+            }
+        }
+        for (int k = 0; k < 3; ++k)
+            if (!isClaimed(t[k])) claimed[claimedCount++] = t[k];
+    }
+
+    int appended = 0;
+    for (int i = 0; i < count; ++i) {
+        if (!contacts[i].kept) continue;
+        const Vector3 normal = contacts[i].normal;
+        PointSet points;
+        for (int j = i; j < count; ++j) {
+            MeshContact &c = contacts[j];
+            if (!c.kept || c.normal.dot(normal) < kMergeCosine) continue;
+            for (int k = 0; k < c.points.count; ++k) {
+                const ContactPoint &p = c.points.points[k];
+                points.add(p.pointA, p.pointB, p.depth);
+            }
+            c.kept = false;
+        }
+        Manifold manifold;
+        reduce(points.points, points.count, normal, manifold);
+        out.push_back(manifold);
+        ++appended;
+    }
+    return appended;
+}
+
+}  // namespace
+
+int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+            const NarrowphaseSettings &settings, std::vector<Manifold> &out) {
+    const ShapeType typeA = a.shape().type;
+    const ShapeType typeB = b.shape().type;
+    if (typeA == ShapeType::Plane && typeB == ShapeType::Plane) return 0;
+    const bool withMesh = typeA == ShapeType::Mesh || typeB == ShapeType::Mesh;
+
+    static const fcl::CollisionRequestd shapeRequest = makeRequest(4);
+    static const fcl::CollisionRequestd meshRequest = makeRequest(kMaxFclContacts);
+    // Reused so that its contact vector keeps its capacity between calls.
+    static thread_local fcl::CollisionResultd result;
+    result.clear();
+    fcl::collide(a.geometry().get(), poseA, b.geometry().get(), poseB, withMesh ? meshRequest : shapeRequest,
+                 result);
+
+    RawContact raw[kMaxFclContacts];
+    int rawCount = 0;
+    for (size_t i = 0; i < result.numContacts() && rawCount < kMaxFclContacts; ++i) {
+        const fcl::Contactd &contact = result.getContact(i);
+        const real length = contact.normal.norm();
+        if (!(length > kMinNormalLength)) continue;
+        // FCL puts the mesh first when a shape is tested against a mesh.
+        const bool swapped = contact.o1 != a.geometry().get();
+        RawContact &r = raw[rawCount++];
+        r.normal = (swapped ? -contact.normal : contact.normal) / length;
+        r.depth = std::abs(contact.penetration_depth);
+        r.triangleA = static_cast<int>(swapped ? contact.b2 : contact.b1);
+        r.triangleB = static_cast<int>(swapped ? contact.b1 : contact.b2);
+    }
+    if (rawCount == 0) return 0;
+
+    if (typeA == ShapeType::Plane || typeB == ShapeType::Plane) {
+        const Pair pair{a, poseA, raw[0].triangleA, b, poseB, raw[0].triangleB, settings.speculativeDistance};
+        return planeContact(pair, typeA == ShapeType::Plane, out);
+    }
+    if (withMesh) return meshContacts(a, poseA, b, poseB, settings.speculativeDistance, raw, rawCount, out);
+
+    // Convex pairs touch along one normal; FCL's extra box-box points are rebuilt by
+    // clipping from its deepest contact.
+    int deepest = 0;
+    for (int i = 1; i < rawCount; ++i)
+        if (raw[i].depth > raw[deepest].depth) deepest = i;
+    const Pair pair{a, poseA, -1, b, poseB, -1, settings.speculativeDistance};
+    SupportFeature fa, fb;
+    const Vector3 normal = chooseNormal(pair, raw[deepest].normal, fa, fb);
+    PointSet points;
+    clipFeatures(pair, normal, fa, fb, points);
+    if (points.count == 0) return 0;
+    Manifold manifold;
+    reduce(points.points, points.count, normal, manifold);
+    out.push_back(manifold);
+    return 1;
+}
+
+}  // namespace cyclone::detail
