@@ -329,6 +329,13 @@ void World::Impl::solve(real h, bool firstSubstep) {
             r.body.addTorque(savedTorques[k]);
         }
         predictVelocity(r.body, h, sb.v, sb.w);
+        if (!std::isfinite(sb.v.squaredNorm() + sb.w.squaredNorm())) {
+            // A velocity beyond ~1e154 would overflow impulses: isolate it before it
+            // reaches anyone through a contact.
+            quarantine(simulatedBodies[k]);
+            sb = detail::SolverBody();
+            continue;
+        }
         sb.pv.setZero();
         sb.pw.setZero();
         sb.invMass = r.body.getInverseMass();
