@@ -113,7 +113,9 @@ inline void expectContact(const Shape &a, const Matrix4 &poseA, const Shape &b, 
             const Vector3 &pointA = order == 0 ? p.pointA : p.pointB;
             const Vector3 &pointB = order == 0 ? p.pointB : p.pointA;
             EXPECT_NEAR((p.pointA - p.pointB).dot(m.normal), p.depth, 1e-9) << "depth = (pointA - pointB).normal";
-            if (e.allSameDepth) EXPECT_NEAR(p.depth, e.depth, e.depthTolerance) << "point " << i;
+            if (e.allSameDepth) {
+                EXPECT_NEAR(p.depth, e.depth, e.depthTolerance) << "point " << i;
+            }
             deepest = std::max(deepest, p.depth);
             if (!e.points.empty()) {
                 bool found = false;
@@ -124,8 +126,12 @@ inline void expectContact(const Shape &a, const Matrix4 &poseA, const Shape &b, 
             }
         }
         EXPECT_NEAR(deepest, e.depth, e.depthTolerance);
-        if (!e.points.empty()) EXPECT_EQ(m.count, static_cast<int>(e.points.size()));
-        if (e.minPoints >= 3) EXPECT_TRUE(nonCollinear(m)) << "face-on-face contact needs a spread of points";
+        if (!e.points.empty()) {
+            EXPECT_EQ(m.count, static_cast<int>(e.points.size()));
+        }
+        if (e.minPoints >= 3) {
+            EXPECT_TRUE(nonCollinear(m)) << "face-on-face contact needs a spread of points";
+        }
     }
 }
 
