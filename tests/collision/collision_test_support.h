@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "collision_shape.h"
@@ -81,6 +82,8 @@ struct Expected {
     real normalTolerance = 1e-9;
     real depthTolerance = 1e-6;
     real pointTolerance = 1e-6;
+    /// When set: called with every point, A's and B's side as in the order (a, b).
+    std::function<void(const Vector3 &pointA, const Vector3 &pointB)> eachPoint;
 };
 
 inline bool nonCollinear(const Manifold &m, real minArea = 1e-4) {
@@ -117,6 +120,7 @@ inline void expectContact(const Shape &a, const Matrix4 &poseA, const Shape &b, 
                 EXPECT_NEAR(p.depth, e.depth, e.depthTolerance) << "point " << i;
             }
             deepest = std::max(deepest, p.depth);
+            if (e.eachPoint) e.eachPoint(pointA, pointB);
             if (!e.points.empty()) {
                 bool found = false;
                 for (const ExpectedPoint &x : e.points)

@@ -32,14 +32,16 @@ namespace {
 constexpr int kMaxFclContacts = 16;
 // Clipping a polygon against a polygon adds at most one vertex per side plane.
 constexpr int kMaxClipped = 2 * SupportFeature::kMaxPoints + 2;
-// Points reduced to four per contact, before merging a mesh's contacts.
-constexpr int kMaxMerged = kMaxFclContacts * Manifold::kMaxPoints;
+// Candidate points of one manifold: a few triangles' worth of clipped points.
+constexpr int kMaxMerged = 2 * kMaxClipped + 2 * Manifold::kMaxPoints;
 // FCL normals shorter than this are meaningless (coincident centres).
 constexpr real kMinNormalLength = 1e-9;
 // A face candidate wins a tie within this overlap (m): exact face normals for resting.
 constexpr real kFacePreference = 1e-9;
 // Points closer than this are one point; areas below it times a length are zero, m.
 constexpr real kPointTolerance = 1e-6;
+// Depths within this of the deepest count as equally deep, m.
+constexpr real kDepthTie = 1e-5;
 // Two segments whose directions differ by less than 2 degrees are parallel: sin(2 deg).
 constexpr real kParallelSine = 0.03489949670250097;
 // A mesh contact whose normal is within 0.5 degrees of its triangle's is a face contact:
@@ -99,14 +101,27 @@ Vector3 polygonNormal(const SupportFeature &f) {
 
 // Keeps at most four points of `in`: the deepest, the farthest from it, the one
 // spanning the largest triangle with those two, and the one adding the most area.
+// Among equally deep points (a flat contact) the first is the one farthest from their
+// centre, a corner rather than a point where a mesh's triangles split the face.
 void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &out) {
     out.count = 0;
     if (count <= 0) return;
     int chosen[4] = {0, -1, -1, -1};
-    for (int i = 1; i < count; ++i)
-        if (in[i].depth > in[chosen[0]].depth) chosen[0] = i;
+    real deepest = in[0].depth;
+    Vector3 centre = Vector3::Zero();
+    for (int i = 0; i < count; ++i) {
+        deepest = std::max(deepest, in[i].depth);
+        centre += in[i].pointB;
+    }
+    centre /= count;
+    real best = -1;
+    for (int i = 0; i < count; ++i) {
+        if (in[i].depth < deepest - kDepthTie) continue;
+        const real d = (in[i].pointB - centre).squaredNorm();
+        if (d > best) best = d, chosen[0] = i;
+    }
     const Vector3 p0 = in[chosen[0]].pointB;
-    real best = kPointTolerance * kPointTolerance;
+    best = kPointTolerance * kPointTolerance;
     for (int i = 0; i < count; ++i) {
         const real d = (in[i].pointB - p0).squaredNorm();
         if (d > best) best = d, chosen[1] = i;
@@ -320,29 +335,41 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
 }
 
 // The normal of one FCL contact: FCL's or a supporting face's, the least overlap.
-// Leaves the features along the chosen normal in fa and fb.
-Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, SupportFeature &fa, SupportFeature &fb) {
+// Leaves the features along the chosen normal in fa and fb, and the overlap along it.
+// A triangle has no inside, so with `twoSided` both directions of every axis are
+// candidates: FCL's normal for a shape against a triangle may even point the wrong way.
+Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, bool twoSided, SupportFeature &fa,
+                     SupportFeature &fb, real &overlap) {
     pair.a.supportingFeature(pair.poseA, fclNormal, pair.triangleA, fa);
     pair.b.supportingFeature(pair.poseB, -fclNormal, pair.triangleB, fb);
     Vector3 best = fclNormal;
     real bestOverlap = pair.overlap(fclNormal);
     bool changed = false;
+    auto consider = [&](const Vector3 &candidate, real preference) {
+        const real o = pair.overlap(candidate);
+        if (o <= bestOverlap + preference) {
+            changed = changed || candidate != best;
+            best = candidate;
+            bestOverlap = o;
+        }
+    };
+    if (twoSided) consider(-fclNormal, 0);
     for (int side = 0; side < 2; ++side) {
         const SupportFeature &f = side == 0 ? fa : fb;
         if (f.count < 3) continue;
         const Vector3 candidate = side == 0 ? polygonNormal(f) : Vector3(-polygonNormal(f));
-        if (!(candidate.dot(fclNormal) > 0)) continue;
-        const real o = pair.overlap(candidate);
-        if (o <= bestOverlap + kFacePreference) {
-            changed = changed || candidate != best;
-            best = candidate;
-            bestOverlap = o;
+        if (twoSided) {
+            consider(candidate, kFacePreference);
+            consider(-candidate, kFacePreference);
+        } else if (candidate.dot(fclNormal) > 0) {
+            consider(candidate, kFacePreference);
         }
     }
     if (changed) {
         pair.a.supportingFeature(pair.poseA, best, pair.triangleA, fa);
         pair.b.supportingFeature(pair.poseB, -best, pair.triangleB, fb);
     }
+    overlap = bestOverlap;
     return best;
 }
 
@@ -361,7 +388,6 @@ struct MeshContact {
     int triangleB;
     bool face;
     bool kept;
-    Manifold points;
 };
 
 int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
@@ -370,25 +396,22 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     const bool meshIsB = b.shape().type == ShapeType::Mesh;
     const CollisionShape &mesh = meshIsB ? b : a;
     const Matrix4 &meshPose = meshIsB ? poseB : poseA;
+    const int triangles = static_cast<int>(mesh.faces().size());
 
     MeshContact contacts[kMaxFclContacts];
     int count = 0;
     for (int i = 0; i < rawCount; ++i) {
+        const int triangle = meshIsB ? raw[i].triangleB : raw[i].triangleA;
+        if (triangle < 0 || triangle >= triangles) continue;
         const Pair pair{a, poseA, raw[i].triangleA, b, poseB, raw[i].triangleB, speculative};
         MeshContact &c = contacts[count];
         SupportFeature fa, fb;
-        c.normal = chooseNormal(pair, raw[i].normal, fa, fb);
+        c.normal = chooseNormal(pair, raw[i].normal, true, fa, fb, c.depth);
+        if (!(c.depth > -speculative)) continue;
         c.triangleA = raw[i].triangleA;
         c.triangleB = raw[i].triangleB;
-        const int triangle = meshIsB ? c.triangleB : c.triangleA;
-        if (triangle < 0 || triangle >= static_cast<int>(mesh.faces().size())) continue;
         const Vector3 triangleNormal = meshPose.linear() * mesh.faceNormals()[triangle];
         c.face = std::abs(triangleNormal.dot(c.normal)) > kFaceCosine;
-        PointSet points;
-        clipFeatures(pair, c.normal, fa, fb, points);
-        reduce(points.points, points.count, c.normal, c.points);
-        if (c.points.count == 0) continue;
-        c.depth = c.points.points[0].depth;
         c.kept = true;
         ++count;
     }
@@ -421,6 +444,8 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
             if (!isClaimed(t[k])) claimed[claimedCount++] = t[k];
     }
 
+    // One manifold per normal: the clipped points of all its triangles, reduced once so
+    // that the points where triangles split a face do not crowd out its corners.
     int appended = 0;
     for (int i = 0; i < count; ++i) {
         if (!contacts[i].kept) continue;
@@ -429,12 +454,22 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
         for (int j = i; j < count; ++j) {
             MeshContact &c = contacts[j];
             if (!c.kept || c.normal.dot(normal) < kMergeCosine) continue;
-            for (int k = 0; k < c.points.count; ++k) {
-                const ContactPoint &p = c.points.points[k];
-                points.add(p.pointA, p.pointB, p.depth);
-            }
             c.kept = false;
+            if (points.count + kMaxClipped > kMaxMerged) {
+                // Rarely many triangles: keep the best four so far and go on.
+                Manifold partial;
+                reduce(points.points, points.count, normal, partial);
+                points.count = 0;
+                for (int k = 0; k < partial.count; ++k)
+                    points.add(partial.points[k].pointA, partial.points[k].pointB, partial.points[k].depth);
+            }
+            const Pair pair{a, poseA, c.triangleA, b, poseB, c.triangleB, speculative};
+            SupportFeature fa, fb;
+            a.supportingFeature(poseA, c.normal, c.triangleA, fa);
+            b.supportingFeature(poseB, -c.normal, c.triangleB, fb);
+            clipFeatures(pair, c.normal, fa, fb, points);
         }
+        if (points.count == 0) continue;
         Manifold manifold;
         reduce(points.points, points.count, normal, manifold);
         out.push_back(manifold);
@@ -489,7 +524,8 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
         if (raw[i].depth > raw[deepest].depth) deepest = i;
     const Pair pair{a, poseA, -1, b, poseB, -1, settings.speculativeDistance};
     SupportFeature fa, fb;
-    const Vector3 normal = chooseNormal(pair, raw[deepest].normal, fa, fb);
+    real overlap = 0;
+    const Vector3 normal = chooseNormal(pair, raw[deepest].normal, false, fa, fb, overlap);
     PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
     if (points.count == 0) return 0;
