@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -28,6 +29,13 @@ void requireFinite(const char *function, const char *field, const Vector3 &v) {
     if (!v.allFinite()) refuse(function, std::string(field) + " must be finite, got " + str(v));
 }
 
+std::string str(const Matrix3 &m) {
+    std::ostringstream shown;
+    shown.precision(17);
+    shown << "[" << m.row(0) << "; " << m.row(1) << "; " << m.row(2) << "]";
+    return shown.str();
+}
+
 void requireUnitInterval(const char *function, const char *field, real value) {
     if (!(value >= 0 && value <= 1))
         refuse(function, std::string(field) + " must be in [0, 1], got " + str(value));
@@ -35,23 +43,22 @@ void requireUnitInterval(const char *function, const char *field, real value) {
 
 // An inertia tensor or its inverse must be a finite, symmetric, positive definite matrix.
 void requireSymmetricPositiveDefinite(const char *function, const char *field, const Matrix3 &m) {
-    std::ostringstream shown;
-    shown.precision(17);
-    shown << "[" << m.row(0) << "; " << m.row(1) << "; " << m.row(2) << "]";
-    if (!m.allFinite()) refuse(function, std::string(field) + " must be finite, got " + shown.str());
+    if (!m.allFinite()) refuse(function, std::string(field) + " must be finite, got " + str(m));
     const real scale = m.cwiseAbs().maxCoeff();
     if ((m - m.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
-        refuse(function, std::string(field) + " must be symmetric, got " + shown.str());
+        refuse(function, std::string(field) + " must be symmetric, got " + str(m));
     const Eigen::LDLT<Matrix3> ldlt(m);
     if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().minCoeff() > 0))
-        refuse(function, std::string(field) + " must be positive definite, got " + shown.str());
+        refuse(function, std::string(field) + " must be positive definite, got " + str(m));
 }
 
 Quaternion normalisedOrientation(const char *function, const Quaternion &q) {
     if (!q.coeffs().allFinite())
         refuse(function, "orientation must be finite, got (" + str(q.w()) + ", " + str(q.x()) + ", " +
                              str(q.y()) + ", " + str(q.z()) + ")");
-    const real norm = q.norm();
+    // stableNorm, not norm: the squared norm overflows for components near 1e155 and
+    // underflows near 1e-155, which would turn a valid rotation into zero or identity.
+    const real norm = q.coeffs().stableNorm();
     if (norm == 0) return Quaternion::Identity();
     return Quaternion(q.coeffs() / norm);
 }
@@ -121,6 +128,8 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
 
 void RigidBody::setMass(const real mass) {
     if (!std::isfinite(mass) || !(mass > 0)) refuse("setMass", "mass must be finite and > 0, got " + str(mass));
+    // Below about 5.6e-309 kg the inverse overflows, and the next force would be NaN.
+    if (!std::isfinite(1 / mass)) refuse("setMass", "mass is too small to invert, got " + str(mass));
     inverseMass = 1 / mass;
 }
 
@@ -142,6 +151,9 @@ bool RigidBody::hasFiniteMass() const { return inverseMass > 0; }
 void RigidBody::setInertiaTensor(const Matrix3 &inertiaTensor) {
     requireSymmetricPositiveDefinite("setInertiaTensor", "inertiaTensor", inertiaTensor);
     const Matrix3 inverse = inertiaTensor.inverse();
+    if (!inverse.allFinite())
+        refuse("setInertiaTensor", "inertiaTensor has no finite inverse in double precision, got " +
+                                       str(inertiaTensor));
     inverseInertiaTensor = 0.5 * (inverse + inverse.transpose());
     calculateDerivedData();
 }
