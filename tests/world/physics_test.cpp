@@ -6,14 +6,20 @@
 namespace cyclone::test {
 namespace {
 
-// Semi-implicit Euler under constant g: v_n = -g n dt, y_n = y0 - g dt^2 n (n + 1) / 2.
+// Semi-implicit Euler under constant g, N sub-steps of h: v_N = -g N h,
+// y_N = y0 - g h^2 N (N + 1) / 2.
 TEST(Physics, FreeFallFollowsTheSeedIntegratorExactly) {
-    WorldFixture f;
-    const BodyId ball = f.sphere(Vector3(0, 100, 0), 0.5);
-    const int n = 60;
-    for (int i = 0; i < n; ++i) f.world.step(kDt);
-    EXPECT_NEAR(f.world.body(ball).getVelocity().y(), -9.81 * n * kDt, 1e-12);
-    EXPECT_NEAR(f.position(ball).y(), 100 - 9.81 * kDt * kDt * n * (n + 1) / 2, 1e-9);
+    for (int substeps : {1, 4}) {
+        WorldSettings settings;
+        settings.substeps = substeps;
+        WorldFixture f(settings);
+        const BodyId ball = f.sphere(Vector3(0, 100, 0), 0.5);
+        for (int i = 0; i < 60; ++i) f.world.step(kDt);
+        const double n = 60.0 * substeps;
+        const double h = kDt / substeps;
+        EXPECT_NEAR(f.world.body(ball).getVelocity().y(), -9.81 * n * h, 1e-12);
+        EXPECT_NEAR(f.position(ball).y(), 100 - 9.81 * h * h * n * (n + 1) / 2, 1e-9);
+    }
 }
 
 struct Incline {

@@ -96,6 +96,82 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
     }
 }
 
+Softness makeSoftness(real hertz, real zeta, real h) {
+    if (hertz <= 0) return Softness{0, 1, 0};
+    const real omega = 2 * 3.14159265358979323846 * hertz;
+    const real a1 = 2 * zeta + h * omega;
+    const real a2 = h * omega * a1;
+    const real a3 = 1 / (1 + a2);
+    return Softness{omega / a1, a2 * a3, a3};
+}
+
+void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real h, bool useBias,
+               const SoftStepSettings &settings) {
+    const real inverseH = 1 / h;
+    for (SolverManifold &m : manifolds) {
+        SolverBody &a = bodies[m.a];
+        SolverBody &b = bodies[m.b];
+        const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
+        for (int i = 0; i < m.count; ++i) {
+            SolverPoint &p = m.points[i];
+            const real separation = -p.depth;
+            real bias = 0;
+            real massScale = 1;
+            real impulseScale = 0;
+            if (separation > 0) {
+                bias = separation * inverseH;  // speculative: close the gap, no more
+            } else if (useBias) {
+                bias = std::max(soft.biasRate * std::min(separation + settings.slop, real(0)), -settings.maxPushVelocity);
+                massScale = soft.massScale;
+                impulseScale = soft.impulseScale;
+            }
+            const real vn = relativeVelocity(a, b, m.normal, p.normal);
+            const real old = p.normal.impulse;
+            const real delta = -p.normal.mass * massScale * (vn + bias) - impulseScale * old;
+            const real updated = std::max(old + delta, real(0));
+            p.normal.impulse = updated;
+            p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
+            applyImpulse(a, b, m.normal, p.normal, updated - old);
+        }
+        if (m.friction <= 0) continue;
+        for (int i = 0; i < m.count; ++i) {
+            SolverPoint &p = m.points[i];
+            const real limit = m.friction * p.normal.impulse;
+            const real old0 = p.tangent[0].impulse;
+            const real old1 = p.tangent[1].impulse;
+            real new0 = old0 - p.tangent[0].mass * relativeVelocity(a, b, m.tangent[0], p.tangent[0]);
+            real new1 = old1 - p.tangent[1].mass * relativeVelocity(a, b, m.tangent[1], p.tangent[1]);
+            const real magnitude2 = new0 * new0 + new1 * new1;
+            if (magnitude2 > limit * limit) {
+                const real scale = limit > 0 ? limit / std::sqrt(magnitude2) : 0;
+                new0 *= scale;
+                new1 *= scale;
+            }
+            p.tangent[0].impulse = new0;
+            p.tangent[1].impulse = new1;
+            applyImpulse(a, b, m.tangent[0], p.tangent[0], new0 - old0);
+            applyImpulse(a, b, m.tangent[1], p.tangent[1], new1 - old1);
+        }
+    }
+}
+
+void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real threshold) {
+    for (SolverManifold &m : manifolds) {
+        if (m.restitution == 0) continue;
+        SolverBody &a = bodies[m.a];
+        SolverBody &b = bodies[m.b];
+        for (int i = 0; i < m.count; ++i) {
+            SolverPoint &p = m.points[i];
+            if (p.approachSpeed > -threshold || p.maxNormalImpulse == 0) continue;
+            const real vn = relativeVelocity(a, b, m.normal, p.normal);
+            const real old = p.normal.impulse;
+            const real updated = std::max(old - p.normal.mass * (vn + m.restitution * p.approachSpeed), real(0));
+            p.normal.impulse = updated;
+            applyImpulse(a, b, m.normal, p.normal, updated - old);
+        }
+    }
+}
+
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
     for (SolverManifold &m : manifolds) {
         SolverBody &a = bodies[m.a];

@@ -46,6 +46,8 @@ struct SolverPoint {
     real depth = 0;          ///< Penetration at the start of the step, m (< 0: apart).
     real pseudoImpulse = 0;  ///< Accumulated pseudo impulse, N s.
     real pseudoTarget = 0;   ///< Target pseudo normal velocity, m/s.
+    real approachSpeed = 0;  ///< Normal relative velocity when the step began, m/s.
+    real maxNormalImpulse = 0;  ///< Largest normal impulse of the step, N s.
 };
 
 struct SolverManifold {
@@ -54,6 +56,8 @@ struct SolverManifold {
     Vector3 normal;      ///< From A to B.
     Vector3 tangent[2];
     real friction = 0;
+    real restitution = 0;
+    bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
     int count = 0;
     SolverPoint points[4];
 };
@@ -63,6 +67,32 @@ struct SolverSettings {
     real penetrationRecovery = 0.2;
     real restitutionThreshold = 1.0;
 };
+
+/// Soft contact coefficients for a sub-step (a damped spring of the given frequency
+/// expressed as an implicit-Euler velocity bias and impulse scaling).
+struct Softness {
+    real biasRate = 0;      ///< 1/s: velocity bias per metre of penetration.
+    real massScale = 1;     ///< Scales the effective mass.
+    real impulseScale = 0;  ///< Fraction of the accumulated impulse relaxed away.
+};
+
+/// Softness of a spring of `hertz` and damping ratio `zeta` stepped with `h` seconds.
+Softness makeSoftness(real hertz, real zeta, real h);
+
+struct SoftStepSettings {
+    Softness dynamicSoftness;  ///< For contacts between two dynamic bodies.
+    Softness staticSoftness;   ///< For contacts with an immovable body.
+    real slop = 0;             ///< Penetration left alone, m.
+    real maxPushVelocity = 3;  ///< Fastest penetration recovery, m/s.
+};
+
+/// One pass of the soft-step solver. With `useBias` penetration pushes bodies apart
+/// softly; without it (relax) the contacts are rigid and bias velocity is removed.
+void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real h, bool useBias,
+               const SoftStepSettings &settings);
+/// Applies restitution to points that approached faster than `threshold` and carried
+/// load this step.
+void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real threshold);
 
 /// Tangents of a normal: deterministic, so that the same normal gives the same basis
 /// every step and warm-started friction stays meaningful.

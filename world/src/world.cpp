@@ -42,6 +42,9 @@ void validateSettings(const char *function, const WorldSettings &s) {
     if (!(s.penetrationRecovery > 0 && s.penetrationRecovery <= 1))
         refuse(function, "penetrationRecovery", "must be in (0, 1], got " + show(s.penetrationRecovery));
     requireNonNegative(function, "restitutionThreshold", s.restitutionThreshold);
+    requireNonNegative(function, "contactHertz", s.contactHertz);
+    requireNonNegative(function, "contactDampingRatio", s.contactDampingRatio);
+    requirePositive(function, "maxPushVelocity", s.maxPushVelocity);
     requireNonNegative(function, "speculativeDistance", s.speculativeDistance);
     requireNonNegative(function, "manifoldReuseTolerance", s.manifoldReuseTolerance);
 }

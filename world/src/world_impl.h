@@ -80,6 +80,7 @@ struct World::Impl {
     std::vector<Vector3> savedForces;
     std::vector<Vector3> savedTorques;
 
+    detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
     StepStats stats;
 
@@ -106,6 +107,10 @@ struct World::Impl {
     void buildManifolds(real dt);
     void buildIslands();
     void solve(real h, bool firstSubstep);
+    void prepareSoftStep(real h);
+    void solveSoftStep(real h, bool firstSubstep);
+    void relax();
+    void restitution();
     void integrate(real h);
     void correctPositions(real h);
     void updateSleep();

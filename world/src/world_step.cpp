@@ -68,12 +68,25 @@ void World::Impl::step(real dt) {
     stats.ms.islands = timer.lap();
 
     const real h = dt / settings.substeps;
-    for (int substep = 0; substep < settings.substeps; ++substep) {
-        solve(h, substep == 0);
-        stats.ms.solve += timer.lap();
-        integrate(h);
-        correctPositions(h);
-        stats.ms.integrate += timer.lap();
+    if (settings.contactSolver == ContactSolverType::SoftStep) {
+        prepareSoftStep(h);
+        for (int substep = 0; substep < settings.substeps; ++substep) {
+            solveSoftStep(h, substep == 0);
+            stats.ms.solve += timer.lap();
+            integrate(h);
+            stats.ms.integrate += timer.lap();
+            relax();
+            stats.ms.solve += timer.lap();
+        }
+        restitution();
+    } else {
+        for (int substep = 0; substep < settings.substeps; ++substep) {
+            solve(h, substep == 0);
+            stats.ms.solve += timer.lap();
+            integrate(h);
+            correctPositions(h);
+            stats.ms.integrate += timer.lap();
+        }
     }
     storeImpulses();
     stats.ms.solve += timer.lap();
@@ -385,6 +398,128 @@ void World::Impl::solve(real h, bool firstSubstep) {
         const real angular = std::pow(r.body.getAngularDamping(), h);
         if (linear > 0) r.body.addVelocity((sb.v - v) / linear);
         if (angular > 0) r.body.addRotation((sb.w - w) / angular);
+    }
+}
+
+// --- solve: soft step ----------------------------------------------------------------------
+
+void World::Impl::prepareSoftStep(real h) {
+    solverBodies.resize(simulatedBodies.size() + 1);
+    solverBodies[0] = detail::SolverBody();
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        const RigidBody &body = bodies[simulatedBodies[k]].body;
+        detail::SolverBody &sb = solverBodies[k + 1];
+        sb = detail::SolverBody();
+        sb.v = body.getVelocity();
+        sb.w = body.getRotation();
+        sb.invMass = body.getInverseMass();
+        sb.invInertia = body.getInverseInertiaTensorWorld();
+    }
+    const real hertz = std::min(settings.contactHertz, 0.25 / h);
+    soft.dynamicSoftness = detail::makeSoftness(hertz, settings.contactDampingRatio, h);
+    soft.staticSoftness = detail::makeSoftness(std::min(2 * settings.contactHertz, 0.25 / h), settings.contactDampingRatio, h);
+    soft.slop = settings.penetrationSlop;
+    soft.maxPushVelocity = settings.maxPushVelocity;
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        detail::SolverManifold &m = solverManifolds[s];
+        const detail::PairState &pair = pairs[solverSource[s] >> 2];
+        const RigidBody &a = bodies[pair.a].body;
+        const RigidBody &b = bodies[pair.b].body;
+        m.restitution = std::max(bodies[pair.a].material.restitution, bodies[pair.b].material.restitution);
+        m.touchesStatic = m.a == 0 || m.b == 0;
+        const detail::SolverBody &sa = solverBodies[m.a];
+        const detail::SolverBody &sb = solverBodies[m.b];
+        for (int i = 0; i < m.count; ++i) {
+            detail::SolverPoint &p = m.points[i];
+            const Vector3 c = 0.5 * (a.getTransform() * p.localA + b.getTransform() * p.localB);
+            detail::prepareRows(sa, sb, c - a.getPosition(), c - b.getPosition(), m, p);
+            p.approachSpeed = m.normal.dot(sb.v - sa.v) + p.normal.rBxd.dot(sb.w) - p.normal.rAxd.dot(sa.w);
+            p.maxNormalImpulse = 0;
+            if (m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
+        }
+    }
+}
+
+void World::Impl::solveSoftStep(real h, bool firstSubstep) {
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        detail::SolverBody &sb = solverBodies[k + 1];
+        if (r.quarantined) {
+            sb = detail::SolverBody();
+            continue;
+        }
+        if (!firstSubstep && settings.substeps > 1) {
+            r.body.addForce(savedForces[k]);
+            r.body.addTorque(savedTorques[k]);
+        }
+        predictVelocity(r.body, h, sb.v, sb.w);
+        if (!std::isfinite(sb.v.squaredNorm() + sb.w.squaredNorm())) {
+            quarantine(simulatedBodies[k]);
+            sb = detail::SolverBody();
+        }
+    }
+    // Current separation of every point from its anchors (positions move only between
+    // sub-steps, so once per sub-step is exact).
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        detail::SolverManifold &m = solverManifolds[s];
+        const detail::PairState &pair = pairs[solverSource[s] >> 2];
+        const Matrix4 &poseA = bodies[pair.a].body.getTransform();
+        const Matrix4 &poseB = bodies[pair.b].body.getTransform();
+        for (int i = 0; i < m.count; ++i) {
+            detail::SolverPoint &p = m.points[i];
+            p.depth = (poseA * p.localA - poseB * p.localB).dot(m.normal);
+        }
+    }
+    if (settings.warmStarting) detail::warmStart(solverBodies, solverManifolds);
+    for (int it = 0; it < settings.velocityIterations; ++it)
+        detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
+    stats.velocityIterations += settings.velocityIterations;
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        if (r.quarantined) continue;
+        const detail::SolverBody &sb = solverBodies[k + 1];
+        Vector3 v, w;
+        predictVelocity(r.body, h, v, w);
+        const real linear = std::pow(r.body.getLinearDamping(), h);
+        const real angular = std::pow(r.body.getAngularDamping(), h);
+        if (linear > 0) r.body.addVelocity((sb.v - v) / linear);
+        if (angular > 0) r.body.addRotation((sb.w - w) / angular);
+    }
+}
+
+void World::Impl::relax() {
+    if (settings.positionIterations == 0) return;
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        const BodyRecord &r = bodies[simulatedBodies[k]];
+        if (r.quarantined) continue;
+        solverBodies[k + 1].v = r.body.getVelocity();
+        solverBodies[k + 1].w = r.body.getRotation();
+    }
+    for (int it = 0; it < settings.positionIterations; ++it)
+        detail::solveSoft(solverBodies, solverManifolds, 1, false, soft);
+    stats.positionIterations += settings.positionIterations;
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        if (r.quarantined) continue;
+        r.body.addVelocity(solverBodies[k + 1].v - r.body.getVelocity());
+        r.body.addRotation(solverBodies[k + 1].w - r.body.getRotation());
+    }
+}
+
+void World::Impl::restitution() {
+    if (stats.restitutionContacts == 0) return;
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        const BodyRecord &r = bodies[simulatedBodies[k]];
+        if (r.quarantined) continue;
+        solverBodies[k + 1].v = r.body.getVelocity();
+        solverBodies[k + 1].w = r.body.getRotation();
+    }
+    detail::applyRestitution(solverBodies, solverManifolds, settings.restitutionThreshold);
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        if (r.quarantined) continue;
+        r.body.addVelocity(solverBodies[k + 1].v - r.body.getVelocity());
+        r.body.addRotation(solverBodies[k + 1].w - r.body.getRotation());
     }
 }
 

@@ -16,16 +16,27 @@ enum class Integrator {
     NewtonEuler,  ///< The seed's first-order semi-implicit Newton-Euler ("newton-euler").
 };
 
+/// How contacts are solved.
+enum class ContactSolverType {
+    /// Sub-stepped soft contacts with a relaxation pass (the "soft step" of Box2D v3):
+    /// per sub-step, velocityIterations biased passes then positionIterations rigid ones.
+    SoftStep,
+    /// Sequential impulses with split-impulse (pseudo-velocity) penetration recovery:
+    /// per sub-step, velocityIterations velocity passes then positionIterations pseudo ones.
+    SplitImpulse,
+};
+
 /// Settings of a World. Every field has a documented default; World validates them.
 struct WorldSettings {
     /// Constant acceleration given to every dynamic body, m/s^2.
     Vector3 gravity = Vector3(0, -9.81, 0);
-    /// Contact solver velocity iterations per step, >= 1.
-    int velocityIterations = 10;
-    /// Penetration-recovery (pseudo-velocity) iterations per step, >= 0.
-    int positionIterations = 4;
+    /// Contact solver velocity iterations per sub-step, >= 1.
+    int velocityIterations = 3;
+    /// Penetration-recovery iterations per sub-step (pseudo-velocity passes for
+    /// SplitImpulse, relax passes for SoftStep), >= 0.
+    int positionIterations = 2;
     /// Sub-steps per step, >= 1: each repeats solve and integrate with dt / substeps.
-    int substeps = 1;
+    int substeps = 4;
     /// Whether bodies may fall asleep.
     bool sleep = true;
     /// Threshold of the motion average (v.v + w.w) below which an island may sleep,
@@ -33,8 +44,17 @@ struct WorldSettings {
     real sleepEpsilon = kDefaultSleepEpsilon;
     /// Integration scheme.
     Integrator integrator = Integrator::NewtonEuler;
+    /// Contact solver.
+    ContactSolverType contactSolver = ContactSolverType::SplitImpulse;
+    /// Stiffness of soft contacts as a spring frequency, Hz, >= 0 (capped at a quarter
+    /// of the sub-step rate; 0 means rigid).
+    real contactHertz = 30;
+    /// Damping ratio of soft contacts, >= 0.
+    real contactDampingRatio = 10;
+    /// Fastest speed at which penetration is pushed out, m/s, > 0.
+    real maxPushVelocity = 3;
     /// Penetration the solver leaves alone so that resting contacts persist, m, >= 0.
-    real penetrationSlop = 0.005;
+    real penetrationSlop = 0.0005;
     /// Fraction of the penetration beyond the slop removed per step, in (0, 1].
     real penetrationRecovery = 0.2;
     /// Approach speed below which restitution is ignored, m/s, >= 0.
