@@ -1,0 +1,218 @@
+// Manifold behaviour beyond single pairs: tilted faces and the speculative margin,
+// pairs apart, appending, meshes with internal edges and walls, far-away poses.
+#include <gtest/gtest.h>
+
+#include "collision_test_support.h"
+
+namespace cyclone::test {
+namespace {
+
+const Shape kBox = Shape::box(Vector3(0.5, 0.5, 0.5));
+const Shape kFloor = Shape::plane(Vector3::UnitY(), 0);
+
+// A unit box turned by `angle` about z, its lowest edge `depth` below y = 0. Its bottom
+// corners are at x = +-0.5, y = -0.5 before turning; after turning the corner with
+// local x = -0.5 is lower by sin(angle) than the one with x = +0.5.
+Matrix4 tiltedBox(real angle, real depth) {
+    const real lowest = 0.5 * std::cos(angle) + 0.5 * std::sin(angle);
+    return pose(Vector3(0, lowest - depth, 0), rotation(angle, Vector3::UnitZ()));
+}
+
+// Checks a tilted box's manifold: two points at `depth` on the low side (x < 0) and,
+// if within the speculative distance, two at `highDepth` on the high side.
+void expectTiltedContact(const std::vector<Manifold> &out, real depth, real highDepth, real speculative) {
+    ASSERT_EQ(out.size(), 1u);
+    const Manifold &m = out[0];
+    EXPECT_LT((m.normal - Vector3(0, -1, 0)).norm(), 1e-9);
+    const bool highKept = highDepth > -speculative;
+    EXPECT_EQ(m.count, highKept ? 4 : 2);
+    int low = 0, high = 0;
+    for (int i = 0; i < m.count; ++i) {
+        const detail::ContactPoint &p = m.points[i];
+        const bool isLow = p.pointA.x() < 0;
+        if (isLow) {
+            ++low;
+            EXPECT_NEAR(p.depth, depth, 1e-9);
+        } else {
+            ++high;
+            EXPECT_NEAR(p.depth, highDepth, 1e-9);
+            EXPECT_LT(p.depth, 0) << "the high side is speculative";
+        }
+    }
+    EXPECT_EQ(low, 2);
+    EXPECT_EQ(high, highKept ? 2 : 0);
+}
+
+TEST(Manifold, BoxTiltedSlightlyOnPlaneKeepsItsHighSideSpeculative) {
+    // 0.02 rad: the high side is sin(0.02) - 0.005 = 0.015 above the plane, within the
+    // 0.02 margin: four points, two at -0.015.
+    expectTiltedContact(collide(kBox, tiltedBox(0.02, 0.005), kFloor, Matrix4::Identity()), 0.005,
+                        0.005 - std::sin(0.02), 0.02);
+}
+
+TEST(Manifold, BoxTiltedMoreOnPlaneDropsItsHighSide) {
+    // 0.05 rad: the high side is sin(0.05) - 0.005 = 0.045 above: two points.
+    expectTiltedContact(collide(kBox, tiltedBox(0.05, 0.005), kFloor, Matrix4::Identity()), 0.005,
+                        0.005 - std::sin(0.05), 0.02);
+}
+
+TEST(Manifold, BoxTiltedOnBox) {
+    // The same on top of a box whose top is at y = 0.5. The low corners are at
+    // x_low = -0.5 cos + 0.5 sin (inside the lower box's top); the high corners reach
+    // beyond its side x = 0.5 and are clipped there, where the tilted bottom face is
+    // (0.5 - x_low) tan(angle) above the low corners.
+    for (real angle : {0.02, 0.05}) {
+        SCOPED_TRACE("angle " + std::to_string(angle));
+        Matrix4 a = tiltedBox(angle, 0.005);
+        a.translation().y() += 0.5;
+        std::vector<Manifold> out = collide(kBox, a, kBox, Matrix4::Identity());
+        ASSERT_EQ(out.size(), 1u);
+        const real lowX = -0.5 * std::cos(angle) + 0.5 * std::sin(angle);
+        for (int i = 0; i < out[0].count; ++i) {
+            EXPECT_NEAR(out[0].points[i].pointB.y(), 0.5, 1e-12);
+            if (out[0].points[i].pointA.x() > 0) {
+                EXPECT_NEAR(out[0].points[i].pointA.x(), 0.5, 1e-12);
+            }
+        }
+        expectTiltedContact(out, 0.005, 0.005 - (0.5 - lowX) * std::tan(angle), 0.02);
+    }
+}
+
+TEST(Manifold, ZeroSpeculativeDistanceKeepsOnlyPenetratingPoints) {
+    expectTiltedContact(collide(kBox, tiltedBox(0.02, 0.005), kFloor, Matrix4::Identity(), 0), 0.005,
+                        0.005 - std::sin(0.02), 0);
+}
+
+TEST(Manifold, CylinderCapTiltedOnPlane) {
+    // Standing cylinder (r = 0.4, length 1) tilted 5 degrees about z: the deepest point is
+    // the rim point at local x = -0.4 of the bottom cap; the cap's other points lie higher,
+    // up to 0.8 sin 5 deg = 0.0697 above it, so only points within 0.02 of the plane stay.
+    const real angle = 5 * kPi / 180;
+    const Quaternion q = rotation(angle, Vector3::UnitZ()) * zUp();
+    const real drop = 0.5 * std::cos(angle) + 0.4 * std::sin(angle);
+    const std::vector<Manifold> out =
+        collide(Shape::cylinder(0.4, 1), pose(Vector3(0, drop - 0.01, 0), q), kFloor, Matrix4::Identity());
+    ASSERT_EQ(out.size(), 1u);
+    const Manifold &m = out[0];
+    EXPECT_LT((m.normal - Vector3(0, -1, 0)).norm(), 1e-12);
+    ASSERT_GE(m.count, 3);
+    real deepest = -1;
+    for (int i = 0; i < m.count; ++i) {
+        deepest = std::max(deepest, m.points[i].depth);
+        EXPECT_GT(m.points[i].depth, -0.02);
+        EXPECT_NEAR(m.points[i].pointB.y(), 0, 1e-12);
+    }
+    EXPECT_NEAR(deepest, 0.01, 1e-12);
+    EXPECT_TRUE(nonCollinear(m));
+}
+
+TEST(Manifold, NothingWhenApart) {
+    // 1 cm apart: within the speculative distance but not touching; FCL reports nothing.
+    EXPECT_TRUE(collide(kBox, pose(Vector3(0, 0.51, 0)), kFloor, Matrix4::Identity()).empty());
+    EXPECT_TRUE(collide(kBox, pose(Vector3(0, 1.01, 0)), kBox, Matrix4::Identity()).empty());
+    EXPECT_TRUE(collide(Shape::sphere(0.5), pose(Vector3(3, 0.51, 0)), meshFloor(), Matrix4::Identity()).empty());
+}
+
+TEST(Manifold, CollideAppendsAndCountsWhatItAppended) {
+    const auto box = detail::compileShape(kBox);
+    const auto floor = detail::compileShape(kFloor);
+    std::vector<Manifold> out(2);
+    const int appended =
+        detail::collide(*box, pose(Vector3(0, 0.45, 0)), *floor, Matrix4::Identity(), detail::NarrowphaseSettings(), out);
+    EXPECT_EQ(appended, 1);
+    EXPECT_EQ(out.size(), 3u);
+    EXPECT_EQ(out[2].count, 4);
+}
+
+TEST(Manifold, ConcentricSpheresGiveNoNormalAndNoManifold) {
+    // FCL's normal between coincident centres has no direction: dropped, no NaN leaks.
+    const std::vector<Manifold> out = collide(Shape::sphere(0.5), Matrix4::Identity(), Shape::sphere(0.3), Matrix4::Identity());
+    for (const Manifold &m : out) EXPECT_TRUE(m.normal.allFinite());
+}
+
+TEST(Manifold, SharedShapeBetweenTwoBodies) {
+    // The World may give many bodies one compiled shape: FCL then sees the same geometry
+    // pointer twice, and the normal must still point from A to B.
+    const auto box = detail::compileShape(kBox);
+    std::vector<Manifold> out;
+    detail::collide(*box, pose(Vector3(0, 0.95, 0)), *box, Matrix4::Identity(), detail::NarrowphaseSettings(), out);
+    detail::collide(*box, Matrix4::Identity(), *box, pose(Vector3(0, 0.95, 0)), detail::NarrowphaseSettings(), out);
+    ASSERT_EQ(out.size(), 2u);
+    EXPECT_LT((out[0].normal - Vector3(0, -1, 0)).norm(), 1e-12);
+    EXPECT_LT((out[1].normal - Vector3(0, 1, 0)).norm(), 1e-12);
+}
+
+TEST(Manifold, FarFromTheOriginOnAPlane) {
+    // 10 km out, a plane contact keeps its precision: it is never clipped against the
+    // plane's feature square.
+    const Vector3 centre(1e4, 0.45, -1e4);
+    const std::vector<Manifold> out = collide(kBox, pose(centre), kFloor, Matrix4::Identity());
+    ASSERT_EQ(out.size(), 1u);
+    ASSERT_EQ(out[0].count, 4);
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_NEAR(out[0].points[i].depth, 0.05, 1e-9);
+        EXPECT_NEAR(std::abs(out[0].points[i].pointA.x() - centre.x()), 0.5, 1e-9);
+        EXPECT_NEAR(std::abs(out[0].points[i].pointA.z() - centre.z()), 0.5, 1e-9);
+    }
+}
+
+TEST(Manifold, PlaneWithAPose) {
+    // The plane y <= 0 placed 1 m up: its surface is at y = 1.
+    const std::vector<Manifold> out = collide(kBox, pose(Vector3(0, 1.45, 0)), kFloor, pose(Vector3(0, 1, 0)));
+    ASSERT_EQ(out.size(), 1u);
+    ASSERT_EQ(out[0].count, 4);
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_NEAR(out[0].points[i].depth, 0.05, 1e-12);
+        EXPECT_NEAR(out[0].points[i].pointB.y(), 1, 1e-12);
+    }
+}
+
+TEST(Manifold, MeshFloorGivesOneManifoldWhereverABoxOrSphereIs) {
+    // Sliding across the diagonal x = z: every position gives one manifold with the
+    // floor's normal, never a tilted normal from the shared edge.
+    for (int k = -10; k <= 10; ++k) {
+        const real x = 0.05 * k;
+        SCOPED_TRACE("x = " + std::to_string(x));
+        for (const Shape &shape : {kBox, Shape::sphere(0.5)}) {
+            const std::vector<Manifold> out = collide(shape, pose(Vector3(x, 0.49, -x / 3)), meshFloor(), Matrix4::Identity());
+            ASSERT_EQ(out.size(), 1u);
+            EXPECT_LT((out[0].normal - Vector3(0, -1, 0)).norm(), 1e-9);
+            EXPECT_EQ(out[0].count, shape.type == ShapeType::Box ? 4 : 1);
+            for (int i = 0; i < out[0].count; ++i) EXPECT_NEAR(out[0].points[i].depth, 0.01, 1e-9);
+        }
+    }
+}
+
+TEST(Manifold, MeshFloorAndWallGiveTwoManifolds) {
+    // The floor plus a wall x = 1 facing -x (its triangles share the floor's corner
+    // vertices 1 and 2). A box at x = 0.55 sinks 0.05 into the wall and 0.05 into the floor:
+    // one manifold with normal -y (A to B) and one with +x.
+    const Shape mesh = Shape::mesh({Vector3(-5, 0, -5), Vector3(1, 0, -5), Vector3(1, 0, 5), Vector3(-5, 0, 5),
+                                    Vector3(1, 3, -5), Vector3(1, 3, 5)},
+                                   {{0, 2, 1}, {0, 3, 2}, {1, 2, 5}, {1, 5, 4}});
+    const std::vector<Manifold> out = collide(kBox, pose(Vector3(0.55, 0.45, 0)), mesh, Matrix4::Identity());
+    ASSERT_EQ(out.size(), 2u);
+    int floor = out[0].normal.y() < -0.5 ? 0 : 1;
+    const Manifold &onFloor = out[floor];
+    const Manifold &onWall = out[1 - floor];
+    EXPECT_LT((onFloor.normal - Vector3(0, -1, 0)).norm(), 1e-9);
+    EXPECT_LT((onWall.normal - Vector3(1, 0, 0)).norm(), 1e-9);
+    EXPECT_GE(onFloor.count, 3);
+    EXPECT_GE(onWall.count, 3);
+    for (int i = 0; i < onFloor.count; ++i) EXPECT_NEAR(onFloor.points[i].depth, 0.05, 1e-9);
+    for (int i = 0; i < onWall.count; ++i) EXPECT_NEAR(onWall.points[i].depth, 0.05, 1e-9);
+    EXPECT_TRUE(nonCollinear(onFloor));
+    EXPECT_TRUE(nonCollinear(onWall));
+}
+
+TEST(Manifold, DeepBoxInMeshFloor) {
+    // 0.3 m deep: still the floor's normal and depth.
+    const std::vector<Manifold> out = collide(kBox, pose(Vector3(0.1, 0.2, 0.3)), meshFloor(), Matrix4::Identity());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_LT((out[0].normal - Vector3(0, -1, 0)).norm(), 1e-9);
+    ASSERT_EQ(out[0].count, 4);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(out[0].points[i].depth, 0.3, 1e-9);
+}
+
+}  // namespace
+}  // namespace cyclone::test
