@@ -21,7 +21,7 @@ inline real relativeVelocity(const SolverBody &a, const SolverBody &b, const Vec
     return d.dot(b.v - a.v) + row.rBxd.dot(b.w) - row.rAxd.dot(a.w);
 }
 
-inline void applyImpulse(SolverBody &a, SolverBody &b, const Vector3 &d, const SolverRow &row, real impulse) {
+inline __attribute__((always_inline)) void applyImpulse(SolverBody &a, SolverBody &b, const Vector3 &d, const SolverRow &row, real impulse) {
     a.v -= (a.invMass * impulse) * d;
     a.w -= impulse * row.angA;
     b.v += (b.invMass * impulse) * d;

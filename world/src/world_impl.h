@@ -79,6 +79,10 @@ struct World::Impl {
     std::vector<std::uint32_t> islandBodies;
     std::vector<Vector3> savedForces;
     std::vector<Vector3> savedTorques;
+    std::vector<Vector3> predictedV;      ///< Velocity each body reaches without contacts.
+    std::vector<Vector3> predictedW;
+    std::vector<real> linearFactor;       ///< damping^h of each simulated body.
+    std::vector<real> angularFactor;
 
     detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
@@ -106,13 +110,11 @@ struct World::Impl {
     void runNarrowphase();
     void buildManifolds(real dt);
     void buildIslands();
+    void prepareSolver(real h);
     void solve(real h, bool firstSubstep);
-    void prepareSoftStep(real h);
-    void solveSoftStep(real h, bool firstSubstep);
-    void relax();
-    void restitution();
     void integrate(real h);
-    void correctPositions(real h);
+    void recoverPenetration(real h);
+    void restitution();
     void updateSleep();
     void storeImpulses();
     void quarantine(std::uint32_t index);

@@ -1,0 +1,238 @@
+// The solve and integrate stages of World::step.
+//
+// Each sub-step of h seconds: the velocities each body would reach without contacts are
+// predicted (exactly what RigidBody::integrate(h) will produce), the contact solver
+// corrects them, the correction reaches the body through addVelocity / addRotation,
+// and RigidBody::integrate(h) moves it. Penetration is then recovered without adding
+// energy: pseudo-velocities (SplitImpulse) or a rigid relax pass (SoftStep).
+#include <cmath>
+
+#include "world_impl.h"
+
+namespace cyclone {
+namespace {
+
+bool stateFinite(const RigidBody &body) {
+    return body.getPosition().allFinite() && body.getOrientation().coeffs().allFinite() &&
+           body.getVelocity().allFinite() && body.getRotation().allFinite() &&
+           std::isfinite(body.getVelocity().squaredNorm() + body.getRotation().squaredNorm());
+}
+
+real relativeNormalVelocity(const detail::SolverBody &a, const detail::SolverBody &b, const Vector3 &n,
+                            const detail::SolverRow &row) {
+    return n.dot(b.v - a.v) + row.rBxd.dot(b.w) - row.rAxd.dot(a.w);
+}
+
+}  // namespace
+
+void World::Impl::prepareSolver(real h) {
+    const std::size_t n = simulatedBodies.size();
+    solverBodies.resize(n + 1);
+    solverBodies[0] = detail::SolverBody();
+    predictedV.resize(n);
+    predictedW.resize(n);
+    linearFactor.resize(n);
+    angularFactor.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const RigidBody &body = bodies[simulatedBodies[k]].body;
+        detail::SolverBody &sb = solverBodies[k + 1];
+        sb = detail::SolverBody();
+        sb.v = body.getVelocity();
+        sb.w = body.getRotation();
+        sb.invMass = body.getInverseMass();
+        sb.invInertia = body.getInverseInertiaTensorWorld();
+        linearFactor[k] = std::pow(body.getLinearDamping(), h);
+        angularFactor[k] = std::pow(body.getAngularDamping(), h);
+    }
+    if (settings.contactSolver == ContactSolverType::SoftStep) {
+        // A contact spring faster than a quarter of the sub-step rate is not resolved.
+        soft.dynamicSoftness = detail::makeSoftness(std::min(settings.contactHertz, 0.25 / h),
+                                                    settings.contactDampingRatio, h);
+        soft.staticSoftness = detail::makeSoftness(std::min(2 * settings.contactHertz, 0.25 / h),
+                                                   settings.contactDampingRatio, h);
+        soft.slop = settings.penetrationSlop;
+        soft.maxPushVelocity = settings.maxPushVelocity;
+    }
+    // Jacobians and effective masses are set once per step, at the step's poses.
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        detail::SolverManifold &m = solverManifolds[s];
+        const detail::PairState &pair = pairs[solverSource[s] >> 2];
+        const RigidBody &a = bodies[pair.a].body;
+        const RigidBody &b = bodies[pair.b].body;
+        m.restitution = std::max(bodies[pair.a].material.restitution, bodies[pair.b].material.restitution);
+        m.touchesStatic = m.a == 0 || m.b == 0;
+        const detail::SolverBody &sa = solverBodies[m.a];
+        const detail::SolverBody &sb = solverBodies[m.b];
+        for (int i = 0; i < m.count; ++i) {
+            detail::SolverPoint &p = m.points[i];
+            const Vector3 c = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
+            detail::prepareRows(sa, sb, c - a.getPosition(), c - b.getPosition(), m, p);
+            p.approachSpeed = relativeNormalVelocity(sa, sb, m.normal, p.normal);
+            p.maxNormalImpulse = 0;
+            if (m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
+        }
+    }
+}
+
+void World::Impl::solve(real h, bool firstSubstep) {
+    // Predicted velocities: (v + a h) damping^h, with the step's forces on every sub-step.
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        detail::SolverBody &sb = solverBodies[k + 1];
+        if (r.quarantined) {
+            sb = detail::SolverBody();  // immovable from now on: its state reaches no one
+            continue;
+        }
+        if (!firstSubstep) {
+            r.body.addForce(savedForces[k]);
+            r.body.addTorque(savedTorques[k]);
+        }
+        const Vector3 a = r.body.getAcceleration() + r.body.getAccumulatedForce() * sb.invMass;
+        const Vector3 alpha = sb.invInertia * r.body.getAccumulatedTorque();
+        predictedV[k] = (r.body.getVelocity() + a * h) * linearFactor[k];
+        predictedW[k] = (r.body.getRotation() + alpha * h) * angularFactor[k];
+        sb.v = predictedV[k];
+        sb.w = predictedW[k];
+        sb.pv.setZero();
+        sb.pw.setZero();
+        if (!std::isfinite(sb.v.squaredNorm() + sb.w.squaredNorm())) {
+            // A velocity beyond ~1e154 m/s would overflow impulses: isolate the body
+            // before any contact carries it to a neighbour.
+            quarantine(simulatedBodies[k]);
+            sb = detail::SolverBody();
+        }
+    }
+
+    // Current separations from the anchors (positions move only between sub-steps).
+    const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        detail::SolverManifold &m = solverManifolds[s];
+        const detail::PairState &pair = pairs[solverSource[s] >> 2];
+        const RigidBody &a = bodies[pair.a].body;
+        const RigidBody &b = bodies[pair.b].body;
+        for (int i = 0; i < m.count; ++i) {
+            detail::SolverPoint &p = m.points[i];
+            p.depth = (a.getPointInWorldSpace(p.localA) - b.getPointInWorldSpace(p.localB)).dot(m.normal);
+            if (!split) continue;
+            p.velocityBias = 0;
+            if (p.depth < 0) {
+                p.velocityBias = p.depth / h;  // apart: may close the gap during this sub-step, no more
+            } else if (firstSubstep && m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold) {
+                p.velocityBias = -m.restitution * p.approachSpeed;
+            }
+        }
+    }
+
+    if (settings.warmStarting) detail::warmStart(solverBodies, solverManifolds);
+    for (int it = 0; it < settings.velocityIterations; ++it) {
+        if (split) detail::solveVelocities(solverBodies, solverManifolds);
+        else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
+    }
+    stats.velocityIterations += settings.velocityIterations;
+
+    // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
+    // now is the solver's change divided by the damping factor.
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        if (r.quarantined) continue;
+        const detail::SolverBody &sb = solverBodies[k + 1];
+        if (linearFactor[k] > 0) r.body.addVelocity((sb.v - predictedV[k]) / linearFactor[k]);
+        if (angularFactor[k] > 0) r.body.addRotation((sb.w - predictedW[k]) / angularFactor[k]);
+    }
+}
+
+void World::Impl::integrate(real h) {
+    for (std::uint32_t index : simulatedBodies) {
+        BodyRecord &r = bodies[index];
+        if (r.quarantined) continue;
+        r.body.integrate(h, false);
+        if (!stateFinite(r.body)) quarantine(index);
+    }
+}
+
+void World::Impl::recoverPenetration(real h) {
+    if (settings.positionIterations == 0 || solverManifolds.empty()) return;
+    if (settings.contactSolver == ContactSolverType::SoftStep) {
+        // Relax: rigid passes without bias remove the velocity the soft push added.
+        for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+            const RigidBody &body = bodies[simulatedBodies[k]].body;
+            solverBodies[k + 1].v = body.getVelocity();
+            solverBodies[k + 1].w = body.getRotation();
+        }
+        for (int it = 0; it < settings.positionIterations; ++it)
+            detail::solveSoft(solverBodies, solverManifolds, h, false, soft);
+        for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+            BodyRecord &r = bodies[simulatedBodies[k]];
+            if (r.quarantined) continue;
+            r.body.addVelocity(solverBodies[k + 1].v - r.body.getVelocity());
+            r.body.addRotation(solverBodies[k + 1].w - r.body.getRotation());
+        }
+        stats.positionIterations += settings.positionIterations;
+        return;
+    }
+
+    // Split impulse: pseudo-velocities push penetration beyond the slop out by a fraction
+    // per sub-step; they move positions only and are forgotten, so they add no energy.
+    bool needed = false;
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        detail::SolverManifold &m = solverManifolds[s];
+        const detail::PairState &pair = pairs[solverSource[s] >> 2];
+        const RigidBody &a = bodies[pair.a].body;
+        const RigidBody &b = bodies[pair.b].body;
+        for (int i = 0; i < m.count; ++i) {
+            detail::SolverPoint &p = m.points[i];
+            const real depth = (a.getPointInWorldSpace(p.localA) - b.getPointInWorldSpace(p.localB)).dot(m.normal);
+            p.pseudoImpulse = 0;
+            p.pseudoTarget = settings.penetrationRecovery * std::max(depth - settings.penetrationSlop, real(0)) / h;
+            needed = needed || p.pseudoTarget > 0;
+        }
+    }
+    if (!needed) return;
+    for (int it = 0; it < settings.positionIterations; ++it) detail::solvePseudoVelocities(solverBodies, solverManifolds);
+    stats.positionIterations += settings.positionIterations;
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        detail::SolverBody &sb = solverBodies[k + 1];
+        if (r.quarantined || (sb.pv.isZero(0) && sb.pw.isZero(0))) continue;
+        Quaternion q = r.body.getOrientation();
+        const Quaternion spin(0, sb.pw.x() * h, sb.pw.y() * h, sb.pw.z() * h);
+        q.coeffs() += 0.5 * (spin * q).coeffs();
+        r.body.setPosition(r.body.getPosition() + sb.pv * h);
+        r.body.setOrientation(q);
+        sb.pv.setZero();
+        sb.pw.setZero();
+    }
+}
+
+void World::Impl::restitution() {
+    if (settings.contactSolver != ContactSolverType::SoftStep || stats.restitutionContacts == 0) return;
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        const RigidBody &body = bodies[simulatedBodies[k]].body;
+        solverBodies[k + 1].v = body.getVelocity();
+        solverBodies[k + 1].w = body.getRotation();
+    }
+    detail::applyRestitution(solverBodies, solverManifolds, settings.restitutionThreshold);
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+        BodyRecord &r = bodies[simulatedBodies[k]];
+        if (r.quarantined) continue;
+        r.body.addVelocity(solverBodies[k + 1].v - r.body.getVelocity());
+        r.body.addRotation(solverBodies[k + 1].w - r.body.getRotation());
+    }
+}
+
+void World::Impl::storeImpulses() {
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        const detail::SolverManifold &m = solverManifolds[s];
+        detail::PairState &pair = pairs[solverSource[s] >> 2];
+        const std::size_t k = solverSource[s] & 3;
+        if (!pair.alive || k >= pair.manifolds.size()) continue;  // a body was quarantined
+        detail::ManifoldState &state = pair.manifolds[k];
+        for (int i = 0; i < m.count; ++i) {
+            const detail::SolverPoint &p = m.points[i];
+            state.points[i].normalImpulse = p.normal.impulse;
+            state.points[i].frictionImpulse = p.tangent[0].impulse * m.tangent[0] + p.tangent[1].impulse * m.tangent[1];
+        }
+    }
+}
+
+}  // namespace cyclone
