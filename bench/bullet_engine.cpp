@@ -2,7 +2,8 @@
 //
 // Matched to the scene's WorldSettings and BodySettings:
 //  - one internal step per frame: stepSimulation(dt, 0) takes exactly one step of dt;
-//  - btSequentialImpulseConstraintSolver with m_numIterations = velocityIterations;
+//  - btSequentialImpulseConstraintSolver with m_numIterations = cyclone's velocity passes
+//    per frame (substeps x velocityIterations); Bullet takes no sub-steps;
 //  - friction and restitution: Bullet multiplies the two bodies' coefficients, cyclone
 //    takes the geometric mean of the frictions and the larger restitution, so Bullet's
 //    global combine callbacks are set to do the same (0.6 and 0.6 give 0.6, not 0.36);
@@ -57,7 +58,7 @@ btScalar largerRestitution(const btCollisionObject *a, const btCollisionObject *
 }
 
 void configureSolver(btContactSolverInfo &info, const WorldSettings &settings) {
-    info.m_numIterations = settings.velocityIterations;
+    info.m_numIterations = settings.substeps * settings.velocityIterations;
     info.m_restitutionVelocityThreshold = static_cast<btScalar>(settings.restitutionThreshold);
 }
 
@@ -243,7 +244,10 @@ std::unique_ptr<Engine> makeBulletEngine(const Scene &scene) { return std::make_
 
 std::string bulletSettingsNote() {
     btContactSolverInfo info;
-    configureSolver(info, WorldSettings());
+    WorldSettings settings;
+    settings.substeps = 1;
+    settings.velocityIterations = kVelocityPassesPerFrame;
+    configureSolver(info, settings);
     std::ostringstream out;
     out << "- Bullet " << btGetVersion() / 100 << "." << btGetVersion() % 100 << ", "
         << (sizeof(btScalar) == 8 ? "double" : "single") << " precision, btDiscreteDynamicsWorld + btDbvtBroadphase"

@@ -36,6 +36,14 @@ private:
     std::uint64_t state_;
 };
 
+WorldSettings worldSettings(bool sleep) {
+    WorldSettings settings;
+    settings.substeps = 1;
+    settings.velocityIterations = kVelocityPassesPerFrame;
+    settings.sleep = sleep;
+    return settings;
+}
+
 BodySettings staticBody(std::string name, Shape shape, const Vector3 &position) {
     BodySettings b;
     b.name = std::move(name);
@@ -85,7 +93,7 @@ Scene pyramid(int base) {
     scene.name = "pyramid" + std::to_string(base);
     scene.description = "box pyramid of base " + std::to_string(base) + " (" + std::to_string(base * (base + 1) / 2) +
                         " unit boxes, 1.05 m apart, touching vertically) on a ground plane, sleep off";
-    scene.world.sleep = false;
+    scene.world = worldSettings(false);
     scene.bodies.push_back(ground());
     for (int layer = 0; layer < base; ++layer) {
         const int count = base - layer;
@@ -105,6 +113,7 @@ Scene pyramid(int base) {
 Scene mixed() {
     Scene scene;
     scene.name = "mixed1000";
+    scene.world = worldSettings(true);
     scene.description =
         "1000 boxes, spheres, capsules, cylinders and convex hulls (1 kg, 0.5-0.8 m across) falling into a "
         "10 m x 10 m walled box, sleep on";
@@ -161,6 +170,7 @@ BodySettings bouncingSphere() {
 Scene sleeping() {
     Scene scene;
     scene.name = "sleeping1000";
+    scene.world = worldSettings(true);
     scene.description =
         "1000 unit boxes in 100 stacks of 10, asleep from the start, plus one bouncing sphere 20 m away, sleep on";
     scene.bodies.push_back(ground());
@@ -185,6 +195,7 @@ Scene sleeping() {
 Scene sphereAlone() {
     Scene scene;
     scene.name = "sphere_alone";
+    scene.world = worldSettings(true);
     scene.description = "the bouncing sphere of sleeping1000 alone on the ground plane (reference cost), sleep on";
     scene.bodies.push_back(ground());
     scene.bodies.push_back(bouncingSphere());
@@ -205,6 +216,16 @@ Scene makeScene(const std::string &name) {
     if (name == "sleeping1000") return sleeping();
     if (name == "sphere_alone") return sphereAlone();
     throw std::invalid_argument("makeScene: name \"" + name + "\" is not a scene (see --list)");
+}
+
+void splitSubsteps(Scene &scene, int substeps) {
+    const int passes = scene.world.substeps * scene.world.velocityIterations;
+    if (substeps < 1 || passes % substeps != 0) {
+        throw std::invalid_argument("splitSubsteps: substeps must divide the " + std::to_string(passes) +
+                                    " velocity passes per frame, got " + std::to_string(substeps));
+    }
+    scene.world.substeps = substeps;
+    scene.world.velocityIterations = passes / substeps;
 }
 
 }  // namespace cyclone::bench

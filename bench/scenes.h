@@ -9,13 +9,18 @@
 
 namespace cyclone::bench {
 
+/// Velocity passes of the contact solver per frame in every scene and engine: cyclone's
+/// substeps x velocityIterations, Bullet's m_numIterations.
+inline constexpr int kVelocityPassesPerFrame = 10;
+
 /// One benchmark scene.
 struct Scene {
     /// Short name used on the command line, e.g. "pyramid20".
     std::string name;
     /// One line saying what the scene is.
     std::string description;
-    /// Gravity, solver iterations, sleep, ... of the scene.
+    /// Gravity, solver iterations, sleep, ... of the scene: the World's defaults except
+    /// sleep and one sub-step of kVelocityPassesPerFrame velocity iterations.
     WorldSettings world;
     /// Every body, static ones included, in the order they are added.
     std::vector<BodySettings> bodies;
@@ -29,5 +34,10 @@ std::vector<std::string> sceneNames();
 
 /// The scene called `name`; throws std::invalid_argument for an unknown name.
 Scene makeScene(const std::string &name);
+
+/// Splits the scene's velocity passes per frame over `substeps` sub-steps of cyclone's
+/// World (Bullet still takes one step with all of them). Throws std::invalid_argument
+/// unless `substeps` divides the passes.
+void splitSubsteps(Scene &scene, int substeps);
 
 }  // namespace cyclone::bench
