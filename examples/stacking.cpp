@@ -60,7 +60,9 @@ void print(const char *name, int boxes, const Report &r) {
 }  // namespace
 
 int main() {
-    std::printf("10 s at 60 Hz, 10 velocity iterations\n");
+    const WorldSettings defaults;
+    std::printf("10 s at 60 Hz, %d sub-steps x (%d velocity + %d position iterations)\n", defaults.substeps,
+                defaults.velocityIterations, defaults.positionIterations);
     for (bool sleep : {false, true}) {
         WorldSettings settings;
         settings.sleep = sleep;

@@ -59,7 +59,7 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
     }
 }
 
-void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
+void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse) {
     for (SolverManifold &m : manifolds) {
         SolverBody &a = bodies[m.a];
         SolverBody &b = bodies[m.b];
@@ -85,8 +85,8 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
                 applyImpulse(a, b, m.tangent[1], p.tangent[1], new1 - old1);
             }
         }
-        for (int i = 0; i < m.count; ++i) {
-            SolverPoint &p = m.points[i];
+        for (int k = 0; k < m.count; ++k) {
+            SolverPoint &p = m.points[reverse ? m.count - 1 - k : k];
             const real vn = relativeVelocity(a, b, m.normal, p.normal);
             const real old = p.normal.impulse;
             const real updated = std::max(old - p.normal.mass * (vn - p.velocityBias), real(0));

@@ -104,8 +104,10 @@ void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, co
 
 /// Applies the accumulated impulses (warm start).
 void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds);
-/// One Gauss-Seidel pass over friction and normal rows.
-void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds);
+/// One Gauss-Seidel pass over friction and normal rows; `reverse` visits each manifold's
+/// points in reverse order (alternating passes keep the first point from taking the
+/// largest share of a new contact's load, which would tilt the body).
+void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse);
 /// One pass of penetration recovery on the pseudo-velocities.
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds);
 

@@ -125,7 +125,7 @@ void World::Impl::solve(real h, bool firstSubstep) {
 
     if (settings.warmStarting) detail::warmStart(solverBodies, solverManifolds);
     for (int it = 0; it < settings.velocityIterations; ++it) {
-        if (split) detail::solveVelocities(solverBodies, solverManifolds);
+        if (split) detail::solveVelocities(solverBodies, solverManifolds, (it & 1) != 0);
         else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
     }
     stats.velocityIterations += settings.velocityIterations;

@@ -34,7 +34,7 @@ struct WorldSettings {
     int velocityIterations = 3;
     /// Penetration-recovery iterations per sub-step (pseudo-velocity passes for
     /// SplitImpulse, relax passes for SoftStep), >= 0.
-    int positionIterations = 2;
+    int positionIterations = 1;
     /// Sub-steps per step, >= 1: each repeats solve and integrate with dt / substeps.
     int substeps = 4;
     /// Whether bodies may fall asleep.
@@ -54,7 +54,7 @@ struct WorldSettings {
     /// Fastest speed at which penetration is pushed out, m/s, > 0.
     real maxPushVelocity = 3;
     /// Penetration the solver leaves alone so that resting contacts persist, m, >= 0.
-    real penetrationSlop = 0.0005;
+    real penetrationSlop = 0.0002;
     /// Fraction of the penetration beyond the slop removed per step, in (0, 1].
     real penetrationRecovery = 0.2;
     /// Approach speed below which restitution is ignored, m/s, >= 0.
@@ -63,8 +63,10 @@ struct WorldSettings {
     /// support without a contact appearing suddenly, m, >= 0.
     real speculativeDistance = 0.02;
     /// A pair whose relative pose moved less than this since its last narrowphase
-    /// reuses its manifold (m for translation; rad for rotation, scaled the same), >= 0.
-    real manifoldReuseTolerance = 0.001;
+    /// reuses its manifold instead of running FCL again (m: translation plus rotation
+    /// times the larger bounding radius), >= 0. 0 (the default) always re-runs FCL:
+    /// reuse at 0.1-1 mm made a 12-box tower sway by several cm (see docs/solver.md).
+    real manifoldReuseTolerance = 0;
     /// Whether impulses of the last step seed the solver (warm starting).
     bool warmStarting = true;
 };
