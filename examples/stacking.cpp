@@ -1,8 +1,16 @@
 // Stacking: a 12-box tower with alternating 1 cm offsets and a 20-level box pyramid.
 // Prints, for each, how far the top box moved, the deepest penetration and when
 // everything fell asleep.
+//
+//   stacking [--solver split|soft] [--substeps N] [--velocity-iterations N]
+//            [--position-iterations N] [--slop M] [--reuse M] [--hertz HZ]
+//
+// The options change the WorldSettings, to compare solver settings on the same scenes.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
 
 #include "cyclone/world.h"
 
@@ -59,14 +67,60 @@ void print(const char *name, int boxes, const Report &r) {
 
 }  // namespace
 
-int main() {
-    const WorldSettings defaults;
-    std::printf("10 s at 60 Hz, %d sub-steps x (%d velocity + %d position iterations)\n", defaults.substeps,
-                defaults.velocityIterations, defaults.positionIterations);
+void run(const WorldSettings &chosen);
+
+bool parse(int argc, char **argv, WorldSettings &settings) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string flag = argv[i];
+        if (i + 1 >= argc) return false;
+        const char *value = argv[++i];
+        if (flag == "--solver") {
+            if (std::strcmp(value, "split") == 0) settings.contactSolver = ContactSolverType::SplitImpulse;
+            else if (std::strcmp(value, "soft") == 0) settings.contactSolver = ContactSolverType::SoftStep;
+            else return false;
+        } else if (flag == "--substeps") {
+            settings.substeps = std::atoi(value);
+        } else if (flag == "--velocity-iterations") {
+            settings.velocityIterations = std::atoi(value);
+        } else if (flag == "--position-iterations") {
+            settings.positionIterations = std::atoi(value);
+        } else if (flag == "--slop") {
+            settings.penetrationSlop = std::atof(value);
+        } else if (flag == "--reuse") {
+            settings.manifoldReuseTolerance = std::atof(value);
+        } else if (flag == "--hertz") {
+            settings.contactHertz = std::atof(value);
+        } else {
+            return false;
+        }
+    }
+    return true;
+}
+
+int main(int argc, char **argv) {
+    WorldSettings chosen;
+    if (!parse(argc, argv, chosen)) {
+        std::fprintf(stderr, "usage: stacking [--solver split|soft] [--substeps N] [--velocity-iterations N] "
+                             "[--position-iterations N] [--slop M] [--reuse M] [--hertz HZ]\n");
+        return 2;
+    }
+    std::printf("10 s at 60 Hz, %s solver, %d sub-steps x (%d velocity + %d position iterations), slop %g m\n",
+                chosen.contactSolver == ContactSolverType::SoftStep ? "soft-step" : "split-impulse", chosen.substeps,
+                chosen.velocityIterations, chosen.positionIterations, chosen.penetrationSlop);
+    try {
+        run(chosen);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "stacking: %s\n", e.what());
+        return 2;
+    }
+    return 0;
+}
+
+void run(const WorldSettings &chosen) {
     for (bool sleep : {false, true}) {
-        WorldSettings settings;
+        WorldSettings settings = chosen;
         settings.sleep = sleep;
-        World tower(settings);
+        World tower(settings);  // throws InvalidArgument on bad options
         addGround(tower);
         BodyId top;
         for (int i = 0; i < 12; ++i) top = addBox(tower, Vector3(i % 2 ? 0.01 : -0.01, 0.5 + i, 0));
@@ -85,5 +139,4 @@ int main() {
         }
         print(sleep ? "pyramid-20 (sleep on)" : "pyramid-20 (sleep off)", count, simulate(pyramid, top, 600));
     }
-    return 0;
 }
