@@ -1,5 +1,6 @@
 #include "atomic_file.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -17,13 +18,15 @@ std::string reason() { return errno ? std::strerror(errno) : "write error"; }
 
 AtomicFile::AtomicFile(std::string path)
     : path_(std::move(path)), temporary_(path_ + ".tmp-" + std::to_string(::getpid())) {
+    struct stat info {};
+    direct_ = ::stat(path_.c_str(), &info) == 0 && !S_ISREG(info.st_mode);
     errno = 0;
-    out_.open(temporary_, std::ios::binary | std::ios::trunc);
+    out_.open(direct_ ? path_ : temporary_, std::ios::binary | std::ios::trunc);
     if (!out_) throw std::runtime_error("cannot write " + path_ + ": " + reason());
 }
 
 AtomicFile::~AtomicFile() {
-    if (!committed_) {
+    if (!committed_ && !direct_) {
         out_.close();
         std::remove(temporary_.c_str());
     }
@@ -35,6 +38,10 @@ void AtomicFile::commit() {
     const bool written = static_cast<bool>(out_);
     out_.close();
     if (!written || !out_) throw std::runtime_error("cannot write " + path_ + ": " + reason());
+    if (direct_) {
+        committed_ = true;
+        return;
+    }
     if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
         throw std::runtime_error("cannot write " + path_ + ": " + reason());
     }

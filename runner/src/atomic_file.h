@@ -1,5 +1,7 @@
 // Output files written whole or not at all: the text goes to PATH.tmp-<pid>, which is
-// renamed to PATH only once it has been written and closed without error.
+// renamed to PATH only once it has been written and closed without error. A path that
+// names something other than a regular file (a terminal, a pipe, /dev/stdout) cannot be
+// replaced by a rename; it is written directly.
 #pragma once
 
 #include <fstream>
@@ -29,6 +31,7 @@ private:
     std::string path_;
     std::string temporary_;
     std::ofstream out_;
+    bool direct_ = false;
     bool committed_ = false;
 };
 

@@ -204,9 +204,7 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
 
     try {
         if (summaryFile) {
-            summaryFile->stream()
-                << summaryJson(scene, *built, result).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
-                << "\n";
+            summaryFile->stream() << summaryText(summaryJson(scene, *built, result));
             summaryFile->commit();
         }
         if (traceFile) traceFile->commit();

@@ -99,6 +99,11 @@ private:
     }
 
     bool open(json container) {
+        // A scene is a few levels deep; a document nested this deep is not one, and its
+        // paths would be longer than any message should be.
+        if (stack_.size() >= kMaxJsonDepth) {
+            throw SceneError(currentPath(), "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        }
         std::string path = stack_.empty() ? std::string() : currentPath();
         json *slot = put(std::move(container));
         stack_.push_back(Frame{slot, std::move(path), std::string(), false});

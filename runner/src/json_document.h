@@ -24,6 +24,9 @@ private:
     std::string message_;
 };
 
+/// Deepest nesting of arrays and objects a scene file may have.
+inline constexpr std::size_t kMaxJsonDepth = 64;
+
 /// The path shown for the document itself.
 inline constexpr const char *kTopLevelPath = "(top level)";
 
@@ -36,7 +39,8 @@ std::string elementPath(const std::string &parent, std::size_t index);
 std::string jsonQuoted(const std::string &text);
 
 /// Parses `text` as one JSON document. Throws SceneError naming the path at which the
-/// text stops being valid JSON (or holds a number too large for a double).
+/// text stops being valid JSON, holds a number too large for a double, or nests deeper
+/// than kMaxJsonDepth.
 nlohmann::json parseJsonDocument(const std::string &text);
 
 }  // namespace cyclone::scene

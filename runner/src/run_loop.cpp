@@ -18,9 +18,10 @@ double secondsSince(Clock::time_point start) {
 
 bool finite(const Vector3 &v) { return v.allFinite(); }
 
-// The first non-finite quantity of a body, or nullptr.
+// The first non-finite quantity of a body, or nullptr. A position beyond kMaxCoordinate
+// counts: collision detection cannot place the body any more.
 const char *nonFiniteQuantity(const RigidBody &body) {
-    if (!finite(body.getPosition())) return "position";
+    if (!(body.getPosition().norm() <= kMaxCoordinate)) return "position (or one beyond 1e30 m)";
     if (!body.getOrientation().coeffs().allFinite()) return "orientation";
     if (!finite(body.getVelocity())) return "velocity";
     if (!finite(body.getRotation())) return "rotation";
@@ -42,6 +43,50 @@ void applyEvent(World &world, BodyId id, const SceneEvent &event) {
         break;
     case EventKind::SetAwake: world.setAwake(id, event.awake); break;
     }
+}
+
+// The largest acceleration the springs can give each body this step, from Hooke's law and
+// the damping bounded by the attachment points' speeds.
+std::vector<real> springAccelerations(const Scene &scene, const SceneWorld &built, const std::vector<bool> &present) {
+    std::vector<real> acceleration(scene.bodies.size(), 0);
+    const World &world = built.world;
+    const auto pointState = [&](std::size_t index, const Vector3 &local, Vector3 &position, real &speed) {
+        const RigidBody &body = world.body(built.ids[index]);
+        position = body.getPointInWorldSpace(local);
+        speed = body.getVelocity().norm() + body.getRotation().norm() * local.norm();
+    };
+    for (const SceneSpring &spring : scene.springs) {
+        if (!present[spring.a] || (spring.b && !present[*spring.b])) continue;
+        Vector3 a, b = spring.settings.bPoint;
+        real speedA = 0, speedB = 0;
+        pointState(spring.a, spring.settings.aPoint, a, speedA);
+        if (spring.b) pointState(*spring.b, spring.settings.bPoint, b, speedB);
+        const real force = spring.settings.stiffness * ((a - b).norm() + spring.settings.restLength) +
+                           spring.settings.damping * (speedA + speedB);
+        acceleration[spring.a] += force * world.body(built.ids[spring.a]).getInverseMass();
+        if (spring.b) acceleration[*spring.b] += force * world.body(built.ids[*spring.b]).getInverseMass();
+    }
+    return acceleration;
+}
+
+// A body that one step could carry beyond kMaxCoordinate has blown up; stepping it would
+// hand collision detection coordinates it cannot handle. Returns what, or "".
+std::string leavesRange(const Scene &scene, const SceneWorld &built, const std::vector<bool> &present, real dt,
+                        std::int64_t step) {
+    const World &world = built.world;
+    const std::vector<real> springs = springAccelerations(scene, built, present);
+    const real gravity = world.settings().gravity.norm();
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        if (!present[i] || world.isStatic(built.ids[i])) continue;
+        const RigidBody &body = world.body(built.ids[i]);
+        const real reach =
+            body.getPosition().norm() + (body.getVelocity().norm() + (gravity + springs[i]) * dt) * dt;
+        if (!(reach <= kMaxCoordinate)) {
+            return "body " + jsonQuoted(scene.bodies[i].settings.name) + " blew up: step " + std::to_string(step) +
+                   " would carry it beyond 1e30 m (counted as non-finite)";
+        }
+    }
+    return "";
 }
 
 }  // namespace
@@ -88,6 +133,12 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
             if (event.kind == EventKind::Remove) present[event.body] = false;
         }
 
+        if (std::string what = leavesRange(scene, built, present, options.dt, step); !what.empty()) {
+            result.nonFinite = true;
+            result.nonFiniteWhat = what;
+            break;
+        }
+
         const auto stepStart = Clock::now();
         std::string stepFailure;
         try {
@@ -113,8 +164,9 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
         }
         if (!result.nonFinite && world.stats().nonFiniteBodies > 0) {
             result.nonFinite = true;
-            result.nonFiniteWhat = "the world reports " + std::to_string(world.stats().nonFiniteBodies) +
-                                   " bodies with a non-finite state after step " + std::to_string(step);
+            result.nonFiniteWhat = "the world found a non-finite state (" +
+                                   std::to_string(world.stats().nonFiniteBodies) + " of its bodies) in step " +
+                                   std::to_string(step);
         }
         if (!stepFailure.empty() && !result.nonFinite) {
             throw std::runtime_error("step " + std::to_string(step) + " failed: " + stepFailure);

@@ -71,7 +71,8 @@ void expectArray(const json &value, const std::string &path, std::size_t maxSize
     }
 }
 
-enum class Range { Any, Positive, NonNegative, Unit };
+// Ranges of numbers; the *Length ones are also within ±kMaxCoordinate.
+enum class Range { Any, Positive, NonNegative, Unit, Length, PositiveLength, NonNegativeLength };
 
 real readNumber(const json &value, const std::string &path, Range range = Range::Any) {
     if (!value.is_number()) fail(path, "must be a number, got " + describe(value));
@@ -89,6 +90,15 @@ real readNumber(const json &value, const std::string &path, Range range = Range:
     case Range::Unit:
         if (!(x >= 0 && x <= 1)) fail(path, "must be in [0, 1], got " + describe(value));
         break;
+    case Range::Length:
+        if (!(std::abs(x) <= kMaxCoordinate)) fail(path, "must be finite and within ±1e30 m, got " + describe(value));
+        break;
+    case Range::PositiveLength:
+        if (!(x > 0 && x <= kMaxCoordinate)) fail(path, "must be finite and > 0 (at most 1e30 m), got " + describe(value));
+        break;
+    case Range::NonNegativeLength:
+        if (!(x >= 0 && x <= kMaxCoordinate)) fail(path, "must be finite and >= 0 (at most 1e30 m), got " + describe(value));
+        break;
     }
     return x;
 }
@@ -98,7 +108,7 @@ std::int64_t readInteger(const json &value, const std::string &path, std::int64_
     const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
     if (value.is_number_unsigned()) {
         const auto x = value.get<std::uint64_t>();
-        if (x > static_cast<std::uint64_t>(max)) fail(path, "must be an integer in " + range + ", got " + describe(value));
+        if (x > static_cast<std::uint64_t>(max) || static_cast<std::int64_t>(x) < min) fail(path, "must be an integer in " + range + ", got " + describe(value));
         return static_cast<std::int64_t>(x);
     }
     if (value.is_number_integer()) {
@@ -183,7 +193,7 @@ std::vector<Vector3> readPoints(const json &value, const std::string &path, std:
     }
     std::vector<Vector3> points;
     points.reserve(value.size());
-    for (std::size_t i = 0; i < value.size(); ++i) points.push_back(readVector3(value[i], elementPath(path, i)));
+    for (std::size_t i = 0; i < value.size(); ++i) points.push_back(readVector3(value[i], elementPath(path, i), Range::Length));
     return points;
 }
 
@@ -221,21 +231,21 @@ Shape readShape(const json &value, const std::string &path, bool isStatic) {
     const std::string typePath = memberPath(path, "type");
     const std::string &type = readString(required(value, path, "type"), typePath);
     Shape shape;
-    const auto radius = [&] { return readNumber(required(value, path, "radius"), memberPath(path, "radius"), Range::Positive); };
+    const auto radius = [&] { return readNumber(required(value, path, "radius"), memberPath(path, "radius"), Range::PositiveLength); };
     if (type == "box") {
         shape.type = ShapeType::Box;
-        shape.halfExtents = readVector3(required(value, path, "half_extents"), memberPath(path, "half_extents"), Range::Positive);
+        shape.halfExtents = readVector3(required(value, path, "half_extents"), memberPath(path, "half_extents"), Range::PositiveLength);
     } else if (type == "sphere") {
         shape.type = ShapeType::Sphere;
         shape.radius = radius();
     } else if (type == "capsule") {
         shape.type = ShapeType::Capsule;
         shape.radius = radius();
-        shape.length = readNumber(required(value, path, "length"), memberPath(path, "length"), Range::NonNegative);
+        shape.length = readNumber(required(value, path, "length"), memberPath(path, "length"), Range::NonNegativeLength);
     } else if (type == "cylinder") {
         shape.type = ShapeType::Cylinder;
         shape.radius = radius();
-        shape.length = readNumber(required(value, path, "length"), memberPath(path, "length"), Range::Positive);
+        shape.length = readNumber(required(value, path, "length"), memberPath(path, "length"), Range::PositiveLength);
     } else if (type == "convex") {
         shape.type = ShapeType::Convex;
         const std::string pointsPath = memberPath(path, "vertices");
@@ -248,7 +258,7 @@ Shape readShape(const json &value, const std::string &path, bool isStatic) {
             const std::string normalPath = memberPath(path, "normal");
             shape.normal = readVector3(required(value, path, "normal"), normalPath);
             if (shape.normal.cwiseAbs().maxCoeff() == 0) fail(normalPath, "must not be zero");
-            shape.offset = readNumber(required(value, path, "offset"), memberPath(path, "offset"));
+            shape.offset = readNumber(required(value, path, "offset"), memberPath(path, "offset"), Range::Length);
         } else {
             shape.type = ShapeType::Mesh;
             shape.vertices = readPoints(required(value, path, "vertices"), memberPath(path, "vertices"), 3);
@@ -332,7 +342,8 @@ SceneBody readBody(const json &value, const std::string &path) {
         if (!settings.isStatic) settings.inertia = tensor;
     }
     if (settings.isStatic) settings.mass = 1;
-    readOptional(value, path, "position", settings.position, vector);
+    readOptional(value, path, "position", settings.position,
+                 [](const json &v, const std::string &p) { return readVector3(v, p, Range::Length); });
     readOptional(value, path, "orientation", settings.orientation, readOrientation);
     readOptional(value, path, "velocity", settings.velocity, vector);
     readOptional(value, path, "rotation", settings.rotation, vector);
@@ -367,14 +378,15 @@ SceneSpring readSpring(const json &value, const std::string &path, const NameInd
         spring.b = readBodyName(*b, bPath, names);
         if (*spring.b == spring.a) fail(bPath, "must name a different body than a (or be null for an anchored spring)");
     }
-    const auto vector = [](const json &v, const std::string &p) { return readVector3(v, p); };
-    readOptional(value, path, "a_point", settings.aPoint, vector);
-    readOptional(value, path, "b_point", settings.bPoint, vector);
+    const auto point = [](const json &v, const std::string &p) { return readVector3(v, p, Range::Length); };
+    readOptional(value, path, "a_point", settings.aPoint, point);
+    readOptional(value, path, "b_point", settings.bPoint, point);
     readOptional(value, path, "stiffness", settings.stiffness,
              [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); });
     const auto nonNegative = [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegative); };
     readOptional(value, path, "damping", settings.damping, nonNegative);
-    readOptional(value, path, "rest_length", settings.restLength, nonNegative);
+    readOptional(value, path, "rest_length", settings.restLength,
+                 [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegativeLength); });
     return spring;
 }
 
@@ -418,10 +430,13 @@ SceneEvent readEvent(const json &value, const std::string &path, const Scene &sc
         fail(targetPath, "body " + jsonQuoted(target.name) + " is static; only \"remove\" applies to it");
     }
     if (action->valueKey) {
-        event.value = readVector3(required(value, path, action->valueKey), memberPath(path, action->valueKey));
+        event.value = readVector3(required(value, path, action->valueKey), memberPath(path, action->valueKey),
+                                  event.kind == EventKind::SetPosition ? Range::Length : Range::Any);
     }
     if (event.kind == EventKind::ApplyImpulse) {
-        if (const json *point = member(value, "point")) event.point = readVector3(*point, memberPath(path, "point"));
+        if (const json *point = member(value, "point")) {
+            event.point = readVector3(*point, memberPath(path, "point"), Range::Length);
+        }
     }
     if (event.kind == EventKind::SetAwake) {
         event.awake = readBool(required(value, path, "awake"), memberPath(path, "awake"));
@@ -459,10 +474,10 @@ const char *eventKindName(EventKind kind) {
 }
 
 Scene loadScene(const std::string &text, const std::string &fallbackName) {
-    return loadScene(parseJsonDocument(text), fallbackName);
+    return loadSceneDocument(parseJsonDocument(text), fallbackName);
 }
 
-Scene loadScene(const json &document, const std::string &fallbackName) {
+Scene loadSceneDocument(const json &document, const std::string &fallbackName) {
     const std::string root;
     if (!document.is_object()) fail(kTopLevelPath, "must be an object, got " + describe(document));
     Scene scene;

@@ -34,6 +34,6 @@ inline constexpr IntegratorName kIntegrators[] = {
 Scene loadScene(const std::string &text, const std::string &fallbackName);
 
 /// As loadScene(text, ...) from an already parsed document.
-Scene loadScene(const nlohmann::json &document, const std::string &fallbackName);
+Scene loadSceneDocument(const nlohmann::json &document, const std::string &fallbackName);
 
 }  // namespace cyclone::scene

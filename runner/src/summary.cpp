@@ -55,4 +55,25 @@ ordered_json summaryJson(const Scene &scene, const SceneWorld &built, const RunR
     return summary;
 }
 
+std::string summaryText(const ordered_json &summary) {
+    const auto compact = [](const ordered_json &value) {
+        return value.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
+    };
+    std::string text = "{";
+    bool first = true;
+    for (const auto &[key, value] : summary.items()) {
+        text += first ? "\n  " : ",\n  ";
+        first = false;
+        text += compact(key) + ": ";
+        if (!value.is_array() || value.empty()) {
+            text += compact(value);
+            continue;
+        }
+        text += "[";
+        for (std::size_t i = 0; i < value.size(); ++i) text += (i ? ",\n    " : "\n    ") + compact(value[i]);
+        text += "\n  ]";
+    }
+    return text + "\n}\n";
+}
+
 }  // namespace cyclone::scene

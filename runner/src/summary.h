@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
+
 #include "run_loop.h"
 #include "scene.h"
 #include "scene_world.h"
@@ -15,5 +17,8 @@ int awakeDynamicBodies(const World &world);
 /// The summary of a run: scene, steps, dt, wall_seconds, step_ms, metrics and the bodies
 /// still in the world, in scene order. Non-finite numbers appear as null.
 nlohmann::ordered_json summaryJson(const Scene &scene, const SceneWorld &world, const RunResult &result);
+
+/// The summary as the text of the file: one field per line, one body per line.
+std::string summaryText(const nlohmann::ordered_json &summary);
 
 }  // namespace cyclone::scene

@@ -1,0 +1,282 @@
+// Fuzzing the runner with mutated versions of the shipped scenes: deleted fields, wrong
+// types, extreme and non-finite numbers, duplicated and emptied parts, truncated text and
+// flipped bytes. Whatever the input, the only outcomes are 0 (ran), 2 (refused, with one
+// line) and 3 (became non-finite). Deterministic: a fixed seed and our own draws.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <iterator>
+#include <map>
+#include <sstream>
+
+#include "cli.h"
+#include "runner_test_support.h"
+
+namespace {
+
+using namespace runner_test;
+using namespace cyclone::scene;
+using nlohmann::json;
+
+const char *const kScenes[] = {"tower",   "pyramid-20", "pyramid-10", "resting-shapes", "incline",
+                               "sleep-wake", "springs", "mixed-shapes"};
+
+// splitmix64: the same numbers on every platform and standard library.
+class Draw {
+public:
+    explicit Draw(std::uint64_t seed) : state_(seed) {}
+    std::uint64_t next() {
+        std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return z ^ (z >> 31);
+    }
+    std::size_t below(std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(next() % n); }
+    bool chance(int percent) { return below(100) < static_cast<std::size_t>(percent); }
+
+private:
+    std::uint64_t state_;
+};
+
+// Number literals that probe the edges: written into the text so that 1e999 stays 1e999.
+const char *const kExtremeNumbers[] = {"0",     "-0",      "-1",     "1e999",   "-1e999",  "1e308",
+                                       "-1e308", "1e-308", "5e-324", "1e300",   "-1e300",  "9223372036854775807",
+                                       "18446744073709551616", "-9223372036854775809", "4294967296", "2147483648",
+                                       "0.5",   "1.5",     "1e15",   "123456789012345678901234567890", "NaN", "Infinity"};
+
+const char *const kWrongValues[] = {"null", "true", "false", "\"\"", "\"box\"", "\"ground\"", "[]", "{}",
+                                    "[1, 2]", "[[0, 0, 0]]", "{\"type\": \"sphere\"}", "[0, 0, 0, 0]"};
+
+struct Node {
+    json *value;
+    json *parent;
+    std::string key;     // when the parent is an object
+    std::size_t index;   // when the parent is an array
+};
+
+void collect(json &value, json *parent, const std::string &key, std::size_t index, std::vector<Node> &nodes) {
+    nodes.push_back({&value, parent, key, index});
+    if (value.is_object()) {
+        for (auto it = value.begin(); it != value.end(); ++it) collect(it.value(), &value, it.key(), 0, nodes);
+    } else if (value.is_array()) {
+        for (std::size_t i = 0; i < value.size(); ++i) collect(value[i], &value, "", i, nodes);
+    }
+}
+
+// A placeholder that survives dump() and is then replaced by a raw literal.
+constexpr const char *kRawMarker = "@@RAW@@";
+
+std::string replaceRaw(std::string text, const std::string &literal) {
+    const std::string quotedMarker = std::string("\"") + kRawMarker + "\"";
+    const auto at = text.find(quotedMarker);
+    if (at != std::string::npos) text.replace(at, quotedMarker.size(), literal);
+    return text;
+}
+
+// One structural mutation of the document, returned as text.
+std::string mutateStructure(const json &original, Draw &draw) {
+    json doc = original;
+    std::vector<Node> nodes;
+    collect(doc, nullptr, "", 0, nodes);
+    const int rounds = 1 + static_cast<int>(draw.below(3));
+    std::string literal;
+    for (int round = 0; round < rounds; ++round) {
+        nodes.clear();
+        collect(doc, nullptr, "", 0, nodes);
+        const Node node = nodes[draw.below(nodes.size())];
+        switch (draw.below(8)) {
+        case 0:  // delete
+            if (node.parent && node.parent->is_object()) {
+                node.parent->erase(node.key);
+            } else if (node.parent) {
+                node.parent->erase(node.index);
+            }
+            break;
+        case 1:  // wrong type
+            *node.value = json::parse(kWrongValues[draw.below(std::size(kWrongValues))]);
+            break;
+        case 2:  // extreme or non-finite number, written raw
+            if (literal.empty()) {
+                literal = kExtremeNumbers[draw.below(std::size(kExtremeNumbers))];
+                *node.value = kRawMarker;
+            }
+            break;
+        case 3:  // scale a number
+            if (node.value->is_number()) *node.value = node.value->get<double>() * (draw.chance(50) ? -1e6 : 1e-6);
+            break;
+        case 4:  // duplicate an element (duplicate names, shared events)
+            if (node.parent && node.parent->is_array()) node.parent->push_back(*node.value);
+            break;
+        case 5:  // empty a container
+            if (node.value->is_array()) *node.value = json::array();
+            if (node.value->is_object()) *node.value = json::object();
+            break;
+        case 6:  // a name where there was a name, or a value moved elsewhere
+            if (node.value->is_string()) {
+                *node.value = nodes[draw.below(nodes.size())].value->is_string()
+                                  ? *nodes[draw.below(nodes.size())].value
+                                  : json("box3");
+            } else {
+                *node.value = *nodes[draw.below(nodes.size())].value;
+            }
+            break;
+        case 7:  // a body thrown absurdly fast: a blow-up
+            if (doc.is_object() && doc.contains("bodies") && doc["bodies"].is_array() && !doc["bodies"].empty()) {
+                json &body = doc["bodies"][draw.below(doc["bodies"].size())];
+                const double speeds[] = {1e300, -1e300, 1e200, 1e150, 1e30};
+                if (body.is_object()) body["velocity"] = {speeds[draw.below(std::size(speeds))], 0, 0};
+            }
+            break;
+        }
+    }
+    std::string text = doc.dump();
+    return literal.empty() ? text : replaceRaw(text, literal);
+}
+
+// One textual mutation: truncation, flipped or inserted bytes, a deleted range.
+std::string mutateText(std::string text, Draw &draw) {
+    if (text.empty()) return text;
+    switch (draw.below(4)) {
+    case 0: text.resize(draw.below(text.size())); break;
+    case 1:
+        for (std::size_t flips = 1 + draw.below(4); flips > 0; --flips) {
+            text[draw.below(text.size())] = static_cast<char>(draw.below(256));
+        }
+        break;
+    case 2: {
+        const std::string noise[] = {"{", "}", "[", "]", ",", ":", "\"", "\\", "1e999", "\xff", std::string(1, '\0'), "-", "null"};
+        text.insert(draw.below(text.size()), noise[draw.below(std::size(noise))]);
+        break;
+    }
+    case 3: {
+        const std::size_t at = draw.below(text.size());
+        text.erase(at, draw.below(64));
+        break;
+    }
+    }
+    return text;
+}
+
+std::string mutate(const std::string &text, const json &document, Draw &draw) {
+    return draw.chance(70) ? mutateStructure(document, draw) : mutateText(text, draw);
+}
+
+std::string countsText(const std::map<int, int> &counts) {
+    std::ostringstream out;
+    for (const auto &[status, count] : counts) out << " exit " << status << ": " << count;
+    return out.str();
+}
+
+TEST(Fuzz, ThousandsOfMutatedScenesInProcess) {
+    constexpr int kPerScene = 1500;
+    Draw draw(0x5eed2024);
+    std::map<int, int> counts;
+    Invocation invocation;
+    invocation.command = Invocation::Command::Run;
+    invocation.scene = "fuzz.json";
+    invocation.steps = 3;
+    invocation.quiet = true;
+    const auto start = std::chrono::steady_clock::now();
+    for (const char *name : kScenes) {
+        const std::string text = readText(scenePath(name));
+        const json document = json::parse(text);
+        for (int i = 0; i < kPerScene; ++i) {
+            const std::string mutated = mutate(text, document, draw);
+            // A crash leaves no message: CYCLONE_FUZZ_LAST=FILE keeps the input being run.
+            if (const char *last = std::getenv("CYCLONE_FUZZ_LAST")) writeText(last, mutated);
+            std::ostringstream out, err;
+            const int status = runSceneText(mutated, invocation, out, err, false);
+            ++counts[status];
+            ASSERT_TRUE(status == 0 || status == 2 || status == 3) << status << " for:\n" << mutated;
+            if (status == 2) {
+                ASSERT_EQ(lineCount(err.str()), 1) << err.str() << "for:\n" << mutated;
+                ASSERT_EQ(err.str().rfind("fuzz.json: ", 0), 0u) << err.str();
+            }
+        }
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cout << "[ fuzz     ] " << kPerScene * std::size(kScenes) << " in-process mutations in " << seconds
+              << " s:" << countsText(counts) << "\n";
+    EXPECT_GT(counts[0], 0);
+    EXPECT_GT(counts[2], 0);
+}
+
+TEST(Fuzz, HundredsOfMutatedScenesThroughTheExecutable) {
+    constexpr int kPerScene = 50;
+    Draw draw(0xc0ffee);
+    std::map<int, int> counts;
+    TempDir dir;
+    const std::string scene = dir.file("fuzz.json");
+    const std::string summary = dir.file("s.json");
+    const std::string trace = dir.file("t.csv");
+    for (const char *name : kScenes) {
+        const std::string text = readText(scenePath(name));
+        const json document = json::parse(text);
+        for (int i = 0; i < kPerScene; ++i) {
+            const std::string mutated = mutate(text, document, draw);
+            writeText(scene, mutated);
+            const Process p = runWorld({"run", scene, "--steps", "3", "--summary", summary, "--trace", trace}, dir);
+            ++counts[p.status];
+            ASSERT_TRUE(p.status == 0 || p.status == 2 || p.status == 3) << p.status << " " << p.err << " for:\n" << mutated;
+            const bool wrote = fs::exists(summary) && fs::exists(trace);
+            if (p.status == 2) {
+                ASSERT_EQ(lineCount(p.err), 1) << p.err;
+                ASSERT_FALSE(fs::exists(summary) || fs::exists(trace)) << p.err;
+            } else {
+                ASSERT_TRUE(wrote);
+                const json written = json::parse(readText(summary));
+                ASSERT_EQ(written["metrics"]["non_finite"].get<bool>(), p.status == 3);
+            }
+            ASSERT_EQ(dir.files().size(), wrote ? 3u : 1u);
+            fs::remove(summary);
+            fs::remove(trace);
+        }
+    }
+    std::cout << "[ fuzz     ] " << kPerScene * std::size(kScenes) << " mutations through cyclone-world:"
+              << countsText(counts) << "\n";
+    EXPECT_GT(counts[0], 0);
+    EXPECT_GT(counts[2], 0);
+}
+
+// Inputs no mutation of a scene would reach.
+TEST(Fuzz, PathologicalDocuments) {
+    Invocation invocation;
+    invocation.command = Invocation::Command::Run;
+    invocation.scene = "odd.json";
+    invocation.steps = 2;
+    const std::string deep(100000, '[');
+    const std::string cases[] = {
+        deep + std::string(100000, ']'),
+        "{\"bodies\": " + deep,
+        std::string("\xef\xbb\xbf{\"bodies\": []}"),
+        std::string("{\"bodies\": [], \"name\": \"\xff\xfe\"}"),
+        std::string("{\"bodies\": []}\0garbage", 22),
+        "{\"bodies\": [{\"name\": \"a\\nb\", \"shape\": {\"type\": \"sphere\", \"radius\": 1}, \"mass\": -1}]}",
+        "{\"bodies\": [{\"name\": \"huge\", \"shape\": {\"type\": \"box\", \"half_extents\": [1e300, 1e300, 1e300]}}]}",
+        "{\"bodies\": [{\"name\": \"far\", \"shape\": {\"type\": \"sphere\", \"radius\": 1}, \"position\": [1e300, -1e300, 1e300]}]}",
+        "{\"bodies\": [{\"name\": \"tiny\", \"shape\": {\"type\": \"sphere\", \"radius\": 1e-300}, \"mass\": 1e-300}]}",
+        "{\"settings\": {\"dt\": 1e300}, \"bodies\": [{\"name\": \"b\", \"shape\": {\"type\": \"sphere\", \"radius\": 1}}]}",
+        "{\"settings\": {\"dt\": 5e-324}, \"bodies\": [{\"name\": \"b\", \"shape\": {\"type\": \"sphere\", \"radius\": 1}}]}",
+    };
+    for (const std::string &text : cases) {
+        std::ostringstream out, err;
+        const int status = runSceneText(text, invocation, out, err, false);
+        EXPECT_TRUE(status == 0 || status == 2 || status == 3) << status << " for " << text.substr(0, 200);
+        if (status == 2) {
+            EXPECT_EQ(lineCount(err.str()), 1) << err.str();
+        }
+    }
+    // Deep nesting is refused at once, with a path of bounded length.
+    for (const std::string &text : {cases[0], cases[1]}) {
+        std::ostringstream out, err;
+        EXPECT_EQ(runSceneText(text, invocation, out, err, false), 2);
+        EXPECT_NE(err.str().find("nested deeper than 64 levels"), std::string::npos) << err.str().substr(0, 300);
+        EXPECT_LT(err.str().size(), 400u);
+    }
+}
+
+}  // namespace
