@@ -26,6 +26,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gjk.h"
+
 namespace cyclone::detail {
 namespace {
 
@@ -49,6 +51,10 @@ constexpr real kParallelSine = 0.03489949670250097;
 constexpr real kFaceCosine = 0.9999619230641713;
 // Mesh contacts whose normals agree within 2 degrees share a manifold: cos(2 deg).
 constexpr real kMergeCosine = 0.9993908270190958;
+// Refinement of MPR normals: how far beyond touching A is moved back (m), and how many
+// times at most.
+constexpr real kRefineMargin = 1e-3;
+constexpr int kRefineRounds = 4;
 
 fcl::CollisionRequestd makeRequest(size_t maxContacts) {
     fcl::CollisionRequestd request(maxContacts, true);
@@ -334,21 +340,46 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
     return 1;
 }
 
-// The normal of one FCL contact: FCL's or a supporting face's, the least overlap.
-// Leaves the features along the chosen normal in fa and fb, and the overlap along it.
-// A triangle has no inside, so with `twoSided` both directions of every axis are
-// candidates: FCL's normal for a shape against a triangle may even point the wrong way.
-Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, bool twoSided, SupportFeature &fa,
+// Improves the normal n (unit, A to B; overlap f along it) the way a separating pair
+// finds its normal: A moved back along n by f plus a margin no longer touches B, and
+// GJK's nearest points of the two then lie where the surfaces meet, so the line between
+// them is the surfaces' common normal there. For curved surfaces less deep than their
+// radius of curvature each round brings n closer to the true normal; flat faces give
+// theirs at once. A new normal is taken only if it lowers the overlap.
+Vector3 refineNormal(const Pair &pair, Vector3 n, real &f) {
+    for (int round = 0; round < kRefineRounds && f > 0; ++round) {
+        const Vector3 shift = (f + kRefineMargin) * n;
+        auto support = [&](const Vector3 &d) {
+            return Vector3(pair.a.supportPoint(pair.poseA, d, pair.triangleA) - shift -
+                           pair.b.supportPoint(pair.poseB, -d, pair.triangleB));
+        };
+        Vector3 closest;
+        if (!closestToOrigin(support, -n, closest)) break;
+        const real distance = closest.norm();
+        if (!(distance > kPointTolerance * kRefineMargin)) break;
+        const Vector3 candidate = -closest / distance;
+        const real value = pair.overlap(candidate);
+        if (!(value < f - kPointTolerance * kPointTolerance)) break;
+        n = candidate;
+        f = value;
+    }
+    return n;
+}
+
+// The normal of one FCL contact: FCL's or a supporting face's, the least overlap, then
+// refined when FCL's normal came from MPR (`refine`). Leaves the features along the
+// chosen normal in fa and fb, and the overlap along it in `overlap`. A triangle has no
+// inside, so with `twoSided` both directions of every axis are candidates: FCL's normal
+// for a shape against a triangle may even point the wrong way.
+Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, bool twoSided, bool refine, SupportFeature &fa,
                      SupportFeature &fb, real &overlap) {
     pair.a.supportingFeature(pair.poseA, fclNormal, pair.triangleA, fa);
     pair.b.supportingFeature(pair.poseB, -fclNormal, pair.triangleB, fb);
     Vector3 best = fclNormal;
     real bestOverlap = pair.overlap(fclNormal);
-    bool changed = false;
     auto consider = [&](const Vector3 &candidate, real preference) {
         const real o = pair.overlap(candidate);
         if (o <= bestOverlap + preference) {
-            changed = changed || candidate != best;
             best = candidate;
             bestOverlap = o;
         }
@@ -365,12 +396,34 @@ Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, bool twoSided, 
             consider(candidate, kFacePreference);
         }
     }
-    if (changed) {
+    // A cylinder's rim is a ridge where refinement stalls: its cap and side normals,
+    // the faces either side of it, are candidates too.
+    for (int side = 0; side < 2; ++side) {
+        const CollisionShape &shape = side == 0 ? pair.a : pair.b;
+        if (shape.shape().type != ShapeType::Cylinder) continue;
+        const Vector3 axis = (side == 0 ? pair.poseA : pair.poseB).linear().col(2);
+        const Vector3 outward = side == 0 ? fclNormal : Vector3(-fclNormal);
+        const real along = axis.dot(outward);
+        const Vector3 cap = along >= 0 ? axis : Vector3(-axis);
+        const Vector3 radial = outward - along * axis;
+        consider(side == 0 ? cap : Vector3(-cap), 0);
+        if (radial.norm() > kPointTolerance) consider(side == 0 ? radial.normalized() : Vector3(-radial.normalized()), 0);
+    }
+    if (refine) best = refineNormal(pair, best, bestOverlap);
+    if (best != fclNormal) {
         pair.a.supportingFeature(pair.poseA, best, pair.triangleA, fa);
         pair.b.supportingFeature(pair.poseB, -best, pair.triangleB, fb);
     }
     overlap = bestOverlap;
     return best;
+}
+
+// Whether FCL's libccd solver has an exact routine for the pair; the others go through
+// MPR, whose normal is only a starting point.
+bool exactInFcl(ShapeType a, ShapeType b) {
+    if (a == ShapeType::Sphere) std::swap(a, b);
+    if (b == ShapeType::Sphere) return a != ShapeType::Convex;
+    return a == ShapeType::Box && b == ShapeType::Box;
 }
 
 // One contact reported by FCL, oriented from A to B.
@@ -397,6 +450,7 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     const CollisionShape &mesh = meshIsB ? b : a;
     const Matrix4 &meshPose = meshIsB ? poseB : poseA;
     const int triangles = static_cast<int>(mesh.faces().size());
+    const bool refine = !exactInFcl(a.shape().type, b.shape().type);
 
     MeshContact contacts[kMaxFclContacts];
     int count = 0;
@@ -406,7 +460,7 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
         const Pair pair{a, poseA, raw[i].triangleA, b, poseB, raw[i].triangleB, speculative};
         MeshContact &c = contacts[count];
         SupportFeature fa, fb;
-        c.normal = chooseNormal(pair, raw[i].normal, true, fa, fb, c.depth);
+        c.normal = chooseNormal(pair, raw[i].normal, true, refine, fa, fb, c.depth);
         if (!(c.depth > -speculative)) continue;
         c.triangleA = raw[i].triangleA;
         c.triangleB = raw[i].triangleB;
@@ -525,7 +579,8 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     const Pair pair{a, poseA, -1, b, poseB, -1, settings.speculativeDistance};
     SupportFeature fa, fb;
     real overlap = 0;
-    const Vector3 normal = chooseNormal(pair, raw[deepest].normal, false, fa, fb, overlap);
+    const Vector3 normal =
+        chooseNormal(pair, raw[deepest].normal, false, !exactInFcl(typeA, typeB), fa, fb, overlap);
     PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
     if (points.count == 0) return 0;
