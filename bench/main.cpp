@@ -239,31 +239,41 @@ void summarise(RunResult &result, const std::vector<double> &times) {
         result.usPerContact = total * 1000 / static_cast<double>(result.contactsTotal);
 }
 
-// Runs the scene `repeats` times. The scenes are deterministic, so step i does the same
-// work in every repeat: the fastest time of each step is the one least disturbed by the
-// rest of the machine. Memory, drift and penetration come from the first repeat; the
-// others must agree with it.
-RunResult measure(const Scene &scene, const std::string &engineName, const Options &options) {
-    Run first;
-    std::vector<double> fastest;
+// Runs the scene `repeats` times through each engine, the engines taking turns so that
+// a change in the load of the machine hits them alike. The scenes are deterministic,
+// so step i does the same work in every repeat: the fastest time of each step is the
+// one least disturbed by the rest of the machine. Memory, drift and penetration come
+// from the first repeat; the others must agree with it. Returns one result per engine.
+std::vector<RunResult> measure(const Scene &scene, const std::vector<std::string> &engines, const Options &options) {
+    std::vector<Run> first(engines.size());
+    std::vector<std::vector<double>> fastest(engines.size());
+    std::vector<bool> failed(engines.size(), false);
     for (int r = 0; r < options.repeats; ++r) {
-        Run run = options.inProcess ? runHere(scene, engineName, options.steps)
-                                    : runIsolated(scene, engineName, options.steps);
-        if (!run.result.ok) return run.result;
-        if (r == 0) {
-            first = run;
-            fastest = run.times;
-            continue;
+        for (std::size_t e = 0; e < engines.size(); ++e) {
+            if (failed[e]) continue;
+            std::cerr << "running " << scene.name << " / " << engines[e] << " (" << r + 1 << "/" << options.repeats
+                      << ") ...\n";
+            Run run = options.inProcess ? runHere(scene, engines[e], options.steps)
+                                        : runIsolated(scene, engines[e], options.steps);
+            if (r == 0 || !run.result.ok) {
+                failed[e] = !run.result.ok;
+                first[e] = run;
+                fastest[e] = run.times;
+                continue;
+            }
+            for (std::size_t i = 0; i < fastest[e].size(); ++i) fastest[e][i] = std::min(fastest[e][i], run.times[i]);
+            const RunResult &a = first[e].result, &b = run.result;
+            const bool same = a.contactsTotal == b.contactsTotal && a.penetrationM == b.penetrationM &&
+                              (a.driftM == b.driftM || (std::isnan(a.driftM) && std::isnan(b.driftM)));
+            if (!same) first[e].result.repeatsDiffer = true;
         }
-        for (std::size_t i = 0; i < fastest.size(); ++i) fastest[i] = std::min(fastest[i], run.times[i]);
-        const bool same = run.result.contactsTotal == first.result.contactsTotal &&
-                          run.result.penetrationM == first.result.penetrationM &&
-                          (run.result.driftM == first.result.driftM ||
-                           (std::isnan(run.result.driftM) && std::isnan(first.result.driftM)));
-        if (!same) first.result.repeatsDiffer = true;
     }
-    summarise(first.result, fastest);
-    return first.result;
+    std::vector<RunResult> results;
+    for (std::size_t e = 0; e < engines.size(); ++e) {
+        if (!failed[e]) summarise(first[e].result, fastest[e]);
+        results.push_back(first[e].result);
+    }
+    return results;
 }
 
 // --- Output ------------------------------------------------------------------------------
@@ -530,7 +540,9 @@ int run(int argc, char **argv) {
               << " s simulated) per run; drift and penetration are read after the last step\n"
               << "- build: " << CYCLONE_BENCH_BUILD_TYPE << ", each run " << (options.inProcess ? "in this process" : "in its own forked process") << "\n"
               << "- times: wall clock of one World::step / stepSimulation"
-              << (options.repeats > 1 ? ", fastest of " + std::to_string(options.repeats) + " repeats per step" : "")
+              << (options.repeats > 1 ? ", fastest of " + std::to_string(options.repeats) +
+                                            " repeats per step (engines taking turns)"
+                                      : "")
               << "; µs/contact = total step time / contact points summed over all steps\n"
               << "- peak heap: counting allocator (global operator new/delete replaced in the harness, and Bullet's "
                  "btAlignedAllocSetCustom hook); memory that Eigen, libccd or qhull take with malloc directly is "
@@ -558,10 +570,8 @@ int run(int argc, char **argv) {
     for (const std::string &sceneName : options.scenes) {
         Scene scene = makeScene(sceneName);
         splitSubsteps(scene, options.substeps);
-        for (const std::string &engine : options.engines) {
-            std::cerr << "running " << sceneName << " / " << engine << " ...\n";
-            rows.push_back(Row{sceneName, engine, measure(scene, engine, options)});
-        }
+        const std::vector<RunResult> results = measure(scene, options.engines, options);
+        for (std::size_t e = 0; e < results.size(); ++e) rows.push_back(Row{sceneName, options.engines[e], results[e]});
     }
     printTable(rows, options.scenes);
     std::cout << "\n";
