@@ -49,8 +49,10 @@ const char *const kHelpText =
     "                      and the last step; K >= 1, default 1\n"
     "  --quiet             no result line on stdout (run) and no progress on stderr\n"
     "\n"
-    "A scene holds settings, bodies, springs and events; see the scene-format contract.\n"
-    "Events of step k act at the start of step k. Output files are written whole or not at\n"
+    "A scene holds settings, bodies, springs and events: docs/scene-format.md is the\n"
+    "contract. Events of step k act at the start of step k. Beyond the contract's checks,\n"
+    "coordinates and sizes must lie within 1e30 m, iterations and sub-steps within 1000,\n"
+    "and the JSON may nest at most 64 levels. Output files are written whole or not at\n"
     "all. Progress goes to stderr only when stderr is a terminal.\n"
     "\n"
     "Exit status:\n"
@@ -58,8 +60,9 @@ const char *const kHelpText =
     "  2  bad command line, or a scene that cannot be run: one line on stderr,\n"
     "     FILE: PATH: message (e.g. tower.json: bodies[3].mass: must be finite and > 0,\n"
     "     got -1), and no output file written\n"
-    "  3  a body's state became NaN or infinite: the run stops, stderr says where, and the\n"
-    "     summary is written with \"non_finite\": true\n";
+    "  3  a body's state became NaN or infinite, or one more step would carry a body\n"
+    "     beyond 1e30 m: the run stops, stderr says where, and the summary (and trace)\n"
+    "     are written with \"non_finite\": true\n";
 
 namespace {
 

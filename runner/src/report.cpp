@@ -50,7 +50,7 @@ void writeReport(std::ostream &out, const std::string &file, const Scene &scene,
     for (const BodyId id : world.bodies()) {
         if (!world.isStatic(id)) ++dynamicBodies;
     }
-    const StepTimes times = stepTimes(result.stepMs);
+    const StepTimes times = result.stepTimes.summary();
     out << "scene        " << scene.name << " (" << file << ")\n";
     out << "bodies       " << world.bodyCount() << " (" << dynamicBodies << " dynamic, "
         << world.bodyCount() - dynamicBodies << " static)\n";
@@ -84,7 +84,7 @@ void writeReport(std::ostream &out, const std::string &file, const Scene &scene,
 }
 
 std::string resultLine(const Scene &scene, const SceneWorld &built, const RunResult &result) {
-    const StepTimes times = stepTimes(result.stepMs);
+    const StepTimes times = result.stepTimes.summary();
     std::string line = scene.name + ": " + std::to_string(result.steps) + " steps, " +
                        std::to_string(built.world.bodyCount()) + " bodies, " + format("%.3f", times.mean) +
                        " ms/step (median " + format("%.3f", times.median) + ", max " + format("%.3f", times.max) +

@@ -91,15 +91,31 @@ std::string leavesRange(const Scene &scene, const SceneWorld &built, const std::
 
 }  // namespace
 
-StepTimes stepTimes(const std::vector<double> &stepMs) {
+void StepTimeStats::add(double ms) {
+    ++count_;
+    sum_ += ms;
+    max_ = std::max(max_, ms);
+    if (samples_.size() < kMaxSamples) {
+        samples_.push_back(ms);
+        return;
+    }
+    // Reservoir sampling (xorshift64 draws): every step stays in the sample with equal odds.
+    draw_ ^= draw_ << 13;
+    draw_ ^= draw_ >> 7;
+    draw_ ^= draw_ << 17;
+    const std::uint64_t slot = draw_ % static_cast<std::uint64_t>(count_);
+    if (slot < kMaxSamples) samples_[slot] = ms;
+}
+
+StepTimes StepTimeStats::summary() const {
     StepTimes times;
-    if (stepMs.empty()) return times;
-    std::vector<double> sorted = stepMs;
+    if (count_ == 0) return times;
+    std::vector<double> sorted = samples_;
     std::sort(sorted.begin(), sorted.end());
     const std::size_t n = sorted.size();
     times.median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
-    times.mean = std::accumulate(sorted.begin(), sorted.end(), 0.0) / static_cast<double>(n);
-    times.max = sorted.back();
+    times.mean = sum_ / static_cast<double>(count_);
+    times.max = max_;
     return times;
 }
 
@@ -109,7 +125,6 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
     World &world = built.world;
     RunResult result;
     result.dt = options.dt;
-    result.stepMs.reserve(static_cast<std::size_t>(std::min<std::int64_t>(options.steps, 10000000)));
 
     std::vector<std::size_t> eventOrder(scene.events.size());
     std::iota(eventOrder.begin(), eventOrder.end(), std::size_t{0});
@@ -146,7 +161,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
         } catch (const std::exception &error) {
             stepFailure = error.what();
         }
-        result.stepMs.push_back(secondsSince(stepStart) * 1000.0);
+        result.stepTimes.add(secondsSince(stepStart) * 1000.0);
         result.steps = step + 1;
         result.maxPenetrationOfRun = std::max(result.maxPenetrationOfRun, world.stats().maxPenetration);
 
@@ -171,7 +186,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
         if (!stepFailure.empty() && !result.nonFinite) {
             throw std::runtime_error("step " + std::to_string(step) + " failed: " + stepFailure);
         }
-        if (!anyAwake && !result.firstAllAsleepStep) result.firstAllAsleepStep = step;
+        if (!anyAwake && !result.nonFinite && !result.firstAllAsleepStep) result.firstAllAsleepStep = step;
 
         const bool last = step + 1 == options.steps || result.nonFinite;
         if (options.trace && ((step + 1) % options.traceEvery == 0 || last)) {

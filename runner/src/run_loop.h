@@ -34,6 +34,26 @@ struct StepTimes {
     double max = 0;
 };
 
+/// Step times gathered during a run: the mean and the maximum are exact; the median is
+/// exact up to kMaxSamples steps and taken from a uniform sample of that size beyond, so
+/// that 1e8 steps do not need 800 MB.
+class StepTimeStats {
+public:
+    static constexpr std::size_t kMaxSamples = std::size_t{1} << 22;
+    /// Adds the time of one step, ms.
+    void add(double ms);
+    /// Steps added.
+    std::int64_t count() const { return count_; }
+    StepTimes summary() const;
+
+private:
+    std::vector<double> samples_;
+    std::int64_t count_ = 0;
+    double sum_ = 0;
+    double max_ = 0;
+    std::uint64_t draw_ = 0x2545f4914f6cdd1dULL;
+};
+
 struct RunResult {
     /// Steps actually taken (fewer than asked when the state became non-finite).
     std::int64_t steps = 0;
@@ -42,7 +62,7 @@ struct RunResult {
     /// Wall-clock time of the whole run loop, s.
     double wallSeconds = 0;
     /// Time of each World::step, ms.
-    std::vector<double> stepMs;
+    StepTimeStats stepTimes;
     /// First step (0-based) after which no dynamic body was awake; empty if none.
     std::optional<std::int64_t> firstAllAsleepStep;
     /// Deepest contact over every step of the run, m.
@@ -52,8 +72,6 @@ struct RunResult {
     /// What became non-finite, for the message: body, step and quantity.
     std::string nonFiniteWhat;
 };
-
-StepTimes stepTimes(const std::vector<double> &stepMs);
 
 /// Whether position, orientation, velocity and rotation are all finite.
 bool hasFiniteState(const RigidBody &body);

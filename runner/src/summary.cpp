@@ -20,7 +20,7 @@ int awakeDynamicBodies(const World &world) {
 
 ordered_json summaryJson(const Scene &scene, const SceneWorld &built, const RunResult &result) {
     const World &world = built.world;
-    const StepTimes times = stepTimes(result.stepMs);
+    const StepTimes times = result.stepTimes.summary();
     ordered_json summary;
     summary["scene"] = scene.name;
     summary["steps"] = result.steps;
