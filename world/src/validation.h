@@ -19,12 +19,21 @@ inline std::string show(real value) {
 
 inline std::string show(const Vector3 &v) { return "[" + show(v.x()) + ", " + show(v.y()) + ", " + show(v.z()) + "]"; }
 
+/// Coordinates beyond this are refused (and a body that flies beyond it is isolated):
+/// FCL's AABB tree fails on such numbers, m.
+inline constexpr real kMaxCoordinate = 1e30;
+
 [[noreturn]] inline void refuse(const std::string &function, const std::string &field, const std::string &problem) {
     throw InvalidArgument(function, field, problem);
 }
 
 inline void requireFinite(const char *function, const char *field, const Vector3 &v) {
     if (!v.allFinite()) refuse(function, field, "must be finite, got " + show(v));
+}
+
+inline void requirePlace(const char *function, const char *field, const Vector3 &v) {
+    if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kMaxCoordinate)
+        refuse(function, field, "must be finite and within 1e30 m of the origin, got " + show(v));
 }
 
 inline void requirePositive(const char *function, const char *field, real value) {

@@ -53,7 +53,7 @@ void validateSettings(const char *function, const WorldSettings &s) {
 RigidBody makeBody(const char *function, const BodySettings &s, const detail::CollisionShape &shape,
                    const WorldSettings &world) {
     using namespace detail;
-    requireFinite(function, "position", s.position);
+    requirePlace(function, "position", s.position);
     requireFinite(function, "velocity", s.velocity);
     requireFinite(function, "rotation", s.rotation);
     if (!s.orientation.coeffs().allFinite()) refuse(function, "orientation", "must be finite");
@@ -260,7 +260,7 @@ void World::setPosition(BodyId id, const Vector3 &position) {
     static const char *function = "World::setPosition";
     Impl &w = *impl_;
     BodyRecord &r = w.record(id, function);
-    detail::requireFinite(function, "position", position);
+    detail::requirePlace(function, "position", position);
     if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their offset");
     r.body.setPosition(position);
     w.refreshCollisionObject(id.index);

@@ -7,13 +7,15 @@
 // energy: pseudo-velocities (SplitImpulse) or a rigid relax pass (SoftStep).
 #include <cmath>
 
+#include "validation.h"
 #include "world_impl.h"
 
 namespace cyclone {
 namespace {
 
+// Finite, and within the coordinates FCL can place: otherwise the body is isolated.
 bool stateFinite(const RigidBody &body) {
-    return body.getPosition().allFinite() && body.getOrientation().coeffs().allFinite() &&
+    return body.getPosition().allFinite() && body.getPosition().cwiseAbs().maxCoeff() <= detail::kMaxCoordinate && body.getOrientation().coeffs().allFinite() &&
            body.getVelocity().allFinite() && body.getRotation().allFinite() &&
            std::isfinite(body.getVelocity().squaredNorm() + body.getRotation().squaredNorm());
 }

@@ -35,7 +35,7 @@ struct StepStats {
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
     int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
     int springs = 0;            ///< Springs evaluated.
-    int nonFiniteBodies = 0;    ///< Bodies whose state became non-finite (isolated).
+    int nonFiniteBodies = 0;    ///< Bodies isolated because their state became non-finite (or beyond 1e30 m).
     real maxPenetration = 0;    ///< Deepest contact of the step, m.
     StageTimes ms;              ///< Time per stage, ms.
 };
