@@ -38,7 +38,9 @@ void Broadphase::refitAwake(const std::vector<fcl::CollisionObjectd *> &moved) {
     if (!moved.empty()) awake_.update(moved);
 }
 
-void Broadphase::refitStatic(fcl::CollisionObjectd *object) { static_.update(object); }
+void Broadphase::refit(fcl::CollisionObjectd *object, Tree tree) {
+    if (auto *m = manager(tree)) m->update(object);
+}
 
 void Broadphase::findPairs(std::vector<CandidatePair> &out) {
     if (awake_.empty()) return;

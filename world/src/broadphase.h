@@ -13,6 +13,35 @@
 
 namespace cyclone::detail {
 
+/// How far a broadphase box reaches beyond its body, m: a body that moves less than this
+/// costs no tree update.
+inline constexpr double kBroadphaseMargin = 0.02;
+
+/// A body's FCL collision object whose broadphase box is fattened by a margin, so that
+/// a body moving a little stays in its tree node and the tree is not rebuilt each step.
+class BodyObject : public fcl::CollisionObjectd {
+public:
+    using fcl::CollisionObjectd::CollisionObjectd;
+
+    /// Places the object at `pose` and refreshes its fat box; true when the tight box
+    /// left the fat one (the tree must then be updated).
+    bool place(const fcl::Transform3d &pose, double margin) {
+        setTransform(pose);
+        computeAABB();
+        if (fat_.contain(aabb)) {
+            aabb = fat_;
+            return false;
+        }
+        fat_ = aabb;
+        fat_.expand(fcl::Vector3d::Constant(margin));
+        aabb = fat_;
+        return true;
+    }
+
+private:
+    fcl::AABBd fat_;
+};
+
 /// Which tree a body's collision object is in.
 enum class Tree : std::uint8_t { None, Awake, Asleep, Static };
 
@@ -31,8 +60,8 @@ public:
     void place(fcl::CollisionObjectd *object, Tree from, Tree to);
     /// Refits the awake tree after the objects in `moved` changed their AABBs.
     void refitAwake(const std::vector<fcl::CollisionObjectd *> &moved);
-    /// Refits a static object's AABB after it was moved.
-    void refitStatic(fcl::CollisionObjectd *object);
+    /// Refits one object in `tree` after its box moved.
+    void refit(fcl::CollisionObjectd *object, Tree tree);
     /// Appends every pair of overlapping AABBs with at least one awake member.
     void findPairs(std::vector<CandidatePair> &out);
 

@@ -168,9 +168,9 @@ BodyId World::addBody(const BodySettings &settings) {
         w.planes.push_back(index);
         r.object.reset();
     } else {
-        r.object = std::make_unique<fcl::CollisionObjectd>(shape->geometry(), r.body.getTransform());
+        r.object = std::make_unique<detail::BodyObject>(shape->geometry(), r.body.getTransform());
         r.object->setUserData(reinterpret_cast<void *>(static_cast<std::uintptr_t>(index)));
-        r.object->computeAABB();
+        r.object->place(r.body.getTransform(), detail::kBroadphaseMargin);
         if (r.isStatic) {
             w.setTree(index, Tree::Static);
         } else if (r.body.getAwake()) {
@@ -466,11 +466,8 @@ void World::Impl::setTree(std::uint32_t index, Tree tree) {
 
 void World::Impl::refreshCollisionObject(std::uint32_t index) {
     BodyRecord &r = bodies[index];
-    if (r.object) {
-        r.object->setTransform(r.body.getTransform());
-        r.object->computeAABB();
-        if (r.tree == Tree::Static) broadphase.refitStatic(r.object.get());
-    }
+    if (r.object && r.object->place(r.body.getTransform(), detail::kBroadphaseMargin))
+        broadphase.refit(r.object.get(), r.tree);
     if (!r.isStatic) {
         wake(index);
         return;
@@ -496,8 +493,7 @@ void World::Impl::wake(std::uint32_t index) {
         BodyRecord &member = bodies[m];
         member.sleepingIsland = -1;
         member.body.setAwake(true);
-        member.object->setTransform(member.body.getTransform());
-        member.object->computeAABB();
+        member.object->place(member.body.getTransform(), detail::kBroadphaseMargin);
         setTree(m, Tree::Awake);
     }
     sleepingIslands[island].clear();

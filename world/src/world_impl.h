@@ -27,7 +27,7 @@ namespace cyclone {
 struct BodyRecord {
     RigidBody body;
     std::shared_ptr<const detail::CollisionShape> shape;
-    std::unique_ptr<fcl::CollisionObjectd> object;  ///< Null for planes.
+    std::unique_ptr<detail::BodyObject> object;  ///< Null for planes.
     std::string name;
     Material material;
     std::uint32_t generation = 0;
@@ -67,7 +67,7 @@ struct World::Impl {
 
     // Scratch of a step, kept to avoid allocation in steady state.
     std::vector<std::uint32_t> simulatedBodies;
-    std::vector<fcl::CollisionObjectd *> movedObjects;
+    std::vector<fcl::CollisionObjectd *> movedObjects;  ///< Objects whose fat box moved.
     std::vector<detail::CandidatePair> candidates;
     std::vector<detail::Manifold> fresh;
     std::vector<std::uint32_t> touchingPairs;

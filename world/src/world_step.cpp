@@ -136,10 +136,8 @@ void World::Impl::updateBroadphase() {
     movedObjects.clear();
     for (std::uint32_t index : simulatedBodies) {
         BodyRecord &r = bodies[index];
-        if (!r.object) continue;
-        r.object->setTransform(r.body.getTransform());
-        r.object->computeAABB();
-        movedObjects.push_back(r.object.get());
+        if (r.object && r.object->place(r.body.getTransform(), detail::kBroadphaseMargin))
+            movedObjects.push_back(r.object.get());
     }
     broadphase.refitAwake(movedObjects);
     candidates.clear();
