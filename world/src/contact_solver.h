@@ -58,6 +58,7 @@ struct SolverManifold {
     real friction = 0;
     real restitution = 0;
     bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
+    real height = 0;             ///< Solve order: lower contacts first (m along -gravity).
     int count = 0;
     SolverPoint points[4];
 };

@@ -74,6 +74,9 @@ struct World::Impl {
     std::vector<detail::SolverBody> solverBodies;
     std::vector<detail::SolverManifold> solverManifolds;
     std::vector<std::uint32_t> solverSource;  ///< Pair index and manifold of each solver manifold.
+    std::vector<std::uint32_t> solverOrder;
+    std::vector<detail::SolverManifold> sortedManifolds;
+    std::vector<std::uint32_t> sortedSource;
     std::vector<int> islandParent;
     std::vector<int> islandStart;
     std::vector<std::uint32_t> islandBodies;
@@ -109,6 +112,8 @@ struct World::Impl {
     void updateBroadphase();
     void runNarrowphase();
     void buildManifolds(real dt);
+    void orderManifolds();
+    real contactHeight(const BodyRecord &a, const BodyRecord &b) const;
     void buildIslands();
     void prepareSolver(real h);
     void solve(real h, bool firstSubstep);

@@ -181,11 +181,20 @@ void World::Impl::recoverPenetration(real h) {
         const detail::PairState &pair = pairs[solverSource[s] >> 2];
         const RigidBody &a = bodies[pair.a].body;
         const RigidBody &b = bodies[pair.b].body;
+        // The slop is left alone only where the whole manifold is that deep: a tilt
+        // (one side deeper than the other) is corrected even when it is below the slop,
+        // or it would never be, and a stack would lean on it.
+        real shallowest = settings.penetrationSlop;
         for (int i = 0; i < m.count; ++i) {
             detail::SolverPoint &p = m.points[i];
-            const real depth = (a.getPointInWorldSpace(p.localA) - b.getPointInWorldSpace(p.localB)).dot(m.normal);
+            p.depth = (a.getPointInWorldSpace(p.localA) - b.getPointInWorldSpace(p.localB)).dot(m.normal);
+            shallowest = std::min(shallowest, p.depth);
+        }
+        const real allowed = std::max(shallowest, real(0));
+        for (int i = 0; i < m.count; ++i) {
+            detail::SolverPoint &p = m.points[i];
             p.pseudoImpulse = 0;
-            p.pseudoTarget = settings.penetrationRecovery * std::max(depth - settings.penetrationSlop, real(0)) / h;
+            p.pseudoTarget = settings.penetrationRecovery * std::max(p.depth - allowed, real(0)) / h;
             needed = needed || p.pseudoTarget > 0;
         }
     }

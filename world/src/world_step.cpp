@@ -2,6 +2,7 @@
 // islands -> solve -> integrate -> sleep.
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "validation.h"
@@ -253,12 +254,40 @@ void World::Impl::buildManifolds(real) {
                 dst.tangent[1].impulse = warm ? src.frictionImpulse.dot(sm.tangent[1]) : 0;
                 stats.maxPenetration = std::max(stats.maxPenetration, src.depth);
             }
+            sm.height = contactHeight(a, b);
             solverSource.push_back((p << 2) | static_cast<std::uint32_t>(k));
             ++stats.manifolds;
             stats.contacts += m.count;
             if (friction > 0) stats.frictionRows += 2 * m.count;
         }
     }
+    orderManifolds();
+}
+
+real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b) const {
+    const real lowest = -std::numeric_limits<real>::infinity();
+    const Vector3 up = -settings.gravity;
+    const real ha = a.isStatic ? lowest : a.body.getPosition().dot(up);
+    const real hb = b.isStatic ? lowest : b.body.getPosition().dot(up);
+    return std::min(ha, hb);
+}
+
+void World::Impl::orderManifolds() {
+    // Gauss-Seidel carries a stack's weight down in one pass when the contacts nearest
+    // the ground come first; the order must not depend on the broadphase's.
+    solverOrder.resize(solverManifolds.size());
+    std::iota(solverOrder.begin(), solverOrder.end(), 0u);
+    std::stable_sort(solverOrder.begin(), solverOrder.end(), [&](std::uint32_t x, std::uint32_t y) {
+        return solverManifolds[x].height < solverManifolds[y].height;
+    });
+    sortedManifolds.resize(solverManifolds.size());
+    sortedSource.resize(solverSource.size());
+    for (std::size_t i = 0; i < solverOrder.size(); ++i) {
+        sortedManifolds[i] = solverManifolds[solverOrder[i]];
+        sortedSource[i] = solverSource[solverOrder[i]];
+    }
+    solverManifolds.swap(sortedManifolds);
+    solverSource.swap(sortedSource);
 }
 
 // --- islands ------------------------------------------------------------------------------
