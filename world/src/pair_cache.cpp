@@ -52,6 +52,24 @@ void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &p
     }
 }
 
+void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance) {
+    std::size_t used = 0;
+    for (ManifoldState &m : manifolds) {
+        m.normal = poseA.linear() * m.localNormal;
+        int kept = 0;
+        for (int i = 0; i < m.count; ++i) {
+            PersistentPoint p = m.points[i];
+            const Vector3 gap = poseA * p.localA - poseB * p.localB;
+            p.depth = gap.dot(m.normal);
+            if (gap.norm() >= distance) continue;
+            m.points[kept++] = p;
+        }
+        m.count = kept;
+        if (kept > 0) manifolds[used++] = m;
+    }
+    manifolds.resize(used);
+}
+
 void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,
                    real matchDistance) {
     ManifoldState old = state;

@@ -64,6 +64,10 @@ private:
 /// world normal from A's frame, depth from the anchors' separation along it.
 void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &poseB);
 
+/// Refreshes the manifolds from their anchors and keeps only the points whose anchors
+/// are less than `distance` apart; drops manifolds left empty.
+void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance);
+
 /// Replaces `state` with `fresh`, carrying each old point's impulses to the new point
 /// whose anchor on A lies within `matchDistance` (warm starting).
 void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,

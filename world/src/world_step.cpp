@@ -27,6 +27,10 @@ private:
     std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+// How far apart (along or across the normal) a contact's anchors may drift once FCL no
+// longer reports the pair before the contact is dropped, m.
+constexpr real kContactKeepDistance = 0.002;
+
 int findRoot(std::vector<int> &parent, int i) {
     while (parent[i] != i) {
         parent[i] = parent[parent[i]];
@@ -199,10 +203,18 @@ void World::Impl::runNarrowphase() {
             const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
                                        b.isPlane ? a.boundingRadius : b.boundingRadius);
             const real matchDistance = std::clamp(0.1 * size, real(0.001), real(0.05));
-            // At most four manifolds per pair (a mesh may report more normals).
-            const int kept = std::min(n, 4);
-            pair.manifolds.resize(kept);
-            for (int k = 0; k < kept; ++k) detail::mergeManifold(pair.manifolds[k], fresh[k], poseA, poseB, matchDistance);
+            if (n == 0 && !pair.manifolds.empty()) {
+                // FCL sees only overlap: a resting contact that opens by a hair would be
+                // lost with its warm-start impulses and found again a step later. Keep
+                // its points as speculative contacts while they stay close.
+                detail::keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance);
+            } else {
+                // At most four manifolds per pair (a mesh may report more normals).
+                const int kept = std::min(n, 4);
+                pair.manifolds.resize(kept);
+                for (int k = 0; k < kept; ++k)
+                    detail::mergeManifold(pair.manifolds[k], fresh[k], poseA, poseB, matchDistance);
+            }
         }
         if (!pair.touching()) continue;
         touchingPairs.push_back(p);
