@@ -14,7 +14,9 @@
 // within the speculative distance are kept and reduced to four well-spread ones. A plane
 // is an unbounded reference face with an exact normal and is never clipped against.
 //
-// Meshes give one FCL contact per triangle. A contact whose normal is its triangle's
+// Meshes give one FCL contact per triangle. Triangles are one-sided, as Jolt's are by
+// default: a shape is only pushed out to the side a triangle's counter-clockwise winding
+// faces, never through it. A contact whose normal is its triangle's
 // normal is a face contact and claims the triangle's vertices; an edge or vertex contact
 // on vertices that face contacts already claimed is an internal edge of a surface
 // (two triangles of a floor) and is dropped, as in Jolt's InternalEdgeRemovingCollector.
@@ -51,10 +53,20 @@ constexpr real kParallelSine = 0.03489949670250097;
 constexpr real kFaceCosine = 0.9999619230641713;
 // Mesh contacts whose normals agree within 2 degrees share a manifold: cos(2 deg).
 constexpr real kMergeCosine = 0.9993908270190958;
+// Faces whose alignments with the normal differ by less than this are equally aligned.
+constexpr real kFaceTie = 1e-9;
+// Faces whose normals are within 1 degree of opposite lie flat on each other: cos(1 deg).
+constexpr real kFlatCosine = 0.9998476951563913;
+// A segment within 1 degree of parallel to a face lies flat on it: sin(1 deg).
+constexpr real kFlatSine = 0.01745240643728351;
+// Edge-edge axes are tried when the two features have at most this many edge pairs.
+constexpr int kMaxEdgePairs = 72;
 // Refinement of MPR normals: how far beyond touching A is moved back (m), and how many
 // times at most.
 constexpr real kRefineMargin = 1e-3;
 constexpr int kRefineRounds = 4;
+// Halvings back towards the current normal when the nearest points overshoot.
+constexpr int kRefineHalvings = 3;
 
 fcl::CollisionRequestd makeRequest(size_t maxContacts) {
     fcl::CollisionRequestd request(maxContacts, true);
@@ -111,6 +123,7 @@ Vector3 polygonNormal(const SupportFeature &f) {
 // centre, a corner rather than a point where a mesh's triangles split the face.
 void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &out) {
     out.count = 0;
+    out.normal = n;
     if (count <= 0) return;
     int chosen[4] = {0, -1, -1, -1};
     real deepest = in[0].depth;
@@ -158,7 +171,6 @@ void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &ou
             if (chosen[3] >= 0) found = 4;
         }
     }
-    out.normal = n;
     for (int k = 0; k < found; ++k) {
         ContactPoint &p = out.points[out.count++];
         p.pointA = in[chosen[k]].pointA;
@@ -239,42 +251,59 @@ void clipSegments(const Pair &pair, const Vector3 &n, const SupportFeature &fa, 
 
 // Clips the incident feature against the side planes of the reference polygon,
 // extruded along n; `w` is the reference face's outward side of n (n on A, -n on B).
-void clipAgainstFace(const SupportFeature &reference, const Vector3 &w, bool clipSides,
-                     const SupportFeature &incident, Vector3 *buffer, Vector3 *scratch, int &count) {
+const Vector3 *clipAgainstFace(const SupportFeature &reference, const Vector3 &w, bool clipSides,
+                               const SupportFeature &incident, Vector3 *buffer, Vector3 *scratch, int &count) {
     count = incident.count;
     std::copy(incident.points, incident.points + count, buffer);
-    if (!clipSides) return;
+    if (!clipSides) return buffer;
     const bool segment = count == 2;
+    real distance[kMaxClipped];
     for (int e = 0; e < reference.count && count > 0; ++e) {
         const Vector3 &origin = reference.points[e];
-        const Vector3 side = (reference.points[(e + 1) % reference.count] - origin).cross(w);
+        const Vector3 side = (reference.points[e + 1 < reference.count ? e + 1 : 0] - origin).cross(w);
         if (side.squaredNorm() < kPointTolerance * kPointTolerance * kPointTolerance * kPointTolerance) continue;
+        bool outside = false;
+        for (int i = 0; i < count; ++i) {
+            distance[i] = (buffer[i] - origin).dot(side);
+            outside = outside || distance[i] > 0;
+        }
+        if (!outside) continue;
         if (segment) {
-            const real d0 = (buffer[0] - origin).dot(side);
-            const real d1 = (buffer[1] - origin).dot(side);
+            const real d0 = distance[0], d1 = distance[1];
             if (d0 > 0 && d1 > 0) {
                 count = 0;
             } else if (d0 > 0) {
                 buffer[0] += d0 / (d0 - d1) * (buffer[1] - buffer[0]);
-            } else if (d1 > 0) {
+            } else {
                 buffer[1] += d1 / (d1 - d0) * (buffer[0] - buffer[1]);
             }
             continue;
         }
-        // Sutherland-Hodgman against one plane.
+        // Sutherland-Hodgman against one plane, into the other buffer.
         int kept = 0;
         for (int i = 0; i < count; ++i) {
-            const Vector3 &current = buffer[i];
-            const Vector3 &next = buffer[(i + 1) % count];
-            const real dc = (current - origin).dot(side);
-            const real dn = (next - origin).dot(side);
-            if (dc <= 0 && kept < kMaxClipped) scratch[kept++] = current;
-            if ((dc < 0 && dn > 0) || (dc > 0 && dn < 0))
-                if (kept < kMaxClipped) scratch[kept++] = current + dc / (dc - dn) * (next - current);
+            const int j = i + 1 < count ? i + 1 : 0;
+            const real dc = distance[i], dn = distance[j];
+            if (dc <= 0 && kept < kMaxClipped) scratch[kept++] = buffer[i];
+            if (((dc < 0 && dn > 0) || (dc > 0 && dn < 0)) && kept < kMaxClipped)
+                scratch[kept++] = buffer[i] + dc / (dc - dn) * (buffer[j] - buffer[i]);
         }
         count = kept;
-        std::copy(scratch, scratch + count, buffer);
+        std::swap(buffer, scratch);
     }
+    return buffer;
+}
+
+// Whether features fa and fb, seen along n, overlap: the one clipped against the side
+// planes of the other (a polygon, A's when both are) keeps some of itself.
+bool overlapAlong(const SupportFeature &fa, const SupportFeature &fb, const Vector3 &n) {
+    const bool referenceOnA = fa.count >= 3;
+    Vector3 buffer[kMaxClipped];
+    Vector3 scratch[kMaxClipped];
+    int count = 0;
+    clipAgainstFace(referenceOnA ? fa : fb, referenceOnA ? n : Vector3(-n), true, referenceOnA ? fb : fa, buffer,
+                    scratch, count);
+    return count > 0;
 }
 
 // Builds the contact points of features fa (A's along n) and fb (B's along -n).
@@ -286,9 +315,13 @@ void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, 
     } else if (fa.count == 2 && fb.count == 2) {
         clipSegments(pair, n, fa, fb, out);
     } else {
-        const real alignA = fa.count >= 3 ? polygonNormal(fa).dot(n) : -2;
-        const real alignB = fb.count >= 3 ? -polygonNormal(fb).dot(n) : -2;
-        const bool referenceOnA = alignA >= alignB;
+        const Vector3 normalA = fa.count >= 3 ? polygonNormal(fa) : Vector3::Zero();
+        const Vector3 normalB = fb.count >= 3 ? polygonNormal(fb) : Vector3::Zero();
+        const real alignA = fa.count >= 3 ? normalA.dot(n) : -2;
+        const real alignB = fb.count >= 3 ? -normalB.dot(n) : -2;
+        // Equally aligned faces (resting flat): the one with fewer sides clips faster.
+        const bool referenceOnA =
+            std::abs(alignA - alignB) < kFaceTie ? fa.count <= fb.count : alignA > alignB;
         const SupportFeature &reference = referenceOnA ? fa : fb;
         const SupportFeature &incident = referenceOnA ? fb : fa;
         const CollisionShape &referenceShape = referenceOnA ? pair.a : pair.b;
@@ -296,10 +329,11 @@ void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, 
         Vector3 buffer[kMaxClipped];
         Vector3 scratch[kMaxClipped];
         int count = 0;
-        clipAgainstFace(reference, referenceOnA ? n : Vector3(-n), !unbounded, incident, buffer, scratch, count);
-        const Vector3 plane = polygonNormal(reference);
+        const Vector3 *clipped =
+            clipAgainstFace(reference, referenceOnA ? n : Vector3(-n), !unbounded, incident, buffer, scratch, count);
+        const Vector3 &plane = referenceOnA ? normalA : normalB;
         for (int i = 0; i < count; ++i)
-            addClipped(buffer[i], n, reference.points[0], plane, referenceOnA, pair.speculative, out);
+            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, pair.speculative, out);
     }
     if (out.count == before) pointContact(pair, n, false, out);
 }
@@ -340,13 +374,24 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
     return 1;
 }
 
+// Which normals a contact may take. Against a mesh triangle (one-sided: shapes are
+// pushed out to the side its counter-clockwise winding faces) a normal must not push
+// the shape through the triangle: n.front >= 0, `front` being the triangle's normal
+// turned into a normal from A to B. Other pairs take any direction.
+struct NormalRule {
+    bool oneSided = false;
+    Vector3 front = Vector3::Zero();
+
+    bool allows(const Vector3 &n) const { return !oneSided || n.dot(front) >= 0; }
+};
+
 // Improves the normal n (unit, A to B; overlap f along it) the way a separating pair
 // finds its normal: A moved back along n by f plus a margin no longer touches B, and
 // GJK's nearest points of the two then lie where the surfaces meet, so the line between
 // them is the surfaces' common normal there. For curved surfaces less deep than their
 // radius of curvature each round brings n closer to the true normal; flat faces give
 // theirs at once. A new normal is taken only if it lowers the overlap.
-Vector3 refineNormal(const Pair &pair, Vector3 n, real &f) {
+Vector3 refineNormal(const Pair &pair, const NormalRule &rule, Vector3 n, real &f) {
     for (int round = 0; round < kRefineRounds && f > 0; ++round) {
         const Vector3 shift = (f + kRefineMargin) * n;
         auto support = [&](const Vector3 &d) {
@@ -357,60 +402,136 @@ Vector3 refineNormal(const Pair &pair, Vector3 n, real &f) {
         if (!closestToOrigin(support, -n, closest)) break;
         const real distance = closest.norm();
         if (!(distance > kPointTolerance * kRefineMargin)) break;
-        const Vector3 candidate = -closest / distance;
-        const real value = pair.overlap(candidate);
-        if (!(value < f - kPointTolerance * kPointTolerance)) break;
+        // At a ridge of A - B (a cylinder's rim, a box's edge) the nearest points may
+        // overshoot: then try halfway back towards n.
+        Vector3 candidate = -closest / distance;
+        if ((candidate - n).squaredNorm() < kPointTolerance * kPointTolerance) break;
+        real value = 0;
+        bool improved = false;
+        for (int halving = 0; halving <= kRefineHalvings && !improved; ++halving) {
+            if (halving > 0) candidate = (candidate + n).normalized();
+            if (!rule.allows(candidate)) continue;
+            value = pair.overlap(candidate);
+            improved = value < f - kPointTolerance * kPointTolerance;
+        }
+        if (!improved) break;
         n = candidate;
         f = value;
     }
     return n;
 }
 
-// The normal of one FCL contact: FCL's or a supporting face's, the least overlap, then
-// refined when FCL's normal came from MPR (`refine`). Leaves the features along the
-// chosen normal in fa and fb, and the overlap along it in `overlap`. A triangle has no
-// inside, so with `twoSided` both directions of every axis are candidates: FCL's normal
-// for a shape against a triangle may even point the wrong way.
-Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, bool twoSided, bool refine, SupportFeature &fa,
-                     SupportFeature &fb, real &overlap) {
-    pair.a.supportingFeature(pair.poseA, fclNormal, pair.triangleA, fa);
-    pair.b.supportingFeature(pair.poseB, -fclNormal, pair.triangleB, fb);
-    Vector3 best = fclNormal;
-    real bestOverlap = pair.overlap(fclNormal);
-    auto consider = [&](const Vector3 &candidate, real preference) {
+// The normal of one FCL contact: among FCL's, the supporting faces', the cross products
+// of their edges and (for cylinders) the cap's and side's, the one of least overlap,
+// then refined when FCL's normal came from MPR (`refine`). Leaves the features along the chosen normal in fa
+// and fb, and the overlap along it in `overlap`.
+Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, const NormalRule &rule, bool refine,
+                     SupportFeature &fa, SupportFeature &fb, real &overlap) {
+    // FCL's normal of a shape against a triangle can point anywhere, even backwards;
+    // the triangle's own normal is the start then.
+    const Vector3 start = rule.allows(fclNormal) ? fclNormal : rule.front;
+    Vector3 best = start;
+    real bestOverlap = pair.overlap(start);
+    bool bestFlat = false;
+    auto consider = [&](const Vector3 &candidate, real preference, bool flat) {
+        if (!rule.allows(candidate)) return;
         const real o = pair.overlap(candidate);
         if (o <= bestOverlap + preference) {
             best = candidate;
             bestOverlap = o;
+            bestFlat = flat;
         }
     };
-    if (twoSided) consider(-fclNormal, 0);
-    for (int side = 0; side < 2; ++side) {
-        const SupportFeature &f = side == 0 ? fa : fb;
-        if (f.count < 3) continue;
-        const Vector3 candidate = side == 0 ? polygonNormal(f) : Vector3(-polygonNormal(f));
-        if (twoSided) {
-            consider(candidate, kFacePreference);
-            consider(-candidate, kFacePreference);
-        } else if (candidate.dot(fclNormal) > 0) {
-            consider(candidate, kFacePreference);
+    if (rule.oneSided) consider(rule.front, kFacePreference, false);
+
+    // The candidates that the features along `direction` suggest.
+    Vector3 featureDirection = Vector3::Zero();
+    auto probe = [&](const Vector3 &direction) {
+        pair.a.supportingFeature(pair.poseA, direction, pair.triangleA, fa);
+        pair.b.supportingFeature(pair.poseB, -direction, pair.triangleB, fb);
+        featureDirection = direction;
+        const Vector3 normalA = fa.count >= 3 ? polygonNormal(fa) : Vector3::Zero();
+        const Vector3 normalB = fb.count >= 3 ? Vector3(-polygonNormal(fb)) : Vector3::Zero();
+        // Two faces, or a segment (a capsule's or cylinder's side) and a face, parallel
+        // and overlapping seen along the normal lie flat on each other: the face normal
+        // needs no refining.
+        bool flat = normalA.dot(normalB) > kFlatCosine;
+        if ((fa.count == 2 && fb.count >= 3) || (fb.count == 2 && fa.count >= 3)) {
+            // A curved side touches a face along its support line along the face's
+            // normal, which may not be the line along `direction`.
+            const Vector3 &face = fa.count >= 3 ? normalA : normalB;
+            SupportFeature sa, sb;
+            pair.a.supportingFeature(pair.poseA, face, pair.triangleA, sa);
+            pair.b.supportingFeature(pair.poseB, -face, pair.triangleB, sb);
+            const SupportFeature &line = sa.count == 2 ? sa : sb;
+            flat = line.count == 2 && (sa.count >= 3 || sb.count >= 3) &&
+                   std::abs((line.points[1] - line.points[0]).normalized().dot(face)) < kFlatSine &&
+                   overlapAlong(sa, sb, face);
+        }
+        if (normalA.dot(direction) > 0) consider(normalA, kFacePreference, flat);
+        if (normalB.dot(direction) > 0) consider(normalB, kFacePreference, flat);
+        if (flat) return;
+        // Edge against edge: the separating-axis candidates of the two features' edges.
+        const int edgesA = fa.count >= 3 ? fa.count : fa.count - 1;
+        const int edgesB = fb.count >= 3 ? fb.count : fb.count - 1;
+        if (edgesA > 0 && edgesB > 0 && edgesA * edgesB <= kMaxEdgePairs) {
+            for (int i = 0; i < edgesA; ++i) {
+                const Vector3 ea = fa.points[i + 1 < fa.count ? i + 1 : 0] - fa.points[i];
+                for (int j = 0; j < edgesB; ++j) {
+                    const Vector3 axis = ea.cross(fb.points[j + 1 < fb.count ? j + 1 : 0] - fb.points[j]);
+                    const real length = axis.norm();
+                    if (length < kPointTolerance * kPointTolerance) continue;
+                    consider(axis.dot(direction) >= 0 ? Vector3(axis / length) : Vector3(-axis / length), 0, false);
+                }
+            }
+        }
+        // A cylinder's rim is a ridge where refinement stalls: its cap and side normals,
+        // the faces either side of it, are candidates too, and so are the rim's tangent
+        // crossed with the other feature's edges.
+        for (int side = 0; side < 2; ++side) {
+            const CollisionShape &shape = side == 0 ? pair.a : pair.b;
+            if (shape.shape().type != ShapeType::Cylinder) continue;
+            const Vector3 axis = (side == 0 ? pair.poseA : pair.poseB).linear().col(2);
+            const Vector3 outward = side == 0 ? direction : Vector3(-direction);
+            const real along = axis.dot(outward);
+            const Vector3 cap = along >= 0 ? axis : Vector3(-axis);
+            const Vector3 radial = outward - along * axis;
+            consider(side == 0 ? cap : Vector3(-cap), 0, false);
+            if (radial.norm() < kPointTolerance) continue;
+            consider(side == 0 ? radial.normalized() : Vector3(-radial.normalized()), 0, false);
+            const Vector3 tangent = axis.cross(radial);
+            const SupportFeature &other = side == 0 ? fb : fa;
+            const int edges = other.count >= 3 ? other.count : other.count - 1;
+            for (int e = 0; e < edges && edges <= SupportFeature::kMaxPoints; ++e) {
+                const Vector3 axisOfEdge =
+                    tangent.cross(other.points[e + 1 < other.count ? e + 1 : 0] - other.points[e]);
+                const real length = axisOfEdge.norm();
+                if (length < kPointTolerance * kPointTolerance) continue;
+                consider(axisOfEdge.dot(direction) >= 0 ? Vector3(axisOfEdge / length) : Vector3(-axisOfEdge / length), 0,
+                         false);
+            }
+        }
+    };
+    probe(start);
+    // Against a triangle, the shape's face that lies on it may not be the one FCL's
+    // normal points at: look along the triangle's normal too.
+    if (rule.oneSided && start != rule.front) probe(rule.front);
+    // A cylinder's rim point moves with the direction: look again from the new best.
+    const bool cylinder = pair.a.shape().type == ShapeType::Cylinder || pair.b.shape().type == ShapeType::Cylinder;
+    for (int again = 0; again < 2 && cylinder && best != featureDirection && !bestFlat; ++again) probe(best);
+
+    if (refine && !bestFlat) {
+        // The overlap has a local minimum at every face of A - B; FCL's normal may lie
+        // in the basin of a lower one than the best candidate's, so descend from both.
+        Vector3 other = start;
+        real otherOverlap = pair.overlap(start);
+        best = refineNormal(pair, rule, best, bestOverlap);
+        if (start != best) {
+            other = refineNormal(pair, rule, other, otherOverlap);
+            if (otherOverlap < bestOverlap) best = other, bestOverlap = otherOverlap;
         }
     }
-    // A cylinder's rim is a ridge where refinement stalls: its cap and side normals,
-    // the faces either side of it, are candidates too.
-    for (int side = 0; side < 2; ++side) {
-        const CollisionShape &shape = side == 0 ? pair.a : pair.b;
-        if (shape.shape().type != ShapeType::Cylinder) continue;
-        const Vector3 axis = (side == 0 ? pair.poseA : pair.poseB).linear().col(2);
-        const Vector3 outward = side == 0 ? fclNormal : Vector3(-fclNormal);
-        const real along = axis.dot(outward);
-        const Vector3 cap = along >= 0 ? axis : Vector3(-axis);
-        const Vector3 radial = outward - along * axis;
-        consider(side == 0 ? cap : Vector3(-cap), 0);
-        if (radial.norm() > kPointTolerance) consider(side == 0 ? radial.normalized() : Vector3(-radial.normalized()), 0);
-    }
-    if (refine) best = refineNormal(pair, best, bestOverlap);
-    if (best != fclNormal) {
+    if (best != featureDirection) {
         pair.a.supportingFeature(pair.poseA, best, pair.triangleA, fa);
         pair.b.supportingFeature(pair.poseB, -best, pair.triangleB, fb);
     }
@@ -450,7 +571,9 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     const CollisionShape &mesh = meshIsB ? b : a;
     const Matrix4 &meshPose = meshIsB ? poseB : poseA;
     const int triangles = static_cast<int>(mesh.faces().size());
-    const bool refine = !exactInFcl(a.shape().type, b.shape().type);
+    // FCL's normals against triangles, even its exact sphere-triangle ones, describe
+    // the triangle alone; refinement finds each triangle's own best normal.
+    const bool refine = true;
 
     MeshContact contacts[kMaxFclContacts];
     int count = 0;
@@ -458,14 +581,17 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
         const int triangle = meshIsB ? raw[i].triangleB : raw[i].triangleA;
         if (triangle < 0 || triangle >= triangles) continue;
         const Pair pair{a, poseA, raw[i].triangleA, b, poseB, raw[i].triangleB, speculative};
+        const Vector3 triangleNormal = meshPose.linear() * mesh.faceNormals()[triangle];
+        NormalRule rule;
+        rule.oneSided = true;
+        rule.front = meshIsB ? Vector3(-triangleNormal) : triangleNormal;
         MeshContact &c = contacts[count];
         SupportFeature fa, fb;
-        c.normal = chooseNormal(pair, raw[i].normal, true, refine, fa, fb, c.depth);
+        c.normal = chooseNormal(pair, raw[i].normal, rule, refine, fa, fb, c.depth);
         if (!(c.depth > -speculative)) continue;
         c.triangleA = raw[i].triangleA;
         c.triangleB = raw[i].triangleB;
-        const Vector3 triangleNormal = meshPose.linear() * mesh.faceNormals()[triangle];
-        c.face = std::abs(triangleNormal.dot(c.normal)) > kFaceCosine;
+        c.face = c.normal.dot(rule.front) > kFaceCosine;
         c.kept = true;
         ++count;
     }
@@ -580,7 +706,7 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     SupportFeature fa, fb;
     real overlap = 0;
     const Vector3 normal =
-        chooseNormal(pair, raw[deepest].normal, false, !exactInFcl(typeA, typeB), fa, fb, overlap);
+        chooseNormal(pair, raw[deepest].normal, NormalRule(), !exactInFcl(typeA, typeB), fa, fb, overlap);
     PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
     if (points.count == 0) return 0;
