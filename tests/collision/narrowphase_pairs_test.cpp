@@ -364,5 +364,67 @@ TEST(NarrowphasePairs, ConvexBaseOnMesh) {
                   flat(onTop(0, {{-0.1, -0.2}, {0.7, -0.2}, {0.7, 0.6}, {-0.1, 0.6}})));
 }
 
+// ---- Normals that FCL's MPR only approximates, refined ----
+// Refinement stops once the depth no longer improves, which leaves the normal within
+// about 1e-4 rad of the true one and the depth within 1e-5 m.
+constexpr real kRefinedNormal = 1e-4;
+constexpr real kRefinedDepth = 1e-5;
+constexpr real kRefinedPoint = 1e-4;
+
+TEST(NarrowphasePairs, CapsulesCrossingAtAnAngle) {
+    // A along x at height 0.45; B at the origin along (cos t, 0, sin t) but shifted 0.3
+    // along its own axis. The axes are skew lines whose common perpendicular is the y axis
+    // (through x = z = 0 on both), 0.45 long: depth 0.25 + 0.25 - 0.45 = 0.05 there.
+    for (real degrees : {20.0, 50.0, 75.0}) {
+        SCOPED_TRACE("angle " + std::to_string(degrees));
+        const real t = degrees * kPi / 180;
+        const Vector3 axis(std::cos(t), 0, std::sin(t));
+        const Quaternion q = Quaternion::FromTwoVectors(Vector3::UnitZ(), axis);
+        Expected e = flat(onTop(0.25, {{0, 0}}));
+        e.normalTolerance = kRefinedNormal;
+        e.depthTolerance = kRefinedDepth;
+        e.pointTolerance = kRefinedPoint;
+        expectContact(capsule(), pose(Vector3(0, 0.45, 0), zAlongX()), capsule(), pose(0.3 * axis, q), e);
+    }
+}
+
+TEST(NarrowphasePairs, SphereOnConvexApex) {
+    // Pyramid at the origin, apex at (0, 0.75, 0). The sphere's centre (0.1, 1.2, 0) is
+    // sqrt(0.1^2 + 0.45^2) = 0.46098 from the apex and within the apex's normal cone (its
+    // direction is 12.5 degrees from vertical, the side faces lean 68 degrees): the apex
+    // is the nearest point, depth 0.5 - 0.46098, normal from the centre to the apex.
+    const Vector3 apex(0, 0.75, 0);
+    const Vector3 centre(0.1, 1.2, 0);
+    const Vector3 n = (apex - centre).normalized();
+    Expected e = flat({{centre + 0.5 * n, apex}}, n);
+    e.depth = 0.5 - (centre - apex).norm();
+    e.normalTolerance = kRefinedNormal;
+    e.depthTolerance = kRefinedDepth;
+    e.pointTolerance = kRefinedPoint;
+    expectContact(sphere(), pose(centre), pyramid(), Matrix4::Identity(), e);
+}
+
+TEST(NarrowphasePairs, CylinderSideAcrossBoxEdge) {
+    // A cylinder lying along z rests across the box's top edge x = 0.5, y = 0.5, its axis
+    // at (0.5 + 0.4 s, 0.5 + 0.4 c) - 0.05 (s, c) for the direction (s, c) = (sin, cos) 30
+    // degrees from vertical: the edge is 0.35 from the axis, 0.05 deep, normal -(s, c).
+    const real s = 0.5, c = std::sqrt(0.75);
+    const Vector3 out(s, c, 0);
+    const Vector3 edge(0.5, 0.5, 0);
+    const Vector3 centre = edge + 0.35 * out;
+    // Along the edge the contact is a line: one or two points on it.
+    Expected e = flat({}, -out);
+    e.minPoints = 1;
+    e.maxPoints = 2;
+    e.normalTolerance = kRefinedNormal;
+    e.depthTolerance = kRefinedDepth;
+    e.eachPoint = [&](const Vector3 &a, const Vector3 &b) {
+        EXPECT_NEAR(b.x(), 0.5, kRefinedPoint);
+        EXPECT_NEAR(b.y(), 0.5, kRefinedPoint);
+        EXPECT_LT((a - (b - kDepth * out)).norm(), kRefinedPoint);
+    };
+    expectContact(cylinder(), pose(centre), box(), Matrix4::Identity(), e);
+}
+
 }  // namespace
 }  // namespace cyclone::test
