@@ -2,6 +2,8 @@
 // pairs apart, appending, meshes with internal edges and walls, far-away poses.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "collision_test_support.h"
 
 namespace cyclone::test {
@@ -212,6 +214,74 @@ TEST(Manifold, DeepBoxInMeshFloor) {
     EXPECT_LT((out[0].normal - Vector3(0, -1, 0)).norm(), 1e-9);
     ASSERT_EQ(out[0].count, 4);
     for (int i = 0; i < 4; ++i) EXPECT_NEAR(out[0].points[i].depth, 0.3, 1e-9);
+}
+
+TEST(Manifold, InvariantsOverRandomShallowContacts) {
+    // Every pair of shapes, at random orientations, brought into contact 0.01 deep along
+    // a random direction (bisection on FCL's yes/no answer, then 0.01 back). Whatever the
+    // pair: unit normals, at most four points, depth = (pointA - pointB).normal, no point
+    // beyond the speculative distance, a deepest point no deeper than the 0.01 step (the
+    // step along its direction separates them, so the least overlap is at most that), and
+    // the same number of manifolds in both argument orders.
+    const std::vector<Shape> shapes = {Shape::box(Vector3(0.5, 0.3, 0.4)), Shape::sphere(0.4), Shape::capsule(0.25, 0.8),
+                                       Shape::cylinder(0.35, 0.9), pyramid(), Shape::plane(Vector3::UnitY(), 0),
+                                       meshFloor()};
+    std::vector<std::shared_ptr<const CollisionShape>> compiled;
+    for (const Shape &shape : shapes) compiled.push_back(detail::compileShape(shape));
+    std::mt19937 random(5);
+    std::uniform_real_distribution<real> uniform(-1, 1);
+    auto randomRotation = [&] {
+        return Quaternion(Eigen::Matrix<real, 4, 1>(uniform(random), uniform(random), uniform(random), uniform(random))
+                              .normalized());
+    };
+    auto touching = [](const CollisionShape &a, const Matrix4 &pa, const CollisionShape &b, const Matrix4 &pb) {
+        fcl::CollisionRequestd request;
+        fcl::CollisionResultd result;
+        return fcl::collide(a.geometry().get(), pa, b.geometry().get(), pb, request, result) > 0;
+    };
+    const real step = 0.01;
+    detail::NarrowphaseSettings settings;
+    for (int i = 0; i < 5; ++i) {
+        for (int j = 0; j < 7; ++j) {
+            for (int trial = 0; trial < 40; ++trial) {
+                SCOPED_TRACE(std::string(shapeTypeName(shapes[i].type)) + " against " + shapeTypeName(shapes[j].type) +
+                             ", trial " + std::to_string(trial));
+                const bool ground = j >= 5;
+                const Matrix4 poseB = ground ? Matrix4::Identity() : pose(Vector3::Zero(), randomRotation());
+                Vector3 direction(uniform(random), uniform(random), uniform(random));
+                if (ground) direction = Vector3(0.3 * uniform(random), 1, 0.3 * uniform(random));
+                direction.normalize();
+                const Vector3 origin = ground ? Vector3(2 * uniform(random), 0, 2 * uniform(random)) : Vector3::Zero();
+                const Quaternion orientation = randomRotation();
+                auto at = [&](real t) { return pose(origin + t * direction, orientation); };
+                real lo = 0, hi = 4;
+                ASSERT_FALSE(touching(*compiled[i], at(hi), *compiled[j], poseB));
+                for (int k = 0; k < 40; ++k) {
+                    const real mid = (lo + hi) / 2;
+                    (touching(*compiled[i], at(mid), *compiled[j], poseB) ? lo : hi) = mid;
+                }
+                const Matrix4 poseA = at(hi - step);
+                std::vector<Manifold> out, reversed;
+                detail::collide(*compiled[i], poseA, *compiled[j], poseB, settings, out);
+                detail::collide(*compiled[j], poseB, *compiled[i], poseA, settings, reversed);
+                ASSERT_FALSE(out.empty());
+                EXPECT_EQ(out.size(), reversed.size());
+                real deepest = -1;
+                for (const Manifold &m : out) {
+                    EXPECT_NEAR(m.normal.norm(), 1, 1e-12);
+                    EXPECT_GE(m.count, 1);
+                    EXPECT_LE(m.count, 4);
+                    for (int k = 0; k < m.count; ++k) {
+                        const detail::ContactPoint &p = m.points[k];
+                        EXPECT_NEAR((p.pointA - p.pointB).dot(m.normal), p.depth, 1e-9);
+                        EXPECT_GT(p.depth, -settings.speculativeDistance);
+                        deepest = std::max(deepest, p.depth);
+                    }
+                }
+                EXPECT_LE(deepest, 1.05 * step);
+            }
+        }
+    }
 }
 
 }  // namespace

@@ -643,11 +643,13 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
                 for (int k = 0; k < partial.count; ++k)
                     points.add(partial.points[k].pointA, partial.points[k].pointB, partial.points[k].depth);
             }
+            // Clipped along the manifold's normal, so that every point's depth is
+            // measured along the normal the manifold reports.
             const Pair pair{a, poseA, c.triangleA, b, poseB, c.triangleB, speculative};
             SupportFeature fa, fb;
-            a.supportingFeature(poseA, c.normal, c.triangleA, fa);
-            b.supportingFeature(poseB, -c.normal, c.triangleB, fb);
-            clipFeatures(pair, c.normal, fa, fb, points);
+            a.supportingFeature(poseA, normal, c.triangleA, fa);
+            b.supportingFeature(poseB, -normal, c.triangleB, fb);
+            clipFeatures(pair, normal, fa, fb, points);
         }
         if (points.count == 0) continue;
         Manifold manifold;
