@@ -3,7 +3,7 @@
 // everything fell asleep.
 //
 //   stacking [--solver split|soft] [--substeps N] [--velocity-iterations N]
-//            [--position-iterations N] [--slop M] [--reuse M] [--hertz HZ]
+//            [--position-iterations N] [--slop M] [--recovery F] [--reuse M] [--hertz HZ]
 //
 // The options change the WorldSettings, to compare solver settings on the same scenes.
 #include <chrono>
@@ -88,6 +88,8 @@ bool parse(int argc, char **argv, WorldSettings &settings) {
             settings.penetrationSlop = std::atof(value);
         } else if (flag == "--reuse") {
             settings.manifoldReuseTolerance = std::atof(value);
+        } else if (flag == "--recovery") {
+            settings.penetrationRecovery = std::atof(value);
         } else if (flag == "--hertz") {
             settings.contactHertz = std::atof(value);
         } else {
@@ -101,7 +103,7 @@ int main(int argc, char **argv) {
     WorldSettings chosen;
     if (!parse(argc, argv, chosen)) {
         std::fprintf(stderr, "usage: stacking [--solver split|soft] [--substeps N] [--velocity-iterations N] "
-                             "[--position-iterations N] [--slop M] [--reuse M] [--hertz HZ]\n");
+                             "[--position-iterations N] [--slop M] [--recovery F] [--reuse M] [--hertz HZ]\n");
         return 2;
     }
     std::printf("10 s at 60 Hz, %s solver, %d sub-steps x (%d velocity + %d position iterations), slop %g m\n",

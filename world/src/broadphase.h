@@ -27,7 +27,13 @@ public:
     /// left the fat one (the tree must then be updated).
     bool place(const fcl::Transform3d &pose, double margin) {
         setTransform(pose);
-        computeAABB();
+        // FCL's computeAABB bounds a rotated shape by its bounding sphere (a rotated unit
+        // box gets a 1.73 m box); the rotated local box is much tighter.
+        const fcl::AABBd &local = collisionGeometry()->aabb_local;
+        const fcl::Vector3d centre = pose * local.center();
+        const fcl::Vector3d half = pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_));
+        aabb.min_ = centre - half;
+        aabb.max_ = centre + half;
         if (fat_.contain(aabb)) {
             aabb = fat_;
             return false;

@@ -56,7 +56,7 @@ struct WorldSettings {
     /// Penetration the solver leaves alone so that resting contacts persist, m, >= 0.
     real penetrationSlop = 0.0002;
     /// Fraction of the penetration beyond the slop removed per step, in (0, 1].
-    real penetrationRecovery = 0.2;
+    real penetrationRecovery = 0.1;
     /// Approach speed below which restitution is ignored, m/s, >= 0.
     real restitutionThreshold = 1.0;
     /// Contact points up to this far apart are kept, so a tilting face keeps its
