@@ -1,0 +1,73 @@
+// collide() allocates nothing beyond what fcl::collide itself allocates: its working
+// storage is on the stack and the caller's vector is reused.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "collision_test_support.h"
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+// Counting replacements of the global allocation functions, for this test binary only.
+void *operator new(std::size_t size) {
+    ++allocations;
+    if (void *p = std::malloc(size ? size : 1)) return p;
+    throw std::bad_alloc();
+}
+void *operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void *p) noexcept { std::free(p); }
+void operator delete[](void *p) noexcept { std::free(p); }
+void operator delete(void *p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void *p, std::size_t) noexcept { std::free(p); }
+
+namespace cyclone::test {
+namespace {
+
+void expectNoExtraAllocation(const Shape &a, const Matrix4 &poseA, const Shape &b, const Matrix4 &poseB) {
+    const auto compiledA = detail::compileShape(a);
+    const auto compiledB = detail::compileShape(b);
+    const bool mesh = a.type == ShapeType::Mesh || b.type == ShapeType::Mesh;
+    fcl::CollisionRequestd request(mesh ? 16 : 4, true);
+    request.gjk_solver_type = fcl::GST_LIBCCD;
+    fcl::CollisionResultd result;
+    std::vector<Manifold> out;
+    out.reserve(8);
+    const detail::NarrowphaseSettings settings;
+    // Warm up: first calls size FCL's and our reused storage.
+    for (int i = 0; i < 3; ++i) {
+        out.clear();
+        detail::collide(*compiledA, poseA, *compiledB, poseB, settings, out);
+        result.clear();
+        fcl::collide(compiledA->geometry().get(), poseA, compiledB->geometry().get(), poseB, request, result);
+    }
+    ASSERT_FALSE(out.empty());
+
+    long before = allocations;
+    result.clear();
+    fcl::collide(compiledA->geometry().get(), poseA, compiledB->geometry().get(), poseB, request, result);
+    const long byFcl = allocations - before;
+
+    before = allocations;
+    out.clear();
+    detail::collide(*compiledA, poseA, *compiledB, poseB, settings, out);
+    const long byCollide = allocations - before;
+    EXPECT_EQ(byCollide, byFcl) << shapeTypeName(a.type) << " against " << shapeTypeName(b.type);
+}
+
+TEST(Allocation, CollideAllocatesOnlyWhatFclDoes) {
+    const Shape box = Shape::box(Vector3(0.5, 0.5, 0.5));
+    expectNoExtraAllocation(box, pose(Vector3(0.1, 0.95, 0)), box, Matrix4::Identity());
+    expectNoExtraAllocation(box, pose(Vector3(0.1, 0.45, 0)), Shape::plane(Vector3::UnitY(), 0), Matrix4::Identity());
+    expectNoExtraAllocation(Shape::cylinder(0.4, 1), pose(Vector3(0.1, 0.95, 0), zUp()), box, Matrix4::Identity());
+    expectNoExtraAllocation(Shape::capsule(0.25, 1), pose(Vector3(0, 0.45, 0), zAlongX()), Shape::capsule(0.25, 1),
+                            Matrix4::Identity());
+    expectNoExtraAllocation(pyramid(), pose(Vector3(0.1, 0.7, 0)), box, Matrix4::Identity());
+    expectNoExtraAllocation(box, pose(Vector3(0.3, 0.45, 0.2)), meshFloor(), Matrix4::Identity());
+}
+
+}  // namespace
+}  // namespace cyclone::test
