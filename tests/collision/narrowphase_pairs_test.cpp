@@ -319,9 +319,9 @@ TEST(NarrowphasePairs, ConvexBaseOnPlane) {
                   flat(onTop(0, {{-0.4, -0.4}, {0.4, -0.4}, {0.4, 0.4}, {-0.4, 0.4}})));
 }
 
-TEST(NarrowphasePairs, PlaneNormalIsNormalisedAndOffsetIsADistance) {
-    // Normal (0, 2, 0) and offset 0.1: the solid is y <= 0.1.
-    expectContact(box(), pose(Vector3(0, 0.55, 0)), Shape::plane(Vector3(0, 2, 0), 0.1), Matrix4::Identity(),
+TEST(NarrowphasePairs, PlaneWithALongNormal) {
+    // Normal (0, 2, 0) and offset 0.2: the solid is 2y <= 0.2, y <= 0.1.
+    expectContact(box(), pose(Vector3(0, 0.55, 0)), Shape::plane(Vector3(0, 2, 0), 0.2), Matrix4::Identity(),
                   flat(onTop(0.1, {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}})));
 }
 

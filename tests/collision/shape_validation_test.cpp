@@ -65,7 +65,8 @@ TEST(ShapeValidation, ValidShapesCompileWithTheirFclGeometry) {
                   ->getNodeType(),
               fcl::BV_OBBRSS);
 
-    // FCL's Box takes full sizes; its Cylinder the total length; its Halfspace a unit normal.
+    // FCL's Box takes full sizes; its Cylinder the total length; its Halfspace a unit
+    // normal, the offset divided by the normal's length (0,3,4).x <= 2 is (0,0.6,0.8).x <= 0.4.
     const auto box = detail::compileShape(Shape::box(Vector3(1, 2, 3)));
     EXPECT_EQ(static_cast<const fcl::Boxd &>(*box->geometry()).side, fcl::Vector3d(2, 4, 6));
     const auto cylinder = detail::compileShape(Shape::cylinder(0.5, 2));
@@ -75,9 +76,9 @@ TEST(ShapeValidation, ValidShapesCompileWithTheirFclGeometry) {
     const auto plane = detail::compileShape(Shape::plane(Vector3(0, 3, 4), 2));
     const auto &halfspace = static_cast<const fcl::Halfspaced &>(*plane->geometry());
     EXPECT_NEAR((halfspace.n - fcl::Vector3d(0, 0.6, 0.8)).norm(), 0, 1e-15);
-    EXPECT_EQ(halfspace.d, 2);
+    EXPECT_NEAR(halfspace.d, 0.4, 1e-15);
     EXPECT_NEAR((plane->planeNormal() - Vector3(0, 0.6, 0.8)).norm(), 0, 1e-15);
-    EXPECT_EQ(plane->planeOffset(), 2);
+    EXPECT_NEAR(plane->planeOffset(), 0.4, 1e-15);
 }
 
 TEST(ShapeValidation, BoxHalfExtents) {

@@ -109,10 +109,10 @@ TEST(SupportingFeature, ConvexGivesTheMostAlignedHullFace) {
 }
 
 TEST(SupportingFeature, PlaneIsASquareOnItsSurface) {
-    // The plane y <= 2 (normal (0, 3, 0), offset 2).
+    // Normal (0, 3, 0), offset 2: the solid 3y <= 2, surface at y = 2/3.
     const auto f = feature(Shape::plane(Vector3(0, 3, 0), 2), Matrix4::Identity(), -Vector3::UnitY());
     ASSERT_EQ(f.count, 4);
-    for (int i = 0; i < 4; ++i) EXPECT_NEAR(f.points[i].y(), 2, 1e-9);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(f.points[i].y(), 2.0 / 3, 1e-9);
     expectCounterClockwise(f, Vector3::UnitY());
 }
 

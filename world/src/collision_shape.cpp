@@ -198,8 +198,9 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
             requireFinite("shape.offset", shape.offset);
             const real length = shape.normal.stableNorm();
             if (!(length > 0)) refuse("shape.normal", "must have non-zero length");
+            // The solid is normal.x <= offset; dividing both sides by |normal| keeps it.
             c.planeNormal_ = shape.normal / length;
-            c.planeOffset_ = shape.offset;
+            c.planeOffset_ = shape.offset / length;
             c.geometry_ = std::make_shared<fcl::Halfspaced>(c.planeNormal_, c.planeOffset_);
             break;
         }

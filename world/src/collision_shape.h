@@ -38,7 +38,8 @@ public:
     const std::vector<Vector3> &faceNormals() const { return faceNormals_; }
     /// Plane: outward unit normal, shape frame (the solid is normal.x <= planeOffset()).
     const Vector3 &planeNormal() const { return planeNormal_; }
-    /// Plane: distance of the surface from the frame origin along planeNormal(), m.
+    /// Plane: distance of the surface from the frame origin along planeNormal(), m
+    /// (the shape's offset divided by the length of its normal).
     real planeOffset() const { return planeOffset_; }
 
     /// The feature of this shape, placed at `pose`, that is furthest along the world
