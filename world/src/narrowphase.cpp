@@ -2,11 +2,13 @@
 //
 // FCL (libccd) returns one contact for most pairs, and its normal comes from MPR for
 // curved shapes and convex polytopes: close, but tilted enough to rock a box resting on
-// a face, and for box-triangle pairs often far off. So FCL's normal is one candidate
-// among the normals of the two supporting faces, and the candidate along which the
-// shapes' projections overlap least wins: that overlap is the separating-axis bound on
-// the penetration, and a smaller bound is a better estimate of it. Ties go to a face, so
-// resting contacts get the exact face normal.
+// a face, and for shapes against triangles often far off. So FCL's normal is only one
+// candidate, with the normals of the two supporting faces, the cross products of their
+// edges and, for cylinders, the cap and side normals; the candidate along which the
+// shapes' projections overlap least wins, since that overlap bounds the penetration
+// from above (separating axes). Ties go to a face, so resting contacts get the exact
+// face normal. Where FCL used MPR, the winner is then refined: the pair moved apart
+// along it no longer touches, and GJK's nearest points give the surfaces' common normal.
 //
 // The manifold is clipped as in Jolt's ManifoldBetweenTwoFaces: the incident feature is
 // clipped against the side planes of the reference face extruded along the normal, each
@@ -16,11 +18,11 @@
 //
 // Meshes give one FCL contact per triangle. Triangles are one-sided, as Jolt's are by
 // default: a shape is only pushed out to the side a triangle's counter-clockwise winding
-// faces, never through it. A contact whose normal is its triangle's
-// normal is a face contact and claims the triangle's vertices; an edge or vertex contact
-// on vertices that face contacts already claimed is an internal edge of a surface
-// (two triangles of a floor) and is dropped, as in Jolt's InternalEdgeRemovingCollector.
-// The remaining contacts are merged into one manifold per normal.
+// faces, never through it. A contact whose normal is its triangle's normal is a face
+// contact and claims the triangle's vertices; an edge or vertex contact on vertices that
+// face contacts already claimed is an internal edge of a surface (two triangles of a
+// floor) and is dropped, as in Jolt's InternalEdgeRemovingCollector. The remaining
+// contacts are merged into one manifold per normal.
 //
 // Everything here lives in fixed-size arrays on the stack; only FCL allocates.
 #include "narrowphase.h"
@@ -350,24 +352,29 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
     SupportFeature feature;
     other.supportingFeature(otherPose, -up, triangle, feature);
     PointSet points;
+    auto add = [&](const Vector3 &q, real t) {
+        if (planeIsA)
+            points.add(q + t * up, q, t);
+        else
+            points.add(q, q + t * up, t);
+    };
+    real deepest = -pair.speculative;
     for (int i = 0; i < feature.count; ++i) {
         const Vector3 &q = feature.points[i];
         const real t = level - q.dot(up);
         if (!(t > -pair.speculative)) continue;
-        if (planeIsA)
-            points.add(q + t * up, q, t);
-        else
-            points.add(q, q + t * up, t);
+        add(q, t);
+        deepest = std::max(deepest, t);
     }
-    if (points.count == 0) {
+    // A convex face with more corners than a feature holds is thinned and may have lost
+    // its deepest corner; other features hold theirs (or, a cylinder's cap tilted less
+    // than a degree, miss it by a fraction of a millimetre for steadier points).
+    if (other.shape().type == ShapeType::Convex || points.count == 0) {
         const Vector3 q = other.supportPoint(otherPose, -up, triangle);
         const real t = level - q.dot(up);
-        if (!(t > -pair.speculative)) return 0;
-        if (planeIsA)
-            points.add(q + t * up, q, t);
-        else
-            points.add(q, q + t * up, t);
+        if (t > deepest + kPointTolerance) add(q, t);
     }
+    if (points.count == 0) return 0;
     Manifold manifold;
     reduce(points.points, points.count, planeIsA ? up : Vector3(-up), manifold);
     out.push_back(manifold);
