@@ -13,7 +13,8 @@ namespace cyclone::detail {
 
 /// A feature of a shape that supports it in a direction: 1 point (vertex or curved
 /// surface), 2 points (an edge) or a convex polygon (a face), in world space,
-/// counter-clockwise seen from outside the shape.
+/// counter-clockwise seen from outside the shape (a mesh triangle: from the side the
+/// direction points to).
 struct SupportFeature {
     static constexpr int kMaxPoints = 32;
     int count = 0;
@@ -44,7 +45,12 @@ public:
 
     /// The feature of this shape, placed at `pose`, that is furthest along the world
     /// direction `direction` (unit). `triangle` selects the triangle of a mesh (FCL's
-    /// primitive index); other shapes ignore it.
+    /// primitive index); other shapes ignore it. Box, convex: the face most aligned with
+    /// the direction. Sphere: a point. Capsule: its side (2 points) when the axis is
+    /// within 5 degrees of perpendicular, else a point. Cylinder: its cap (a 16-gon, plus
+    /// the deepest rim point when tilted over 1 degree) within 15 degrees of the axis, its
+    /// side within 5 degrees of perpendicular, else a rim point. Plane: a 2 km square
+    /// centred on the pose origin's projection. Mesh: the triangle (none if out of range).
     void supportingFeature(const Matrix4 &pose, const Vector3 &direction, int triangle,
                            SupportFeature &out) const;
 

@@ -32,7 +32,9 @@ struct NarrowphaseSettings {
 /// Tests shapes `a` at `poseA` and `b` at `poseB` with fcl::collide (GST_LIBCCD) and
 /// appends one manifold per contact normal to `out` (none when apart; a mesh may give
 /// several). Returns the number appended. Normals point from A to B whatever order FCL
-/// used internally; near-zero normals are dropped.
+/// used internally; near-zero normals are dropped. Mesh triangles are one-sided: a shape
+/// is pushed out to the side their counter-clockwise winding faces. Allocates nothing
+/// beyond FCL's own allocations (reserve `out`).
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
             const NarrowphaseSettings &settings, std::vector<Manifold> &out);
 
