@@ -41,6 +41,7 @@ struct CapCircle {
         }
     }
 };
+
 // Half size of the square a plane gives as its feature, m. The narrowphase treats a
 // plane as unbounded and never clips against these corners.
 constexpr real kPlaneFeatureHalfSize = 1000;
