@@ -165,3 +165,40 @@ TEST(Physics, BouncingBallReachesRestitutionHeight) {
 
 }  // namespace
 }  // namespace cyclone::test
+
+namespace cyclone::test {
+namespace {
+
+// Every dynamic shape placed just touching a large static box rests there. FCL's MPR
+// once gave a small hull on a large box the box's side face as normal (2.3 m deep) and
+// the hull shot away; a resting body may only settle by the slop and one step of gravity.
+TEST(Physics, EveryShapeRestsOnALargeStaticBox) {
+    WorldSettings settings;
+    settings.sleep = false;
+    WorldFixture f(settings);
+    f.staticBox(Vector3(0, -0.5, 0), Vector3(6, 0.5, 2));
+    std::vector<BodySettings> shapes(5);
+    shapes[0].shape = Shape::box(Vector3(0.3, 0.2, 0.4));
+    shapes[0].position = Vector3(-4, 0.2, 0);
+    shapes[1].shape = Shape::sphere(0.3);
+    shapes[1].position = Vector3(-2, 0.3, 0);
+    shapes[2].shape = Shape::capsule(0.2, 0.6);  // lying on its side
+    shapes[2].position = Vector3(0, 0.2, 0);
+    shapes[3].shape = Shape::cylinder(0.3, 0.5);  // standing on a cap
+    shapes[3].orientation = Quaternion(Eigen::AngleAxis<real>(-kPi / 2, Vector3::UnitX()));
+    shapes[3].position = Vector3(2, 0.25, 0);
+    shapes[4].shape = Shape::convex({{-0.3, -0.2, -0.3}, {0.3, -0.2, -0.3}, {0.3, -0.2, 0.3}, {-0.3, -0.2, 0.3},
+                                     {0, 0.3, 0}, {0.2, 0.1, 0.1}});
+    shapes[4].position = Vector3(4, 0.2, 0);
+    std::vector<BodyId> ids;
+    for (const BodySettings &s : shapes) ids.push_back(f.world.addBody(s));
+    f.simulate(3);
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        EXPECT_LT((f.position(ids[i]) - shapes[i].position).norm(), 0.002) << shapeTypeName(shapes[i].shape.type);
+        EXPECT_LT(f.world.body(ids[i]).getVelocity().norm(), 0.01) << shapeTypeName(shapes[i].shape.type);
+    }
+    EXPECT_LT(f.world.stats().maxPenetration, 0.002);
+}
+
+}  // namespace
+}  // namespace cyclone::test

@@ -520,6 +520,25 @@ Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, const NormalRul
         }
     };
     probe(start);
+    // MPR's normal can be far off, even backwards (a small hull resting on a large box got
+    // the box's side or bottom face, 1.1 m or 2.3 m deep instead of 0.4 m), and the
+    // features along it then suggest nothing better. Every face axis of a box or hull is
+    // a separating-axis candidate too; when one wins, its features are probed as well.
+    const Vector3 before = best;
+    for (int side = 0; side < 2; ++side) {
+        const CollisionShape &shape = side == 0 ? pair.a : pair.b;
+        const Matrix3 rotation = (side == 0 ? pair.poseA : pair.poseB).linear();
+        const real sign = side == 0 ? 1 : -1;
+        if (shape.shape().type == ShapeType::Box) {
+            for (int k = 0; k < 3; ++k) {
+                consider(sign * rotation.col(k), kFacePreference, false);
+                consider(-sign * rotation.col(k), kFacePreference, false);
+            }
+        } else if (shape.shape().type == ShapeType::Convex) {
+            for (const Vector3 &normal : shape.faceNormals()) consider(sign * (rotation * normal), kFacePreference, false);
+        }
+    }
+    if (best != before) probe(best);
     // Against a triangle, the shape's face that lies on it may not be the one FCL's
     // normal points at: look along the triangle's normal too.
     if (rule.oneSided && start != rule.front) probe(rule.front);
