@@ -42,6 +42,14 @@ bool spansVolume(const std::vector<Vector3> &points) {
     return best > kFlatTolerance * extent;
 }
 
+// Qhull reports precision warnings and errors on a stream; a library must not write to
+// the program's stderr (the caller turns a failure into an InvalidArgument), so they go
+// to /dev/null, opened once.
+FILE *qhullMessages() {
+    static FILE *sink = std::fopen("/dev/null", "w");
+    return sink != nullptr ? sink : stderr;
+}
+
 }  // namespace
 
 bool computeConvexHull(const std::vector<Vector3> &points, ConvexHull &hull) {
@@ -54,10 +62,10 @@ bool computeConvexHull(const std::vector<Vector3> &points, ConvexHull &hull) {
 
     qhT qhull;
     qhT *qh = &qhull;
-    qh_zero(qh, stderr);
+    qh_zero(qh, qhullMessages());
     char options[] = "qhull Qx";
     const int exitCode = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False, options,
-                                      nullptr, stderr);
+                                      nullptr, qhullMessages());
     bool ok = exitCode == 0;
     if (ok) {
         std::vector<int> hullIndex(points.size(), -1);
