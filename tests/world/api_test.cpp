@@ -64,6 +64,13 @@ TEST(Api, AddBodyRefusesBadInput) {
     s = validBox();
     s.name = "ground";
     expectRefused(s, "name");
+    // FCL's AABB tree fails on boxes of such size; the World refuses them.
+    s = validBox();
+    s.shape = Shape::box(Vector3(1e200, 1, 1));
+    expectRefused(s, "shape");
+    s = validBox();
+    s.position = Vector3(0, 1e31, 0);
+    expectRefused(s, "position");
 }
 
 TEST(Api, StaleHandlesAreRefused) {

@@ -134,6 +134,8 @@ BodyId World::addBody(const BodySettings &settings) {
     } catch (const InvalidArgument &e) {
         throw InvalidArgument(function, e.field(), e.problem());
     }
+    if (!(boundingRadius(settings.shape, *shape) <= detail::kMaxCoordinate))
+        detail::refuse(function, "shape", "must fit within 1e30 m of its origin");
     RigidBody body = makeBody(function, settings, *shape, w.settings);
 
     // Nothing below throws on user input: the world changes only from here on.
