@@ -40,6 +40,7 @@ void World::Impl::step(real dt) {
     StageTimer timer;
     stats = StepStats();
     ++stepCount;
+    openStepEvents();
 
     applyForces();
     stats.ms.forces = timer.lap();
@@ -47,6 +48,8 @@ void World::Impl::step(real dt) {
     stats.ms.broadphase = timer.lap();
     runNarrowphase();
     stats.ms.narrowphase = timer.lap();
+    detectContactEvents();
+    stats.ms.events = timer.lap();
     buildManifolds(dt);
     stats.ms.manifolds = timer.lap();
     buildIslands();
@@ -68,6 +71,7 @@ void World::Impl::step(real dt) {
 
     updateSleep();
     stats.ms.sleep = timer.lap();
+    closeStepEvents();
 
     stats.integratedBodies = static_cast<int>(simulatedBodies.size());
     stats.bodies = static_cast<int>(order.size());
@@ -76,8 +80,8 @@ void World::Impl::step(real dt) {
         if (!r.isStatic && r.body.getAwake() && !r.quarantined) ++stats.awakeBodies;
         if (r.quarantined) ++stats.nonFiniteBodies;
     }
-    stats.ms.total = stats.ms.forces + stats.ms.broadphase + stats.ms.narrowphase + stats.ms.manifolds +
-                     stats.ms.islands + stats.ms.solve + stats.ms.integrate + stats.ms.sleep;
+    stats.ms.total = stats.ms.forces + stats.ms.broadphase + stats.ms.narrowphase + stats.ms.events +
+                     stats.ms.manifolds + stats.ms.islands + stats.ms.solve + stats.ms.integrate + stats.ms.sleep;
 }
 
 // --- forces -------------------------------------------------------------------------------

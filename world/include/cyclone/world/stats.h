@@ -11,6 +11,7 @@ struct StageTimes {
     double forces = 0;       ///< Gravity and springs.
     double broadphase = 0;   ///< AABB updates and overlapping pairs.
     double narrowphase = 0;  ///< FCL collide calls.
+    double events = 0;       ///< Contact begin and end detection.
     double manifolds = 0;    ///< Point matching, warm-start data, solver set-up.
     double islands = 0;      ///< Island building and wake propagation.
     double solve = 0;        ///< Velocity and position iterations.
