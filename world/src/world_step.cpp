@@ -148,10 +148,13 @@ void World::Impl::updateBroadphase() {
     broadphase.findPairs(candidates);
 
     // Planes stay out of the trees: test each awake body's AABB against each plane.
+    // The half-space is the compiled one (unit normal, offset along it, as FCL has it),
+    // placed by the plane body's pose as the narrowphase places it.
     for (std::uint32_t plane : planes) {
-        const Shape &p = bodies[plane].shape->shape();
-        const Vector3 n = p.normal.normalized();
-        const real offset = p.offset / p.normal.norm();
+        const detail::CollisionShape &p = *bodies[plane].shape;
+        const Matrix4 pose = bodies[plane].body.getTransform();
+        const Vector3 n = pose.linear() * p.planeNormal();
+        const real offset = p.planeOffset() + n.dot(pose.translation());
         for (std::uint32_t index : simulatedBodies) {
             const BodyRecord &r = bodies[index];
             if (!r.object) continue;
