@@ -1,5 +1,6 @@
-// Per-step counters and timings, read after World::step (how a scene proves it pays
-// only for what it uses).
+/// \file
+/// Per-step counters and timings, read after World::step() with World::stats() (how a
+/// scene proves it pays only for what it uses).
 #pragma once
 
 #include "cyclone/precision.h"
