@@ -69,6 +69,27 @@ TEST(FixedStepper, StepsWhenFrameTimesAddUpToAStep) {
     }
 }
 
+// Each step replaces the events of the one before: afterStep sees every step's own.
+TEST(FixedStepper, AfterStepSeesEveryStepsEvents) {
+    WorldFixture f;
+    f.ground();
+    const BodyId ball = f.sphere(Vector3(0, 1.5, 0));
+    FixedStepper stepper(f.world);  // 1/60 s steps
+    int steps = 0, begins = 0;
+    // 28 steps in one frame (cap 30): the ball lands in step 28 (events_test.cpp).
+    FixedStepSettings s;
+    s.maxStepsPerFrame = 30;
+    stepper.setSettings(s);
+    const int run = stepper.advance(28.5 / 60, [](real) {}, [&](real) {
+        ++steps;
+        begins += static_cast<int>(f.world.events().contactBegins.size());
+    });
+    EXPECT_EQ(run, 28);
+    EXPECT_EQ(steps, 28);
+    EXPECT_EQ(begins, 1);
+    EXPECT_TRUE(f.awake(ball));
+}
+
 TEST(FixedStepper, CallsBeforeStepOncePerStep) {
     WorldFixture f;
     const BodyId ball = f.sphere(Vector3(0, 100, 0));

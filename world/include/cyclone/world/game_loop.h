@@ -6,7 +6,9 @@
 /// \code
 /// cyclone::FixedStepper stepper(world);            // 60 Hz steps, at most 5 per frame
 /// while (running) {
-///     stepper.advance(secondsSinceLastFrame);      // 0, 1, 2, ... steps
+///     stepper.advance(secondsSinceLastFrame,       // 0, 1, 2, ... steps
+///                     [&](double dt) { applyInput(world, dt); },
+///                     [&](double) { playSounds(world.events()); });
 ///     for (cyclone::BodyId id : visible) {
 ///         float model[16];
 ///         stepper.glTransform(id, model);          // column-major, for OpenGL
@@ -76,12 +78,22 @@ public:
     /// If `beforeStep` throws, the frame's remaining steps are skipped.
     template <class BeforeStep>
     int advance(real frameSeconds, BeforeStep &&beforeStep) {
+        return advance(frameSeconds, beforeStep, [](real) {});
+    }
+
+    /// As advance(frameSeconds, beforeStep), also calling `afterStep(stepSeconds)` after
+    /// each step: the place to read World::events(), since each step replaces the events
+    /// of the one before and a frame may run several. If a callback throws, the frame's
+    /// remaining steps are skipped.
+    template <class BeforeStep, class AfterStep>
+    int advance(real frameSeconds, BeforeStep &&beforeStep, AfterStep &&afterStep) {
         const int steps = plan(frameSeconds);
         for (int i = 0; i < steps; ++i) {
             beforeStep(settings_.stepSeconds);
             if (i == steps - 1) capture();
             world_->step(settings_.stepSeconds);
             ++totalSteps_;
+            afterStep(settings_.stepSeconds);
         }
         return steps;
     }
