@@ -141,7 +141,7 @@ struct World::Impl {
     void detectContactEvents();
     void closeStepEvents();
 
-    // Queries and debug drawing (queries.cpp, debug_draw.cpp).
+    // Queries (queries.cpp): whether a query considers a body.
     bool accepts(std::uint32_t index, const QueryFilter &filter) const;
 };
 

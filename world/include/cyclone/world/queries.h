@@ -18,7 +18,8 @@ struct QueryFilter {
     bool staticBodies = true;
     /// Whether dynamic bodies, awake or asleep, are considered.
     bool dynamicBodies = true;
-    /// A body to leave out, e.g. the player's own body when casting from its eyes.
+    /// A body to leave out, e.g. the player's own body when casting from its eyes (a
+    /// handle that names no body of the world leaves nothing out).
     std::optional<BodyId> ignore;
     /// When set, a body is considered only if this returns true for it. It is called
     /// only for bodies that pass the fields above and whose bounding box the query
