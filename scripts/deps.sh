@@ -15,6 +15,7 @@ packages=(
   libbullet-dev      # benchmarks: reference engine
   libbenchmark-dev   # benchmarks
   gnuplot-nox        # examples: trajectory plots
+  doxygen            # API documentation (docs/Doxyfile), checked by the test suite
 )
 
 missing=()

@@ -1,3 +1,9 @@
+/// \file
+/// cyclone::RigidBody, the dynamics core: mass, inertia, damping, state, forces and sleep,
+/// in SI units (m, kg, s, rad, N, N m). Inside a World, read bodies with World::body() and
+/// change them through the World's calls, which keep the wake rules of islands (see
+/// world.h); a RigidBody on its own wakes only through the calls that say so below.
+//
 // cyclone::RigidBody: the dynamics core, after "Game Physics Engine Development"
 // (Millington), on Eigen math types.
 //
@@ -34,6 +40,11 @@ inline constexpr real kDefaultSleepEpsilon = 0.01;
 ///
 /// Units are SI throughout: m, kg, s, rad, N, N m. Vectors are in world space unless
 /// a name says otherwise.
+///
+/// What wakes a body: setAwake(true), setCanSleep(false) and the force and torque calls
+/// (addForce, addForceAtPoint, addForceAtBodyPoint, addTorque). Setting the position,
+/// orientation, velocity or rotation, or adding velocity or rotation, leaves the sleep
+/// state alone (a World's setters wake the body themselves).
 class RigidBody {
 public:
     /// A unit body at rest: mass 1 kg, inertia identity (kg m^2), at the origin,

@@ -1,5 +1,6 @@
-// Math types of the cyclone dynamics core: Eigen's, so that transforms reach FCL
-// (whose Transform3d is Eigen::Transform<double,3,Isometry>) without conversion.
+/// \file
+/// Math types of the cyclone dynamics core: Eigen's, so that transforms reach FCL
+/// (whose Transform3d is Eigen::Transform<double,3,Isometry>) without conversion.
 #pragma once
 
 #include <Eigen/Core>

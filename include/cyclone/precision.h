@@ -1,4 +1,5 @@
-// Numeric precision of the cyclone dynamics core.
+/// \file
+/// Numeric precision of the cyclone dynamics core.
 #pragma once
 
 namespace cyclone {

@@ -42,6 +42,16 @@ void Broadphase::refit(fcl::CollisionObjectd *object, Tree tree) {
     if (auto *m = manager(tree)) m->update(object);
 }
 
+const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
+    switch (tree) {
+        case Tree::Awake: return awake_.getTree().getRoot();
+        case Tree::Asleep: return asleep_.getTree().getRoot();
+        case Tree::Static: return static_.getTree().getRoot();
+        case Tree::None: break;
+    }
+    return nullptr;
+}
+
 void Broadphase::findPairs(std::vector<CandidatePair> &out) {
     if (awake_.empty()) return;
     awake_.collide(&out, recordPair);

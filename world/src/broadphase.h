@@ -70,6 +70,9 @@ public:
     void refit(fcl::CollisionObjectd *object, Tree tree);
     /// Appends every pair of overlapping AABBs with at least one awake member.
     void findPairs(std::vector<CandidatePair> &out);
+    /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
+    /// leaf's data is its collision object.
+    const fcl::detail::NodeBase<fcl::AABBd> *root(Tree tree) const;
 
 private:
     fcl::DynamicAABBTreeCollisionManagerd awake_;

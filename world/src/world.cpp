@@ -179,7 +179,7 @@ BodyId World::addBody(const BodySettings &settings) {
             w.setTree(index, Tree::Awake);
         } else {
             const std::uint32_t self = index;
-            w.sleepIsland(&self, 1);
+            w.sleepIsland(&self, 1, false);
         }
     }
     return w.idOf(index);
@@ -240,6 +240,11 @@ std::vector<BodyId> World::bodies() const {
     out.reserve(impl_->order.size());
     for (std::uint32_t index : impl_->order) out.push_back(impl_->idOf(index));
     return out;
+}
+
+void World::bodies(std::vector<BodyId> &out) const {
+    out.clear();
+    for (std::uint32_t index : impl_->order) out.push_back(impl_->idOf(index));
 }
 
 std::size_t World::bodyCount() const { return impl_->order.size(); }
@@ -487,7 +492,10 @@ void World::Impl::wake(std::uint32_t index) {
     BodyRecord &r = bodies[index];
     if (r.isStatic || r.quarantined) return;
     if (r.sleepingIsland < 0) {
-        if (!r.body.getAwake()) r.body.setAwake(true);
+        if (!r.body.getAwake()) {
+            r.body.setAwake(true);
+            eventSink->wokeUp.push_back(idOf(index));
+        }
         return;
     }
     const int island = r.sleepingIsland;
@@ -495,6 +503,7 @@ void World::Impl::wake(std::uint32_t index) {
         BodyRecord &member = bodies[m];
         member.sleepingIsland = -1;
         member.body.setAwake(true);
+        eventSink->wokeUp.push_back(idOf(m));
         member.object->place(member.body.getTransform(), detail::kBroadphaseMargin);
         setTree(m, Tree::Awake);
     }
@@ -502,7 +511,7 @@ void World::Impl::wake(std::uint32_t index) {
     freeSleepingIslands.push_back(island);
 }
 
-void World::Impl::sleepIsland(const std::uint32_t *members, int count) {
+void World::Impl::sleepIsland(const std::uint32_t *members, int count, bool report) {
     int island;
     if (!freeSleepingIslands.empty()) {
         island = freeSleepingIslands.back();
@@ -521,6 +530,7 @@ void World::Impl::sleepIsland(const std::uint32_t *members, int count) {
         r.sleepingIsland = island;
         r.island = -1;
         setTree(members[i], Tree::Asleep);
+        if (report) eventSink->fellAsleep.push_back(idOf(members[i]));
     }
     if (list.empty()) freeSleepingIslands.push_back(island);
 }

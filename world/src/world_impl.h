@@ -50,6 +50,13 @@ struct SpringRecord {
     bool alive = false;
 };
 
+/// A pair slot's touching state at the end of the last step, for contact events.
+struct ContactTrack {
+    BodyId a;
+    BodyId b;
+    bool touching = false;
+};
+
 struct World::Impl {
     WorldSettings settings;
     std::vector<BodyRecord> bodies;
@@ -87,6 +94,13 @@ struct World::Impl {
     std::vector<real> linearFactor;       ///< damping^h of each simulated body.
     std::vector<real> angularFactor;
 
+    // Events (events.cpp). Calls between steps record into pendingEvents; a step moves
+    // them into `events` and records its own there (eventSink says which list is open).
+    WorldEvents events;
+    WorldEvents pendingEvents;
+    WorldEvents *eventSink = &pendingEvents;
+    std::vector<ContactTrack> contactTracks;  ///< By pair slot.
+
     detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
     StepStats stats;
@@ -102,7 +116,9 @@ struct World::Impl {
 
     // Sleep and wake.
     void wake(std::uint32_t index);
-    void sleepIsland(const std::uint32_t *members, int count);
+    /// Puts the listed bodies to sleep as one island; `report` false for a body added
+    /// asleep, which did not fall asleep.
+    void sleepIsland(const std::uint32_t *members, int count, bool report = true);
     void setTree(std::uint32_t index, detail::Tree tree);
     void refreshCollisionObject(std::uint32_t index);
 
@@ -123,6 +139,15 @@ struct World::Impl {
     void updateSleep();
     void storeImpulses();
     void quarantine(std::uint32_t index);
+
+    // Events (events.cpp): the step opens and closes them; detectContactEvents() runs
+    // after the narrowphase.
+    void openStepEvents();
+    void detectContactEvents();
+    void closeStepEvents();
+
+    // Queries (queries.cpp): whether a query considers a body.
+    bool accepts(std::uint32_t index, const QueryFilter &filter) const;
 };
 
 }  // namespace cyclone

@@ -45,6 +45,7 @@ void World::Impl::step(real dt) {
     StageTimer timer;
     stats = StepStats();
     ++stepCount;
+    openStepEvents();
 
     applyForces();
     stats.ms.forces = timer.lap();
@@ -52,6 +53,8 @@ void World::Impl::step(real dt) {
     stats.ms.broadphase = timer.lap();
     runNarrowphase();
     stats.ms.narrowphase = timer.lap();
+    detectContactEvents();
+    stats.ms.events = timer.lap();
     buildManifolds(dt);
     stats.ms.manifolds = timer.lap();
     buildIslands();
@@ -73,6 +76,7 @@ void World::Impl::step(real dt) {
 
     updateSleep();
     stats.ms.sleep = timer.lap();
+    closeStepEvents();
 
     stats.integratedBodies = static_cast<int>(simulatedBodies.size());
     stats.bodies = static_cast<int>(order.size());
@@ -81,8 +85,8 @@ void World::Impl::step(real dt) {
         if (!r.isStatic && r.body.getAwake() && !r.quarantined) ++stats.awakeBodies;
         if (r.quarantined) ++stats.nonFiniteBodies;
     }
-    stats.ms.total = stats.ms.forces + stats.ms.broadphase + stats.ms.narrowphase + stats.ms.manifolds +
-                     stats.ms.islands + stats.ms.solve + stats.ms.integrate + stats.ms.sleep;
+    stats.ms.total = stats.ms.forces + stats.ms.broadphase + stats.ms.narrowphase + stats.ms.events +
+                     stats.ms.manifolds + stats.ms.islands + stats.ms.solve + stats.ms.integrate + stats.ms.sleep;
 }
 
 // --- forces -------------------------------------------------------------------------------
@@ -149,10 +153,13 @@ void World::Impl::updateBroadphase() {
     broadphase.findPairs(candidates);
 
     // Planes stay out of the trees: test each awake body's AABB against each plane.
+    // The half-space is the compiled one (unit normal, offset along it, as FCL has it),
+    // placed by the plane body's pose as the narrowphase places it.
     for (std::uint32_t plane : planes) {
-        const Shape &p = bodies[plane].shape->shape();
-        const Vector3 n = p.normal.normalized();
-        const real offset = p.offset / p.normal.norm();
+        const detail::CollisionShape &p = *bodies[plane].shape;
+        const Matrix4 pose = bodies[plane].body.getTransform();
+        const Vector3 n = pose.linear() * p.planeNormal();
+        const real offset = p.planeOffset() + n.dot(pose.translation());
         for (std::uint32_t index : simulatedBodies) {
             const BodyRecord &r = bodies[index];
             if (!r.object) continue;

@@ -1,4 +1,5 @@
-// The error every World API call throws on bad input.
+/// \file
+/// The error every World API call throws on bad input.
 #pragma once
 
 #include <stdexcept>
@@ -12,6 +13,7 @@ namespace cyclone {
 /// The world is unchanged after the throw.
 class InvalidArgument : public std::invalid_argument {
 public:
+    /// An error of `function` about `field`; what() is "function: field problem".
     InvalidArgument(std::string function, std::string field, std::string problem)
         : std::invalid_argument(function + ": " + field + " " + problem),
           function_(std::move(function)),

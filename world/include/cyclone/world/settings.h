@@ -1,4 +1,7 @@
-// What the user fills in: settings of a world, a body and a spring, with defaults and units.
+/// \file
+/// What the user fills in: settings of a world, a body and a spring, with defaults, units
+/// and valid ranges, and the handles of bodies and springs. The World validates every
+/// field and refuses bad ones with InvalidArgument.
 #pragma once
 
 #include <cstdint>
@@ -92,13 +95,14 @@ struct BodySettings {
     /// Body-space inertia tensor, kg m^2, symmetric positive definite; empty means
     /// computed from the shape and the mass.
     std::optional<Matrix3> inertia;
-    /// World-space position of the centre of mass (the shape's origin), m.
+    /// World-space position of the centre of mass (the shape's origin), m, finite, each
+    /// coordinate within 1e30.
     Vector3 position = Vector3::Zero();
     /// Orientation; normalised on add, (0,0,0,0) means identity.
     Quaternion orientation = Quaternion::Identity();
-    /// World-space linear velocity, m/s.
+    /// World-space linear velocity of a dynamic body, m/s, finite.
     Vector3 velocity = Vector3::Zero();
-    /// World-space angular velocity, rad/s.
+    /// World-space angular velocity of a dynamic body, rad/s, finite.
     Vector3 rotation = Vector3::Zero();
     /// Fraction of linear velocity kept after one second, [0, 1]; 1 means none.
     real linearDamping = 1;
@@ -106,19 +110,25 @@ struct BodySettings {
     real angularDamping = 1;
     /// Friction and restitution.
     Material material;
-    /// False keeps this body awake always.
+    /// False keeps this body awake always (World::setCanSleep changes it).
     bool canSleep = true;
-    /// Initial awake state.
+    /// Initial awake state of a dynamic body: false adds it asleep, unmoved until
+    /// something wakes it (see World for what does).
     bool awake = true;
     /// Continuous collision detection for this body (fast, thin things).
     bool ccd = false;
 };
 
-/// Handle of a body in a World. Stale handles (of removed bodies) are refused.
+/// Handle of a body in a World. Stale handles (of removed bodies) are refused. A
+/// default-constructed BodyId names no body.
 struct BodyId {
+    /// Slot of the body in its World; reused after the body is removed.
     std::uint32_t index = UINT32_MAX;
+    /// Incremented each time the slot is reused, so that an old handle stays stale.
     std::uint32_t generation = 0;
+    /// True when both name the same body (same slot and generation).
     bool operator==(const BodyId &other) const { return index == other.index && generation == other.generation; }
+    /// True when they name different bodies.
     bool operator!=(const BodyId &other) const { return !(*this == other); }
 };
 
@@ -141,11 +151,16 @@ struct SpringSettings {
     real restLength = 1;
 };
 
-/// Handle of a spring in a World.
+/// Handle of a spring in a World. Stale handles (of removed springs) are refused.
 struct SpringId {
+    /// Slot of the spring in its World; reused after the spring is removed.
     std::uint32_t index = UINT32_MAX;
+    /// Incremented each time the slot is reused, so that an old handle stays stale.
     std::uint32_t generation = 0;
+    /// True when both name the same spring.
     bool operator==(const SpringId &other) const { return index == other.index && generation == other.generation; }
+    /// True when they name different springs.
+    bool operator!=(const SpringId &other) const { return !(*this == other); }
 };
 
 }  // namespace cyclone

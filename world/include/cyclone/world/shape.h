@@ -1,4 +1,6 @@
-// Collision shapes: a plain description that the World validates and compiles.
+/// \file
+/// Collision shapes: a plain description that the World validates (World::addBody,
+/// World::overlap) and compiles. Sizes are in m, in the body's own frame.
 #pragma once
 
 #include <array>
@@ -9,11 +11,20 @@
 namespace cyclone {
 
 /// The kinds of collision shape. Plane and Mesh are for static bodies only.
-enum class ShapeType { Box, Sphere, Capsule, Cylinder, Convex, Plane, Mesh };
+enum class ShapeType {
+    Box,       ///< Shape::box: a box, by half extents.
+    Sphere,    ///< Shape::sphere.
+    Capsule,   ///< Shape::capsule: along local z.
+    Cylinder,  ///< Shape::cylinder: along local z.
+    Convex,    ///< Shape::convex: the hull of points.
+    Plane,     ///< Shape::plane: a half-space; static bodies only.
+    Mesh,      ///< Shape::mesh: triangles; static bodies only.
+};
 
 /// A collision shape in the body's own frame; the body's position is the frame's origin.
 /// Build one with the named constructors; only the fields of its type are read.
 struct Shape {
+    /// Which kind of shape; selects the fields below that are read.
     ShapeType type = ShapeType::Box;
     Vector3 halfExtents = Vector3(0.5, 0.5, 0.5);  ///< Box half sizes, m, each > 0.
     real radius = 0.5;                             ///< Sphere, capsule, cylinder radius, m, > 0.
@@ -23,12 +34,25 @@ struct Shape {
     Vector3 normal = Vector3::UnitY();           ///< Plane: outward normal (any length > 0).
     real offset = 0;                             ///< Plane: solid half-space normal.x <= offset (normal normalised), m.
 
+    /// A box centred on the origin with half sizes `halfExtents` along x, y, z (m, each
+    /// finite and > 0).
     static Shape box(const Vector3 &halfExtents);
+    /// A sphere centred on the origin (radius in m, finite, > 0).
     static Shape sphere(real radius);
+    /// A capsule along z centred on the origin: a cylinder of radius `radius` and length
+    /// `length` capped by two half spheres (m; radius finite > 0, length finite >= 0; the
+    /// whole capsule is length + 2 radius long).
     static Shape capsule(real radius, real length);
+    /// A cylinder along z centred on the origin (m; radius and total length finite, > 0).
     static Shape cylinder(real radius, real length);
+    /// The convex hull of `points` (m, finite; at least 4 not all in one plane). The body's
+    /// origin is the frame of the points, not necessarily the hull's centre of mass.
     static Shape convex(std::vector<Vector3> points);
+    /// A half-space for static bodies: the solid side is normal.x <= offset, with the
+    /// normal normalised (any finite length > 0) and the offset (m, finite) along it.
     static Shape plane(const Vector3 &normal, real offset);
+    /// A triangle mesh for static bodies (m, finite): each triangle three distinct vertex
+    /// indices of non-zero area, at least one triangle. Both sides of a triangle collide.
     static Shape mesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles);
 };
 

@@ -1,5 +1,6 @@
-// Per-step counters and timings, read after World::step (how a scene proves it pays
-// only for what it uses).
+/// \file
+/// Per-step counters and timings, read after World::step() with World::stats() (how a
+/// scene proves it pays only for what it uses).
 #pragma once
 
 #include "cyclone/precision.h"
@@ -11,6 +12,7 @@ struct StageTimes {
     double forces = 0;       ///< Gravity and springs.
     double broadphase = 0;   ///< AABB updates and overlapping pairs.
     double narrowphase = 0;  ///< FCL collide calls.
+    double events = 0;       ///< Contact begin and end detection.
     double manifolds = 0;    ///< Point matching, warm-start data, solver set-up.
     double islands = 0;      ///< Island building and wake propagation.
     double solve = 0;        ///< Velocity and position iterations.

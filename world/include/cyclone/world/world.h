@@ -1,32 +1,58 @@
-// cyclone::World: rigid bodies with collision shapes, FCL contact detection, an impulse
-// solver, and island sleep.
-//
-// Ownership: the World owns its bodies; a BodyId is a handle that stays valid until the
-// body is removed. Read a body through body(id); change it through the World's calls,
-// so that waking rules hold: any call that moves a body, sets its velocity or applies a
-// force or impulse wakes it and its island.
+/// \file
+/// cyclone::World: rigid bodies with collision shapes, FCL contact detection, an impulse
+/// solver, island sleep; events, queries and debug drawing.
+///
+/// Ownership: the World owns its bodies; a BodyId is a handle that stays valid until the
+/// body is removed. Read a body through body(id); change it through the World's calls,
+/// so that waking rules hold.
+///
+/// What wakes a body: every call that moves a body (setPosition, setOrientation), sets
+/// its velocity (setVelocity, setRotation) or applies a force, torque or impulse
+/// (applyImpulse, addForce, addForceAtPoint, addTorque) wakes it and its sleeping island;
+/// so do setAwake(id, true), setCanSleep(id, false), setSettings (every body), adding a
+/// spring (its bodies) and removing a spring or a body (the bodies it joined or touched).
+/// During a step, an awake body that touches a sleeping one, or is joined to it by a
+/// spring, wakes it (and its island) from the next step on. Reading (body(), events(),
+/// rayCast(), overlap(), debugDraw(), ...) and setMaterial() wake nothing.
+///
+/// Errors: bad input throws cyclone::InvalidArgument naming the function, the field and
+/// the value, and changes nothing.
+///
+/// Threads: a World is not thread-safe; its const calls may run concurrently with each
+/// other, but not with a non-const call such as step().
 #pragma once
 
+#include <cstddef>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cyclone/body.h"
+#include "cyclone/world/debug_draw.h"
 #include "cyclone/world/error.h"
+#include "cyclone/world/events.h"
+#include "cyclone/world/queries.h"
 #include "cyclone/world/settings.h"
 #include "cyclone/world/shape.h"
 #include "cyclone/world/stats.h"
 
 namespace cyclone {
 
+/// A physics world: bodies, springs, and the step that moves them. See the file
+/// documentation of world.h for ownership, the wake rules and errors.
 class World {
 public:
     /// A world with the given settings; throws InvalidArgument on bad settings.
     explicit World(const WorldSettings &settings = WorldSettings());
+    /// Destroys the world and its bodies.
     ~World();
     World(const World &) = delete;
     World &operator=(const World &) = delete;
+    /// Moves the world; the moved-from World may only be destroyed or assigned to.
     World(World &&) noexcept;
+    /// Moves the world; the moved-from World may only be destroyed or assigned to.
     World &operator=(World &&) noexcept;
 
     /// The settings in force.
@@ -36,25 +62,33 @@ public:
 
     // --- Bodies -------------------------------------------------------------------------
 
-    /// Adds a body; throws InvalidArgument (nothing added) on a bad shape, mass, inertia,
-    /// number, a plane or mesh on a dynamic body, or a duplicate non-empty name.
+    /// Adds a body and returns its handle; throws InvalidArgument (nothing added) on a bad
+    /// shape, mass, inertia or number, a plane or mesh on a dynamic body, or a duplicate
+    /// non-empty name. A dynamic body added awake (the default) is simulated from the
+    /// next step; one added with `awake = false` sleeps until something wakes it.
     BodyId addBody(const BodySettings &settings);
-    /// Removes a body; bodies touching it wake. Throws InvalidArgument on a stale handle.
+    /// Removes a body; the bodies touching it or joined to it by a spring wake, and so do
+    /// the others of its sleeping island. Its springs are removed. Throws InvalidArgument
+    /// on a stale handle.
     void removeBody(BodyId id);
     /// True while `id` names a body of this world.
     bool contains(BodyId id) const;
     /// Every body, in the order they were added.
     std::vector<BodyId> bodies() const;
+    /// Every body, in the order they were added, written into `out` (cleared first): no
+    /// allocation once `out` has the capacity.
+    void bodies(std::vector<BodyId> &out) const;
     /// Number of bodies.
     std::size_t bodyCount() const;
     /// The body with this name, if any.
     std::optional<BodyId> findBody(const std::string &name) const;
 
-    /// Read-only access to a body's dynamic state.
+    /// Read-only access to a body's dynamic state (SI units; see RigidBody). Throws
+    /// InvalidArgument on a stale handle.
     const RigidBody &body(BodyId id) const;
     /// The body's name (may be empty).
     const std::string &name(BodyId id) const;
-    /// The body's shape.
+    /// The body's shape, in its own frame.
     const Shape &shape(BodyId id) const;
     /// Whether the body is static.
     bool isStatic(BodyId id) const;
@@ -63,42 +97,98 @@ public:
 
     // --- Changing bodies: each wakes the body and its island ----------------------------
 
+    /// Moves the body's centre of mass to `position` (m, finite, each coordinate within
+    /// 1e30 of the origin); a plane is refused. Wakes the body and its island; a moved
+    /// static body wakes the bodies touching it.
     void setPosition(BodyId id, const Vector3 &position);
+    /// Turns the body to `orientation` (finite; normalised; (0,0,0,0) means identity); a
+    /// plane is refused. Wakes as setPosition() does.
     void setOrientation(BodyId id, const Quaternion &orientation);
+    /// Sets the linear velocity (m/s, finite) of a dynamic body. Wakes it and its island.
     void setVelocity(BodyId id, const Vector3 &velocity);
+    /// Sets the angular velocity (rad/s, world axes, finite) of a dynamic body. Wakes it
+    /// and its island.
     void setRotation(BodyId id, const Vector3 &rotation);
-    /// Applies an impulse (N s) at the centre of mass.
+    /// Applies an impulse (N s, finite) at the centre of mass of a dynamic body: its
+    /// velocity changes by impulse / mass at once. Wakes it and its island.
     void applyImpulse(BodyId id, const Vector3 &impulse);
-    /// Applies an impulse (N s) at a world-space point (m).
+    /// Applies an impulse (N s, finite) at a world-space point (m, finite) of a dynamic
+    /// body, changing its velocity and rotation at once. Wakes it and its island.
     void applyImpulse(BodyId id, const Vector3 &impulse, const Vector3 &point);
-    /// Adds a force (N) at the centre of mass for the next step.
+    /// Adds a force (N, finite) at the centre of mass of a dynamic body for the next step
+    /// only. Wakes it and its island.
     void addForce(BodyId id, const Vector3 &force);
-    /// Adds a force (N) at a world-space point (m) for the next step.
+    /// Adds a force (N, finite) at a world-space point (m, finite) of a dynamic body for
+    /// the next step only. Wakes it and its island.
     void addForceAtPoint(BodyId id, const Vector3 &force, const Vector3 &point);
-    /// Adds a torque (N m) for the next step.
+    /// Adds a torque (N m, world axes, finite) to a dynamic body for the next step only.
+    /// Wakes it and its island.
     void addTorque(BodyId id, const Vector3 &torque);
-    /// Wakes the body and its island, or puts the body's island to sleep.
+    /// Wakes the dynamic body and its island (true), or puts the body's island to sleep
+    /// at once (false; velocities zeroed).
     void setAwake(BodyId id, bool awake);
-    /// Allows or forbids sleep for the body; forbidding wakes it.
+    /// Allows or forbids sleep for a dynamic body; forbidding wakes it and its island.
     void setCanSleep(BodyId id, bool canSleep);
-    /// Replaces the body's material (does not wake it).
+    /// Replaces the body's material (friction >= 0, restitution in [0, 1]). Wakes
+    /// nothing: it acts at the body's next contact.
     void setMaterial(BodyId id, const Material &material);
 
     // --- Springs ------------------------------------------------------------------------
 
-    /// Adds a spring; it wakes the bodies it joins.
+    /// Adds a spring (see SpringSettings for units and ranges); it wakes the dynamic
+    /// bodies it joins, and from then on an awake end wakes the other.
     SpringId addSpring(const SpringSettings &settings);
-    /// Removes a spring; it wakes the bodies it joined.
+    /// Removes a spring; it wakes the dynamic bodies it joined. Throws InvalidArgument on
+    /// a stale handle.
     void removeSpring(SpringId id);
 
     // --- Stepping -----------------------------------------------------------------------
 
-    /// Advances the world by dt seconds (finite, > 0).
+    /// Advances the world by dt seconds (finite, > 0; 1/60 is typical). Use a fixed dt
+    /// (FixedStepper does it for a game loop): results depend on it, and a fixed one
+    /// keeps runs reproducible.
     void step(real dt);
     /// Counters and per-stage timings of the last step.
     const StepStats &stats() const;
     /// Total kinetic energy of the dynamic bodies, J.
     real kineticEnergy() const;
+
+    // --- Events -------------------------------------------------------------------------
+
+    /// The events of the last step: contacts that began and ended, bodies that fell
+    /// asleep and woke up (see WorldEvents for what is reported when). Valid until the
+    /// next step(); empty before the first one.
+    const WorldEvents &events() const;
+
+    // --- Queries ------------------------------------------------------------------------
+
+    /// The closest body that the ray from `origin` (m, finite, within 1e30 of the origin)
+    /// along `direction` (finite, not zero; normalised here) meets within `maxDistance`
+    /// (m, > 0, may be infinite), among those `filter` accepts; none when it meets
+    /// nothing. Exact for every shape type. A solid shape (or a plane's half-space) that
+    /// contains `origin` is not hit: the ray starts inside it and leaves it. Sleeping and
+    /// static bodies are hit like awake ones; bodies isolated for a non-finite state are
+    /// not. Ties at the same distance go to the body with the smaller BodyId::index.
+    std::optional<RayHit> rayCast(const Vector3 &origin, const Vector3 &direction,
+                                  real maxDistance = std::numeric_limits<real>::infinity(),
+                                  const QueryFilter &filter = QueryFilter()) const;
+
+    /// The bodies whose shapes intersect (overlap or touch) `shape` placed at `position`
+    /// (m, finite, within 1e30 of the origin) with `orientation` (finite, normalised;
+    /// (0,0,0,0) means identity), among those `filter` accepts, written into `out`
+    /// (cleared first) in increasing BodyId::index. Returns how many. `shape` is
+    /// validated as for addBody(); a plane is refused (it is unbounded). Tested exactly
+    /// with FCL.
+    std::size_t overlap(const Shape &shape, const Vector3 &position, const Quaternion &orientation,
+                        std::vector<BodyId> &out, const QueryFilter &filter = QueryFilter()) const;
+
+    // --- Debug drawing ------------------------------------------------------------------
+
+    /// Draws the world through `draw` as `options` asks (validated first: a bad option
+    /// throws InvalidArgument before anything is drawn): shapes as wireframes coloured by
+    /// state (awake, asleep, static, isolated), broadphase boxes, and the contact points
+    /// and normals of touching pairs.
+    void debugDraw(DebugDraw &draw, const DebugDrawOptions &options = DebugDrawOptions()) const;
 
 private:
     struct Impl;

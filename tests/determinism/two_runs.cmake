@@ -1,0 +1,34 @@
+# Determinism across processes: runs the cyclone-world runner twice on the same scene,
+# each writing a full trace (every body, every step, %.17g: the exact doubles), and
+# requires the two traces to be byte for byte the same.
+#
+#   cmake -DRUNNER=... -DSCENE=... -DWORK_DIR=... [-DSTEPS=N] -P two_runs.cmake
+foreach(var RUNNER SCENE WORK_DIR)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "two_runs.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+if(NOT DEFINED STEPS)
+  set(STEPS 600)
+endif()
+
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+foreach(run first second)
+  execute_process(COMMAND ${RUNNER} run ${SCENE} --steps ${STEPS} --quiet --trace ${WORK_DIR}/${run}.csv
+    RESULT_VARIABLE status ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "the ${run} run of ${SCENE} failed (${status}): ${err}")
+  endif()
+endforeach()
+file(SIZE ${WORK_DIR}/first.csv size)
+if(size LESS 1000)
+  message(FATAL_ERROR "the trace of ${SCENE} is too short to compare (${size} bytes)")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK_DIR}/first.csv ${WORK_DIR}/second.csv
+  RESULT_VARIABLE differ)
+if(NOT differ EQUAL 0)
+  message(FATAL_ERROR "two runs of ${SCENE} gave different traces: ${WORK_DIR}/first.csv, ${WORK_DIR}/second.csv")
+endif()
+file(REMOVE_RECURSE ${WORK_DIR})
+message(STATUS "two runs of ${SCENE}: ${STEPS} steps, identical traces (${size} bytes)")

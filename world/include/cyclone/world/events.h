@@ -1,0 +1,76 @@
+/// \file
+/// What happened in a step: contacts that began or ended, bodies that fell asleep or
+/// woke up. Read them with World::events() after World::step().
+#pragma once
+
+#include <vector>
+
+#include "cyclone/core.h"
+#include "cyclone/world/settings.h"
+
+namespace cyclone {
+
+/// Two bodies' shapes began to touch: the narrowphase found them intersecting after a
+/// step in which they did not (or in which the pair did not exist).
+struct ContactBegin {
+    /// One body of the pair (the one with the smaller BodyId::index).
+    BodyId a;
+    /// The other body of the pair.
+    BodyId b;
+    /// World-space point of the deepest contact, midway between the two surfaces, m.
+    Vector3 point = Vector3::Zero();
+    /// Unit contact normal, world space, pointing from `a` towards `b`.
+    Vector3 normal = Vector3::UnitY();
+    /// Penetration of the deepest contact point, m: > 0 overlapping, 0 touching, a small
+    /// negative value (down to -WorldSettings::speculativeDistance) for a point kept just
+    /// apart.
+    real depth = 0;
+    /// Speed at which the two bodies approached each other along `normal` at `point`
+    /// when the contact was found, before the solver acted, m/s: > 0 approaching, < 0
+    /// separating. An impact sound can be scaled by it.
+    real approachSpeed = 0;
+};
+
+/// Two bodies that touched at the end of the previous step no longer do: they moved
+/// apart, or one of them was removed (its BodyId is then stale: World::contains() is
+/// false) or isolated for a non-finite state.
+struct ContactEnd {
+    /// One body of the pair (the one with the smaller BodyId::index).
+    BodyId a;
+    /// The other body of the pair.
+    BodyId b;
+};
+
+/// The events of one step, as returned by World::events().
+///
+/// Each list holds what happened in the last World::step() and in the World calls made
+/// between the step before it and that step (a call that wakes a body reports the wake
+/// in the events of the next step). Every event is reported exactly once. The lists are
+/// in a deterministic order (pair slots for contacts, wake or sleep order for bodies);
+/// their storage is reused from step to step, so reading them allocates nothing.
+///
+/// Pairs of bodies that are both asleep or static keep touching without events: a pile
+/// that falls asleep reports no contact ends, and one that wakes reports no new begins
+/// for the contacts it already had.
+struct WorldEvents {
+    /// Contacts that began.
+    std::vector<ContactBegin> contactBegins;
+    /// Contacts that ended.
+    std::vector<ContactEnd> contactEnds;
+    /// Dynamic bodies that fell asleep (an island at rest, or World::setAwake(id, false)).
+    /// A body added asleep is not reported.
+    std::vector<BodyId> fellAsleep;
+    /// Dynamic bodies that woke up: touched by an awake body, joined to one by a spring,
+    /// or woken by a World call (see World for the calls that wake).
+    std::vector<BodyId> wokeUp;
+
+    /// Empties every list, keeping their storage.
+    void clear() {
+        contactBegins.clear();
+        contactEnds.clear();
+        fellAsleep.clear();
+        wokeUp.clear();
+    }
+};
+
+}  // namespace cyclone

@@ -1,0 +1,43 @@
+/// \file
+/// Queries against a World's bodies: the closest hit of a ray (World::rayCast) and the
+/// bodies a shape overlaps (World::overlap). Both walk the broadphase trees, so their
+/// cost grows with the bodies near the ray or the shape, not with the world's size.
+#pragma once
+
+#include <functional>
+#include <optional>
+
+#include "cyclone/core.h"
+#include "cyclone/world/settings.h"
+
+namespace cyclone {
+
+/// Which bodies a query considers. The default considers every body.
+struct QueryFilter {
+    /// Whether static bodies (planes and meshes included) are considered.
+    bool staticBodies = true;
+    /// Whether dynamic bodies, awake or asleep, are considered.
+    bool dynamicBodies = true;
+    /// A body to leave out, e.g. the player's own body when casting from its eyes (a
+    /// handle that names no body of the world leaves nothing out).
+    std::optional<BodyId> ignore;
+    /// When set, a body is considered only if this returns true for it. It is called
+    /// only for bodies that pass the fields above and whose bounding box the query
+    /// reaches, before the exact test; it must not change the World.
+    std::function<bool(BodyId)> accept;
+};
+
+/// The closest hit of a ray, as returned by World::rayCast().
+struct RayHit {
+    /// The body hit.
+    BodyId body;
+    /// World-space point where the ray meets the body's surface, m.
+    Vector3 point = Vector3::Zero();
+    /// Unit surface normal at `point`, world space: outward for solid shapes and planes;
+    /// for a mesh triangle (hit from either side), the side the ray came from.
+    Vector3 normal = Vector3::UnitY();
+    /// Distance from the ray's origin to `point`, m, in [0, maxDistance].
+    real distance = 0;
+};
+
+}  // namespace cyclone

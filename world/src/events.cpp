@@ -1,0 +1,66 @@
+// Events: contact begin and end found by comparing each pair's touching state with the
+// one it had at the end of the last step; sleep and wake recorded where they happen
+// (World::Impl::wake and sleepIsland).
+//
+// The state is kept per pair slot together with the two BodyIds it belonged to, so a
+// slot reused by another pair, or a pair whose body was removed (its generation moved
+// on), ends the old contact before the new one begins. Everything is in vectors that
+// keep their capacity: a step in steady state allocates nothing here.
+#include "world_impl.h"
+
+namespace cyclone {
+
+void World::Impl::openStepEvents() {
+    // The step's list starts with what calls recorded since the last step.
+    std::swap(events, pendingEvents);
+    pendingEvents.clear();
+    eventSink = &events;
+}
+
+void World::Impl::closeStepEvents() { eventSink = &pendingEvents; }
+
+void World::Impl::detectContactEvents() {
+    if (contactTracks.size() < pairs.slots()) contactTracks.resize(pairs.slots());
+    for (std::uint32_t p = 0; p < contactTracks.size(); ++p) {
+        ContactTrack &track = contactTracks[p];
+        const bool inCache = p < pairs.slots();
+        const detail::PairState *pair = inCache ? &pairs[p] : nullptr;
+        const bool touching = pair && pair->alive && pair->touching();
+        const BodyId a = touching ? idOf(pair->a) : BodyId();
+        const BodyId b = touching ? idOf(pair->b) : BodyId();
+        if (track.touching && (!touching || track.a != a || track.b != b)) {
+            events.contactEnds.push_back({track.a, track.b});
+            track.touching = false;
+        }
+        if (!touching || track.touching) continue;
+        track = {a, b, true};
+
+        // The deepest point stands for the contact.
+        const BodyRecord &ra = bodies[pair->a];
+        const BodyRecord &rb = bodies[pair->b];
+        const Matrix4 poseA = ra.body.getTransform();
+        const Matrix4 poseB = rb.body.getTransform();
+        ContactBegin begin;
+        begin.a = a;
+        begin.b = b;
+        bool first = true;
+        for (const detail::ManifoldState &m : pair->manifolds) {
+            for (int i = 0; i < m.count; ++i) {
+                const detail::PersistentPoint &point = m.points[i];
+                if (!first && !(point.depth > begin.depth)) continue;
+                first = false;
+                begin.depth = point.depth;
+                begin.normal = m.normal;
+                begin.point = 0.5 * (poseA * point.localA + poseB * point.localB);
+            }
+        }
+        const Vector3 va = ra.body.getVelocity() + ra.body.getRotation().cross(begin.point - ra.body.getPosition());
+        const Vector3 vb = rb.body.getVelocity() + rb.body.getRotation().cross(begin.point - rb.body.getPosition());
+        begin.approachSpeed = (va - vb).dot(begin.normal);
+        events.contactBegins.push_back(begin);
+    }
+}
+
+const WorldEvents &World::events() const { return impl_->events; }
+
+}  // namespace cyclone
