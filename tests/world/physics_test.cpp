@@ -165,13 +165,14 @@ TEST(Physics, BouncingBallReachesRestitutionHeight) {
     EXPECT_NEAR(apex, 0.5, 0.05);
 }
 
-// The plane's offset is along its unit normal (shape.h): normal (0, 2, 0) with offset 1
-// is the ground y <= 1, and a plane body placed at (0, 2, 0) has its surface at y = 2.
+// The plane's solid is normal.x <= offset as given (shape.h, the scene format): normal
+// (0, 2, 0) with offset 1 is the ground y <= 0.5, and a plane body placed at (0, 2, 0)
+// has its surface at y = 2.
 // The broadphase must agree with the narrowphase on both, or a box falls through to
 // where the broadphase thinks the plane is.
 TEST(Physics, BoxRestsOnPlanesWithLongNormalsOrMovedBodies) {
     for (const auto &[shape, position, surface] :
-         {std::tuple{Shape::plane(Vector3(0, 2, 0), 1), Vector3(0, 0, 0), 1.0},
+         {std::tuple{Shape::plane(Vector3(0, 2, 0), 1), Vector3(0, 0, 0), 0.5},
           std::tuple{Shape::plane(Vector3::UnitY(), 0), Vector3(0, 2, 0), 2.0}}) {
         WorldFixture f;
         BodySettings plane;

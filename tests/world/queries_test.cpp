@@ -130,10 +130,11 @@ TEST(RayCast, Plane) {
     expectHit(world.rayCast(Vector3(1, 4, 2), Vector3(3, -4, 0)), ground, 5, Vector3(4, 0, 2), Vector3::UnitY());
     EXPECT_FALSE(world.rayCast(Vector3(1, 4, 2), Vector3::UnitX()));      // parallel
     EXPECT_FALSE(world.rayCast(Vector3(1, -1, 2), -Vector3::UnitY()));    // starts in the solid
-    // A normal of length 2 is normalised; the offset is along the unit normal: y <= 1.
+    // The solid is normal.x <= offset as given (the scene format's contract): a normal
+    // of length 2 with offset 1 is 2y <= 1, the ground y <= 0.5.
     World raised;
     const BodyId shelf = add(raised, Shape::plane(Vector3(0, 2, 0), 1), Vector3::Zero());
-    expectHit(raised.rayCast(Vector3(0, 5, 0), -Vector3::UnitY()), shelf, 4, Vector3(0, 1, 0), Vector3::UnitY());
+    expectHit(raised.rayCast(Vector3(0, 5, 0), -Vector3::UnitY()), shelf, 4.5, Vector3(0, 0.5, 0), Vector3::UnitY());
 }
 
 // Two triangles make the square [-1, 1]^2 at y = 0, normals up; a mesh is hit from

@@ -32,7 +32,7 @@ struct Shape {
     std::vector<Vector3> vertices;               ///< Convex: points whose hull is the shape; mesh: vertices; m.
     std::vector<std::array<int, 3>> triangles;   ///< Mesh: vertex indices of each triangle.
     Vector3 normal = Vector3::UnitY();           ///< Plane: outward normal (any length > 0).
-    real offset = 0;                             ///< Plane: solid half-space normal.x <= offset (normal normalised), m.
+    real offset = 0;  ///< Plane: the solid is normal.x <= offset with the normal as given (distance offset/|normal| along it), m.
 
     /// A box centred on the origin with half sizes `halfExtents` along x, y, z (m, each
     /// finite and > 0).
@@ -48,8 +48,9 @@ struct Shape {
     /// The convex hull of `points` (m, finite; at least 4 not all in one plane). The body's
     /// origin is the frame of the points, not necessarily the hull's centre of mass.
     static Shape convex(std::vector<Vector3> points);
-    /// A half-space for static bodies: the solid side is normal.x <= offset, with the
-    /// normal normalised (any finite length > 0) and the offset (m, finite) along it.
+    /// A half-space for static bodies: the solid side is normal.x <= offset with the normal
+    /// as given (any finite length > 0), so its surface lies offset/|normal| m from the
+    /// body's origin along the unit normal.
     static Shape plane(const Vector3 &normal, real offset);
     /// A triangle mesh for static bodies (m, finite): each triangle three distinct vertex
     /// indices of non-zero area, at least one triangle. Both sides of a triangle collide.
