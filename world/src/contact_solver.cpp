@@ -28,6 +28,29 @@ inline __attribute__((always_inline)) void applyImpulse(SolverBody &a, SolverBod
     b.w += impulse * row.angB;
 }
 
+// The friction rows of every point, limited by the point's normal impulse to Coulomb's
+// cone (not a box: friction is isotropic in the contact plane).
+void solveFriction(SolverBody &a, SolverBody &b, SolverManifold &m) {
+    for (int i = 0; i < m.count; ++i) {
+        SolverPoint &p = m.points[i];
+        const real limit = m.friction * p.normal.impulse;
+        const real old0 = p.tangent[0].impulse;
+        const real old1 = p.tangent[1].impulse;
+        real new0 = old0 - p.tangent[0].mass * relativeVelocity(a, b, m.tangent[0], p.tangent[0]);
+        real new1 = old1 - p.tangent[1].mass * relativeVelocity(a, b, m.tangent[1], p.tangent[1]);
+        const real magnitude2 = new0 * new0 + new1 * new1;
+        if (magnitude2 > limit * limit) {
+            const real scale = limit / std::sqrt(magnitude2);
+            new0 *= scale;
+            new1 *= scale;
+        }
+        p.tangent[0].impulse = new0;
+        p.tangent[1].impulse = new1;
+        applyImpulse(a, b, m.tangent[0], p.tangent[0], new0 - old0);
+        applyImpulse(a, b, m.tangent[1], p.tangent[1], new1 - old1);
+    }
+}
+
 }  // namespace
 
 void tangentBasis(const Vector3 &n, Vector3 &t1, Vector3 &t2) {
@@ -64,27 +87,7 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
         SolverBody &a = bodies[m.a];
         SolverBody &b = bodies[m.b];
         // Friction first, so the normal rows (the ones that must hold) have the last word.
-        if (m.friction > 0) {
-            for (int i = 0; i < m.count; ++i) {
-                SolverPoint &p = m.points[i];
-                const real limit = m.friction * p.normal.impulse;
-                const real old0 = p.tangent[0].impulse;
-                const real old1 = p.tangent[1].impulse;
-                real new0 = old0 - p.tangent[0].mass * relativeVelocity(a, b, m.tangent[0], p.tangent[0]);
-                real new1 = old1 - p.tangent[1].mass * relativeVelocity(a, b, m.tangent[1], p.tangent[1]);
-                // Coulomb's cone, not a box: friction is isotropic in the contact plane.
-                const real magnitude2 = new0 * new0 + new1 * new1;
-                if (magnitude2 > limit * limit) {
-                    const real scale = limit / std::sqrt(magnitude2);
-                    new0 *= scale;
-                    new1 *= scale;
-                }
-                p.tangent[0].impulse = new0;
-                p.tangent[1].impulse = new1;
-                applyImpulse(a, b, m.tangent[0], p.tangent[0], new0 - old0);
-                applyImpulse(a, b, m.tangent[1], p.tangent[1], new1 - old1);
-            }
-        }
+        if (m.friction > 0) solveFriction(a, b, m);
         for (int k = 0; k < m.count; ++k) {
             SolverPoint &p = m.points[reverse ? m.count - 1 - k : k];
             const real vn = relativeVelocity(a, b, m.normal, p.normal);
@@ -133,25 +136,7 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
             p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
             applyImpulse(a, b, m.normal, p.normal, updated - old);
         }
-        if (m.friction <= 0) continue;
-        for (int i = 0; i < m.count; ++i) {
-            SolverPoint &p = m.points[i];
-            const real limit = m.friction * p.normal.impulse;
-            const real old0 = p.tangent[0].impulse;
-            const real old1 = p.tangent[1].impulse;
-            real new0 = old0 - p.tangent[0].mass * relativeVelocity(a, b, m.tangent[0], p.tangent[0]);
-            real new1 = old1 - p.tangent[1].mass * relativeVelocity(a, b, m.tangent[1], p.tangent[1]);
-            const real magnitude2 = new0 * new0 + new1 * new1;
-            if (magnitude2 > limit * limit) {
-                const real scale = limit > 0 ? limit / std::sqrt(magnitude2) : 0;
-                new0 *= scale;
-                new1 *= scale;
-            }
-            p.tangent[0].impulse = new0;
-            p.tangent[1].impulse = new1;
-            applyImpulse(a, b, m.tangent[0], p.tangent[0], new0 - old0);
-            applyImpulse(a, b, m.tangent[1], p.tangent[1], new1 - old1);
-        }
+        if (m.friction > 0) solveFriction(a, b, m);
     }
 }
 
