@@ -9,6 +9,7 @@
 #include <fcl/fcl.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace cyclone::detail {
@@ -64,11 +65,15 @@ public:
     void refit(fcl::CollisionObjectd *object, Tree tree);
     /// Appends every pair of overlapping AABBs with at least one awake member.
     void findPairs(std::vector<CandidatePair> &out);
+    /// Appends the body index of every object, in any tree, whose box overlaps `box`
+    /// (continuous collision's candidates along a sweep).
+    void overlapping(const fcl::AABBd &box, std::vector<std::uint32_t> &out);
 
 private:
     fcl::DynamicAABBTreeCollisionManagerd awake_;
     fcl::DynamicAABBTreeCollisionManagerd asleep_;
     fcl::DynamicAABBTreeCollisionManagerd static_;
+    std::unique_ptr<fcl::CollisionObjectd> probe_;  ///< Carries the box of overlapping().
 
     fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree);
 };

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "ccd.h"
 #include "validation.h"
 #include "world_impl.h"
 
@@ -154,6 +155,7 @@ BodyId World::addBody(const BodySettings &settings) {
     r.isStatic = settings.isStatic;
     r.isPlane = settings.shape.type == ShapeType::Plane;
     r.ccd = settings.ccd;
+    r.innerRadius = settings.ccd ? detail::innerRadius(*shape) : 0;
     r.quarantined = false;
     r.simulated = false;
     r.tree = Tree::None;

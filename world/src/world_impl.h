@@ -35,6 +35,7 @@ struct BodyRecord {
     bool isStatic = false;
     bool isPlane = false;
     bool ccd = false;
+    real innerRadius = 0;       ///< ccd bodies: largest ball about the origin inside the shape, m.
     bool quarantined = false;   ///< State went non-finite: out of collision and solve.
     bool simulated = false;     ///< Awake dynamic body at the start of this step.
     detail::Tree tree = detail::Tree::None;
@@ -83,6 +84,7 @@ struct World::Impl {
     std::vector<Vector3> predictedW;
     std::vector<real> linearFactor;       ///< damping^h of each simulated body.
     std::vector<real> angularFactor;
+    std::vector<std::uint32_t> sweepCandidates;  ///< Bodies near a ccd body's sweep.
 
     detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
@@ -106,6 +108,9 @@ struct World::Impl {
     // The step, stage by stage.
     void step(real dt);
     void applyForces();
+    void addExplicitSpringForces();
+    void substepForces(real h, bool firstSubstep);
+    void addImplicitSpringForces(real h);
     void updateBroadphase();
     void runNarrowphase();
     void buildManifolds(real dt);
@@ -115,6 +120,7 @@ struct World::Impl {
     void integrate(real h);
     void recoverPenetration(real h);
     void restitution();
+    void sweepContinuous();
     void updateSleep();
     void storeImpulses();
     void quarantine(std::uint32_t index);
