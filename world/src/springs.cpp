@@ -8,10 +8,13 @@
 // attachment points (stiffness K = k d d^T along the spring plus k (1 - L/l) across it
 // when stretched) and writing u' = u + h W F, with u the velocity the points reach
 // without this spring and W the inverse mass matrix of the two points, gives the 3x3
-// system (1 + h (h K + C) W) F = F0 - (h K + C) u. For one body on one spring this is
-// exactly backward Euler, whose energy shrinks by 1 / (1 + (omega h)^2) per sub-step
-// whatever omega h is. Springs sharing a body are solved one after the other, each
-// seeing the forces of those before it (one Gauss-Seidel pass).
+// system (1 + h (h K + C) W) F = F0 - (h K + C) u. For a body held at its centre of mass
+// this is exactly backward Euler along the spring, whose energy shrinks by
+// 1 / (1 + (omega h)^2) per sub-step whatever omega h is. An attachment off the centre of
+// mass moves on a circle, not along its velocity, so a fast-turning body may gain a
+// little in one step (k |stretch| (h w)^2 r at most), never beyond its starting energy in
+// tests/world/integrator_test.cpp. Springs sharing a body are solved one after the
+// other, each seeing the forces of those before it (one Gauss-Seidel pass).
 #include <Eigen/LU>
 #include <algorithm>
 
@@ -51,6 +54,7 @@ void World::Impl::addExplicitSpringForces() {
         BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
         const bool bSimulated = b && b->simulated;
         if (!a.simulated && !bSimulated) continue;
+        if (a.quarantined || (b && b->quarantined)) continue;
         const Vector3 pa = a.body.getPointInWorldSpace(s.settings.aPoint);
         const Vector3 pb = b ? b->body.getPointInWorldSpace(s.settings.bPoint) : s.settings.bPoint;
         const Vector3 d = pa - pb;
@@ -76,6 +80,7 @@ void World::Impl::addImplicitSpringForces(real h) {
         BodyRecord *b = spring.b ? &bodies[spring.b->index] : nullptr;
         const bool bSimulated = b && b->simulated;
         if (!a.simulated && !bSimulated) continue;
+        if (a.quarantined || (b && b->quarantined)) continue;
         const Vector3 pa = a.body.getPointInWorldSpace(spring.aPoint);
         const Vector3 pb = b ? b->body.getPointInWorldSpace(spring.bPoint) : spring.bPoint;
 

@@ -106,6 +106,8 @@ void World::Impl::applyForces() {
         BodyRecord &a = bodies[s.settings.a.index];
         BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
         if (!a.simulated && !(b && b->simulated)) continue;
+        // An isolated (non-finite) end would carry its state to the other: the spring is off.
+        if (a.quarantined || (b && b->quarantined)) continue;
         // A spring joins its bodies: one awake end wakes the other.
         if (!a.simulated) wake(s.settings.a.index);
         if (b && !b->simulated) wake(s.settings.b->index);

@@ -20,11 +20,11 @@ enum class Integrator {
     /// per step, and a spring with omega dt above about 2 gains energy and explodes.
     NewtonEuler,
     /// "newton-euler-gyroscopic": the seed plus the implicit gyroscopic term
-    /// (GyroscopicStep::Midpoint) each sub-step, so that a spinning asymmetric body
-    /// keeps its kinetic energy exactly and its angular momentum to first order (and
-    /// flips about its intermediate axis, which the seed's never does). Costs 2-4 3x3
-    /// solves per awake body of anisotropic inertia and sub-step; nothing for spheres
-    /// and cubes.
+    /// (GyroscopicStep::Midpoint over the whole step, before the first sub-step's solve),
+    /// so that a spinning asymmetric body keeps its kinetic energy and its angular
+    /// momentum to first order in dt (and flips about its intermediate axis, which the
+    /// seed's never does). Costs 2-4 3x3 solves per step and awake body of anisotropic
+    /// inertia; nothing for spheres and cubes.
     NewtonEulerGyroscopic,
     /// "newton-euler-implicit": the gyroscopic term as above, and backward-Euler springs:
     /// each spring's force is solved each sub-step for the velocity it produces (a 3x3
