@@ -155,7 +155,7 @@ BodyId World::addBody(const BodySettings &settings) {
     r.isStatic = settings.isStatic;
     r.isPlane = settings.shape.type == ShapeType::Plane;
     r.ccd = settings.ccd;
-    r.innerRadius = settings.ccd ? detail::innerRadius(*shape) : 0;
+    r.core = settings.ccd && !settings.isStatic ? detail::makeCore(detail::sweptShape(*shape)) : nullptr;
     r.quarantined = false;
     r.simulated = false;
     r.tree = Tree::None;
@@ -224,6 +224,7 @@ void World::removeBody(BodyId id) {
     w.order.erase(std::find(w.order.begin(), w.order.end(), index));
     r.object.reset();
     r.shape.reset();
+    r.core.reset();
     r.alive = false;
     ++r.generation;
     w.freeBodies.push_back(index);

@@ -35,7 +35,7 @@ struct BodyRecord {
     bool isStatic = false;
     bool isPlane = false;
     bool ccd = false;
-    real innerRadius = 0;       ///< ccd bodies: largest ball about the origin inside the shape, m.
+    std::shared_ptr<fcl::CollisionGeometryd> core;  ///< ccd bodies: the sphere swept when already touching.
     bool quarantined = false;   ///< State went non-finite: out of collision and solve.
     bool simulated = false;     ///< Awake dynamic body at the start of this step.
     detail::Tree tree = detail::Tree::None;
