@@ -18,7 +18,7 @@
 //
 // Why sampling and not fcl::continuousCollide: FCL 0.7's conservative advancement
 // (linear motion, toc_err 1e-5) was checked against densely sampled sweeps of random
-// poses, 300 to 1000 per pair. With libccd it missed 1-3% of box-box, box-hull,
+// poses, 300 to 1000 per pair. With libccd it missed 0.7-3% of box-box, box-hull,
 // hull-hull, capsule-capsule and cylinder-cylinder contacts; with FCL's own GJK 2% of
 // capsule-capsule and 0.1-0.3% of sphere-box and sphere-cylinder ones; against a mesh it
 // recursed until the stack overflowed. A miss is a tunnel, so every pair is sampled: a
