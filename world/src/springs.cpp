@@ -13,8 +13,10 @@
 // 1 / (1 + (omega h)^2) per sub-step whatever omega h is. An attachment off the centre of
 // mass moves on a circle, not along its velocity, so a fast-turning body may gain a
 // little in one step (k |stretch| (h w)^2 r at most), never beyond its starting energy in
-// tests/world/integrator_test.cpp. Springs sharing a body are solved one after the
-// other, each seeing the forces of those before it (one Gauss-Seidel pass).
+// tests/world/integrator_test.cpp. Springs sharing a body are coupled: each is solved
+// with the others' current forces, in kImplicitSpringPasses passes warm-started with the
+// last sub-step's forces (block Gauss-Seidel). At rest the warm start is the solution, so
+// a chain hangs exactly where its springs carry the weight below them.
 #include <Eigen/LU>
 #include <algorithm>
 
@@ -73,41 +75,40 @@ void World::Impl::addExplicitSpringForces() {
 }
 
 void World::Impl::addImplicitSpringForces(real h) {
-    for (SpringRecord &s : springs) {
+    // What stays fixed through the passes of this sub-step: the attachment points, the
+    // spring's force there and the 3x3 system of each active spring.
+    implicitSprings.clear();
+    for (std::uint32_t index = 0; index < springs.size(); ++index) {
+        SpringRecord &s = springs[index];
         if (!s.alive) continue;
         const SpringSettings &spring = s.settings;
         BodyRecord &a = bodies[spring.a.index];
         BodyRecord *b = spring.b ? &bodies[spring.b->index] : nullptr;
         const bool bSimulated = b && b->simulated;
-        if (!a.simulated && !bSimulated) continue;
-        if (a.quarantined || (b && b->quarantined)) continue;
-        const Vector3 pa = a.body.getPointInWorldSpace(spring.aPoint);
-        const Vector3 pb = b ? b->body.getPointInWorldSpace(spring.bPoint) : spring.bPoint;
-
+        if ((!a.simulated && !bSimulated) || a.quarantined || (b && b->quarantined)) {
+            s.implicitForce.setZero();
+            continue;
+        }
+        ImplicitSpring is;
+        is.spring = index;
+        is.aMoves = a.simulated;
+        is.bMoves = bSimulated;
+        is.pa = a.body.getPointInWorldSpace(spring.aPoint);
+        is.pb = b ? b->body.getPointInWorldSpace(spring.bPoint) : spring.bPoint;
         // An end that does not move this step (static, or woken during it) is at rest.
-        Vector3 u = Vector3::Zero();
         Matrix3 inverseMass = Matrix3::Zero();
-        if (a.simulated) {
-            const Vector3 r = pa - a.body.getPosition();
-            u += freePointVelocity(a.body, r, h);
-            inverseMass += pointInverseMass(a.body, r);
-        }
-        if (bSimulated) {
-            const Vector3 r = pb - b->body.getPosition();
-            u -= freePointVelocity(b->body, r, h);
-            inverseMass += pointInverseMass(b->body, r);
-        }
+        if (is.aMoves) inverseMass += pointInverseMass(a.body, is.pa - a.body.getPosition());
+        if (is.bMoves) inverseMass += pointInverseMass(b->body, is.pb - b->body.getPosition());
 
-        const Vector3 delta = pa - pb;
+        const Vector3 delta = is.pa - is.pb;
         const real length = delta.norm();
         const real k = spring.stiffness;
-        Vector3 force0;
         Matrix3 stiffness;
         Matrix3 damping = Matrix3::Zero();
         if (length > 1e-12) {
             const Vector3 d = delta / length;
             const Matrix3 along = d * d.transpose();
-            force0 = -k * (length - spring.restLength) * d;
+            is.force0 = -k * (length - spring.restLength) * d;
             // Across the spring the stiffness is k (1 - L/l); a compressed spring's is
             // negative (it buckles) and is left explicit.
             const real across = std::max(real(0), 1 - spring.restLength / length);
@@ -115,17 +116,45 @@ void World::Impl::addImplicitSpringForces(real h) {
             damping = spring.damping * along;
         } else if (spring.restLength == 0) {
             // A zero-length spring at zero length: no direction, but k x is linear.
-            force0 = -k * delta;
+            is.force0 = -k * delta;
             stiffness = k * Matrix3::Identity();
         } else {
+            s.implicitForce.setZero();
             continue;  // no direction to push along
         }
-        const Matrix3 response = h * stiffness + damping;
-        const Matrix3 system = Matrix3::Identity() + h * response * inverseMass;
-        const Vector3 force = system.partialPivLu().solve(force0 - response * u);
-        if (!force.allFinite()) continue;
-        if (a.simulated) a.body.addForceAtPoint(force, pa);
-        if (bSimulated) b->body.addForceAtPoint(-force, pb);
+        is.response = h * stiffness + damping;
+        is.system.compute(Matrix3::Identity() + h * is.response * inverseMass);
+        implicitSprings.push_back(is);
+    }
+    if (implicitSprings.empty()) return;
+
+    const auto apply = [&](const ImplicitSpring &is, const Vector3 &force) {
+        const SpringSettings &spring = springs[is.spring].settings;
+        if (is.aMoves) bodies[spring.a.index].body.addForceAtPoint(force, is.pa);
+        if (is.bMoves) bodies[spring.b->index].body.addForceAtPoint(-force, is.pb);
+    };
+    // Warm start: the forces of the last sub-step, which at rest are already the answer.
+    for (const ImplicitSpring &is : implicitSprings) apply(is, springs[is.spring].implicitForce);
+    // Each pass solves every spring for the velocity its points reach with the others'
+    // current forces (block Gauss-Seidel); one pass is exact for a spring alone.
+    for (int pass = 0; pass < kImplicitSpringPasses; ++pass) {
+        for (const ImplicitSpring &is : implicitSprings) {
+            SpringRecord &s = springs[is.spring];
+            apply(is, -s.implicitForce);
+            const SpringSettings &spring = s.settings;
+            Vector3 u = Vector3::Zero();
+            if (is.aMoves) {
+                const RigidBody &a = bodies[spring.a.index].body;
+                u += freePointVelocity(a, is.pa - a.getPosition(), h);
+            }
+            if (is.bMoves) {
+                const RigidBody &b = bodies[spring.b->index].body;
+                u -= freePointVelocity(b, is.pb - b.getPosition(), h);
+            }
+            const Vector3 force = is.system.solve(is.force0 - is.response * u);
+            s.implicitForce = force.allFinite() ? force : Vector3::Zero();
+            apply(is, s.implicitForce);
+        }
     }
 }
 

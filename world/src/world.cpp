@@ -398,6 +398,7 @@ SpringId World::addSpring(const SpringSettings &s) {
     SpringRecord &r = w.springs[index];
     r.settings = s;
     r.alive = true;
+    r.implicitForce.setZero();
     if (!w.bodies[s.a.index].isStatic) w.wake(s.a.index);
     if (s.b && !w.bodies[s.b->index].isStatic) w.wake(s.b->index);
     return {index, r.generation};

@@ -8,6 +8,7 @@
 // of that step and moves from the next one.
 #pragma once
 
+#include <Eigen/LU>
 #include <fcl/fcl.h>
 
 #include <memory>
@@ -49,6 +50,22 @@ struct SpringRecord {
     SpringSettings settings;
     std::uint32_t generation = 0;
     bool alive = false;
+    Vector3 implicitForce = Vector3::Zero();  ///< Implicit springs: force on a in the last sub-step, N.
+};
+
+/// Passes over the implicit springs per sub-step (block Gauss-Seidel on the coupled system).
+inline constexpr int kImplicitSpringPasses = 4;
+
+/// An implicit spring during one sub-step: what stays fixed through the passes.
+struct ImplicitSpring {
+    std::uint32_t spring = 0;         ///< Index in World::Impl::springs.
+    bool aMoves = false;
+    bool bMoves = false;
+    Vector3 pa = Vector3::Zero();     ///< World attachment points, m.
+    Vector3 pb = Vector3::Zero();
+    Vector3 force0 = Vector3::Zero(); ///< Spring force on a at the sub-step's start, N.
+    Matrix3 response = Matrix3::Zero();  ///< h K + C, N s/m.
+    Eigen::PartialPivLU<Matrix3> system;  ///< 1 + h (h K + C) W.
 };
 
 struct World::Impl {
@@ -85,6 +102,7 @@ struct World::Impl {
     std::vector<real> linearFactor;       ///< damping^h of each simulated body.
     std::vector<real> angularFactor;
     std::vector<std::uint32_t> sweepCandidates;  ///< Bodies near a ccd body's sweep.
+    std::vector<ImplicitSpring> implicitSprings;
 
     detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
@@ -107,7 +125,7 @@ struct World::Impl {
 
     // The step, stage by stage.
     void step(real dt);
-    void applyForces();
+    void applyForces(real dt);
     void addExplicitSpringForces();
     void substepForces(real h, bool firstSubstep);
     void addImplicitSpringForces(real h);

@@ -41,7 +41,7 @@ void World::Impl::step(real dt) {
     stats = StepStats();
     ++stepCount;
 
-    applyForces();
+    applyForces(dt);
     stats.ms.forces = timer.lap();
     updateBroadphase();
     stats.ms.broadphase = timer.lap();
@@ -88,13 +88,19 @@ void World::Impl::step(real dt) {
 
 // --- forces -------------------------------------------------------------------------------
 
-void World::Impl::applyForces() {
+void World::Impl::applyForces(real dt) {
     simulatedBodies.clear();
     for (std::uint32_t index : order) {
         BodyRecord &r = bodies[index];
         r.simulated = !r.isStatic && !r.quarantined && r.body.getAwake();
         if (!r.simulated) continue;
-        if (!r.body.getAccumulatedForce().allFinite() || !r.body.getAccumulatedTorque().allFinite()) {
+        // A force whose velocity overflows within the step (1e300 N on 1 kg) would reach
+        // other bodies through springs before the solver's check: isolate the body now.
+        const RigidBody &body = r.body;
+        const Vector3 v = body.getVelocity() +
+                          dt * (body.getAcceleration() + body.getInverseMass() * body.getAccumulatedForce());
+        const Vector3 w = body.getRotation() + dt * (body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque());
+        if (!std::isfinite(v.squaredNorm() + w.squaredNorm())) {
             quarantine(index);
             continue;
         }
