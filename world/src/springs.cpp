@@ -1,8 +1,9 @@
-// Spring forces: explicit (the seed's, once per step) or backward Euler (every sub-step).
+// Spring forces, at the start of every sub-step of h seconds: explicit (the seed's) or
+// backward Euler.
 //
-// Design note. An explicit spring force, held for a whole step, is the symplectic Euler
-// step of an oscillator: stable only while omega dt < 2, and beyond that the energy
-// grows every step. The implicit force is the one the spring will exert at the end of
+// Design note. An explicit spring force makes each sub-step a symplectic Euler step of
+// the oscillator: stable only while omega h < 2, and beyond that the energy grows every
+// step. The implicit force is the one the spring will exert at the end of
 // the sub-step: F = F(x + h u') - c u', where u' is the relative velocity of the two
 // attachment points after the sub-step. Linearising the spring about the current
 // attachment points (stiffness K = k d d^T along the spring plus k (1 - L/l) across it

@@ -119,8 +119,6 @@ void World::Impl::applyForces(real dt) {
         if (b && !b->simulated) wake(s.settings.b->index);
         ++stats.springs;
     }
-    // Implicit springs are solved at the start of every sub-step instead (substepForces).
-    if (stats.springs > 0 && settings.integrator != Integrator::NewtonEulerImplicit) addExplicitSpringForces();
     if (settings.substeps > 1) {
         savedForces.resize(simulatedBodies.size());
         savedTorques.resize(simulatedBodies.size());
@@ -131,8 +129,10 @@ void World::Impl::applyForces(real dt) {
     }
 }
 
-// Forces of one sub-step: the step's forces again after the first sub-step (integrate
-// cleared them), then implicit springs, solved for the state this sub-step starts from.
+// Forces of one sub-step: the user's forces again after the first sub-step (integrate
+// cleared them), then the springs at the state this sub-step starts from. Held for a
+// whole step, an explicit spring force would gain energy at any stiffness once there are
+// sub-steps (the positions would move under a force that lags them).
 void World::Impl::substepForces(real h, bool firstSubstep) {
     if (!firstSubstep) {
         for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
@@ -142,7 +142,9 @@ void World::Impl::substepForces(real h, bool firstSubstep) {
             r.body.addTorque(savedTorques[k]);
         }
     }
-    if (stats.springs > 0 && settings.integrator == Integrator::NewtonEulerImplicit) addImplicitSpringForces(h);
+    if (stats.springs == 0) return;
+    if (settings.integrator == Integrator::NewtonEulerImplicit) addImplicitSpringForces(h);
+    else addExplicitSpringForces();
 }
 
 // --- broadphase ---------------------------------------------------------------------------

@@ -16,8 +16,9 @@ namespace cyclone {
 enum class Integrator {
     /// "newton-euler": the seed's first-order semi-implicit Newton-Euler. Without torque
     /// the world angular velocity stays constant (wrong for an asymmetric body, whose
-    /// angular momentum is what is conserved); spring forces are explicit, computed once
-    /// per step, and a spring with omega dt above about 2 gains energy and explodes.
+    /// angular momentum is what is conserved); spring forces are explicit, evaluated at
+    /// the start of each sub-step of h = dt / substeps (symplectic Euler): stable while
+    /// omega h < 2, beyond which a spring gains energy and explodes.
     NewtonEuler,
     /// "newton-euler-gyroscopic": the seed plus the implicit gyroscopic term
     /// (GyroscopicStep::Midpoint over the whole step, before the first sub-step's solve),

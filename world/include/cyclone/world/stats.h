@@ -8,7 +8,7 @@ namespace cyclone {
 
 /// Milliseconds spent in each stage of the last step.
 struct StageTimes {
-    double forces = 0;       ///< Gravity, user forces and springs (implicit springs: every sub-step).
+    double forces = 0;       ///< Gravity, user forces and springs (every sub-step).
     double broadphase = 0;   ///< AABB updates and overlapping pairs.
     double narrowphase = 0;  ///< FCL collide calls.
     double manifolds = 0;    ///< Point matching, warm-start data, solver set-up.
