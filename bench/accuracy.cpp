@@ -174,7 +174,8 @@ SpinState rk4Spin(SpinState s, const Vector3 &inertia, double seconds, double h)
 
 struct Dzhanibekov {
     // Box 0.1 x 0.4 x 0.9 m, 1 kg: I = m (b^2 + c^2) / 12, ...; spun near its intermediate
-    // (y) axis at w0 = (0.1, 5, 0.1) rad/s, no gravity, for 10 s.
+    // (y) axis at w0 = (0.1, 5, 0.1) rad/s (or tumbling about no principal axis), no
+    // gravity, for 10 s.
     Vector3 halfExtents{0.05, 0.2, 0.45};
     Vector3 w0{0.1, 5, 0.1};
     double seconds = 10;
@@ -193,8 +194,8 @@ double angleBetween(const Quaternion &a, const Quaternion &b) { return a.angular
 
 // The World with one of its integrators, or (gyroscopic set) a bare RigidBody given that
 // gyroscopic step once per step before its sub-steps, as the World does.
-Outcome dzhanibekov(const Config &c, const Quaternion &reference, std::optional<GyroscopicStep> coreStep) {
-    const Dzhanibekov d;
+Outcome dzhanibekov(const Dzhanibekov &d, const Config &c, const Quaternion &reference,
+                    std::optional<GyroscopicStep> coreStep) {
     World world(worldSettings(c, false));
     BodySettings s;
     s.shape = Shape::box(d.halfExtents);
@@ -440,18 +441,26 @@ std::vector<Scene> scenes(bool quick) {
         c.integratorName = "rigidbody-backward-euler";
         spin.push_back(c);
     }
+    const auto spinScene = [](const Dzhanibekov &scene, const Quaternion &reference) {
+        return [scene, reference](const Config &c) {
+            return dzhanibekov(scene, c, reference,
+                               c.integratorName.empty() ? std::nullopt
+                                                        : std::optional<GyroscopicStep>(GyroscopicStep::BackwardEuler));
+        };
+    };
     all.push_back({"dzhanibekov",
                    "box 0.1 x 0.4 x 0.9 m, w0 = (0.1, 5, 0.1) rad/s about its intermediate axis, no gravity, 10 s; "
                    "L and E are constant; attitude against RK4 at h = 1e-4 s (which differs from RK4 at "
                    "5e-5 s by " + number(referenceError, 2) + " rad). rigidbody-backward-euler is "
                    "Bullet's and Jolt's form (GyroscopicStep::BackwardEuler, core only), once per step as the "
                    "World does",
-                   spin, [reference](const Config &c) {
-                       return dzhanibekov(c, reference,
-                                          c.integratorName.empty()
-                                              ? std::nullopt
-                                              : std::optional<GyroscopicStep>(GyroscopicStep::BackwardEuler));
-                   }});
+                   spin, spinScene(d, reference)});
+    Dzhanibekov tumbling;
+    tumbling.w0 = Vector3(1, 2, 3);
+    all.push_back({"tumbling-box",
+                   "the same box tumbling at w0 = (1, 2, 3) rad/s, about no principal axis; attitude against RK4 "
+                   "at h = 1e-4 s",
+                   spin, spinScene(tumbling, tumbling.reference(1e-4))});
 
     all.push_back({"sliding-box", "unit box at 5 m/s on a plane, friction 0.5: stops after v0^2 / (2 mu g) = 2.548 m",
                    sweep(seed, {3, 10}, {1, 4}, quick), slidingBox});

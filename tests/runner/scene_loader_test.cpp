@@ -269,10 +269,11 @@ TEST(SceneLoader, SpringsKeepTheirBodiesPointsAndConstants) {
     EXPECT_DOUBLE_EQ(scene.springs[2].settings.restLength, defaults.restLength);
 }
 
-// Hooke's law over one semi-implicit step: v = (k * stretch / m) dt, without gravity.
+// Hooke's law over one semi-implicit step: v = (k * stretch / m) dt, without gravity. One
+// sub-step, since the World evaluates springs at the start of every sub-step.
 TEST(SceneLoader, SpringsPullInTheWorld) {
     const double k = 10, dt = 0.01;
-    Scene scene = loadScene(R"({"settings": {"gravity": [0, 0, 0], "dt": 0.01, "steps": 1}, "bodies": [
+    Scene scene = loadScene(R"({"settings": {"gravity": [0, 0, 0], "dt": 0.01, "steps": 1, "substeps": 1}, "bodies": [
         {"name": "hung", "shape": {"type": "sphere", "radius": 0.5}, "mass": 2},
         {"name": "left", "shape": {"type": "sphere", "radius": 0.5}, "position": [10, 0, 0]},
         {"name": "right", "shape": {"type": "sphere", "radius": 0.5}, "position": [13, 0, 0]}],

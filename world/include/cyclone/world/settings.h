@@ -28,10 +28,12 @@ enum class Integrator {
     /// inertia; nothing for spheres and cubes.
     NewtonEulerGyroscopic,
     /// "newton-euler-implicit": the gyroscopic term as above, and backward-Euler springs:
-    /// each spring's force is solved each sub-step for the velocity it produces (a 3x3
-    /// solve per spring), so a spring never gains energy whatever its omega dt. The
-    /// price is numerical damping of soft springs: a fraction of about (omega h)^2 / 2 of
-    /// the oscillation energy is lost per sub-step of h seconds.
+    /// each spring's force is solved each sub-step for the velocity it produces (4 passes
+    /// of a 3x3 solve per spring), so a spring never gains energy whatever its omega dt. The
+    /// price is numerical damping: a fraction u^2 / (1 + u^2) of the oscillation energy is
+    /// lost per sub-step, u = omega h (1% at u = 0.1, so an undamped 150 rad/s spring at
+    /// 1500 Hz keeps 1e-13 of its energy after 2 s). For stiff springs that should hold,
+    /// not ring.
     NewtonEulerImplicit,
 };
 
