@@ -1,6 +1,7 @@
 #include "cyclone/body.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -63,6 +64,13 @@ Quaternion normalisedOrientation(const char *function, const Quaternion &q) {
     return Quaternion(q.coeffs() / norm);
 }
 
+// The matrix of v x (cross product on the left).
+Matrix3 skew(const Vector3 &v) {
+    Matrix3 m;
+    m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return m;
+}
+
 }  // namespace
 
 RigidBody::RigidBody()
@@ -79,6 +87,7 @@ RigidBody::RigidBody()
       sleepEpsilon(kDefaultSleepEpsilon),
       isAwake(true),
       canSleep(true),
+      gyroscopicStep(GyroscopicStep::None),
       transformMatrix(Matrix4::Identity()),
       forceAccum(Vector3::Zero()),
       torqueAccum(Vector3::Zero()),
@@ -99,6 +108,7 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
         refuse("integrate", "duration must be finite and >= 0, got " + str(duration));
     if (!isAwake || duration == 0) return;
 
+    applyGyroscopicStep(gyroscopicStep, duration);
     lastFrameAcceleration = acceleration + forceAccum * inverseMass;
     const Vector3 angularAcceleration = inverseInertiaTensorWorld * torqueAccum;
 
@@ -124,6 +134,80 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
     } else if (motion > 10 * sleepEpsilon) {
         motion = 10 * sleepEpsilon;
     }
+}
+
+bool RigidBody::hasIsotropicInertia() const {
+    const real mean = inverseInertiaTensor.trace() / 3;
+    return (inverseInertiaTensor - mean * Matrix3::Identity()).cwiseAbs().maxCoeff() <= 1e-12 * mean;
+}
+
+namespace {
+
+bool knownStep(GyroscopicStep step) {
+    return step == GyroscopicStep::None || step == GyroscopicStep::BackwardEuler || step == GyroscopicStep::Midpoint;
+}
+
+// One Newton step on backward Euler from w (Bullet's btRigidBody::
+// computeGyroscopicImpulseImplicit_Body): the residual f(w') = I (w' - w) + h w' x I w'
+// is h w x I w at w' = w, and its Jacobian there is I + h ([w]x I - [I w]x).
+Vector3 backwardEulerStep(const Matrix3 &inertia, const Vector3 &w, real h) {
+    const Vector3 momentum = inertia * w;
+    const Matrix3 jacobian = inertia + h * (skew(w) * inertia - skew(momentum));
+    const Eigen::FullPivLU<Matrix3> lu(jacobian);
+    if (!lu.isInvertible()) return w;
+    return w - lu.solve(h * w.cross(momentum));
+}
+
+// Newton's method on the midpoint rule f(x) = I (x - w) + h m x I m, m = (x + w) / 2,
+// whose Jacobian is I + h/2 ([m]x I - [I m]x). Quadratic convergence from x = w: at
+// h |w| = 0.1 the correction falls as 1e-3, 1e-6, 1e-12.
+Vector3 midpointStep(const Matrix3 &inertia, const Vector3 &w, real h) {
+    constexpr int kMaxIterations = 10;
+    Vector3 x = w;
+    for (int i = 0; i < kMaxIterations; ++i) {
+        const Vector3 m = 0.5 * (x + w);
+        const Vector3 momentum = inertia * m;
+        const Vector3 residual = inertia * (x - w) + h * m.cross(momentum);
+        const Matrix3 jacobian = inertia + 0.5 * h * (skew(m) * inertia - skew(momentum));
+        const Eigen::FullPivLU<Matrix3> lu(jacobian);
+        if (!lu.isInvertible()) break;
+        const Vector3 correction = lu.solve(residual);
+        x -= correction;
+        if (!(correction.norm() > 1e-14 * x.norm())) break;
+    }
+    return x;
+}
+
+}  // namespace
+
+void RigidBody::setGyroscopicStep(GyroscopicStep step) {
+    if (!knownStep(step))
+        throw InvalidArgument("RigidBody::setGyroscopicStep", "step",
+                              "must be None, BackwardEuler or Midpoint, got " + std::to_string(static_cast<int>(step)));
+    gyroscopicStep = step;
+}
+
+void RigidBody::applyGyroscopicStep(GyroscopicStep step, real duration) {
+    static const char *function = "RigidBody::applyGyroscopicStep";
+    if (!knownStep(step))
+        throw InvalidArgument(function, "step",
+                              "must be None, BackwardEuler or Midpoint, got " + std::to_string(static_cast<int>(step)));
+    if (!std::isfinite(duration) || duration < 0)
+        throw InvalidArgument(function, "duration", "must be finite and >= 0, got " + str(duration));
+    if (step == GyroscopicStep::None || !isAwake || duration == 0 || hasIsotropicInertia()) return;
+
+    const Matrix3 toWorld = orientation.toRotationMatrix();
+    const Vector3 w = toWorld.transpose() * rotation;
+    const Matrix3 inertia = inverseInertiaTensor.inverse();
+    Vector3 next = step == GyroscopicStep::Midpoint ? midpointStep(inertia, w, duration)
+                                                    : backwardEulerStep(inertia, w, duration);
+    // Backward Euler's solution satisfies w'.I w' = w'.I w <= sqrt(w'.I w') sqrt(w.I w);
+    // the midpoint's keeps w.I w. An approximate solution may not: scale it back.
+    const real before = w.dot(inertia * w);
+    const real after = next.dot(inertia * next);
+    if (after > before) next *= std::sqrt(before / after);
+    if (!next.allFinite()) return;
+    rotation = toWorld * next;
 }
 
 void RigidBody::setMass(const real mass) {

@@ -27,6 +27,8 @@ struct IntegratorName {
 };
 inline constexpr IntegratorName kIntegrators[] = {
     {"newton-euler", Integrator::NewtonEuler},
+    {"newton-euler-gyroscopic", Integrator::NewtonEulerGyroscopic},
+    {"newton-euler-implicit", Integrator::NewtonEulerImplicit},
 };
 
 /// Loads a scene from the text of a scene file; `fallbackName` names the scene when the

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 
 #include "run_loop.h"
 #include "scene_loader.h"
@@ -95,6 +96,25 @@ TEST(SceneLoader, EveryIntegratorNameOfTheTableLoads) {
             loadScene(std::string(R"({"settings": {"integrator": ")") + entry.name + R"("}, "bodies": []})", "x");
         EXPECT_EQ(scene.world.integrator, entry.integrator) << entry.name;
     }
+}
+
+// One row per scheme: every Integrator has exactly one name, and names do not repeat.
+TEST(SceneLoader, EveryIntegratorHasOneName) {
+    const Integrator schemes[] = {Integrator::NewtonEuler, Integrator::NewtonEulerGyroscopic,
+                                  Integrator::NewtonEulerImplicit};
+    for (Integrator scheme : schemes) {
+        int rows = 0;
+        for (const IntegratorName &entry : kIntegrators) rows += entry.integrator == scheme;
+        EXPECT_EQ(rows, 1) << static_cast<int>(scheme);
+    }
+    EXPECT_EQ(std::size(kIntegrators), std::size(schemes));
+    for (const IntegratorName &a : kIntegrators)
+        for (const IntegratorName &b : kIntegrators)
+            if (&a != &b) {
+                EXPECT_STRNE(a.name, b.name);
+            }
+    const Scene scene = loadScene(R"({"settings": {"integrator": "newton-euler-gyroscopic"}, "bodies": []})", "x");
+    EXPECT_EQ(scene.world.integrator, Integrator::NewtonEulerGyroscopic);
 }
 
 TEST(SceneLoader, EveryBodyFieldLandsInTheWorld) {
@@ -249,10 +269,11 @@ TEST(SceneLoader, SpringsKeepTheirBodiesPointsAndConstants) {
     EXPECT_DOUBLE_EQ(scene.springs[2].settings.restLength, defaults.restLength);
 }
 
-// Hooke's law over one semi-implicit step: v = (k * stretch / m) dt, without gravity.
+// Hooke's law over one semi-implicit step: v = (k * stretch / m) dt, without gravity. One
+// sub-step, since the World evaluates springs at the start of every sub-step.
 TEST(SceneLoader, SpringsPullInTheWorld) {
     const double k = 10, dt = 0.01;
-    Scene scene = loadScene(R"({"settings": {"gravity": [0, 0, 0], "dt": 0.01, "steps": 1}, "bodies": [
+    Scene scene = loadScene(R"({"settings": {"gravity": [0, 0, 0], "dt": 0.01, "steps": 1, "substeps": 1}, "bodies": [
         {"name": "hung", "shape": {"type": "sphere", "radius": 0.5}, "mass": 2},
         {"name": "left", "shape": {"type": "sphere", "radius": 0.5}, "position": [10, 0, 0]},
         {"name": "right", "shape": {"type": "sphere", "radius": 0.5}, "position": [13, 0, 0]}],

@@ -11,9 +11,27 @@ bool recordPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data
     return false;
 }
 
+// An object that is only a box: what the trees test against in overlapping().
+class BoxProbe : public fcl::CollisionObjectd {
+public:
+    BoxProbe() : fcl::CollisionObjectd(std::make_shared<fcl::Boxd>(1, 1, 1)) {}
+    void setBox(const fcl::AABBd &box) { aabb = box; }
+};
+
+struct ProbeQuery {
+    const fcl::CollisionObjectd *probe;
+    std::vector<std::uint32_t> *out;
+};
+
+bool recordOther(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
+    auto *query = static_cast<ProbeQuery *>(data);
+    query->out->push_back(bodyIndexOf(o1 == query->probe ? o2 : o1));
+    return false;
+}
+
 }  // namespace
 
-Broadphase::Broadphase() = default;
+Broadphase::Broadphase() : probe_(std::make_unique<BoxProbe>()) {}
 
 fcl::DynamicAABBTreeCollisionManagerd *Broadphase::manager(Tree tree) {
     switch (tree) {
@@ -57,6 +75,17 @@ void Broadphase::findPairs(std::vector<CandidatePair> &out) {
     awake_.collide(&out, recordPair);
     if (!asleep_.empty()) awake_.collide(&asleep_, &out, recordPair);
     if (!static_.empty()) awake_.collide(&static_, &out, recordPair);
+}
+
+}  // namespace cyclone::detail
+
+namespace cyclone::detail {
+
+void Broadphase::overlapping(const fcl::AABBd &box, std::vector<std::uint32_t> &out) {
+    static_cast<BoxProbe *>(probe_.get())->setBox(box);
+    ProbeQuery query{probe_.get(), &out};
+    for (fcl::DynamicAABBTreeCollisionManagerd *tree : {&awake_, &asleep_, &static_})
+        if (!tree->empty()) tree->collide(probe_.get(), &query, recordOther);
 }
 
 }  // namespace cyclone::detail

@@ -9,6 +9,7 @@
 #include <fcl/fcl.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace cyclone::detail {
@@ -73,11 +74,15 @@ public:
     /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
     /// leaf's data is its collision object.
     const fcl::detail::NodeBase<fcl::AABBd> *root(Tree tree) const;
+    /// Appends the body index of every object, in any tree, whose box overlaps `box`
+    /// (continuous collision's candidates along a sweep).
+    void overlapping(const fcl::AABBd &box, std::vector<std::uint32_t> &out);
 
 private:
     fcl::DynamicAABBTreeCollisionManagerd awake_;
     fcl::DynamicAABBTreeCollisionManagerd asleep_;
     fcl::DynamicAABBTreeCollisionManagerd static_;
+    std::unique_ptr<fcl::CollisionObjectd> probe_;  ///< Carries the box of overlapping().
 
     fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree);
 };

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "ccd.h"
 #include "validation.h"
 #include "world_impl.h"
 
@@ -156,6 +157,7 @@ BodyId World::addBody(const BodySettings &settings) {
     r.isStatic = settings.isStatic;
     r.isPlane = settings.shape.type == ShapeType::Plane;
     r.ccd = settings.ccd;
+    r.core = settings.ccd && !settings.isStatic ? detail::makeCore(detail::sweptShape(*shape)) : nullptr;
     r.quarantined = false;
     r.simulated = false;
     r.tree = Tree::None;
@@ -224,6 +226,7 @@ void World::removeBody(BodyId id) {
     w.order.erase(std::find(w.order.begin(), w.order.end(), index));
     r.object.reset();
     r.shape.reset();
+    r.core.reset();
     r.alive = false;
     ++r.generation;
     w.freeBodies.push_back(index);
@@ -402,6 +405,7 @@ SpringId World::addSpring(const SpringSettings &s) {
     SpringRecord &r = w.springs[index];
     r.settings = s;
     r.alive = true;
+    r.implicitForce.setZero();
     if (!w.bodies[s.a.index].isStatic) w.wake(s.a.index);
     if (s.b && !w.bodies[s.b->index].isStatic) w.wake(s.b->index);
     return {index, r.generation};

@@ -8,6 +8,7 @@
 // of that step and moves from the next one.
 #pragma once
 
+#include <Eigen/LU>
 #include <fcl/fcl.h>
 
 #include <memory>
@@ -35,6 +36,7 @@ struct BodyRecord {
     bool isStatic = false;
     bool isPlane = false;
     bool ccd = false;
+    std::shared_ptr<fcl::CollisionGeometryd> core;  ///< ccd bodies: the sphere swept when already touching.
     bool quarantined = false;   ///< State went non-finite: out of collision and solve.
     bool simulated = false;     ///< Awake dynamic body at the start of this step.
     detail::Tree tree = detail::Tree::None;
@@ -48,6 +50,22 @@ struct SpringRecord {
     SpringSettings settings;
     std::uint32_t generation = 0;
     bool alive = false;
+    Vector3 implicitForce = Vector3::Zero();  ///< Implicit springs: force on a in the last sub-step, N.
+};
+
+/// Passes over the implicit springs per sub-step (block Gauss-Seidel on the coupled system).
+inline constexpr int kImplicitSpringPasses = 4;
+
+/// An implicit spring during one sub-step: what stays fixed through the passes.
+struct ImplicitSpring {
+    std::uint32_t spring = 0;         ///< Index in World::Impl::springs.
+    bool aMoves = false;
+    bool bMoves = false;
+    Vector3 pa = Vector3::Zero();     ///< World attachment points, m.
+    Vector3 pb = Vector3::Zero();
+    Vector3 force0 = Vector3::Zero(); ///< Spring force on a at the sub-step's start, N.
+    Matrix3 response = Matrix3::Zero();  ///< h K + C, N s/m.
+    Eigen::PartialPivLU<Matrix3> system;  ///< 1 + h (h K + C) W.
 };
 
 /// A pair slot's touching state at the end of the last step, for contact events.
@@ -93,6 +111,8 @@ struct World::Impl {
     std::vector<Vector3> predictedW;
     std::vector<real> linearFactor;       ///< damping^h of each simulated body.
     std::vector<real> angularFactor;
+    std::vector<std::uint32_t> sweepCandidates;  ///< Bodies near a ccd body's sweep.
+    std::vector<ImplicitSpring> implicitSprings;
 
     // Events (events.cpp). Calls between steps record into pendingEvents; a step moves
     // them into `events` and records its own there (eventSink says which list is open).
@@ -124,7 +144,10 @@ struct World::Impl {
 
     // The step, stage by stage.
     void step(real dt);
-    void applyForces();
+    void applyForces(real dt);
+    void addExplicitSpringForces();
+    void substepForces(real h, bool firstSubstep);
+    void addImplicitSpringForces(real h);
     void updateBroadphase();
     void runNarrowphase();
     void buildManifolds(real dt);
@@ -136,6 +159,7 @@ struct World::Impl {
     void integrate(real h);
     void recoverPenetration(real h);
     void restitution();
+    void sweepContinuous();
     void updateSleep();
     void storeImpulses();
     void quarantine(std::uint32_t index);

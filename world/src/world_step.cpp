@@ -1,5 +1,5 @@
 // World::step, stage by stage: forces -> broadphase -> narrowphase -> manifolds ->
-// islands -> solve -> integrate -> sleep.
+// islands -> per sub-step (forces, solve, integrate) -> continuous collision -> sleep.
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -47,7 +47,7 @@ void World::Impl::step(real dt) {
     ++stepCount;
     openStepEvents();
 
-    applyForces();
+    applyForces(dt);
     stats.ms.forces = timer.lap();
     updateBroadphase();
     stats.ms.broadphase = timer.lap();
@@ -62,7 +62,10 @@ void World::Impl::step(real dt) {
 
     const real h = dt / settings.substeps;
     prepareSolver(h);
+    stats.ms.solve += timer.lap();
     for (int substep = 0; substep < settings.substeps; ++substep) {
+        substepForces(h, substep == 0);
+        stats.ms.forces += timer.lap();
         solve(h, substep == 0);
         stats.ms.solve += timer.lap();
         integrate(h);
@@ -73,6 +76,9 @@ void World::Impl::step(real dt) {
     restitution();
     storeImpulses();
     stats.ms.solve += timer.lap();
+
+    sweepContinuous();
+    stats.ms.ccd = timer.lap();
 
     updateSleep();
     stats.ms.sleep = timer.lap();
@@ -86,18 +92,25 @@ void World::Impl::step(real dt) {
         if (r.quarantined) ++stats.nonFiniteBodies;
     }
     stats.ms.total = stats.ms.forces + stats.ms.broadphase + stats.ms.narrowphase + stats.ms.events +
-                     stats.ms.manifolds + stats.ms.islands + stats.ms.solve + stats.ms.integrate + stats.ms.sleep;
+                     stats.ms.manifolds + stats.ms.islands + stats.ms.solve + stats.ms.integrate + stats.ms.ccd +
+                     stats.ms.sleep;
 }
 
 // --- forces -------------------------------------------------------------------------------
 
-void World::Impl::applyForces() {
+void World::Impl::applyForces(real dt) {
     simulatedBodies.clear();
     for (std::uint32_t index : order) {
         BodyRecord &r = bodies[index];
         r.simulated = !r.isStatic && !r.quarantined && r.body.getAwake();
         if (!r.simulated) continue;
-        if (!r.body.getAccumulatedForce().allFinite() || !r.body.getAccumulatedTorque().allFinite()) {
+        // A force whose velocity overflows within the step (1e300 N on 1 kg) would reach
+        // other bodies through springs before the solver's check: isolate the body now.
+        const RigidBody &body = r.body;
+        const Vector3 v = body.getVelocity() +
+                          dt * (body.getAcceleration() + body.getInverseMass() * body.getAccumulatedForce());
+        const Vector3 w = body.getRotation() + dt * (body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque());
+        if (!std::isfinite(v.squaredNorm() + w.squaredNorm())) {
             quarantine(index);
             continue;
         }
@@ -108,25 +121,12 @@ void World::Impl::applyForces() {
         if (!s.alive) continue;
         BodyRecord &a = bodies[s.settings.a.index];
         BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
-        const bool bSimulated = b && b->simulated;
-        if (!a.simulated && !bSimulated) continue;
+        if (!a.simulated && !(b && b->simulated)) continue;
+        // An isolated (non-finite) end would carry its state to the other: the spring is off.
+        if (a.quarantined || (b && b->quarantined)) continue;
         // A spring joins its bodies: one awake end wakes the other.
         if (!a.simulated) wake(s.settings.a.index);
         if (b && !b->simulated) wake(s.settings.b->index);
-        const Vector3 pa = a.body.getPointInWorldSpace(s.settings.aPoint);
-        const Vector3 pb = b ? b->body.getPointInWorldSpace(s.settings.bPoint) : s.settings.bPoint;
-        const Vector3 d = pa - pb;
-        const real length = d.norm();
-        if (!(length > 1e-12)) continue;
-        const Vector3 dir = d / length;
-        const Vector3 va = a.body.getVelocity() + a.body.getRotation().cross(pa - a.body.getPosition());
-        const Vector3 vb = b ? Vector3(b->body.getVelocity() + b->body.getRotation().cross(pb - b->body.getPosition()))
-                             : Vector3::Zero();
-        const Vector3 force = -(s.settings.stiffness * (length - s.settings.restLength) +
-                                s.settings.damping * (va - vb).dot(dir)) * dir;
-        if (!force.allFinite()) continue;
-        if (a.simulated) a.body.addForceAtPoint(force, pa);
-        if (bSimulated) b->body.addForceAtPoint(-force, pb);
         ++stats.springs;
     }
     if (settings.substeps > 1) {
@@ -137,6 +137,24 @@ void World::Impl::applyForces() {
             savedTorques[k] = bodies[simulatedBodies[k]].body.getAccumulatedTorque();
         }
     }
+}
+
+// Forces of one sub-step: the user's forces again after the first sub-step (integrate
+// cleared them), then the springs at the state this sub-step starts from. Held for a
+// whole step, an explicit spring force would gain energy at any stiffness once there are
+// sub-steps (the positions would move under a force that lags them).
+void World::Impl::substepForces(real h, bool firstSubstep) {
+    if (!firstSubstep) {
+        for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+            BodyRecord &r = bodies[simulatedBodies[k]];
+            if (r.quarantined) continue;
+            r.body.addForce(savedForces[k]);
+            r.body.addTorque(savedTorques[k]);
+        }
+    }
+    if (stats.springs == 0) return;
+    if (settings.integrator == Integrator::NewtonEulerImplicit) addImplicitSpringForces(h);
+    else addExplicitSpringForces();
 }
 
 // --- broadphase ---------------------------------------------------------------------------

@@ -9,7 +9,7 @@ namespace cyclone {
 
 /// Milliseconds spent in each stage of the last step.
 struct StageTimes {
-    double forces = 0;       ///< Gravity and springs.
+    double forces = 0;       ///< Gravity, user forces and springs (every sub-step).
     double broadphase = 0;   ///< AABB updates and overlapping pairs.
     double narrowphase = 0;  ///< FCL collide calls.
     double events = 0;       ///< Contact begin and end detection.
@@ -17,6 +17,7 @@ struct StageTimes {
     double islands = 0;      ///< Island building and wake propagation.
     double solve = 0;        ///< Velocity and position iterations.
     double integrate = 0;    ///< RigidBody::integrate and position correction.
+    double ccd = 0;          ///< Continuous collision of fast bodies with BodySettings::ccd.
     double sleep = 0;        ///< Island sleep decisions.
     double total = 0;        ///< The whole step.
 };
@@ -36,7 +37,10 @@ struct StepStats {
     int islands = 0;            ///< Islands of awake dynamic bodies.
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
     int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
-    int springs = 0;            ///< Springs evaluated.
+    int springs = 0;            ///< Springs evaluated (once per step, whatever the sub-steps).
+    int gyroscopicBodies = 0;   ///< Bodies given the implicit gyroscopic step (anisotropic inertia only).
+    int ccdSweeps = 0;          ///< ccd bodies that moved far enough this step to be swept.
+    int ccdHits = 0;            ///< ccd bodies moved back to their time of impact.
     int nonFiniteBodies = 0;    ///< Bodies isolated because their state became non-finite (or beyond 1e30 m).
     real maxPenetration = 0;    ///< Deepest contact of the step, m.
     StageTimes ms;              ///< Time per stage, ms.

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The accuracy report: error against cost. Installs what is missing, builds
+# cyclone-accuracy (Release, -DCYCLONE_BUILD_BENCH=ON) in build-accuracy/, runs every
+# reference scene over the sweep of step sizes, solver settings and integrators, and draws
+# one log-log plot per scene and measure with gnuplot. Outputs, kept in docs/accuracy/:
+# results.csv, README.md (tables and plots) and the plots (*.svg).
+#
+#   bash scripts/accuracy.sh [--quick] [--build-dir DIR]
+#
+#   --quick          three step sizes instead of seven (a smoke test; do not commit it)
+#   --build-dir DIR  build directory (default build-accuracy/)
+set -euo pipefail
+
+usage() { sed -n '8,11s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build_dir=$root/build-accuracy
+args=()
+while (($# > 0)); do
+  case $1 in
+    --quick) args+=(--quick) ;;
+    --build-dir)
+      if (($# < 2)); then
+        echo "accuracy.sh: --build-dir needs a directory" >&2
+        exit 2
+      fi
+      build_dir=$2
+      shift ;;
+    -h | --help) usage; exit 0 ;;
+    *)
+      echo "accuracy.sh: unknown argument '$1'" >&2
+      usage >&2
+      exit 2 ;;
+  esac
+  shift
+done
+
+bash "$root/scripts/deps.sh"
+cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DCYCLONE_BUILD_BENCH=ON \
+  -DCYCLONE_BUILD_TESTS=OFF -DCYCLONE_BUILD_EXAMPLES=OFF >/dev/null
+cmake --build "$build_dir" --parallel "$(nproc 2>/dev/null || echo 2)" --target cyclone-accuracy
+
+out=$root/docs/accuracy
+plots=$build_dir/accuracy-plots
+mkdir -p "$out" "$plots"
+rm -f "$out"/*.svg "$plots"/*.gp "$plots"/*.dat
+"$build_dir/bench/cyclone-accuracy" --out "$out" --plots "$plots" ${args[@]+"${args[@]}"}
+for script in "$plots"/*.gp; do
+  gnuplot "$script"
+done
+echo "accuracy.sh: $(ls "$out"/*.svg | wc -l) plots, tables and CSV in ${out#"$root"/}/"
