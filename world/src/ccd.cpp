@@ -14,7 +14,9 @@
 // does not stop a fast tumbling body: it pivots about the point and carries the rest of
 // itself through within the step. For such pairs the body's core, a small sphere at its
 // centre, is swept instead (Box2D v3's fallback), and the body stops where the core
-// touches: deep, but on the near side. Bodies without ccd cost nothing.
+// touches: deep, but on the near side, and with its centre's speed towards the obstacle
+// taken away, or the sweep would hold it there step after step. Bodies without ccd cost
+// nothing.
 //
 // Why sampling and not fcl::continuousCollide: FCL 0.7's conservative advancement
 // (linear motion, toc_err 1e-5) was checked against densely sampled sweeps of random
