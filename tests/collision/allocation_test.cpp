@@ -16,6 +16,12 @@ std::atomic<long> allocations{0};
 // They pair malloc with free; GCC 12 at -O1 inlines a delete expression and then flags
 // free() on memory from operator new (-Wmismatched-new-delete), which is exactly the
 // pairing intended here.
+// Under AddressSanitizer they are left out: ASan has its own allocator, and memory FCL
+// allocates through it would come back here to free() (an alloc-dealloc mismatch).
+#if defined(__SANITIZE_ADDRESS__)
+#define CYCLONE_COUNTING_ALLOCATOR 0
+#else
+#define CYCLONE_COUNTING_ALLOCATOR 1
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 #endif
@@ -29,6 +35,7 @@ void operator delete(void *p) noexcept { std::free(p); }
 void operator delete[](void *p) noexcept { std::free(p); }
 void operator delete(void *p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void *p, std::size_t) noexcept { std::free(p); }
+#endif
 
 namespace cyclone::test {
 namespace {
@@ -65,6 +72,7 @@ void expectNoExtraAllocation(const Shape &a, const Matrix4 &poseA, const Shape &
 }
 
 TEST(Allocation, CollideAllocatesOnlyWhatFclDoes) {
+    if (!CYCLONE_COUNTING_ALLOCATOR) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
     const Shape box = Shape::box(Vector3(0.5, 0.5, 0.5));
     expectNoExtraAllocation(box, pose(Vector3(0.1, 0.95, 0)), box, Matrix4::Identity());
     expectNoExtraAllocation(box, pose(Vector3(0.1, 0.45, 0)), Shape::plane(Vector3::UnitY(), 0), Matrix4::Identity());
