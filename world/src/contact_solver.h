@@ -34,6 +34,7 @@ struct SolverRow {
     Vector3 angA;      ///< IA^-1 (rA x d).
     Vector3 angB;      ///< IB^-1 (rB x d).
     real mass = 0;     ///< Effective mass along d, kg.
+    real supportedMass = 0;  ///< Effective mass with the supporting body immovable (support pass), kg.
     real impulse = 0;  ///< Accumulated impulse, N s.
 };
 
@@ -50,6 +51,15 @@ struct SolverPoint {
     real maxNormalImpulse = 0;  ///< Largest normal impulse of the step, N s.
 };
 
+inline constexpr int kMaxManifoldPoints = 4;
+
+/// Most Gauss-Seidel sweeps the support pass gives one body against a body that carries
+/// it: one sweep over a face's four corners leaves the body turning, and a stack leans.
+inline constexpr int kSupportSweeps = 8;
+/// The support pass stops sweeping a contact once no impulse changes a relative
+/// velocity by more than this, m/s (10 s of such an error would move a body 0.1 mm).
+inline constexpr real kSupportTolerance = 1e-5;
+
 struct SolverManifold {
     int a = 0;  ///< Index into the SolverBody array (0 = static world).
     int b = 0;
@@ -59,9 +69,17 @@ struct SolverManifold {
     real restitution = 0;
     bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
     real height = 0;             ///< Solve order: lower contacts first (m along -gravity).
+    /// Which body carries the other (the support pass treats it as immovable):
+    /// kNoSupport, kASupportsB or kBSupportsA. A static or sleeping side always
+    /// does. See assignSupport().
+    int support = 0;
     int count = 0;
-    SolverPoint points[4];
+    SolverPoint points[kMaxManifoldPoints];
 };
+
+inline constexpr int kNoSupport = 0;
+inline constexpr int kASupportsB = 1;
+inline constexpr int kBSupportsA = 2;
 
 struct SolverSettings {
     real penetrationSlop = 0.005;
@@ -103,13 +121,26 @@ void tangentBasis(const Vector3 &normal, Vector3 &t1, Vector3 &t2);
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p);
 
+/// Fills supportedMass of every row of manifolds that have a supporting side.
+void prepareSupportedMasses(const std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds);
+
 /// Applies the accumulated impulses (warm start).
 void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds);
 /// One Gauss-Seidel pass over friction and normal rows; `reverse` visits each manifold's
 /// points in reverse order (alternating passes keep the first point from taking the
 /// largest share of a new contact's load, which would tilt the body).
-void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse);
-/// One pass of penetration recovery on the pseudo-velocities.
-void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds);
+///
+/// With `support` (the support pass, shock propagation), a manifold whose `support`
+/// names a carrying body treats that body as immovable and solves the carried one
+/// against it with kSupportSweeps sweeps. Run last, bottom up, it leaves no body of a
+/// resting stack sinking into the one below or turning on it, whatever their mass ratio
+/// (plain Gauss-Seidel converges ever slower as a heavy body rests on a lighter one).
+/// Its impulses change velocities only: the accumulated impulses stay those of the
+/// coupled passes.
+void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse,
+                     bool support = false);
+/// One pass of penetration recovery on the pseudo-velocities (`support` as above).
+void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                           bool support = false);
 
 }  // namespace cyclone::detail

@@ -22,6 +22,7 @@
 #include "cyclone/world/world.h"
 #include "narrowphase.h"
 #include "pair_cache.h"
+#include "support.h"
 
 namespace cyclone {
 
@@ -121,6 +122,7 @@ struct World::Impl {
     WorldEvents *eventSink = &pendingEvents;
     std::vector<ContactTrack> contactTracks;  ///< By pair slot.
 
+    detail::SupportScratch supportScratch;
     detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
     StepStats stats;
@@ -163,6 +165,8 @@ struct World::Impl {
     void updateSleep();
     void storeImpulses();
     void quarantine(std::uint32_t index);
+    /// Whether a solver pass runs as the support pass (shock propagation): the last one.
+    bool supportPass(bool lastPass) const { return lastPass && settings.shockPropagation; }
 
     // Events (events.cpp): the step opens and closes them; detectContactEvents() runs
     // after the narrowphase.

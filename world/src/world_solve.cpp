@@ -75,6 +75,10 @@ void World::Impl::prepareSolver(real h) {
             if (m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
         }
     }
+    if (settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse) {
+        detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch);
+        detail::prepareSupportedMasses(solverBodies, solverManifolds);
+    }
 }
 
 void World::Impl::solve(real h, bool firstSubstep) {
@@ -139,8 +143,9 @@ void World::Impl::solve(real h, bool firstSubstep) {
     }
 
     if (settings.warmStarting) detail::warmStart(solverBodies, solverManifolds);
-    for (int it = 0; it < settings.velocityIterations; ++it) {
-        if (split) detail::solveVelocities(solverBodies, solverManifolds, (it & 1) != 0);
+    const int last = settings.velocityIterations - 1;
+    for (int it = 0; it <= last; ++it) {
+        if (split) detail::solveVelocities(solverBodies, solverManifolds, (it & 1) != 0, supportPass(it == last));
         else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
     }
     stats.velocityIterations += settings.velocityIterations;
@@ -212,7 +217,9 @@ void World::Impl::recoverPenetration(real h) {
         }
     }
     if (!needed) return;
-    for (int it = 0; it < settings.positionIterations; ++it) detail::solvePseudoVelocities(solverBodies, solverManifolds);
+    const int last = settings.positionIterations - 1;
+    for (int it = 0; it <= last; ++it)
+        detail::solvePseudoVelocities(solverBodies, solverManifolds, supportPass(it == last));
     stats.positionIterations += settings.positionIterations;
     for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
         BodyRecord &r = bodies[simulatedBodies[k]];

@@ -1,0 +1,29 @@
+// Who carries whom in a resting stack, for the solver's support pass (shock propagation).
+#pragma once
+
+#include <vector>
+
+#include "contact_solver.h"
+
+namespace cyclone::detail {
+
+/// Scratch of assignSupport, kept between steps so that a step allocates nothing.
+struct SupportScratch {
+    std::vector<int> level;     ///< Per solver body: contacts away from an immovable body.
+    std::vector<int> start;     ///< Per solver body: first entry in `adjacent`.
+    std::vector<int> adjacent;  ///< Neighbours of each body, body by body.
+    std::vector<int> queue;
+};
+
+/// Sets `support` of every manifold. A static or sleeping side (solver body 0) always
+/// supports the other. A body's level is the number of contacts between it
+/// and an immovable body (solver body 0: static or asleep), found breadth-first over the
+/// manifolds. A manifold between levels k and k + 1 whose upper body rests on the lower
+/// one (normal within 60 degrees of `up`) names the lower as the support. Between two
+/// moving bodies, those at the same level, side contacts and worlds without gravity
+/// (`up` zero) get none.
+/// `bodyCount` counts the solver bodies, body 0 included.
+void assignSupport(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
+                   SupportScratch &scratch);
+
+}  // namespace cyclone::detail
