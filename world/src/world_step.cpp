@@ -321,8 +321,12 @@ void World::Impl::orderManifolds() {
     // the ground come first; the order must not depend on the broadphase's.
     solverOrder.resize(solverManifolds.size());
     std::iota(solverOrder.begin(), solverOrder.end(), 0u);
-    std::stable_sort(solverOrder.begin(), solverOrder.end(), [&](std::uint32_t x, std::uint32_t y) {
-        return solverManifolds[x].height < solverManifolds[y].height;
+    // Equal heights keep their order (what std::stable_sort gives, without the buffer it
+    // allocates on every call).
+    std::sort(solverOrder.begin(), solverOrder.end(), [&](std::uint32_t x, std::uint32_t y) {
+        const real hx = solverManifolds[x].height;
+        const real hy = solverManifolds[y].height;
+        return hx < hy || (hx == hy && x < y);
     });
     sortedManifolds.resize(solverManifolds.size());
     sortedSource.resize(solverSource.size());

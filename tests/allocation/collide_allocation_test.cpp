@@ -4,40 +4,8 @@
 // FCL: box against box (fcl::detail::boxBoxIntersect) and meshes (fcl::collide).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include "collision_test_support.h"
-
-namespace {
-std::atomic<long> allocations{0};
-}  // namespace
-
-// Counting replacements of the global allocation functions, for this test binary only.
-// They pair malloc with free; GCC 12 at -O1 inlines a delete expression and then flags
-// free() on memory from operator new (-Wmismatched-new-delete), which is exactly the
-// pairing intended here.
-// Under AddressSanitizer they are left out: ASan has its own allocator, and memory FCL
-// allocates through it would come back here to free() (an alloc-dealloc mismatch).
-#if defined(__SANITIZE_ADDRESS__)
-#define CYCLONE_COUNTING_ALLOCATOR 0
-#else
-#define CYCLONE_COUNTING_ALLOCATOR 1
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-void *operator new(std::size_t size) {
-    ++allocations;
-    if (void *p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void *operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void *p) noexcept { std::free(p); }
-void operator delete[](void *p) noexcept { std::free(p); }
-void operator delete(void *p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void *p, std::size_t) noexcept { std::free(p); }
-#endif
+#include "counting_allocator.h"
 
 namespace cyclone::test {
 namespace {
@@ -54,10 +22,10 @@ long collideAllocations(const Geometry &a, const Matrix4 &poseA, const Geometry 
         detail::collide(*a, poseA, *b, poseB, settings, out);
     }
     EXPECT_FALSE(out.empty()) << "the shapes must touch for the test to mean something";
-    const long before = allocations;
+    const long before = allocationCount();
     out.clear();
     detail::collide(*a, poseA, *b, poseB, settings, out);
-    return allocations - before;
+    return allocationCount() - before;
 }
 
 void expectNoAllocation(const Shape &a, const Matrix4 &poseA, const Shape &b, const Matrix4 &poseB) {
@@ -66,7 +34,7 @@ void expectNoAllocation(const Shape &a, const Matrix4 &poseA, const Shape &b, co
 }
 
 TEST(Allocation, CollideOfShapePairsAllocatesNothing) {
-    if (!CYCLONE_COUNTING_ALLOCATOR) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
+    if (!kCountingAllocator) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
     const Shape box = Shape::box(Vector3(0.5, 0.5, 0.5));
     const Shape sphere = Shape::sphere(0.4);
     const Shape capsule = Shape::capsule(0.25, 1);
@@ -88,23 +56,23 @@ TEST(Allocation, CollideOfShapePairsAllocatesNothing) {
 
 // Box against box: only fcl::detail::boxBoxIntersect allocates (vectors of its own).
 TEST(Allocation, CollideOfTwoBoxesAllocatesOnlyInBoxBoxIntersect) {
-    if (!CYCLONE_COUNTING_ALLOCATOR) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
+    if (!kCountingAllocator) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
     const Geometry box = detail::compileShape(Shape::box(Vector3(0.5, 0.5, 0.5)));
     const Matrix4 poseA = pose(Vector3(0.1, 0.95, 0));
     const Matrix4 poseB = Matrix4::Identity();
     const auto &fclBox = static_cast<const fcl::Boxd &>(*box->geometry());
     std::vector<fcl::ContactPointd> contacts;
     contacts.reserve(16);
-    long before = allocations;
+    long before = allocationCount();
     ASSERT_TRUE(fcl::detail::boxBoxIntersect(fclBox, poseA, fclBox, poseB, &contacts));
-    const long byFcl = allocations - before;
+    const long byFcl = allocationCount() - before;
     EXPECT_GT(byFcl, 0) << "boxBoxIntersect no longer allocates: expect 0 below and drop this test";
     EXPECT_EQ(collideAllocations(box, poseA, box, poseB), byFcl);
 }
 
 // A mesh goes through fcl::collide: collide() adds nothing to what that allocates.
 TEST(Allocation, CollideWithMeshAllocatesOnlyWhatFclDoes) {
-    if (!CYCLONE_COUNTING_ALLOCATOR) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
+    if (!kCountingAllocator) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
     const Geometry box = detail::compileShape(Shape::box(Vector3(0.5, 0.5, 0.5)));
     const Geometry floor = detail::compileShape(meshFloor());
     const Matrix4 poseA = pose(Vector3(0.3, 0.45, 0.2));
@@ -116,10 +84,10 @@ TEST(Allocation, CollideWithMeshAllocatesOnlyWhatFclDoes) {
         result.clear();
         fcl::collide(box->geometry().get(), poseA, floor->geometry().get(), poseB, request, result);
     }
-    const long before = allocations;
+    const long before = allocationCount();
     result.clear();
     fcl::collide(box->geometry().get(), poseA, floor->geometry().get(), poseB, request, result);
-    const long byFcl = allocations - before;
+    const long byFcl = allocationCount() - before;
     EXPECT_EQ(collideAllocations(box, poseA, floor, poseB), byFcl);
 }
 
