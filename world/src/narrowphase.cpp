@@ -24,13 +24,15 @@
 // floor) and is dropped, as in Jolt's InternalEdgeRemovingCollector. The remaining
 // contacts are merged into one manifold per normal.
 //
-// Everything here lives in fixed-size arrays on the stack; only FCL allocates.
+// Everything here lives in fixed-size arrays on the stack; only FCL allocates (see
+// shape_contact.cpp for which of its calls still do).
 #include "narrowphase.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "gjk.h"
+#include "shape_contact.h"
 
 namespace cyclone::detail {
 namespace {
@@ -700,8 +702,8 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     // Reused so that its contact vector keeps its capacity between calls.
     static thread_local fcl::CollisionResultd result;
     result.clear();
-    fcl::collide(a.geometry().get(), poseA, b.geometry().get(), poseB, withMesh ? meshRequest : shapeRequest,
-                 result);
+    collideShapes(a.geometry().get(), poseA, b.geometry().get(), poseB, withMesh ? meshRequest : shapeRequest,
+                  result);
 
     RawContact raw[kMaxFclContacts];
     int rawCount = 0;

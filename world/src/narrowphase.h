@@ -29,12 +29,12 @@ struct NarrowphaseSettings {
     real speculativeDistance = 0.02;
 };
 
-/// Tests shapes `a` at `poseA` and `b` at `poseB` with fcl::collide (GST_LIBCCD) and
-/// appends one manifold per contact normal to `out` (none when apart; a mesh may give
-/// several). Returns the number appended. Normals point from A to B whatever order FCL
+/// Tests shapes `a` at `poseA` and `b` at `poseB` with FCL's contact test (GST_LIBCCD,
+/// through collideShapes) and appends one manifold per contact normal to `out` (none
+/// when apart; a mesh may give several). Returns the number appended. Normals point from A to B whatever order FCL
 /// used internally; near-zero normals are dropped. Mesh triangles are one-sided: a shape
 /// is pushed out to the side their counter-clockwise winding faces. Allocates nothing
-/// beyond FCL's own allocations (reserve `out`).
+/// once `out` has grown, except inside FCL for box-box pairs and meshes.
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
             const NarrowphaseSettings &settings, std::vector<Manifold> &out);
 

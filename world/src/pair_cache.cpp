@@ -1,13 +1,63 @@
 #include "pair_cache.h"
 
+#include <algorithm>
+
 namespace cyclone::detail {
+namespace {
+
+std::size_t hash(std::uint64_t key) {
+    // A 64-bit mix (splitmix64's finaliser): neighbouring body indices spread out.
+    key ^= key >> 30;
+    key *= 0xbf58476d1ce4e5b9ULL;
+    key ^= key >> 27;
+    key *= 0x94d049bb133111ebULL;
+    key ^= key >> 31;
+    return static_cast<std::size_t>(key);
+}
+
+}  // namespace
+
+std::size_t PairCache::position(std::uint64_t k) const {
+    const std::size_t mask = table_.size() - 1;
+    std::size_t at = hash(k) & mask;
+    while (table_[at].key != k && table_[at].key != kEmpty) at = (at + 1) & mask;
+    return at;
+}
+
+void PairCache::insert(std::uint64_t k, std::uint32_t slot) {
+    if (2 * (used_ + 1) > table_.size()) {
+        std::vector<Entry> old(std::max<std::size_t>(64, 2 * table_.size()));
+        old.swap(table_);
+        for (const Entry &e : old)
+            if (e.key != kEmpty) table_[position(e.key)] = e;
+    }
+    table_[position(k)] = {k, slot};
+    ++used_;
+}
+
+void PairCache::erase(std::uint64_t k) {
+    const std::size_t mask = table_.size() - 1;
+    std::size_t hole = position(k);
+    if (table_[hole].key == kEmpty) return;
+    // Backward-shift deletion: move later entries of the probe run into the hole when
+    // their home position does not lie between the hole and them.
+    for (std::size_t next = (hole + 1) & mask; table_[next].key != kEmpty; next = (next + 1) & mask) {
+        const std::size_t home = hash(table_[next].key) & mask;
+        const bool stays = hole <= next ? (hole < home && home <= next) : (hole < home || home <= next);
+        if (stays) continue;
+        table_[hole] = table_[next];
+        hole = next;
+    }
+    table_[hole] = Entry();
+    --used_;
+}
 
 std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &created) {
     const std::uint64_t k = key(i, j);
-    const auto found = index_.find(k);
-    if (found != index_.end()) {
+    const long found = find(i, j);
+    if (found >= 0) {
         created = false;
-        return found->second;
+        return static_cast<std::uint32_t>(found);
     }
     created = true;
     std::uint32_t slot;
@@ -26,19 +76,20 @@ std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &creat
     p.lastSeen = 0;
     p.tested = false;
     p.alive = true;
-    index_.emplace(k, slot);
+    insert(k, slot);
     return slot;
 }
 
 long PairCache::find(std::uint32_t i, std::uint32_t j) const {
-    const auto found = index_.find(key(i, j));
-    return found == index_.end() ? -1 : long(found->second);
+    if (table_.empty()) return -1;
+    const Entry &e = table_[position(key(i, j))];
+    return e.key == kEmpty ? -1 : long(e.slot);
 }
 
 void PairCache::remove(std::uint32_t pair) {
     PairState &p = pairs_[pair];
     if (!p.alive) return;
-    index_.erase(key(p.a, p.b));
+    erase(key(p.a, p.b));
     p.alive = false;
     p.manifolds.clear();
     free_.push_back(pair);

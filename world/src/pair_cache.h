@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "cyclone/core.h"
@@ -55,9 +54,22 @@ private:
         if (i > j) std::swap(i, j);
         return (std::uint64_t(i) << 32) | j;
     }
+    /// The table position of `key`, or of the empty entry where it would go.
+    std::size_t position(std::uint64_t key) const;
+    void insert(std::uint64_t key, std::uint32_t slot);
+    void erase(std::uint64_t key);
+
     std::vector<PairState> pairs_;
     std::vector<std::uint32_t> free_;
-    std::unordered_map<std::uint64_t, std::uint32_t> index_;
+    // Pair slots by key, open addressing with linear probing: unlike a node-based map it
+    // allocates only when it grows, so pairs that come and go cost no allocation.
+    struct Entry {
+        std::uint64_t key = kEmpty;
+        std::uint32_t slot = 0;
+    };
+    static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);  ///< No pair has it (i < j).
+    std::vector<Entry> table_;  ///< Size a power of two, at most half full.
+    std::size_t used_ = 0;
 };
 
 /// Refreshes `m` from the bodies' current poses using its anchors (no narrowphase):

@@ -164,6 +164,8 @@ BodyId World::addBody(const BodySettings &settings) {
     r.sleepingIsland = -1;
     r.island = -1;
     r.solverIndex = 0;
+    r.awakeSlot = -1;
+    r.rank = w.nextRank++;
     r.boundingRadius = boundingRadius(settings.shape, *shape);
     w.order.push_back(index);
     if (!r.name.empty()) w.names.emplace(r.name, index);
@@ -179,6 +181,7 @@ BodyId World::addBody(const BodySettings &settings) {
             w.setTree(index, Tree::Static);
         } else if (r.body.getAwake()) {
             w.setTree(index, Tree::Awake);
+            w.updateAwakeList(index);
         } else {
             const std::uint32_t self = index;
             w.sleepIsland(&self, 1, false);
@@ -228,6 +231,8 @@ void World::removeBody(BodyId id) {
     r.shape.reset();
     r.core.reset();
     r.alive = false;
+    w.updateAwakeList(index);
+    if (r.quarantined) --w.quarantinedBodies;
     ++r.generation;
     w.freeBodies.push_back(index);
     for (std::uint32_t m : w.order) w.bodies[m].island = -1;
@@ -492,6 +497,24 @@ void World::Impl::refreshCollisionObject(std::uint32_t index) {
     }
 }
 
+void World::Impl::updateAwakeList(std::uint32_t index) {
+    BodyRecord &r = bodies[index];
+    const bool listed = r.alive && !r.isStatic && !r.quarantined && r.body.getAwake();
+    if (listed == (r.awakeSlot >= 0)) return;
+    if (listed) {
+        if (!awake.empty() && bodies[awake.back()].rank > r.rank) awakeSorted = false;
+        r.awakeSlot = static_cast<int>(awake.size());
+        awake.push_back(index);
+        return;
+    }
+    const std::uint32_t last = awake.back();
+    awake[r.awakeSlot] = last;
+    bodies[last].awakeSlot = r.awakeSlot;
+    awake.pop_back();
+    r.awakeSlot = -1;
+    if (last != index) awakeSorted = false;
+}
+
 void World::Impl::wake(std::uint32_t index) {
     BodyRecord &r = bodies[index];
     if (r.isStatic || r.quarantined) return;
@@ -500,6 +523,7 @@ void World::Impl::wake(std::uint32_t index) {
             r.body.setAwake(true);
             eventSink->wokeUp.push_back(idOf(index));
         }
+        updateAwakeList(index);
         return;
     }
     const int island = r.sleepingIsland;
@@ -510,6 +534,7 @@ void World::Impl::wake(std::uint32_t index) {
         eventSink->wokeUp.push_back(idOf(m));
         member.object->place(member.body.getTransform(), detail::kBroadphaseMargin);
         setTree(m, Tree::Awake);
+        updateAwakeList(m);
     }
     sleepingIslands[island].clear();
     freeSleepingIslands.push_back(island);
@@ -534,6 +559,7 @@ void World::Impl::sleepIsland(const std::uint32_t *members, int count, bool repo
         r.sleepingIsland = island;
         r.island = -1;
         setTree(members[i], Tree::Asleep);
+        updateAwakeList(members[i]);
         if (report) eventSink->fellAsleep.push_back(idOf(members[i]));
     }
     if (list.empty()) freeSleepingIslands.push_back(island);

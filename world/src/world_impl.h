@@ -44,6 +44,8 @@ struct BodyRecord {
     int sleepingIsland = -1;    ///< Index in sleepingIslands_ while asleep.
     int island = -1;            ///< Island of the last step (-1: none).
     int solverIndex = 0;        ///< Index in the solver arrays (0: immovable).
+    int awakeSlot = -1;         ///< Index in World::Impl::awake (-1: not in it).
+    std::uint64_t rank = 0;     ///< When it was added: orders World::Impl::awake as `order` is.
     real boundingRadius = 0;    ///< Farthest point of the shape from its origin, m.
 };
 
@@ -81,6 +83,12 @@ struct World::Impl {
     std::vector<BodyRecord> bodies;
     std::vector<std::uint32_t> freeBodies;
     std::vector<std::uint32_t> order;  ///< Live bodies in the order they were added.
+    /// Awake dynamic bodies not quarantined: what a step visits, so that sleeping and
+    /// static bodies cost nothing per step. Sorted by rank when `awakeSorted`.
+    std::vector<std::uint32_t> awake;
+    bool awakeSorted = true;
+    std::uint64_t nextRank = 0;
+    int quarantinedBodies = 0;  ///< Live bodies isolated for a non-finite state.
     std::vector<std::uint32_t> planes;
     std::unordered_map<std::string, std::uint32_t> names;
     std::vector<SpringRecord> springs;
@@ -137,6 +145,8 @@ struct World::Impl {
     bool isDynamic(std::uint32_t index) const { return !bodies[index].isStatic; }
 
     // Sleep and wake.
+    /// Puts the body into `awake` or takes it out, as its state now says.
+    void updateAwakeList(std::uint32_t index);
     void wake(std::uint32_t index);
     /// Puts the listed bodies to sleep as one island; `report` false for a body added
     /// asleep, which did not fall asleep.

@@ -1,6 +1,7 @@
 // World::step, stage by stage: forces -> broadphase -> narrowphase -> manifolds ->
 // islands -> per sub-step (forces, solve, integrate) -> continuous collision -> sleep.
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -86,11 +87,8 @@ void World::Impl::step(real dt) {
 
     stats.integratedBodies = static_cast<int>(simulatedBodies.size());
     stats.bodies = static_cast<int>(order.size());
-    for (std::uint32_t index : order) {
-        const BodyRecord &r = bodies[index];
-        if (!r.isStatic && r.body.getAwake() && !r.quarantined) ++stats.awakeBodies;
-        if (r.quarantined) ++stats.nonFiniteBodies;
-    }
+    stats.awakeBodies = static_cast<int>(awake.size());
+    stats.nonFiniteBodies = quarantinedBodies;
     stats.ms.total = stats.ms.forces + stats.ms.broadphase + stats.ms.narrowphase + stats.ms.events +
                      stats.ms.manifolds + stats.ms.islands + stats.ms.solve + stats.ms.integrate + stats.ms.ccd +
                      stats.ms.sleep;
@@ -99,11 +97,19 @@ void World::Impl::step(real dt) {
 // --- forces -------------------------------------------------------------------------------
 
 void World::Impl::applyForces(real dt) {
+    // Bodies are simulated in the order they were added, whatever the order they woke in.
+    if (!awakeSorted) {
+        std::sort(awake.begin(), awake.end(), [&](std::uint32_t x, std::uint32_t y) { return bodies[x].rank < bodies[y].rank; });
+        for (std::size_t k = 0; k < awake.size(); ++k) bodies[awake[k]].awakeSlot = static_cast<int>(k);
+        awakeSorted = true;
+    }
+    // `simulated` of the bodies simulated last step; the others are already false.
+    for (std::uint32_t index : simulatedBodies) bodies[index].simulated = false;
     simulatedBodies.clear();
-    for (std::uint32_t index : order) {
+    for (std::size_t k = 0; k < awake.size(); ++k) {
+        const std::uint32_t index = awake[k];
         BodyRecord &r = bodies[index];
-        r.simulated = !r.isStatic && !r.quarantined && r.body.getAwake();
-        if (!r.simulated) continue;
+        r.simulated = true;
         // A force whose velocity overflows within the step (1e300 N on 1 kg) would reach
         // other bodies through springs before the solver's check: isolate the body now.
         const RigidBody &body = r.body;
@@ -111,7 +117,8 @@ void World::Impl::applyForces(real dt) {
                           dt * (body.getAcceleration() + body.getInverseMass() * body.getAccumulatedForce());
         const Vector3 w = body.getRotation() + dt * (body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque());
         if (!std::isfinite(v.squaredNorm() + w.squaredNorm())) {
-            quarantine(index);
+            quarantine(index);  // takes it out of `awake`: slot k now holds another body
+            --k;
             continue;
         }
         r.solverIndex = static_cast<int>(simulatedBodies.size()) + 1;
@@ -314,8 +321,12 @@ void World::Impl::orderManifolds() {
     // the ground come first; the order must not depend on the broadphase's.
     solverOrder.resize(solverManifolds.size());
     std::iota(solverOrder.begin(), solverOrder.end(), 0u);
-    std::stable_sort(solverOrder.begin(), solverOrder.end(), [&](std::uint32_t x, std::uint32_t y) {
-        return solverManifolds[x].height < solverManifolds[y].height;
+    // Equal heights keep their order (what std::stable_sort gives, without the buffer it
+    // allocates on every call).
+    std::sort(solverOrder.begin(), solverOrder.end(), [&](std::uint32_t x, std::uint32_t y) {
+        const real hx = solverManifolds[x].height;
+        const real hy = solverManifolds[y].height;
+        return hx < hy || (hx == hy && x < y);
     });
     sortedManifolds.resize(solverManifolds.size());
     sortedSource.resize(solverSource.size());
@@ -384,8 +395,10 @@ void World::Impl::updateSleep() {
 
 void World::Impl::quarantine(std::uint32_t index) {
     BodyRecord &r = bodies[index];
+    if (!r.quarantined) ++quarantinedBodies;
     r.quarantined = true;
     r.simulated = false;
+    updateAwakeList(index);
     setTree(index, Tree::None);
     for (std::uint32_t p = 0; p < pairs.slots(); ++p) {
         detail::PairState &pair = pairs[p];

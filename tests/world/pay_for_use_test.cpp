@@ -1,0 +1,139 @@
+// A scene pays only for what it uses, read from the per-stage counters of StepStats:
+// no friction rows without friction, no spring, ccd or restitution work unless a body
+// asks for it, and sleeping bodies cost no per-step work.
+#include <gtest/gtest.h>
+
+#include "world_fixture.h"
+
+namespace cyclone::test {
+namespace {
+
+WorldSettings noSleep() {
+    WorldSettings settings;
+    settings.sleep = false;
+    return settings;
+}
+
+// Three unit boxes stacked on the ground, the bottom one frictionless: friction is the
+// geometric mean of the two materials, so only the top pair has any. Each face contact
+// has 4 points: 12 contacts, and 2 friction rows for each of the top pair's 4 points.
+TEST(PayForUse, FrictionRowsOnlyForPairsWithFriction) {
+    WorldFixture f(noSleep());
+    f.ground(0.6);
+    f.box(Vector3(0, 0.5, 0), Vector3(0.5, 0.5, 0.5), 1, 0);
+    f.box(Vector3(0, 1.5, 0), Vector3(0.5, 0.5, 0.5), 1, 0.6);
+    f.box(Vector3(0, 2.5, 0), Vector3(0.5, 0.5, 0.5), 1, 0.6);
+    f.simulate(1);
+    EXPECT_EQ(f.world.stats().manifolds, 3);
+    EXPECT_EQ(f.world.stats().contacts, 12);
+    EXPECT_EQ(f.world.stats().frictionRows, 8);
+}
+
+TEST(PayForUse, FrictionlessStackHasNoFrictionRows) {
+    WorldFixture f(noSleep());
+    f.ground(0);
+    for (int level = 0; level < 3; ++level) f.box(Vector3(0, 0.5 + level, 0), Vector3(0.5, 0.5, 0.5), 1, 0);
+    f.simulate(1);
+    EXPECT_EQ(f.world.stats().contacts, 12);
+    EXPECT_EQ(f.world.stats().frictionRows, 0);
+}
+
+// No spring is evaluated while both its ends sleep; waking one end wakes the other and
+// the spring is evaluated once per step.
+TEST(PayForUse, SpringsEvaluatedOnlyWithAnAwakeEnd) {
+    WorldSettings settings;
+    settings.gravity = Vector3::Zero();
+    WorldFixture f(settings);
+    f.simulate(0.1);
+    EXPECT_EQ(f.world.stats().springs, 0) << "a world without springs";
+    // Two spheres 1 m apart on a spring of rest length 1 m: no force, so they fall asleep.
+    const BodyId a = f.sphere(Vector3(0, 0, 0), 0.2);
+    const BodyId b = f.sphere(Vector3(1, 0, 0), 0.2);
+    SpringSettings spring;
+    spring.a = a;
+    spring.b = b;
+    spring.restLength = 1;
+    f.world.addSpring(spring);
+    f.simulate(5);
+    ASSERT_FALSE(f.awake(a));
+    ASSERT_FALSE(f.awake(b));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().springs, 0);
+    EXPECT_EQ(f.world.stats().integratedBodies, 0);
+    f.world.setAwake(a, true);
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().springs, 1);
+    EXPECT_TRUE(f.awake(b));
+}
+
+// A fast body is swept only when it asks for continuous collision (BodySettings::ccd).
+TEST(PayForUse, NoCcdUnlessABodyAsksForIt) {
+    for (bool ccd : {false, true}) {
+        WorldSettings settings;
+        settings.gravity = Vector3::Zero();
+        WorldFixture f(settings);
+        BodySettings s;
+        s.shape = Shape::sphere(0.1);
+        s.velocity = Vector3(60, 0, 0);  // 1 m per step, ten times its radius
+        s.ccd = ccd;
+        f.world.addBody(s);
+        f.world.step(kDt);
+        EXPECT_EQ(f.world.stats().ccdSweeps, ccd ? 1 : 0) << "ccd " << ccd;
+    }
+}
+
+// A ball hitting the ground at about 6 m/s bounces only with restitution.
+TEST(PayForUse, NoRestitutionWorkWithoutRestitution) {
+    for (real restitution : {0.0, 0.5}) {
+        WorldFixture f(noSleep());
+        f.ground();
+        BodySettings s;
+        s.shape = Shape::sphere(0.5);
+        s.position = Vector3(0, 2.5, 0);
+        s.material.restitution = restitution;
+        f.world.addBody(s);
+        int bouncing = 0;
+        for (int i = 0; i < 60; ++i) {
+            f.world.step(kDt);
+            bouncing += f.world.stats().restitutionContacts;
+        }
+        if (restitution > 0) {
+            EXPECT_GT(bouncing, 0);
+        } else {
+            EXPECT_EQ(bouncing, 0);
+        }
+    }
+}
+
+// 100 sleeping boxes and one awake sphere resting on the ground far from them: the step
+// integrates, pairs and tests the sphere alone (its one pair is with the ground).
+TEST(PayForUse, SleepingBodiesCostNoStepWork) {
+    WorldFixture f;
+    f.ground();
+    for (int stack = 0; stack < 10; ++stack) {
+        for (int level = 0; level < 10; ++level) {
+            BodySettings box;
+            box.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
+            box.position = Vector3(stack * 2.0, 0.5 + level, 0);
+            box.awake = false;
+            f.world.addBody(box);
+        }
+    }
+    BodySettings ball;
+    ball.shape = Shape::sphere(0.5);
+    ball.position = Vector3(-20, 0.5, 0);
+    ball.canSleep = false;
+    f.world.addBody(ball);
+    f.simulate(0.5);
+    const StepStats &stats = f.world.stats();
+    EXPECT_EQ(stats.bodies, 102);
+    EXPECT_EQ(stats.awakeBodies, 1);
+    EXPECT_EQ(stats.integratedBodies, 1);
+    EXPECT_EQ(stats.broadphasePairs, 1);
+    EXPECT_EQ(stats.pairsTested + stats.pairsReused, 1);
+    EXPECT_EQ(stats.islands, 1);
+    EXPECT_TRUE(f.world.events().fellAsleep.empty());
+}
+
+}  // namespace
+}  // namespace cyclone::test
