@@ -4,6 +4,7 @@
 //
 //   stacking [--solver split|soft] [--substeps N] [--velocity-iterations N]
 //            [--position-iterations N] [--slop M] [--recovery F] [--reuse M] [--hertz HZ]
+//            [--shock on|off]
 //
 // The options change the WorldSettings, to compare solver settings on the same scenes.
 #include <chrono>
@@ -92,6 +93,10 @@ bool parse(int argc, char **argv, WorldSettings &settings) {
             settings.penetrationRecovery = std::atof(value);
         } else if (flag == "--hertz") {
             settings.contactHertz = std::atof(value);
+        } else if (flag == "--shock") {
+            if (std::strcmp(value, "on") == 0) settings.shockPropagation = true;
+            else if (std::strcmp(value, "off") == 0) settings.shockPropagation = false;
+            else return false;
         } else {
             return false;
         }
@@ -103,12 +108,14 @@ int main(int argc, char **argv) {
     WorldSettings chosen;
     if (!parse(argc, argv, chosen)) {
         std::fprintf(stderr, "usage: stacking [--solver split|soft] [--substeps N] [--velocity-iterations N] "
-                             "[--position-iterations N] [--slop M] [--recovery F] [--reuse M] [--hertz HZ]\n");
+                             "[--position-iterations N] [--slop M] [--recovery F] [--reuse M] [--hertz HZ] [--shock on|off]\n");
         return 2;
     }
-    std::printf("10 s at 60 Hz, %s solver, %d sub-steps x (%d velocity + %d position iterations), slop %g m\n",
+    std::printf("10 s at 60 Hz, %s solver, %d sub-steps x (%d velocity + %d position iterations), slop %g m, "
+                "support pass %s\n",
                 chosen.contactSolver == ContactSolverType::SoftStep ? "soft-step" : "split-impulse", chosen.substeps,
-                chosen.velocityIterations, chosen.positionIterations, chosen.penetrationSlop);
+                chosen.velocityIterations, chosen.positionIterations, chosen.penetrationSlop,
+                chosen.shockPropagation ? "on" : "off");
     try {
         run(chosen);
     } catch (const std::exception &e) {

@@ -70,9 +70,11 @@ void World::Impl::prepareSolver(real h) {
             detail::SolverPoint &p = m.points[i];
             const Vector3 c = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
             detail::prepareRows(sa, sb, c - a.getPosition(), c - b.getPosition(), m, p);
-            p.approachSpeed = relativeNormalVelocity(sa, sb, m.normal, p.normal);
             p.maxNormalImpulse = 0;
-            if (m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
+            p.approachSpeed = 0;
+            if (m.restitution == 0) continue;  // no restitution, nothing to measure
+            p.approachSpeed = relativeNormalVelocity(sa, sb, m.normal, p.normal);
+            if (p.approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
         }
     }
     if (settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse) {
