@@ -30,7 +30,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "box_box.h"
 #include "gjk.h"
+#include "sphere_pairs.h"
 
 namespace cyclone::detail {
 namespace {
@@ -686,6 +688,70 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     return appended;
 }
 
+// The pairs with a test of their own, which FCL would only have told touch: the
+// manifolds they append are the ones the FCL path builds (the same normal, by least
+// overlap, and the same clipping). Returns the number appended, or -1 for a pair that
+// needs FCL.
+int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                  real speculative, std::vector<Manifold> &out) {
+    const ShapeType typeA = a.shape().type;
+    const ShapeType typeB = b.shape().type;
+    const Pair pair{a, poseA, -1, b, poseB, -1, speculative};
+    if (typeA == ShapeType::Plane || typeB == ShapeType::Plane) {
+        // A solid shape's support point is exact: it touches the half-space when that
+        // point lies on or below the surface (as in FCL). A mesh needs FCL's triangles.
+        const bool planeIsA = typeA == ShapeType::Plane;
+        const CollisionShape &plane = planeIsA ? a : b;
+        const Matrix4 &planePose = planeIsA ? poseA : poseB;
+        const CollisionShape &other = planeIsA ? b : a;
+        if (other.shape().type == ShapeType::Mesh) return -1;
+        const Vector3 up = planePose.linear() * plane.planeNormal();
+        const real level = up.dot(planePose.translation()) + plane.planeOffset();
+        const Vector3 deepest = other.supportPoint(planeIsA ? poseB : poseA, -up, -1);
+        if (!(level - deepest.dot(up) >= 0)) return 0;
+        return planeContact(pair, planeIsA, out);
+    }
+    if (typeA == ShapeType::Box && typeB == ShapeType::Box) {
+        Vector3 normal;
+        real overlap = 0;
+        if (!boxBoxAxis(a.shape().halfExtents, poseA, b.shape().halfExtents, poseB, normal, overlap)) return 0;
+        SupportFeature fa, fb;
+        a.supportingFeature(poseA, normal, -1, fa);
+        b.supportingFeature(poseB, -normal, -1, fb);
+        PointSet points;
+        clipFeatures(pair, normal, fa, fb, points);
+        if (points.count == 0) return 0;
+        Manifold manifold;
+        reduce(points.points, points.count, normal, manifold);
+        out.push_back(manifold);
+        return 1;
+    }
+    if (typeA == ShapeType::Sphere || typeB == ShapeType::Sphere) {
+        const bool sphereIsA = typeA == ShapeType::Sphere;
+        const CollisionShape &sphere = sphereIsA ? a : b;
+        const CollisionShape &other = sphereIsA ? b : a;
+        const Vector3 centre = (sphereIsA ? poseA : poseB).translation();
+        const Matrix4 &otherPose = sphereIsA ? poseB : poseA;
+        Manifold manifold;
+        bool hit = false;
+        if (other.shape().type == ShapeType::Sphere)
+            hit = sphereSphere(sphere.shape().radius, centre, other.shape().radius, otherPose.translation(), manifold);
+        else if (other.shape().type == ShapeType::Box)
+            hit = sphereBox(sphere.shape().radius, centre, other.shape().halfExtents, otherPose, manifold);
+        else
+            return -1;
+        if (!hit) return 0;
+        if (!sphereIsA) {
+            // Computed with the sphere as A: turned into (a, b)'s order.
+            manifold.normal = -manifold.normal;
+            std::swap(manifold.points[0].pointA, manifold.points[0].pointB);
+        }
+        out.push_back(manifold);
+        return 1;
+    }
+    return -1;
+}
+
 }  // namespace
 
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
@@ -693,6 +759,10 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     const ShapeType typeA = a.shape().type;
     const ShapeType typeB = b.shape().type;
     if (typeA == ShapeType::Plane && typeB == ShapeType::Plane) return 0;
+    if (!settings.forceFcl) {
+        const int appended = nativeContact(a, poseA, b, poseB, settings.speculativeDistance, out);
+        if (appended >= 0) return appended;
+    }
     const bool withMesh = typeA == ShapeType::Mesh || typeB == ShapeType::Mesh;
 
     static const fcl::CollisionRequestd shapeRequest = makeRequest(4);

@@ -27,14 +27,20 @@ struct Manifold {
 struct NarrowphaseSettings {
     /// Clipped points up to this far apart are kept (speculative contact), m, >= 0.
     real speculativeDistance = 0.02;
+    /// Test every pair with FCL, even the pairs that have a test of their own (box-box,
+    /// sphere-sphere, sphere-box, a plane against any solid shape); for comparing the two.
+    bool forceFcl = false;
 };
 
-/// Tests shapes `a` at `poseA` and `b` at `poseB` with fcl::collide (GST_LIBCCD) and
-/// appends one manifold per contact normal to `out` (none when apart; a mesh may give
-/// several). Returns the number appended. Normals point from A to B whatever order FCL
+/// Tests shapes `a` at `poseA` and `b` at `poseB` and appends one manifold per contact
+/// normal to `out` (none when apart; a mesh may give several). Returns
+/// the number appended. Box-box (separating axes), sphere-sphere, sphere-box and a plane
+/// against any solid shape have tests of their own; every other pair goes through
+/// fcl::collide (GST_LIBCCD), and so does every pair with `settings.forceFcl`. Normals point from A to B whatever order FCL
 /// used internally; near-zero normals are dropped. Mesh triangles are one-sided: a shape
 /// is pushed out to the side their counter-clockwise winding faces. Allocates nothing
-/// beyond FCL's own allocations (reserve `out`).
+/// beyond FCL's own allocations (reserve `out`); the pairs with their own test allocate
+/// nothing.
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
             const NarrowphaseSettings &settings, std::vector<Manifold> &out);
 
