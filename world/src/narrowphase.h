@@ -44,4 +44,14 @@ struct NarrowphaseSettings {
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
             const NarrowphaseSettings &settings, std::vector<Manifold> &out);
 
+/// The order in which collide() lists the points of a manifold, applied to `count`
+/// (<= Manifold::kMaxPoints) existing points with B-side positions `pointB` and depths
+/// `depth` along `normal`: the deepest (of equally deep ones, the farthest from their
+/// centre), the farthest from it, the one spanning the largest triangle with those two,
+/// then the one adding the most area. Writes a permutation of 0..count-1 into `order`
+/// (points that add nothing come last). The contact solver visits points in this order,
+/// and Gauss-Seidel favours the first: a manifold reused without the narrowphase is put
+/// in this order again so that, like a fresh one, it starts from its deepest point.
+void contactOrder(const Vector3 *pointB, const real *depth, int count, const Vector3 &normal, int *order);
+
 }  // namespace cyclone::detail
