@@ -1,7 +1,6 @@
 // A World step in steady state allocates nothing: after warm-up steps have grown every
 // reused vector, further steps of a scene at rest (or in a steady motion) call operator
-// new zero times. Box-box pairs are left out: FCL's boxBoxIntersect allocates inside
-// (see collide_allocation_test.cpp); the cubes below are convex hulls.
+// new zero times.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,22 +74,24 @@ Counted countSteps(World &world, int warmUp, int steps, const std::function<void
 }
 
 // A pyramid of base 5 (15 cubes, 1.05 m apart, resting on each other), sleep off: every
-// step runs the narrowphase on the pairs that moved.
+// step runs the narrowphase on the pairs that moved. Boxes (their own separating-axis
+// test) and the same cubes as convex hulls (libccd's MPR).
 TEST(StepAllocation, RestingPyramidAllocatesNothing) {
     if (!kCountingAllocator) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
-    WorldSettings settings;
-    settings.sleep = false;
-    World world(settings);
-    addGround(world);
-    const Shape cube = hullCube();
-    for (int level = 0; level < 5; ++level)
-        for (int i = 0; i < 5 - level; ++i)
-            addBody(world, cube, Vector3((i - 0.5 * (4 - level)) * 1.05, 0.5 + level, 0));
-    const Counted c = countSteps(world, 120, 120);
-    EXPECT_EQ(c.allocations, 0);
-    // 5 cubes on the ground and 10 cubes on two each: 25 contacts of 4 points while at rest.
-    EXPECT_EQ(world.stats().contacts, 100);
-    EXPECT_GT(c.pairsTested, 0) << "the counted steps must run the narrowphase";
+    for (const Shape &cube : {Shape::box(Vector3::Constant(0.5)), hullCube()}) {
+        WorldSettings settings;
+        settings.sleep = false;
+        World world(settings);
+        addGround(world);
+        for (int level = 0; level < 5; ++level)
+            for (int i = 0; i < 5 - level; ++i)
+                addBody(world, cube, Vector3((i - 0.5 * (4 - level)) * 1.05, 0.5 + level, 0));
+        const Counted c = countSteps(world, 120, 120);
+        EXPECT_EQ(c.allocations, 0) << shapeTypeName(cube.type);
+        // 5 cubes on the ground and 10 cubes on two each: 25 contacts of 4 points while at rest.
+        EXPECT_EQ(world.stats().contacts, 100) << shapeTypeName(cube.type);
+        EXPECT_GT(c.pairsTested, 0) << "the counted steps must run the narrowphase";
+    }
 }
 
 // Spheres, capsules, cylinders and hulls at rest on the ground and on a static box.

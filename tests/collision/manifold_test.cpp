@@ -108,6 +108,32 @@ TEST(Manifold, CylinderCapTiltedOnPlane) {
     EXPECT_TRUE(nonCollinear(m));
 }
 
+TEST(Manifold, ContactOrderStartsFromTheDeepestPoint) {
+    // Corners of a unit square, the second deepest: it comes first, then the corner
+    // farthest from it (the diagonal, index 3); the other two span equal triangles with
+    // those, and the first of them in the input wins the tie.
+    const Vector3 pointB[4] = {Vector3(-0.5, 0, -0.5), Vector3(0.5, 0, -0.5), Vector3(0.5, 0, 0.5), Vector3(-0.5, 0, 0.5)};
+    const real depth[4] = {0.001, 0.003, 0.002, 0.001};
+    int order[4];
+    detail::contactOrder(pointB, depth, 4, Vector3::UnitY(), order);
+    EXPECT_EQ(order[0], 1);
+    EXPECT_EQ(order[1], 3);
+    EXPECT_EQ(order[2], 0);
+    EXPECT_EQ(order[3], 2);
+}
+
+TEST(Manifold, ContactOrderKeepsPointsThatAddNothingLast) {
+    // Three points on a line, equally deep: the ends are the farthest from the centre
+    // (the first of them wins), then the other end; the middle spans no area and comes last.
+    const Vector3 pointB[3] = {Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0.5, 0, 0)};
+    const real depth[3] = {0.001, 0.001, 0.001};
+    int order[3];
+    detail::contactOrder(pointB, depth, 3, Vector3::UnitY(), order);
+    EXPECT_EQ(order[0], 0);
+    EXPECT_EQ(order[1], 1);
+    EXPECT_EQ(order[2], 2);
+}
+
 TEST(Manifold, NothingWhenApart) {
     // 1 cm apart: within the speculative distance but not touching; FCL reports nothing.
     EXPECT_TRUE(collide(kBox, pose(Vector3(0, 0.51, 0)), kFloor, Matrix4::Identity()).empty());

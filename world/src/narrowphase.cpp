@@ -31,8 +31,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "box_box.h"
 #include "gjk.h"
 #include "shape_contact.h"
+#include "sphere_pairs.h"
 
 namespace cyclone::detail {
 namespace {
@@ -121,6 +123,55 @@ Vector3 polygonNormal(const SupportFeature &f) {
     return length > 0 ? Vector3(sum / length) : Vector3::Zero();
 }
 
+// The choice behind reduce() and contactOrder(): at most four of `count` points, given
+// their B-side positions and depths, in the order reduce() lists them.
+template <class PointB, class Depth>
+int spreadOrder(int count, const Vector3 &n, const PointB &pointB, const Depth &depth, int chosen[4]) {
+    if (count <= 0) return 0;
+    chosen[0] = 0;
+    chosen[1] = chosen[2] = chosen[3] = -1;
+    real deepest = depth(0);
+    Vector3 centre = Vector3::Zero();
+    for (int i = 0; i < count; ++i) {
+        deepest = std::max(deepest, depth(i));
+        centre += pointB(i);
+    }
+    centre /= count;
+    real best = -1;
+    for (int i = 0; i < count; ++i) {
+        if (depth(i) < deepest - kDepthTie) continue;
+        const real d = (pointB(i) - centre).squaredNorm();
+        if (d > best) best = d, chosen[0] = i;
+    }
+    const Vector3 p0 = pointB(chosen[0]);
+    best = kPointTolerance * kPointTolerance;
+    for (int i = 0; i < count; ++i) {
+        const real d = (pointB(i) - p0).squaredNorm();
+        if (d > best) best = d, chosen[1] = i;
+    }
+    if (chosen[1] < 0) return 1;
+    const Vector3 edge = pointB(chosen[1]) - p0;
+    best = kPointTolerance * edge.norm();
+    for (int i = 0; i < count; ++i) {
+        const real area = std::abs(edge.cross(pointB(i) - p0).dot(n));
+        if (area > best) best = area, chosen[2] = i;
+    }
+    if (chosen[2] < 0) return 2;
+    const Vector3 corners[3] = {p0, pointB(chosen[1]), pointB(chosen[2])};
+    const real orientation = (corners[1] - corners[0]).cross(corners[2] - corners[0]).dot(n) > 0 ? 1 : -1;
+    best = kPointTolerance * edge.norm();
+    for (int i = 0; i < count; ++i) {
+        real added = 0;
+        for (int e = 0; e < 3; ++e) {
+            const Vector3 &from = corners[e];
+            const Vector3 &to = corners[(e + 1) % 3];
+            added += std::max<real>(0, -orientation * (to - from).cross(pointB(i) - from).dot(n));
+        }
+        if (added > best) best = added, chosen[3] = i;
+    }
+    return chosen[3] < 0 ? 3 : 4;
+}
+
 // Keeps at most four points of `in`: the deepest, the farthest from it, the one
 // spanning the largest triangle with those two, and the one adding the most area.
 // Among equally deep points (a flat contact) the first is the one farthest from their
@@ -128,53 +179,9 @@ Vector3 polygonNormal(const SupportFeature &f) {
 void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &out) {
     out.count = 0;
     out.normal = n;
-    if (count <= 0) return;
-    int chosen[4] = {0, -1, -1, -1};
-    real deepest = in[0].depth;
-    Vector3 centre = Vector3::Zero();
-    for (int i = 0; i < count; ++i) {
-        deepest = std::max(deepest, in[i].depth);
-        centre += in[i].pointB;
-    }
-    centre /= count;
-    real best = -1;
-    for (int i = 0; i < count; ++i) {
-        if (in[i].depth < deepest - kDepthTie) continue;
-        const real d = (in[i].pointB - centre).squaredNorm();
-        if (d > best) best = d, chosen[0] = i;
-    }
-    const Vector3 p0 = in[chosen[0]].pointB;
-    best = kPointTolerance * kPointTolerance;
-    for (int i = 0; i < count; ++i) {
-        const real d = (in[i].pointB - p0).squaredNorm();
-        if (d > best) best = d, chosen[1] = i;
-    }
-    int found = 1;
-    if (chosen[1] >= 0) {
-        found = 2;
-        const Vector3 edge = in[chosen[1]].pointB - p0;
-        best = kPointTolerance * edge.norm();
-        for (int i = 0; i < count; ++i) {
-            const real area = std::abs(edge.cross(in[i].pointB - p0).dot(n));
-            if (area > best) best = area, chosen[2] = i;
-        }
-        if (chosen[2] >= 0) {
-            found = 3;
-            const Vector3 corners[3] = {p0, in[chosen[1]].pointB, in[chosen[2]].pointB};
-            const real orientation = (corners[1] - corners[0]).cross(corners[2] - corners[0]).dot(n) > 0 ? 1 : -1;
-            best = kPointTolerance * edge.norm();
-            for (int i = 0; i < count; ++i) {
-                real added = 0;
-                for (int e = 0; e < 3; ++e) {
-                    const Vector3 &from = corners[e];
-                    const Vector3 &to = corners[(e + 1) % 3];
-                    added += std::max<real>(0, -orientation * (to - from).cross(in[i].pointB - from).dot(n));
-                }
-                if (added > best) best = added, chosen[3] = i;
-            }
-            if (chosen[3] >= 0) found = 4;
-        }
-    }
+    int chosen[4];
+    const int found = spreadOrder(
+        count, n, [&](int i) -> const Vector3 & { return in[i].pointB; }, [&](int i) { return in[i].depth; }, chosen);
     for (int k = 0; k < found; ++k) {
         ContactPoint &p = out.points[out.count++];
         p.pointA = in[chosen[k]].pointA;
@@ -688,13 +695,92 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     return appended;
 }
 
+// The pairs with a test of their own, which FCL would only have told touch: the
+// manifolds they append are the ones the FCL path builds (the same normal, by least
+// overlap, and the same clipping). Returns the number appended, or -1 for a pair that
+// needs FCL.
+int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                  real speculative, std::vector<Manifold> &out) {
+    const ShapeType typeA = a.shape().type;
+    const ShapeType typeB = b.shape().type;
+    const Pair pair{a, poseA, -1, b, poseB, -1, speculative};
+    if (typeA == ShapeType::Plane || typeB == ShapeType::Plane) {
+        // A solid shape's support point is exact: it touches the half-space when that
+        // point lies on or below the surface (as in FCL). A mesh needs FCL's triangles.
+        const bool planeIsA = typeA == ShapeType::Plane;
+        const CollisionShape &plane = planeIsA ? a : b;
+        const Matrix4 &planePose = planeIsA ? poseA : poseB;
+        const CollisionShape &other = planeIsA ? b : a;
+        if (other.shape().type == ShapeType::Mesh) return -1;
+        const Vector3 up = planePose.linear() * plane.planeNormal();
+        const real level = up.dot(planePose.translation()) + plane.planeOffset();
+        const Vector3 deepest = other.supportPoint(planeIsA ? poseB : poseA, -up, -1);
+        if (!(level - deepest.dot(up) >= 0)) return 0;
+        return planeContact(pair, planeIsA, out);
+    }
+    if (typeA == ShapeType::Box && typeB == ShapeType::Box) {
+        Vector3 normal;
+        real overlap = 0;
+        if (!boxBoxAxis(a.shape().halfExtents, poseA, b.shape().halfExtents, poseB, normal, overlap)) return 0;
+        SupportFeature fa, fb;
+        a.supportingFeature(poseA, normal, -1, fa);
+        b.supportingFeature(poseB, -normal, -1, fb);
+        PointSet points;
+        clipFeatures(pair, normal, fa, fb, points);
+        if (points.count == 0) return 0;
+        Manifold manifold;
+        reduce(points.points, points.count, normal, manifold);
+        out.push_back(manifold);
+        return 1;
+    }
+    if (typeA == ShapeType::Sphere || typeB == ShapeType::Sphere) {
+        const bool sphereIsA = typeA == ShapeType::Sphere;
+        const CollisionShape &sphere = sphereIsA ? a : b;
+        const CollisionShape &other = sphereIsA ? b : a;
+        const Vector3 centre = (sphereIsA ? poseA : poseB).translation();
+        const Matrix4 &otherPose = sphereIsA ? poseB : poseA;
+        Manifold manifold;
+        bool hit = false;
+        if (other.shape().type == ShapeType::Sphere)
+            hit = sphereSphere(sphere.shape().radius, centre, other.shape().radius, otherPose.translation(), manifold);
+        else if (other.shape().type == ShapeType::Box)
+            hit = sphereBox(sphere.shape().radius, centre, other.shape().halfExtents, otherPose, manifold);
+        else
+            return -1;
+        if (!hit) return 0;
+        if (!sphereIsA) {
+            // Computed with the sphere as A: turned into (a, b)'s order.
+            manifold.normal = -manifold.normal;
+            std::swap(manifold.points[0].pointA, manifold.points[0].pointB);
+        }
+        out.push_back(manifold);
+        return 1;
+    }
+    return -1;
+}
+
 }  // namespace
+
+void contactOrder(const Vector3 *pointB, const real *depth, int count, const Vector3 &normal, int *order) {
+    int chosen[4];
+    const int found = spreadOrder(
+        count, normal, [&](int i) -> const Vector3 & { return pointB[i]; }, [&](int i) { return depth[i]; }, chosen);
+    bool taken[Manifold::kMaxPoints] = {};
+    int k = 0;
+    for (; k < found; ++k) order[k] = chosen[k], taken[chosen[k]] = true;
+    for (int i = 0; i < count; ++i)
+        if (!taken[i]) order[k++] = i;
+}
 
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
             const NarrowphaseSettings &settings, std::vector<Manifold> &out) {
     const ShapeType typeA = a.shape().type;
     const ShapeType typeB = b.shape().type;
     if (typeA == ShapeType::Plane && typeB == ShapeType::Plane) return 0;
+    if (!settings.forceFcl) {
+        const int appended = nativeContact(a, poseA, b, poseB, settings.speculativeDistance, out);
+        if (appended >= 0) return appended;
+    }
     const bool withMesh = typeA == ShapeType::Mesh || typeB == ShapeType::Mesh;
 
     static const fcl::CollisionRequestd shapeRequest = makeRequest(4);

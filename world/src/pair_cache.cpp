@@ -97,10 +97,21 @@ void PairCache::remove(std::uint32_t pair) {
 
 void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &poseB) {
     m.normal = poseA.linear() * m.localNormal;
+    Vector3 pointB[Manifold::kMaxPoints];
+    real depth[Manifold::kMaxPoints];
     for (int i = 0; i < m.count; ++i) {
         PersistentPoint &p = m.points[i];
-        p.depth = (poseA * p.localA - poseB * p.localB).dot(m.normal);
+        pointB[i] = poseB * p.localB;
+        p.depth = (poseA * p.localA - pointB[i]).dot(m.normal);
+        depth[i] = p.depth;
     }
+    // In the order a fresh manifold would have: a frozen order makes Gauss-Seidel favour
+    // the same corner step after step, which rocked a 12-box tower 3 cm (docs/solver.md).
+    int order[Manifold::kMaxPoints];
+    contactOrder(pointB, depth, m.count, m.normal, order);
+    PersistentPoint ordered[Manifold::kMaxPoints];
+    for (int i = 0; i < m.count; ++i) ordered[i] = m.points[order[i]];
+    std::copy(ordered, ordered + m.count, m.points);
 }
 
 void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance) {

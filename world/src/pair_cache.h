@@ -73,7 +73,8 @@ private:
 };
 
 /// Refreshes `m` from the bodies' current poses using its anchors (no narrowphase):
-/// world normal from A's frame, depth from the anchors' separation along it.
+/// world normal from A's frame, depth from the anchors' separation along it, points put
+/// in the order the narrowphase gives a fresh manifold (contactOrder), impulses kept.
 void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &poseB);
 
 /// Refreshes the manifolds from their anchors and keeps only the points whose anchors

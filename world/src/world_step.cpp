@@ -216,8 +216,10 @@ void World::Impl::runNarrowphase() {
         const Matrix4 poseB = b.body.getTransform();
         const Matrix4 relative = poseA.inverse() * poseB;
 
+        // Only a touching pair is reused: one with no manifold may come into contact
+        // within the tolerance, and FCL does not see contacts that are apart by a hair.
         bool reuse = false;
-        if (pair.tested && settings.manifoldReuseTolerance > 0) {
+        if (pair.tested && pair.touching() && settings.manifoldReuseTolerance > 0) {
             const real shift = (relative.translation() - pair.relativePose.translation()).norm();
             const Eigen::AngleAxis<real> turn(relative.linear() * pair.relativePose.linear().transpose());
             const real radius = std::max(a.boundingRadius, b.boundingRadius);

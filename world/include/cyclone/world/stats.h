@@ -11,7 +11,7 @@ namespace cyclone {
 struct StageTimes {
     double forces = 0;       ///< Gravity, user forces and springs (every sub-step).
     double broadphase = 0;   ///< AABB updates and overlapping pairs.
-    double narrowphase = 0;  ///< FCL collide calls.
+    double narrowphase = 0;  ///< Contact tests (FCL or a pair's own) and manifold reuse.
     double events = 0;       ///< Contact begin and end detection.
     double manifolds = 0;    ///< Point matching, warm-start data, solver set-up.
     double islands = 0;      ///< Island building and wake propagation.
@@ -28,7 +28,7 @@ struct StepStats {
     int awakeBodies = 0;        ///< Dynamic bodies awake after the step.
     int integratedBodies = 0;   ///< Dynamic bodies integrated during the step.
     int broadphasePairs = 0;    ///< Overlapping AABB pairs found (including plane pairs).
-    int pairsTested = 0;        ///< Pairs sent to FCL's narrowphase.
+    int pairsTested = 0;        ///< Pairs sent to the narrowphase (FCL or a test of its own).
     int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
     int manifolds = 0;          ///< Contact manifolds given to the solver.
     int contacts = 0;           ///< Contact points given to the solver.
