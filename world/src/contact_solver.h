@@ -132,7 +132,7 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
 ///
 /// With `support` (the support pass, shock propagation), a manifold whose `support`
 /// names a carrying body treats that body as immovable and solves the carried one
-/// against it with kSupportSweeps sweeps. Run last, bottom up, it leaves no body of a
+/// against it with up to kSupportSweeps sweeps. Run last, bottom up, it leaves no body of a
 /// resting stack sinking into the one below or turning on it, whatever their mass ratio
 /// (plain Gauss-Seidel converges ever slower as a heavy body rests on a lighter one).
 /// Its impulses change velocities only: the accumulated impulses stay those of the

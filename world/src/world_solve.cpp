@@ -145,12 +145,15 @@ void World::Impl::solve(real h, bool firstSubstep) {
     }
 
     if (settings.warmStarting) detail::warmStart(solverBodies, solverManifolds);
-    const int last = settings.velocityIterations - 1;
-    for (int it = 0; it <= last; ++it) {
-        if (split) detail::solveVelocities(solverBodies, solverManifolds, (it & 1) != 0, supportPass(it == last));
+    for (int it = 0; it < settings.velocityIterations; ++it) {
+        if (split) detail::solveVelocities(solverBodies, solverManifolds, (it & 1) != 0);
         else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
     }
     stats.velocityIterations += settings.velocityIterations;
+    // The support pass comes after the coupled passes, never instead of one: alone, it
+    // would let no body push the bodies carrying it.
+    if (split && settings.shockPropagation)
+        detail::solveVelocities(solverBodies, solverManifolds, (settings.velocityIterations & 1) != 0, true);
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.

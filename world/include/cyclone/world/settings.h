@@ -95,13 +95,14 @@ struct WorldSettings {
     real manifoldReuseTolerance = 0.0005;
     /// Whether impulses of the last step seed the solver (warm starting).
     bool warmStarting = true;
-    /// The support pass (SplitImpulse solver): the last velocity pass and the last
-    /// penetration pass of each sub-step solve each body against the bodies that carry
-    /// it as immovable ones, with a few sweeps per contact, keeping the impulses of the
-    /// coupled passes. Carriers are static and sleeping bodies and, by shock
-    /// propagation, a body lower in the contact graph (counted from static or sleeping
-    /// bodies) that the other rests on within 60 degrees of gravity. Stacks then hold
-    /// at any mass ratio and do not lean; off, every pass is plain Gauss-Seidel.
+    /// The support pass (SplitImpulse solver): after the velocity passes of each
+    /// sub-step, one more pass solves each body against the bodies that carry it as
+    /// immovable ones, with a few sweeps per contact, keeping the impulses of the coupled
+    /// passes; the last penetration pass does the same. Carriers are static and sleeping
+    /// bodies and, by shock propagation, a body lower in the contact graph (counted from
+    /// static or sleeping bodies) that the other rests on within 60 degrees of gravity.
+    /// Stacks then hold at any mass ratio and do not lean; off, every pass is plain
+    /// Gauss-Seidel.
     bool shockPropagation = true;
 };
 
