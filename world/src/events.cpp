@@ -6,6 +6,8 @@
 // slot reused by another pair, or a pair whose body was removed (its generation moved
 // on), ends the old contact before the new one begins. Everything is in vectors that
 // keep their capacity: a step in steady state allocates nothing here.
+#include <algorithm>
+
 #include "world_impl.h"
 
 namespace cyclone {
@@ -21,7 +23,11 @@ void World::Impl::closeStepEvents() { eventSink = &pendingEvents; }
 
 void World::Impl::detectContactEvents() {
     if (contactTracks.size() < pairs.slots()) contactTracks.resize(pairs.slots());
-    for (std::uint32_t p = 0; p < contactTracks.size(); ++p) {
+    // Only slots the narrowphase saw or that were removed can have changed; in slot order,
+    // so that events come in the same order whichever way they were found.
+    std::sort(eventSlots.begin(), eventSlots.end());
+    eventSlots.erase(std::unique(eventSlots.begin(), eventSlots.end()), eventSlots.end());
+    for (std::uint32_t p : eventSlots) {
         ContactTrack &track = contactTracks[p];
         const bool inCache = p < pairs.slots();
         const detail::PairState *pair = inCache ? &pairs[p] : nullptr;
@@ -59,6 +65,7 @@ void World::Impl::detectContactEvents() {
         begin.approachSpeed = (va - vb).dot(begin.normal);
         events.contactBegins.push_back(begin);
     }
+    eventSlots.clear();
 }
 
 const WorldEvents &World::events() const { return impl_->events; }

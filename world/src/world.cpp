@@ -195,13 +195,12 @@ void World::removeBody(BodyId id) {
     BodyRecord &r = w.record(id, "World::removeBody");
     const std::uint32_t index = id.index;
     // Bodies touching the removed one lose their support: wake them (and their islands).
-    for (std::uint32_t p = 0; p < w.pairs.slots(); ++p) {
-        detail::PairState &pair = w.pairs[p];
-        if (!pair.alive || (pair.a != index && pair.b != index)) continue;
+    for (std::uint32_t p : r.pairs) {
+        const detail::PairState &pair = w.pairs[p];
         const std::uint32_t other = pair.a == index ? pair.b : pair.a;
         if (pair.touching() && !w.bodies[other].isStatic) w.wake(other);
-        w.pairs.remove(p);
     }
+    w.removePairsOf(index);
     for (SpringRecord &s : w.springs) {
         if (!s.alive) continue;
         const bool onA = s.settings.a == id;
@@ -489,9 +488,8 @@ void World::Impl::refreshCollisionObject(std::uint32_t index) {
         return;
     }
     // A moved static body wakes what touched it.
-    for (std::uint32_t p = 0; p < pairs.slots(); ++p) {
-        detail::PairState &pair = pairs[p];
-        if (!pair.alive || (pair.a != index && pair.b != index)) continue;
+    for (std::uint32_t p : bodies[index].pairs) {
+        const detail::PairState &pair = pairs[p];
         const std::uint32_t other = pair.a == index ? pair.b : pair.a;
         if (!bodies[other].isStatic) wake(other);
     }

@@ -44,6 +44,7 @@ struct BodyRecord {
     int sleepingIsland = -1;    ///< Index in sleepingIslands_ while asleep.
     int island = -1;            ///< Island of the last step (-1: none).
     int solverIndex = 0;        ///< Index in the solver arrays (0: immovable).
+    std::vector<std::uint32_t> pairs;  ///< Pair slots this body is in (any order).
     int awakeSlot = -1;         ///< Index in World::Impl::awake (-1: not in it).
     std::uint64_t rank = 0;     ///< When it was added: orders World::Impl::awake as `order` is.
     real boundingRadius = 0;    ///< Farthest point of the shape from its origin, m.
@@ -129,6 +130,9 @@ struct World::Impl {
     WorldEvents pendingEvents;
     WorldEvents *eventSink = &pendingEvents;
     std::vector<ContactTrack> contactTracks;  ///< By pair slot.
+    /// Pair slots whose touching state may have changed since the last contact events:
+    /// seen by the narrowphase or removed (detectContactEvents looks at these only).
+    std::vector<std::uint32_t> eventSlots;
 
     detail::SupportScratch supportScratch;
     detail::SoftStepSettings soft;
@@ -175,6 +179,12 @@ struct World::Impl {
     void updateSleep();
     void storeImpulses();
     void quarantine(std::uint32_t index);
+    /// The pair of bodies i and j, created (and listed with both bodies) if new.
+    std::uint32_t findOrAddPair(std::uint32_t i, std::uint32_t j, bool &created);
+    /// Removes a pair from the cache and from its bodies' lists.
+    void removePair(std::uint32_t pair);
+    /// Removes every pair of body `index`.
+    void removePairsOf(std::uint32_t index);
     /// Whether a solver pass runs as the support pass (shock propagation): the last one.
     bool supportPass(bool lastPass) const { return lastPass && settings.shockPropagation; }
 

@@ -206,10 +206,11 @@ void World::Impl::runNarrowphase() {
     for (const detail::CandidatePair &c : candidates) {
         if (bodies[c.a].isStatic && bodies[c.b].isStatic) continue;
         bool created = false;
-        const std::uint32_t p = pairs.findOrAdd(c.a, c.b, created);
+        const std::uint32_t p = findOrAddPair(c.a, c.b, created);
         detail::PairState &pair = pairs[p];
         if (pair.lastSeen == stepCount) continue;  // reported twice
         pair.lastSeen = stepCount;
+        eventSlots.push_back(p);
         BodyRecord &a = bodies[pair.a];
         BodyRecord &b = bodies[pair.b];
         const Matrix4 poseA = a.body.getTransform();
@@ -257,11 +258,14 @@ void World::Impl::runNarrowphase() {
         if (b.simulated && !a.isStatic && !a.simulated) wake(pair.a);
     }
 
-    // Pairs with an awake member that the broadphase no longer reports have separated.
-    for (std::uint32_t p = 0; p < pairs.slots(); ++p) {
-        detail::PairState &pair = pairs[p];
-        if (!pair.alive || pair.lastSeen == stepCount) continue;
-        if (bodies[pair.a].simulated || bodies[pair.b].simulated) pairs.remove(p);
+    // Pairs with an awake member that the broadphase no longer reports have separated
+    // (walked body by body: sleeping bodies' pairs cost nothing).
+    for (std::uint32_t index : simulatedBodies) {
+        std::vector<std::uint32_t> &list = bodies[index].pairs;
+        for (std::size_t k = list.size(); k-- > 0;) {
+            const std::uint32_t p = list[k];
+            if (pairs[p].lastSeen != stepCount) removePair(p);
+        }
     }
 }
 
@@ -402,10 +406,34 @@ void World::Impl::quarantine(std::uint32_t index) {
     r.simulated = false;
     updateAwakeList(index);
     setTree(index, Tree::None);
-    for (std::uint32_t p = 0; p < pairs.slots(); ++p) {
-        detail::PairState &pair = pairs[p];
-        if (pair.alive && (pair.a == index || pair.b == index)) pairs.remove(p);
+    removePairsOf(index);
+}
+
+std::uint32_t World::Impl::findOrAddPair(std::uint32_t i, std::uint32_t j, bool &created) {
+    const std::uint32_t p = pairs.findOrAdd(i, j, created);
+    if (created) {
+        bodies[i].pairs.push_back(p);
+        bodies[j].pairs.push_back(p);
     }
+    return p;
+}
+
+void World::Impl::removePair(std::uint32_t p) {
+    const detail::PairState &pair = pairs[p];
+    for (std::uint32_t index : {pair.a, pair.b}) {
+        std::vector<std::uint32_t> &list = bodies[index].pairs;
+        const auto at = std::find(list.begin(), list.end(), p);
+        if (at != list.end()) {
+            *at = list.back();
+            list.pop_back();
+        }
+    }
+    pairs.remove(p);
+    eventSlots.push_back(p);
+}
+
+void World::Impl::removePairsOf(std::uint32_t index) {
+    while (!bodies[index].pairs.empty()) removePair(bodies[index].pairs.back());
 }
 
 }  // namespace cyclone
