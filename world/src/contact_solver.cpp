@@ -145,8 +145,6 @@ void forEachManifold(std::vector<SolverBody> &bodies, std::vector<SolverManifold
         if (!support || m.support == kNoSupport) {
             solve(a, b, m, std::integral_constant<Moving, kBoth>(), 1);
         } else {
-            // Against a static or sleeping body, the one-sided problem is the true one and
-            // its impulses are kept; against a moving carrier they are put back.
             const bool carrierMoves = m.a != 0 && m.b != 0;
             SavedImpulses saved;
             if (carrierMoves) saved.save(m);
@@ -190,7 +188,8 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
 
 void prepareSupportedMasses(const std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
     for (SolverManifold &m : manifolds) {
-        if (m.support == kNoSupport) continue;
+        // Against a static or sleeping body the pair's mass is already the carried body's.
+        if (m.support == kNoSupport || m.a == 0 || m.b == 0) continue;
         const bool bMoves = m.support == kASupportsB;
         const real invMass = bodies[bMoves ? m.b : m.a].invMass;
         auto fill = [&](SolverRow &row) {

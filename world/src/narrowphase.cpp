@@ -190,6 +190,16 @@ void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &ou
     }
 }
 
+// Appends the manifold reduced from `points` along `n` to `out`; returns how many were
+// appended (0 when there are no points).
+int appendReduced(const PointSet &points, const Vector3 &n, std::vector<Manifold> &out) {
+    if (points.count == 0) return 0;
+    Manifold manifold;
+    reduce(points.points, points.count, n, manifold);
+    out.push_back(manifold);
+    return 1;
+}
+
 // One point: the support point of whichever feature is a point, depth by overlap.
 void pointContact(const Pair &pair, const Vector3 &n, bool pointOnB, PointSet &out) {
     const real depth = pair.overlap(n);
@@ -383,11 +393,7 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
         const real t = level - q.dot(up);
         if (t > deepest + kPointTolerance) add(q, t);
     }
-    if (points.count == 0) return 0;
-    Manifold manifold;
-    reduce(points.points, points.count, planeIsA ? up : Vector3(-up), manifold);
-    out.push_back(manifold);
-    return 1;
+    return appendReduced(points, planeIsA ? up : Vector3(-up), out);
 }
 
 // Which normals a contact may take. Against a mesh triangle (one-sided: shapes are
@@ -686,11 +692,7 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
             b.supportingFeature(poseB, -normal, c.triangleB, fb);
             clipFeatures(pair, normal, fa, fb, points);
         }
-        if (points.count == 0) continue;
-        Manifold manifold;
-        reduce(points.points, points.count, normal, manifold);
-        out.push_back(manifold);
-        ++appended;
+        appended += appendReduced(points, normal, out);
     }
     return appended;
 }
@@ -727,11 +729,7 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
         b.supportingFeature(poseB, -normal, -1, fb);
         PointSet points;
         clipFeatures(pair, normal, fa, fb, points);
-        if (points.count == 0) return 0;
-        Manifold manifold;
-        reduce(points.points, points.count, normal, manifold);
-        out.push_back(manifold);
-        return 1;
+        return appendReduced(points, normal, out);
     }
     if (typeA == ShapeType::Sphere || typeB == ShapeType::Sphere) {
         const bool sphereIsA = typeA == ShapeType::Sphere;
@@ -825,11 +823,7 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
         chooseNormal(pair, raw[deepest].normal, NormalRule(), !exactInFcl(typeA, typeB), fa, fb, overlap);
     PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
-    if (points.count == 0) return 0;
-    Manifold manifold;
-    reduce(points.points, points.count, normal, manifold);
-    out.push_back(manifold);
-    return 1;
+    return appendReduced(points, normal, out);
 }
 
 }  // namespace cyclone::detail

@@ -55,16 +55,7 @@ struct RayWalk {
         for (int k = 0; k < 2; ++k)
             reached[k] = detail::rayBox(ray.origin, ray.direction, children[k]->bv.min_, children[k]->bv.max_,
                                         ray.maxDistance, enter[k]);
-        if (reached[0] && reached[1] && enter[1] < enter[0]) {
-            std::swap(children[0], children[1]);
-            std::swap(enter[0], enter[1]);
-        } else if (!reached[0]) {
-            std::swap(children[0], children[1]);
-            std::swap(enter[0], enter[1]);
-            std::swap(reached[0], reached[1]);
-        }
-        for (int k = 0; k < 2; ++k)
-            if (reached[k] && enter[k] <= ray.maxDistance) visit(children[k]);
+        detail::visitNearestFirst(children, reached, enter, ray.maxDistance, [this](const Node *child) { visit(child); });
     }
 
     void walk(const Node *root) {

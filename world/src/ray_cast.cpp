@@ -71,16 +71,21 @@ bool rayLocalBox(const Vector3 &o, const Vector3 &d, const Vector3 &h, real limi
     return true;
 }
 
+// Where the ray enters the side of the cylinder of radius r about z between z = -half and
+// half (infinity when it does not), with the normal there in `n`.
+real rayCylinderSide(const Vector3 &o, const Vector3 &d, real r, real half, Vector3 &n) {
+    real s;
+    if (!rayInfiniteCylinder(o, d, r, s) || !(std::abs(o.z() + s * d.z()) <= half)) return kInfinity;
+    const Vector3 p = o + s * d;
+    n = Vector3(p.x(), p.y(), 0) / r;
+    return s;
+}
+
 bool rayLocalCapsule(const Vector3 &o, const Vector3 &d, real r, real half, real limit, real &t, Vector3 &n) {
     const Vector3 nearest(0, 0, std::clamp(o.z(), -half, half));
     if ((o - nearest).squaredNorm() < r * r) return false;
-    real best = kInfinity;
+    real best = rayCylinderSide(o, d, r, half, n);
     real s;
-    if (rayInfiniteCylinder(o, d, r, s) && std::abs(o.z() + s * d.z()) <= half) {
-        best = s;
-        const Vector3 p = o + s * d;
-        n = Vector3(p.x(), p.y(), 0) / r;
-    }
     for (real end : {-half, half}) {
         const Vector3 c(0, 0, end);
         if (!raySphere(o, d, c, r, s) || !(s < best)) continue;
@@ -98,13 +103,8 @@ bool rayLocalCapsule(const Vector3 &o, const Vector3 &d, real r, real half, real
 bool rayLocalCylinder(const Vector3 &o, const Vector3 &d, real r, real half, real limit, real &t, Vector3 &n) {
     const real radial2 = o.x() * o.x() + o.y() * o.y();
     if (std::abs(o.z()) < half && radial2 < r * r) return false;
-    real best = kInfinity;
+    real best = rayCylinderSide(o, d, r, half, n);
     real s;
-    if (rayInfiniteCylinder(o, d, r, s) && std::abs(o.z() + s * d.z()) <= half) {
-        best = s;
-        const Vector3 p = o + s * d;
-        n = Vector3(p.x(), p.y(), 0) / r;
-    }
     for (real side : {real(-1), real(1)}) {
         // The cap at z = side * half, entered from beyond it.
         if (side * o.z() < half || !(side * d.z() < -kParallel)) continue;
@@ -216,16 +216,7 @@ struct MeshWalk {
         real enter[2] = {0, 0};
         bool reached[2];
         for (int k = 0; k < 2; ++k) reached[k] = rayObb(o, d, model.getBV(children[k]).bv.obb, best, enter[k]);
-        if (reached[0] && reached[1] && enter[1] < enter[0]) {
-            std::swap(children[0], children[1]);
-            std::swap(enter[0], enter[1]);
-        } else if (!reached[0]) {
-            std::swap(children[0], children[1]);
-            std::swap(enter[0], enter[1]);
-            std::swap(reached[0], reached[1]);
-        }
-        for (int k = 0; k < 2; ++k)
-            if (reached[k] && enter[k] <= best) visit(children[k]);
+        visitNearestFirst(children, reached, enter, best, [this](int child) { visit(child); });
     }
 };
 

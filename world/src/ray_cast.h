@@ -32,4 +32,16 @@ bool rayShape(const Ray &ray, const CollisionShape &shape, const Matrix4 &pose, 
 bool rayBox(const Vector3 &origin, const Vector3 &direction, const Vector3 &min, const Vector3 &max, real limit,
             real &enter);
 
+/// Visits the two children of a tree node nearest first: `reached[k]` and `enter[k]` say
+/// whether and at what distance the ray enters child k. A child is skipped when not
+/// reached or entered beyond `limit`, which is read at each visit: visiting the first
+/// child may shorten it.
+template <class Child, class Visit>
+void visitNearestFirst(const Child (&children)[2], const bool (&reached)[2], const real (&enter)[2],
+                       const real &limit, Visit visit) {
+    const int first = !reached[0] || (reached[1] && enter[1] < enter[0]) ? 1 : 0;
+    for (const int k : {first, 1 - first})
+        if (reached[k] && enter[k] <= limit) visit(children[k]);
+}
+
 }  // namespace cyclone::detail

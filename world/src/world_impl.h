@@ -185,8 +185,6 @@ struct World::Impl {
     void removePair(std::uint32_t pair);
     /// Removes every pair of body `index`.
     void removePairsOf(std::uint32_t index);
-    /// Whether a solver pass runs as the support pass (shock propagation): the last one.
-    bool supportPass(bool lastPass) const { return lastPass && settings.shockPropagation; }
 
     // Events (events.cpp): the step opens and closes them; detectContactEvents() runs
     // after the narrowphase.

@@ -224,7 +224,7 @@ void World::Impl::recoverPenetration(real h) {
     if (!needed) return;
     const int last = settings.positionIterations - 1;
     for (int it = 0; it <= last; ++it)
-        detail::solvePseudoVelocities(solverBodies, solverManifolds, supportPass(it == last));
+        detail::solvePseudoVelocities(solverBodies, solverManifolds, it == last && settings.shockPropagation);
     stats.positionIterations += settings.positionIterations;
     for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
         BodyRecord &r = bodies[simulatedBodies[k]];
