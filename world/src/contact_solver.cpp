@@ -1,5 +1,7 @@
 #include "contact_solver.h"
 
+#include "solver_schedule.h"
+
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -7,103 +9,172 @@
 namespace cyclone::detail {
 namespace {
 
+#define CYCLONE_INLINE inline __attribute__((always_inline))
+
 void fillRow(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
              const Vector3 &d, SolverRow &row) {
-    row.rAxd = rA.cross(d);
-    row.rBxd = rB.cross(d);
-    row.angA = a.invInertia * row.rAxd;
-    row.angB = b.invInertia * row.rBxd;
-    const real k = a.invMass + b.invMass + row.rAxd.dot(row.angA) + row.rBxd.dot(row.angB);
+    const Vector3 rAxd = rA.cross(d);
+    const Vector3 rBxd = rB.cross(d);
+    const Vector3 angA = a.invInertia * rAxd;
+    const Vector3 angB = b.invInertia * rBxd;
+    const real k = a.invMass + b.invMass + rAxd.dot(angA) + rBxd.dot(angB);
+    setLanes(row.rAxd, rAxd);
+    setLanes(row.rBxd, rBxd);
+    setLanes(row.angA, angA);
+    setLanes(row.angB, angB);
     row.mass = k > 0 ? 1 / k : 0;
     row.supportedMass = row.mass;
-}
-
-// Relative velocity of B with respect to A along a row's direction.
-inline real relativeVelocity(const SolverBody &a, const SolverBody &b, const Vector3 &d, const SolverRow &row) {
-    return d.dot(b.v - a.v) + row.rBxd.dot(b.w) - row.rAxd.dot(a.w);
 }
 
 // Which bodies a pass moves: both, or only the one a supporting body carries.
 enum Moving { kBoth, kOnlyA, kOnlyB };
 
-template <Moving kMoving = kBoth>
-inline __attribute__((always_inline)) void applyImpulse(SolverBody &a, SolverBody &b, const Vector3 &d,
-                                                        const SolverRow &row, real impulse) {
-    if (kMoving != kOnlyB) {
-        a.v -= (a.invMass * impulse) * d;
-        a.w -= impulse * row.angA;
+// The velocities one manifold works on, held in registers while its rows are solved:
+// (v, w) of A and B, or their pseudo-velocities.
+struct PairVelocities {
+    Lanes va, wa, vb, wb;
+    real invMassA, invMassB;
+
+    CYCLONE_INLINE PairVelocities(const SolverBody &a, const SolverBody &b, bool pseudo)
+        : va(pseudo ? a.pv : a.v), wa(pseudo ? a.pw : a.w), vb(pseudo ? b.pv : b.v), wb(pseudo ? b.pw : b.w),
+          invMassA(a.invMass), invMassB(b.invMass) {}
+
+    template <Moving kMoving>
+    CYCLONE_INLINE void store(SolverBody &a, SolverBody &b, bool pseudo) const {
+        if (kMoving != kOnlyB) (pseudo ? a.pv : a.v) = va, (pseudo ? a.pw : a.w) = wa;
+        if (kMoving != kOnlyA) (pseudo ? b.pv : b.v) = vb, (pseudo ? b.pw : b.w) = wb;
     }
-    if (kMoving != kOnlyA) {
-        b.v += (b.invMass * impulse) * d;
-        b.w += impulse * row.angB;
+
+    // Relative velocity of B with respect to A along direction d of a row.
+    CYCLONE_INLINE real along(const Lanes &d, const SolverRow &row) const {
+        return sum3(d * (vb - va) + row.rBxd * wb - row.rAxd * wa);
     }
-}
+
+    // Applies impulse * d (on B; its opposite on A) through a row's angular terms.
+    template <Moving kMoving = kBoth>
+    CYCLONE_INLINE void apply(const Lanes &d, const SolverRow &row, real impulse) {
+        if (kMoving != kOnlyB) {
+            va -= (invMassA * impulse) * d;
+            wa -= impulse * row.angA;
+        }
+        if (kMoving != kOnlyA) {
+            vb += (invMassB * impulse) * d;
+            wb += impulse * row.angB;
+        }
+    }
+};
 
 // The effective mass a pass uses: the pair's, or with the supporting body immovable.
 template <Moving kMoving>
-inline real massOf(const SolverRow &row) {
+CYCLONE_INLINE real massOf(const SolverRow &row) {
     return kMoving == kBoth ? row.mass : row.supportedMass;
 }
 
-// The friction rows of every point, limited by the point's normal impulse to Coulomb's
-// cone (not a box: friction is isotropic in the contact plane).
+// The friction rows of point i, limited by its normal impulse to Coulomb's cone (not a
+// box: friction is isotropic in the contact plane).
 template <Moving kMoving>
-void solveFriction(SolverBody &a, SolverBody &b, SolverManifold &m) {
-    for (int i = 0; i < m.count; ++i) {
-        SolverPoint &p = m.points[i];
-        const real limit = m.friction * p.normal.impulse;
-        const real old0 = p.tangent[0].impulse;
-        const real old1 = p.tangent[1].impulse;
-        real new0 = old0 - massOf<kMoving>(p.tangent[0]) * relativeVelocity(a, b, m.tangent[0], p.tangent[0]);
-        real new1 = old1 - massOf<kMoving>(p.tangent[1]) * relativeVelocity(a, b, m.tangent[1], p.tangent[1]);
-        const real magnitude2 = new0 * new0 + new1 * new1;
-        if (magnitude2 > limit * limit) {
-            const real scale = limit / std::sqrt(magnitude2);
-            new0 *= scale;
-            new1 *= scale;
-        }
-        p.tangent[0].impulse = new0;
-        p.tangent[1].impulse = new1;
-        applyImpulse<kMoving>(a, b, m.tangent[0], p.tangent[0], new0 - old0);
-        applyImpulse<kMoving>(a, b, m.tangent[1], p.tangent[1], new1 - old1);
+CYCLONE_INLINE void solveFrictionPoint(PairVelocities &vel, SolverManifold &m, int i) {
+    const Lanes &t0 = m.direction[1];
+    const Lanes &t1 = m.direction[2];
+    SolverPoint &p = m.points[i];
+    SolverRow &row0 = p.tangent[0];
+    SolverRow &row1 = p.tangent[1];
+    const real limit = m.friction * p.normal.impulse;
+    const real old0 = row0.impulse;
+    const real old1 = row1.impulse;
+    real new0 = old0 - massOf<kMoving>(row0) * vel.along(t0, row0);
+    real new1 = old1 - massOf<kMoving>(row1) * vel.along(t1, row1);
+    const real magnitude2 = new0 * new0 + new1 * new1;
+    if (magnitude2 > limit * limit) {
+        const real scale = limit / std::sqrt(magnitude2);
+        new0 *= scale;
+        new1 *= scale;
     }
+    row0.impulse = new0;
+    row1.impulse = new1;
+    vel.apply<kMoving>(t0, row0, new0 - old0);
+    vel.apply<kMoving>(t1, row1, new1 - old1);
+}
+
+// The normal row of the k-th point (from the end with `reverse`).
+template <Moving kMoving>
+CYCLONE_INLINE void solveNormalPoint(PairVelocities &vel, SolverManifold &m, int k, bool reverse) {
+    SolverPoint &p = m.points[reverse ? m.count - 1 - k : k];
+    const real vn = vel.along(m.direction[0], p.normal);
+    const real old = p.normal.impulse;
+    const real updated = std::max(old - massOf<kMoving>(p.normal) * (vn - p.velocityBias), real(0));
+    p.normal.impulse = updated;
+    vel.apply<kMoving>(m.direction[0], p.normal, updated - old);
+}
+
+template <Moving kMoving>
+CYCLONE_INLINE void solveFriction(PairVelocities &vel, SolverManifold &m) {
+    for (int i = 0; i < m.count; ++i) solveFrictionPoint<kMoving>(vel, m, i);
 }
 
 // Friction, then the normal rows (the ones that must hold have the last word).
 template <Moving kMoving>
-void solveManifold(SolverBody &a, SolverBody &b, SolverManifold &m, bool reverse) {
-    if (m.friction > 0) solveFriction<kMoving>(a, b, m);
-    for (int k = 0; k < m.count; ++k) {
-        SolverPoint &p = m.points[reverse ? m.count - 1 - k : k];
-        const real vn = relativeVelocity(a, b, m.normal, p.normal);
-        const real old = p.normal.impulse;
-        const real updated = std::max(old - massOf<kMoving>(p.normal) * (vn - p.velocityBias), real(0));
-        p.normal.impulse = updated;
-        applyImpulse<kMoving>(a, b, m.normal, p.normal, updated - old);
+CYCLONE_INLINE void solveManifold(PairVelocities &vel, SolverManifold &m, bool reverse) {
+    if (m.friction > 0) solveFriction<kMoving>(vel, m);
+    for (int k = 0; k < m.count; ++k) solveNormalPoint<kMoving>(vel, m, k, reverse);
+}
+
+// Two manifolds that share no moving body, row by row side by side: the same numbers
+// as one after the other, but the two chains of rows overlap in the CPU.
+CYCLONE_INLINE void solveManifoldPair(PairVelocities &vel0, SolverManifold &m0, PairVelocities &vel1,
+                                      SolverManifold &m1, bool reverse) {
+    const int most = std::max(m0.count, m1.count);
+    const bool friction0 = m0.friction > 0;
+    const bool friction1 = m1.friction > 0;
+    for (int i = 0; i < most; ++i) {
+        if (friction0 && i < m0.count) solveFrictionPoint<kBoth>(vel0, m0, i);
+        if (friction1 && i < m1.count) solveFrictionPoint<kBoth>(vel1, m1, i);
     }
+    for (int k = 0; k < most; ++k) {
+        if (k < m0.count) solveNormalPoint<kBoth>(vel0, m0, k, reverse);
+        if (k < m1.count) solveNormalPoint<kBoth>(vel1, m1, k, reverse);
+    }
+}
+
+// One manifold of a velocity pass. Against a supporting body (kOnlyA, kOnlyB) it sweeps
+// until a sweep changes the moving body's velocity by less than the tolerance (at its
+// contact points: w times the lever arm), at most `sweeps` times.
+template <Moving kMoving>
+CYCLONE_INLINE void solveVelocityManifold(SolverBody &a, SolverBody &b, SolverManifold &m, bool reverse, int sweeps) {
+    PairVelocities vel(a, b, false);
+    if (sweeps == 1) {
+        solveManifold<kMoving>(vel, m, reverse);
+    } else {
+        const SolverRow &first = m.points[0].normal;
+        const real lever = m.count == 0 ? 0 : std::sqrt(kMoving == kOnlyA ? dot3(first.rAxd, first.rAxd)
+                                                                           : dot3(first.rBxd, first.rBxd));
+        for (int i = 0; i < sweeps; ++i) {
+            const Lanes v = kMoving == kOnlyA ? vel.va : vel.vb;
+            const Lanes w = kMoving == kOnlyA ? vel.wa : vel.wb;
+            solveManifold<kMoving>(vel, m, reverse != ((i & 1) != 0));
+            const Lanes dv = (kMoving == kOnlyA ? vel.va : vel.vb) - v;
+            const Lanes dw = (kMoving == kOnlyA ? vel.wa : vel.wb) - w;
+            if (std::sqrt(dot3(dv, dv)) + std::sqrt(dot3(dw, dw)) * lever < kSupportTolerance) break;
+        }
+    }
+    vel.store<kMoving>(a, b, false);
 }
 
 template <Moving kMoving>
-void solvePseudoManifold(SolverBody &a, SolverBody &b, SolverManifold &m) {
+CYCLONE_INLINE void solvePseudoManifold(SolverBody &a, SolverBody &b, SolverManifold &m) {
+    PairVelocities vel(a, b, true);
+    const Lanes &n = m.direction[0];
     for (int i = 0; i < m.count; ++i) {
         SolverPoint &p = m.points[i];
         if (p.pseudoTarget <= 0 && p.pseudoImpulse == 0) continue;
-        const real vn = m.normal.dot(b.pv - a.pv) + p.normal.rBxd.dot(b.pw) - p.normal.rAxd.dot(a.pw);
+        const real vn = vel.along(n, p.normal);
         const real old = p.pseudoImpulse;
         const real updated = std::max(old - massOf<kMoving>(p.normal) * (vn - p.pseudoTarget), real(0));
         p.pseudoImpulse = updated;
-        const real delta = updated - old;
-        if (kMoving != kOnlyB) {
-            a.pv -= (a.invMass * delta) * m.normal;
-            a.pw -= delta * p.normal.angA;
-        }
-        if (kMoving != kOnlyA) {
-            b.pv += (b.invMass * delta) * m.normal;
-            b.pw += delta * p.normal.angB;
-        }
+        vel.apply<kMoving>(n, p.normal, updated - old);
     }
+    vel.store<kMoving>(a, b, true);
 }
-
 // The accumulated impulses of a manifold, saved so that a support pass leaves them as
 // the coupled passes left them.
 struct SavedImpulses {
@@ -130,26 +201,34 @@ struct SavedImpulses {
     }
 };
 
-// Runs `solve(a, b, m, moving, sweeps)` on each manifold. In a support pass, a manifold
-// with a supporting side moves only the other body, `sweeps` times. Against a static or
-// sleeping body that is the true problem and its impulses are kept; against a moving
-// carrier the accumulated impulses are put back afterwards: computed with the carried
-// body's mass alone, kept, they would swing the warm start of a heavy body on a light
-// one by the mass ratio times its error, and the stack diverges.
-template <typename Solve>
-void forEachManifold(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool support,
-                     int sweeps, Solve solve) {
+enum Pass { kVelocityPass, kPseudoPass };
+
+// Solves each manifold once (a velocity or a pseudo-velocity pass). In a support pass, a
+// manifold with a supporting side moves only the other body, `sweeps` times. Against a
+// static or sleeping body that is the true problem and its impulses are kept; against a
+// moving carrier the accumulated impulses are put back afterwards: computed with the
+// carried body's mass alone, kept, they would swing the warm start of a heavy body on a
+// light one by the mass ratio times its error, and the stack diverges.
+template <Pass kPass>
+CYCLONE_INLINE void forEachManifold(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                                    bool support, bool reverse, int sweeps) {
+    auto solve = [&](auto moving, SolverBody &a, SolverBody &b, SolverManifold &m, int count)
+                     __attribute__((always_inline)) {
+        constexpr Moving kMoving = decltype(moving)::value;
+        if (kPass == kVelocityPass) solveVelocityManifold<kMoving>(a, b, m, reverse, count);
+        else solvePseudoManifold<kMoving>(a, b, m);
+    };
     for (SolverManifold &m : manifolds) {
         SolverBody &a = bodies[m.a];
         SolverBody &b = bodies[m.b];
         if (!support || m.support == kNoSupport) {
-            solve(a, b, m, std::integral_constant<Moving, kBoth>(), 1);
+            solve(std::integral_constant<Moving, kBoth>(), a, b, m, 1);
         } else {
             const bool carrierMoves = m.a != 0 && m.b != 0;
             SavedImpulses saved;
             if (carrierMoves) saved.save(m);
-            if (m.support == kASupportsB) solve(a, b, m, std::integral_constant<Moving, kOnlyB>(), sweeps);
-            else solve(a, b, m, std::integral_constant<Moving, kOnlyA>(), sweeps);
+            if (m.support == kASupportsB) solve(std::integral_constant<Moving, kOnlyB>(), a, b, m, sweeps);
+            else solve(std::integral_constant<Moving, kOnlyA>(), a, b, m, sweeps);
             if (carrierMoves) saved.restore(m);
         }
     }
@@ -166,6 +245,16 @@ void tangentBasis(const Vector3 &n, Vector3 &t1, Vector3 &t2) {
     t2 = n.cross(t1);
 }
 
+void prepareDirections(SolverManifold &m) {
+    setLanes(m.direction[0], m.normal);
+    setLanes(m.direction[1], m.tangent[0]);
+    setLanes(m.direction[2], m.tangent[1]);
+}
+
+real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifold &m, const SolverPoint &p) {
+    return PairVelocities(a, b, false).along(m.direction[0], p.normal);
+}
+
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p) {
     fillRow(a, b, rA, rB, m.normal, p.normal);
@@ -173,16 +262,19 @@ void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, co
     fillRow(a, b, rA, rB, m.tangent[1], p.tangent[1]);
 }
 
+CYCLONE_SIMD_CLONES
 void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds) {
     for (const SolverManifold &m : manifolds) {
         SolverBody &a = bodies[m.a];
         SolverBody &b = bodies[m.b];
+        PairVelocities vel(a, b, false);
         for (int i = 0; i < m.count; ++i) {
             const SolverPoint &p = m.points[i];
-            applyImpulse(a, b, m.normal, p.normal, p.normal.impulse);
-            applyImpulse(a, b, m.tangent[0], p.tangent[0], p.tangent[0].impulse);
-            applyImpulse(a, b, m.tangent[1], p.tangent[1], p.tangent[1].impulse);
+            vel.apply(m.direction[0], p.normal, p.normal.impulse);
+            vel.apply(m.direction[1], p.tangent[0], p.tangent[0].impulse);
+            vel.apply(m.direction[2], p.tangent[1], p.tangent[1].impulse);
         }
+        vel.store<kBoth>(a, b, false);
     }
 }
 
@@ -193,7 +285,7 @@ void prepareSupportedMasses(const std::vector<SolverBody> &bodies, std::vector<S
         const bool bMoves = m.support == kASupportsB;
         const real invMass = bodies[bMoves ? m.b : m.a].invMass;
         auto fill = [&](SolverRow &row) {
-            const real k = bMoves ? invMass + row.rBxd.dot(row.angB) : invMass + row.rAxd.dot(row.angA);
+            const real k = bMoves ? invMass + dot3(row.rBxd, row.angB) : invMass + dot3(row.rAxd, row.angA);
             row.supportedMass = k > 0 ? 1 / k : 0;
         };
         for (int i = 0; i < m.count; ++i) {
@@ -204,28 +296,27 @@ void prepareSupportedMasses(const std::vector<SolverBody> &bodies, std::vector<S
     }
 }
 
-void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse,
-                     bool support) {
-    forEachManifold(bodies, manifolds, support, kSupportSweeps,
-                    [reverse](SolverBody &a, SolverBody &b, SolverManifold &m, auto moving, int sweeps) {
-                        constexpr Moving kMoving = decltype(moving)::value;
-                        if (sweeps == 1) {
-                            solveManifold<kMoving>(a, b, m, reverse);
-                            return;
-                        }
-                        // Sweeps until a sweep changes the moving body's velocity by less
-                        // than the tolerance (at its contact points: w times the lever arm).
-                        SolverBody &body = kMoving == kOnlyA ? a : b;
-                        const real lever = m.count > 0 ? (kMoving == kOnlyA ? m.points[0].normal.rAxd.norm()
-                                                                            : m.points[0].normal.rBxd.norm())
-                                                       : 0;
-                        for (int i = 0; i < sweeps; ++i) {
-                            const Vector3 v = body.v;
-                            const Vector3 w = body.w;
-                            solveManifold<kMoving>(a, b, m, reverse != ((i & 1) != 0));
-                            if ((body.v - v).norm() + (body.w - w).norm() * lever < kSupportTolerance) break;
-                        }
-                    });
+CYCLONE_SIMD_CLONES
+void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                     const std::vector<SolverGroup> &groups, bool reverse) {
+    for (const SolverGroup &g : groups) {
+        SolverManifold &m0 = manifolds[g.manifold[0]];
+        PairVelocities vel0(bodies[m0.a], bodies[m0.b], false);
+        if (g.size == 1) {
+            solveManifold<kBoth>(vel0, m0, reverse);
+        } else {
+            SolverManifold &m1 = manifolds[g.manifold[1]];
+            PairVelocities vel1(bodies[m1.a], bodies[m1.b], false);
+            solveManifoldPair(vel0, m0, vel1, m1, reverse);
+            vel1.store<kBoth>(bodies[m1.a], bodies[m1.b], false);
+        }
+        vel0.store<kBoth>(bodies[m0.a], bodies[m0.b], false);
+    }
+}
+
+CYCLONE_SIMD_CLONES
+void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse) {
+    forEachManifold<kVelocityPass>(bodies, manifolds, true, reverse, kSupportSweeps);
 }
 
 Softness makeSoftness(real hertz, real zeta, real h) {
@@ -237,12 +328,14 @@ Softness makeSoftness(real hertz, real zeta, real h) {
     return Softness{omega / a1, a2 * a3, a3};
 }
 
+CYCLONE_SIMD_CLONES
 void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real h, bool useBias,
                const SoftStepSettings &settings) {
     const real inverseH = 1 / h;
     for (SolverManifold &m : manifolds) {
         SolverBody &a = bodies[m.a];
         SolverBody &b = bodies[m.b];
+        PairVelocities vel(a, b, false);
         const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
         for (int i = 0; i < m.count; ++i) {
             SolverPoint &p = m.points[i];
@@ -257,15 +350,16 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
                 massScale = soft.massScale;
                 impulseScale = soft.impulseScale;
             }
-            const real vn = relativeVelocity(a, b, m.normal, p.normal);
+            const real vn = vel.along(m.direction[0], p.normal);
             const real old = p.normal.impulse;
             const real delta = -p.normal.mass * massScale * (vn + bias) - impulseScale * old;
             const real updated = std::max(old + delta, real(0));
             p.normal.impulse = updated;
             p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
-            applyImpulse(a, b, m.normal, p.normal, updated - old);
+            vel.apply(m.direction[0], p.normal, updated - old);
         }
-        if (m.friction > 0) solveFriction<kBoth>(a, b, m);
+        if (m.friction > 0) solveFriction<kBoth>(vel, m);
+        vel.store<kBoth>(a, b, false);
     }
 }
 
@@ -274,25 +368,25 @@ void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifol
         if (m.restitution == 0) continue;
         SolverBody &a = bodies[m.a];
         SolverBody &b = bodies[m.b];
+        PairVelocities vel(a, b, false);
         for (int i = 0; i < m.count; ++i) {
             SolverPoint &p = m.points[i];
             if (p.approachSpeed > -threshold || p.maxNormalImpulse == 0) continue;
-            const real vn = relativeVelocity(a, b, m.normal, p.normal);
+            const real vn = vel.along(m.direction[0], p.normal);
             const real old = p.normal.impulse;
             const real updated = std::max(old - p.normal.mass * (vn + m.restitution * p.approachSpeed), real(0));
             p.normal.impulse = updated;
-            applyImpulse(a, b, m.normal, p.normal, updated - old);
+            vel.apply(m.direction[0], p.normal, updated - old);
         }
+        vel.store<kBoth>(a, b, false);
     }
 }
 
+CYCLONE_SIMD_CLONES
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool support) {
     // One sweep: more did not change how a stack settles (measured on 1:1000:1 and the
     // 20-level pyramid).
-    forEachManifold(bodies, manifolds, support, 1,
-                    [](SolverBody &a, SolverBody &b, SolverManifold &m, auto moving, int) {
-                        solvePseudoManifold<decltype(moving)::value>(a, b, m);
-                    });
+    forEachManifold<kPseudoPass>(bodies, manifolds, support, false, 1);
 }
 
 }  // namespace cyclone::detail

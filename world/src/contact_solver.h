@@ -14,25 +14,27 @@
 #include <vector>
 
 #include "cyclone/core.h"
+#include "lanes.h"
 
 namespace cyclone::detail {
 
-/// Velocity state of one awake dynamic body during the solve.
+/// Velocity state of one awake dynamic body during the solve. The velocities are held in
+/// lanes (lanes.h): the passes read and write nothing else.
 struct SolverBody {
-    Vector3 v = Vector3::Zero();   ///< Linear velocity, m/s.
-    Vector3 w = Vector3::Zero();   ///< Angular velocity, rad/s.
-    Vector3 pv = Vector3::Zero();  ///< Pseudo linear velocity (penetration recovery only), m/s.
-    Vector3 pw = Vector3::Zero();  ///< Pseudo angular velocity, rad/s.
-    real invMass = 0;              ///< 1/kg.
+    Lanes v{};   ///< Linear velocity, m/s.
+    Lanes w{};   ///< Angular velocity, rad/s.
+    Lanes pv{};  ///< Pseudo linear velocity (penetration recovery only), m/s.
+    Lanes pw{};  ///< Pseudo angular velocity, rad/s.
+    real invMass = 0;                      ///< 1/kg.
     Matrix3 invInertia = Matrix3::Zero();  ///< World space, 1/(kg m^2).
 };
 
 /// One constraint direction at a point: Jacobian terms and the accumulated impulse.
 struct SolverRow {
-    Vector3 rAxd;      ///< rA x d.
-    Vector3 rBxd;      ///< rB x d.
-    Vector3 angA;      ///< IA^-1 (rA x d).
-    Vector3 angB;      ///< IB^-1 (rB x d).
+    Lanes rAxd{};      ///< rA x d.
+    Lanes rBxd{};      ///< rB x d.
+    Lanes angA{};      ///< IA^-1 (rA x d).
+    Lanes angB{};      ///< IB^-1 (rB x d).
     real mass = 0;     ///< Effective mass along d, kg.
     real supportedMass = 0;  ///< Effective mass with the supporting body immovable (support pass), kg.
     real impulse = 0;  ///< Accumulated impulse, N s.
@@ -65,6 +67,7 @@ struct SolverManifold {
     int b = 0;
     Vector3 normal;      ///< From A to B.
     Vector3 tangent[2];
+    Lanes direction[3]{};  ///< normal, tangent[0], tangent[1] in lanes (prepareDirections).
     real friction = 0;
     real restitution = 0;
     bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
@@ -80,6 +83,8 @@ struct SolverManifold {
 inline constexpr int kNoSupport = 0;
 inline constexpr int kASupportsB = 1;
 inline constexpr int kBSupportsA = 2;
+
+struct SolverGroup;
 
 struct SolverSettings {
     real penetrationSlop = 0.005;
@@ -117,6 +122,12 @@ void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifol
 /// every step and warm-started friction stays meaningful.
 void tangentBasis(const Vector3 &normal, Vector3 &t1, Vector3 &t2);
 
+/// Copies a manifold's normal and tangents into its lanes (before prepareRows).
+void prepareDirections(SolverManifold &m);
+
+/// Relative velocity of B with respect to A along a point's normal, m/s.
+real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifold &m, const SolverPoint &p);
+
 /// Fills the Jacobian terms and effective masses of one point along n, t1, t2.
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p);
@@ -126,19 +137,20 @@ void prepareSupportedMasses(const std::vector<SolverBody> &bodies, std::vector<S
 
 /// Applies the accumulated impulses (warm start).
 void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds);
-/// One Gauss-Seidel pass over friction and normal rows; `reverse` visits each manifold's
-/// points in reverse order (alternating passes keep the first point from taking the
-/// largest share of a new contact's load, which would tilt the body).
-///
-/// With `support` (the support pass, shock propagation), a manifold whose `support`
-/// names a carrying body treats that body as immovable and solves the carried one
-/// against it with up to kSupportSweeps sweeps. Run last, bottom up, it leaves no body of a
-/// resting stack sinking into the one below or turning on it, whatever their mass ratio
-/// (plain Gauss-Seidel converges ever slower as a heavy body rests on a lighter one).
-/// Its impulses change velocities only: the accumulated impulses stay those of the
-/// coupled passes.
-void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse,
-                     bool support = false);
+/// One Gauss-Seidel pass over friction and normal rows, group by group
+/// (solver_schedule.h); `reverse` visits each manifold's points in reverse order
+/// (alternating passes keep the first point from taking the largest share of a new
+/// contact's load, which would tilt the body).
+void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                     const std::vector<SolverGroup> &groups, bool reverse);
+/// The support pass (shock propagation): like solveVelocities, but a manifold whose
+/// `support` names a carrying body treats that body as immovable and solves the carried
+/// one against it with up to kSupportSweeps sweeps. Run last, bottom up, it leaves no
+/// body of a resting stack sinking into the one below or turning on it, whatever their
+/// mass ratio (plain Gauss-Seidel converges ever slower as a heavy body rests on a
+/// lighter one). Its impulses change velocities only: the accumulated impulses stay those
+/// of the coupled passes.
+void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse);
 /// One pass of penetration recovery on the pseudo-velocities (`support` as above).
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                            bool support = false);

@@ -19,6 +19,7 @@
 #include "broadphase.h"
 #include "collision_shape.h"
 #include "contact_solver.h"
+#include "solver_schedule.h"
 #include "cyclone/world/world.h"
 #include "narrowphase.h"
 #include "pair_cache.h"
@@ -110,6 +111,8 @@ struct World::Impl {
     std::vector<detail::SolverManifold> solverManifolds;
     std::vector<std::uint32_t> solverSource;  ///< Pair index and manifold of each solver manifold.
     std::vector<std::uint32_t> solverOrder;
+    std::vector<detail::SolverGroup> solverGroups;  ///< Coupled passes' order (solver_schedule.h).
+    std::vector<char> scheduleScratch;
     std::vector<detail::SolverManifold> sortedManifolds;
     std::vector<std::uint32_t> sortedSource;
     std::vector<int> islandParent;

@@ -21,11 +21,6 @@ bool stateFinite(const RigidBody &body) {
            std::isfinite(body.getVelocity().squaredNorm() + body.getRotation().squaredNorm());
 }
 
-real relativeNormalVelocity(const detail::SolverBody &a, const detail::SolverBody &b, const Vector3 &n,
-                            const detail::SolverRow &row) {
-    return n.dot(b.v - a.v) + row.rBxd.dot(b.w) - row.rAxd.dot(a.w);
-}
-
 }  // namespace
 
 void World::Impl::prepareSolver(real h) {
@@ -40,8 +35,8 @@ void World::Impl::prepareSolver(real h) {
         const RigidBody &body = bodies[simulatedBodies[k]].body;
         detail::SolverBody &sb = solverBodies[k + 1];
         sb = detail::SolverBody();
-        sb.v = body.getVelocity();
-        sb.w = body.getRotation();
+        detail::setLanes(sb.v, body.getVelocity());
+        detail::setLanes(sb.w, body.getRotation());
         sb.invMass = body.getInverseMass();
         sb.invInertia = body.getInverseInertiaTensorWorld();
         linearFactor[k] = std::pow(body.getLinearDamping(), h);
@@ -66,6 +61,7 @@ void World::Impl::prepareSolver(real h) {
         m.touchesStatic = m.a == 0 || m.b == 0;
         const detail::SolverBody &sa = solverBodies[m.a];
         const detail::SolverBody &sb = solverBodies[m.b];
+        detail::prepareDirections(m);
         for (int i = 0; i < m.count; ++i) {
             detail::SolverPoint &p = m.points[i];
             const Vector3 c = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
@@ -73,10 +69,12 @@ void World::Impl::prepareSolver(real h) {
             p.maxNormalImpulse = 0;
             p.approachSpeed = 0;
             if (m.restitution == 0) continue;  // no restitution, nothing to measure
-            p.approachSpeed = relativeNormalVelocity(sa, sb, m.normal, p.normal);
+            p.approachSpeed = detail::normalVelocity(sa, sb, m, p);
             if (p.approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
         }
     }
+    if (settings.contactSolver == ContactSolverType::SplitImpulse)
+        detail::buildSchedule(solverManifolds, solverGroups, scheduleScratch);
     if (settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse) {
         detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch);
         detail::prepareSupportedMasses(solverBodies, solverManifolds);
@@ -112,11 +110,11 @@ void World::Impl::solve(real h, bool firstSubstep) {
         const Vector3 alpha = r.body.getInverseInertiaTensorWorld() * r.body.getAccumulatedTorque();
         predictedV[k] = (r.body.getVelocity() + a * h) * linearFactor[k];
         predictedW[k] = (r.body.getRotation() + alpha * h) * angularFactor[k];
-        sb.v = predictedV[k];
-        sb.w = predictedW[k];
-        sb.pv.setZero();
-        sb.pw.setZero();
-        if (!std::isfinite(sb.v.squaredNorm() + sb.w.squaredNorm())) {
+        detail::setLanes(sb.v, predictedV[k]);
+        detail::setLanes(sb.w, predictedW[k]);
+        sb.pv = detail::Lanes{};
+        sb.pw = detail::Lanes{};
+        if (!std::isfinite(predictedV[k].squaredNorm() + predictedW[k].squaredNorm())) {
             // A velocity beyond ~1e154 m/s would overflow impulses: isolate the body
             // before any contact carries it to a neighbour.
             quarantine(simulatedBodies[k]);
@@ -146,14 +144,14 @@ void World::Impl::solve(real h, bool firstSubstep) {
 
     if (settings.warmStarting) detail::warmStart(solverBodies, solverManifolds);
     for (int it = 0; it < settings.velocityIterations; ++it) {
-        if (split) detail::solveVelocities(solverBodies, solverManifolds, (it & 1) != 0);
+        if (split) detail::solveVelocities(solverBodies, solverManifolds, solverGroups, (it & 1) != 0);
         else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
     }
     stats.velocityIterations += settings.velocityIterations;
     // The support pass comes after the coupled passes, never instead of one: alone, it
     // would let no body push the bodies carrying it.
     if (split && settings.shockPropagation)
-        detail::solveVelocities(solverBodies, solverManifolds, (settings.velocityIterations & 1) != 0, true);
+        detail::solveSupport(solverBodies, solverManifolds, (settings.velocityIterations & 1) != 0);
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.
@@ -161,8 +159,8 @@ void World::Impl::solve(real h, bool firstSubstep) {
         BodyRecord &r = bodies[simulatedBodies[k]];
         if (r.quarantined) continue;
         const detail::SolverBody &sb = solverBodies[k + 1];
-        if (linearFactor[k] > 0) r.body.addVelocity((sb.v - predictedV[k]) / linearFactor[k]);
-        if (angularFactor[k] > 0) r.body.addRotation((sb.w - predictedW[k]) / angularFactor[k]);
+        if (linearFactor[k] > 0) r.body.addVelocity((detail::toVector3(sb.v) - predictedV[k]) / linearFactor[k]);
+        if (angularFactor[k] > 0) r.body.addRotation((detail::toVector3(sb.w) - predictedW[k]) / angularFactor[k]);
     }
 }
 
@@ -181,16 +179,16 @@ void World::Impl::recoverPenetration(real h) {
         // Relax: rigid passes without bias remove the velocity the soft push added.
         for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
             const RigidBody &body = bodies[simulatedBodies[k]].body;
-            solverBodies[k + 1].v = body.getVelocity();
-            solverBodies[k + 1].w = body.getRotation();
+            detail::setLanes(solverBodies[k + 1].v, body.getVelocity());
+            detail::setLanes(solverBodies[k + 1].w, body.getRotation());
         }
         for (int it = 0; it < settings.positionIterations; ++it)
             detail::solveSoft(solverBodies, solverManifolds, h, false, soft);
         for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
             BodyRecord &r = bodies[simulatedBodies[k]];
             if (r.quarantined) continue;
-            r.body.addVelocity(solverBodies[k + 1].v - r.body.getVelocity());
-            r.body.addRotation(solverBodies[k + 1].w - r.body.getRotation());
+            r.body.addVelocity(detail::toVector3(solverBodies[k + 1].v) - r.body.getVelocity());
+            r.body.addRotation(detail::toVector3(solverBodies[k + 1].w) - r.body.getRotation());
         }
         stats.positionIterations += settings.positionIterations;
         return;
@@ -229,14 +227,16 @@ void World::Impl::recoverPenetration(real h) {
     for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
         BodyRecord &r = bodies[simulatedBodies[k]];
         detail::SolverBody &sb = solverBodies[k + 1];
-        if (r.quarantined || (sb.pv.isZero(0) && sb.pw.isZero(0))) continue;
+        const Vector3 pv = detail::toVector3(sb.pv);
+        const Vector3 pw = detail::toVector3(sb.pw);
+        if (r.quarantined || (pv.isZero(0) && pw.isZero(0))) continue;
         Quaternion q = r.body.getOrientation();
-        const Quaternion spin(0, sb.pw.x() * h, sb.pw.y() * h, sb.pw.z() * h);
+        const Quaternion spin(0, pw.x() * h, pw.y() * h, pw.z() * h);
         q.coeffs() += 0.5 * (spin * q).coeffs();
-        r.body.setPosition(r.body.getPosition() + sb.pv * h);
+        r.body.setPosition(r.body.getPosition() + pv * h);
         r.body.setOrientation(q);
-        sb.pv.setZero();
-        sb.pw.setZero();
+        sb.pv = detail::Lanes{};
+        sb.pw = detail::Lanes{};
     }
 }
 
@@ -244,15 +244,15 @@ void World::Impl::restitution() {
     if (settings.contactSolver != ContactSolverType::SoftStep || stats.restitutionContacts == 0) return;
     for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
         const RigidBody &body = bodies[simulatedBodies[k]].body;
-        solverBodies[k + 1].v = body.getVelocity();
-        solverBodies[k + 1].w = body.getRotation();
+        detail::setLanes(solverBodies[k + 1].v, body.getVelocity());
+        detail::setLanes(solverBodies[k + 1].w, body.getRotation());
     }
     detail::applyRestitution(solverBodies, solverManifolds, settings.restitutionThreshold);
     for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
         BodyRecord &r = bodies[simulatedBodies[k]];
         if (r.quarantined) continue;
-        r.body.addVelocity(solverBodies[k + 1].v - r.body.getVelocity());
-        r.body.addRotation(solverBodies[k + 1].w - r.body.getRotation());
+        r.body.addVelocity(detail::toVector3(solverBodies[k + 1].v) - r.body.getVelocity());
+        r.body.addRotation(detail::toVector3(solverBodies[k + 1].w) - r.body.getRotation());
     }
 }
 

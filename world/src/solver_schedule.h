@@ -1,0 +1,34 @@
+// The order in which a coupled velocity pass visits the manifolds, in groups it can solve
+// side by side.
+//
+// Design note. Gauss-Seidel is a chain: each row reads the velocities the row before it
+// wrote, so one manifold's rows run one after another at the speed of the CPU's latency,
+// not its throughput. Two manifolds that share no moving body commute: solving them in
+// either order, or interleaved row by row, gives the same numbers. The schedule puts
+// such manifolds into groups of up to kGroupSize, keeping the result of the plain order:
+// a manifold is taken forward into an earlier group only past manifolds it shares no
+// moving body with. Interleaved, the groups' chains overlap in the CPU.
+#pragma once
+
+#include <vector>
+
+#include "contact_solver.h"
+
+namespace cyclone::detail {
+
+inline constexpr int kGroupSize = 2;
+
+/// Manifolds solved side by side (indices into the manifold array; `size` of them).
+struct SolverGroup {
+    int manifold[kGroupSize];
+    int size = 0;
+};
+
+/// How far ahead (in manifolds) the schedule looks for a partner.
+inline constexpr int kScheduleWindow = 8;
+
+/// Groups `manifolds` in their order. `taken` is scratch kept between steps.
+void buildSchedule(const std::vector<SolverManifold> &manifolds, std::vector<SolverGroup> &groups,
+                   std::vector<char> &taken);
+
+}  // namespace cyclone::detail
