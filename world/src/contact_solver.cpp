@@ -175,32 +175,6 @@ CYCLONE_INLINE void solvePseudoManifold(SolverBody &a, SolverBody &b, SolverMani
     }
     vel.store<kMoving>(a, b, true);
 }
-// The accumulated impulses of a manifold, saved so that a support pass leaves them as
-// the coupled passes left them.
-struct SavedImpulses {
-    real normal[kMaxManifoldPoints];
-    real tangent0[kMaxManifoldPoints];
-    real tangent1[kMaxManifoldPoints];
-    real pseudo[kMaxManifoldPoints];
-
-    void save(const SolverManifold &m) {
-        for (int i = 0; i < m.count; ++i) {
-            normal[i] = m.points[i].normal.impulse;
-            tangent0[i] = m.points[i].tangent[0].impulse;
-            tangent1[i] = m.points[i].tangent[1].impulse;
-            pseudo[i] = m.points[i].pseudoImpulse;
-        }
-    }
-    void restore(SolverManifold &m) const {
-        for (int i = 0; i < m.count; ++i) {
-            m.points[i].normal.impulse = normal[i];
-            m.points[i].tangent[0].impulse = tangent0[i];
-            m.points[i].tangent[1].impulse = tangent1[i];
-            m.points[i].pseudoImpulse = pseudo[i];
-        }
-    }
-};
-
 enum Pass { kVelocityPass, kPseudoPass };
 
 // Solves each manifold once (a velocity or a pseudo-velocity pass). In a support pass, a
@@ -315,8 +289,60 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
 }
 
 CYCLONE_SIMD_CLONES
-void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse) {
-    forEachManifold<kVelocityPass>(bodies, manifolds, true, reverse, kSupportSweeps);
+void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
+                  bool reverse) {
+    // Manifolds where neither side carries the other: one coupled pass, in order.
+    for (SolverManifold &m : manifolds) {
+        if (m.support != kNoSupport) continue;
+        PairVelocities vel(bodies[m.a], bodies[m.b], false);
+        solveManifold<kBoth>(vel, m, reverse);
+        vel.store<kBoth>(bodies[m.a], bodies[m.b], false);
+    }
+    // Each carried body against all its carriers at once, bottom up. One carrier after
+    // the other would leave the body as high as the highest contact point of any
+    // carrier pushed it (an impulse that lifts it is never taken back), and a tall
+    // pyramid rose by millimetres in its first step; swept together, a carrier's
+    // impulse falls again when another lifts the body.
+    for (std::size_t r = 0; r + 1 < runs.start.size(); ++r) {
+        const int first = runs.start[r];
+        const int last = runs.start[r + 1];
+        const SolverManifold &lead = manifolds[runs.manifolds[first]];
+        const bool bMoves = lead.support == kASupportsB;
+        SolverBody &body = bodies[bMoves ? lead.b : lead.a];
+        for (int k = first; k < last; ++k) {
+            const SolverManifold &m = manifolds[runs.manifolds[k]];
+            if (m.a != 0 && m.b != 0) runs.saved[k].save(m);
+        }
+        // Sweeps until one changes the body's velocity by less than the tolerance (at
+        // its contact points: w times the lever arm).
+        const SolverRow &row = lead.points[0].normal;
+        const real lever = lead.count == 0 ? 0 : std::sqrt(bMoves ? dot3(row.rBxd, row.rBxd) : dot3(row.rAxd, row.rAxd));
+        for (int sweep = 0; sweep < kSupportSweeps; ++sweep) {
+            const Lanes v = body.v;
+            const Lanes w = body.w;
+            const bool backwards = reverse != ((sweep & 1) != 0);
+            for (int k = first; k < last; ++k) {
+                SolverManifold &m = manifolds[runs.manifolds[k]];
+                SolverBody &a = bodies[m.a];
+                SolverBody &b = bodies[m.b];
+                PairVelocities vel(a, b, false);
+                if (m.support == kASupportsB) {
+                    solveManifold<kOnlyB>(vel, m, backwards);
+                    vel.store<kOnlyB>(a, b, false);
+                } else {
+                    solveManifold<kOnlyA>(vel, m, backwards);
+                    vel.store<kOnlyA>(a, b, false);
+                }
+            }
+            const Lanes dv = body.v - v;
+            const Lanes dw = body.w - w;
+            if (std::sqrt(dot3(dv, dv)) + std::sqrt(dot3(dw, dw)) * lever < kSupportTolerance) break;
+        }
+        for (int k = first; k < last; ++k) {
+            SolverManifold &m = manifolds[runs.manifolds[k]];
+            if (m.a != 0 && m.b != 0) runs.saved[k].restore(m);
+        }
+    }
 }
 
 Softness makeSoftness(real hertz, real zeta, real h) {

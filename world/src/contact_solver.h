@@ -86,6 +86,40 @@ inline constexpr int kBSupportsA = 2;
 
 struct SolverGroup;
 
+/// The accumulated impulses of a manifold, saved so that a support pass leaves them as
+/// the coupled passes left them.
+struct SavedImpulses {
+    real normal[kMaxManifoldPoints];
+    real tangent0[kMaxManifoldPoints];
+    real tangent1[kMaxManifoldPoints];
+    real pseudo[kMaxManifoldPoints];
+
+    void save(const SolverManifold &m) {
+        for (int i = 0; i < m.count; ++i) {
+            normal[i] = m.points[i].normal.impulse;
+            tangent0[i] = m.points[i].tangent[0].impulse;
+            tangent1[i] = m.points[i].tangent[1].impulse;
+            pseudo[i] = m.points[i].pseudoImpulse;
+        }
+    }
+    void restore(SolverManifold &m) const {
+        for (int i = 0; i < m.count; ++i) {
+            m.points[i].normal.impulse = normal[i];
+            m.points[i].tangent[0].impulse = tangent0[i];
+            m.points[i].tangent[1].impulse = tangent1[i];
+            m.points[i].pseudoImpulse = pseudo[i];
+        }
+    }
+};
+
+/// The support pass's order (assignSupport): the carried bodies bottom up; run r is one
+/// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]).
+struct SupportRuns {
+    std::vector<int> start;
+    std::vector<int> manifolds;
+    std::vector<SavedImpulses> saved;  ///< Scratch, one per entry of `manifolds`.
+};
+
 struct SolverSettings {
     real penetrationSlop = 0.005;
     real penetrationRecovery = 0.2;
@@ -150,7 +184,8 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
 /// mass ratio (plain Gauss-Seidel converges ever slower as a heavy body rests on a
 /// lighter one). Its impulses change velocities only: the accumulated impulses stay those
 /// of the coupled passes.
-void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse);
+void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
+                  bool reverse);
 /// One pass of penetration recovery on the pseudo-velocities (`support` as above).
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                            bool support = false);

@@ -4,15 +4,52 @@
 #include <limits>
 
 namespace cyclone::detail {
+namespace {
+
+// The support pass's runs: each carried body's manifolds with its carriers, bodies by
+// level (bottom up; all level 0 without `level`), then by their first such manifold.
+void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<int> *level, int bodyCount,
+               SupportScratch &scratch, SupportRuns &runs) {
+    const auto carried = [](const SolverManifold &m) { return m.support == kASupportsB ? m.b : m.a; };
+    std::vector<int> &first = scratch.first;
+    first.assign(bodyCount, std::numeric_limits<int>::max());
+    std::vector<SupportScratch::Key> &keys = scratch.keys;
+    keys.clear();
+    for (int i = 0; i < static_cast<int>(manifolds.size()); ++i) {
+        if (manifolds[i].support == kNoSupport) continue;
+        const int body = carried(manifolds[i]);
+        first[body] = std::min(first[body], i);
+        keys.push_back({level ? (*level)[body] : 0, body, i});
+    }
+    for (SupportScratch::Key &key : keys) key.body = first[key.body];  // group by first manifold
+    std::sort(keys.begin(), keys.end(), [](const SupportScratch::Key &x, const SupportScratch::Key &y) {
+        if (x.level != y.level) return x.level < y.level;
+        if (x.body != y.body) return x.body < y.body;
+        return x.manifold < y.manifold;
+    });
+    runs.start.clear();
+    runs.manifolds.clear();
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+        if (k == 0 || keys[k].body != keys[k - 1].body) runs.start.push_back(static_cast<int>(k));
+        runs.manifolds.push_back(keys[k].manifold);
+    }
+    runs.start.push_back(static_cast<int>(keys.size()));
+    runs.saved.resize(keys.size());
+}
+
+}  // namespace
 
 void assignSupport(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
-                   SupportScratch &scratch) {
+                   SupportScratch &scratch, SupportRuns &runs) {
     for (SolverManifold &m : manifolds) {
         m.support = kNoSupport;
         if (m.a == 0) m.support = kASupportsB;  // static or asleep: immovable anyway
         if (m.b == 0) m.support = kBSupportsA;
     }
-    if (up.isZero(0) || manifolds.empty()) return;
+    if (up.isZero(0) || manifolds.empty()) {
+        buildRuns(manifolds, nullptr, bodyCount, scratch, runs);
+        return;
+    }
     const Vector3 u = up.normalized();
     constexpr real kRestingCosine = 0.5;  // normal within 60 degrees of up
 
@@ -60,6 +97,7 @@ void assignSupport(int bodyCount, const Vector3 &up, std::vector<SolverManifold>
         if (la < lb && rise >= kRestingCosine) m.support = kASupportsB;
         else if (lb < la && rise <= -kRestingCosine) m.support = kBSupportsA;
     }
+    buildRuns(manifolds, &level, bodyCount, scratch, runs);
 }
 
 }  // namespace cyclone::detail

@@ -13,6 +13,13 @@ struct SupportScratch {
     std::vector<int> start;     ///< Per solver body: first entry in `adjacent`.
     std::vector<int> adjacent;  ///< Neighbours of each body, body by body.
     std::vector<int> queue;
+    struct Key {
+        int level;     ///< The carried body's.
+        int body;      ///< The carried body, then its first manifold's index.
+        int manifold;
+    };
+    std::vector<Key> keys;   ///< The support pass's order being sorted.
+    std::vector<int> first;  ///< Per solver body: its first manifold with a carrier.
 };
 
 /// Sets `support` of every manifold. A static or sleeping side (solver body 0) always
@@ -23,7 +30,8 @@ struct SupportScratch {
 /// moving bodies, those at the same level, side contacts and worlds without gravity
 /// (`up` zero) get none.
 /// `bodyCount` counts the solver bodies, body 0 included.
+/// Also lists the support pass's runs (SupportRuns) bottom up.
 void assignSupport(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
-                   SupportScratch &scratch);
+                   SupportScratch &scratch, SupportRuns &runs);
 
 }  // namespace cyclone::detail

@@ -138,6 +138,7 @@ struct World::Impl {
     std::vector<std::uint32_t> eventSlots;
 
     detail::SupportScratch supportScratch;
+    detail::SupportRuns supportRuns;
     detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
     StepStats stats;

@@ -76,7 +76,8 @@ void World::Impl::prepareSolver(real h) {
     if (settings.contactSolver == ContactSolverType::SplitImpulse)
         detail::buildSchedule(solverManifolds, solverGroups, scheduleScratch);
     if (settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse) {
-        detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch);
+        detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch,
+                              supportRuns);
         detail::prepareSupportedMasses(solverBodies, solverManifolds);
     }
 }
@@ -151,7 +152,7 @@ void World::Impl::solve(real h, bool firstSubstep) {
     // The support pass comes after the coupled passes, never instead of one: alone, it
     // would let no body push the bodies carrying it.
     if (split && settings.shockPropagation)
-        detail::solveSupport(solverBodies, solverManifolds, (settings.velocityIterations & 1) != 0);
+        detail::solveSupport(solverBodies, solverManifolds, supportRuns, (settings.velocityIterations & 1) != 0);
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.
