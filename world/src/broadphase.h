@@ -69,7 +69,9 @@ public:
     void refitAwake(const std::vector<fcl::CollisionObjectd *> &moved);
     /// Refits one object in `tree` after its box moved.
     void refit(fcl::CollisionObjectd *object, Tree tree);
-    /// Appends every pair of overlapping AABBs with at least one awake member.
+    /// Appends every pair of overlapping AABBs with at least one awake member. When no
+    /// tree has changed since the last call, the pairs (and their order) are the same:
+    /// they are given again without walking the trees.
     void findPairs(std::vector<CandidatePair> &out);
     /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
     /// leaf's data is its collision object.
@@ -83,6 +85,8 @@ private:
     fcl::DynamicAABBTreeCollisionManagerd asleep_;
     fcl::DynamicAABBTreeCollisionManagerd static_;
     std::unique_ptr<fcl::CollisionObjectd> probe_;  ///< Carries the box of overlapping().
+    std::vector<CandidatePair> pairs_;  ///< What findPairs() found when it last walked the trees.
+    bool changed_ = true;               ///< Whether a tree changed since then.
 
     fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree);
 };
