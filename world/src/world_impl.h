@@ -111,6 +111,9 @@ struct World::Impl {
     std::vector<std::uint32_t> simulatedBodies;
     std::vector<fcl::CollisionObjectd *> movedObjects;  ///< Objects whose fat box moved.
     std::vector<detail::CandidatePair> candidates;
+    /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
+    std::vector<std::uint32_t> candidateSlots;
+    static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::vector<detail::Manifold> fresh;
     std::vector<std::uint32_t> touchingPairs;
     std::vector<detail::SolverBody> solverBodies;
