@@ -314,8 +314,6 @@ void RigidBody::setPosition(const real x, const real y, const real z) { setPosit
 
 void RigidBody::getPosition(Vector3 *out) const { *out = position; }
 
-Vector3 RigidBody::getPosition() const { return position; }
-
 void RigidBody::setOrientation(const Quaternion &newOrientation) {
     orientation = normalisedOrientation("setOrientation", newOrientation);
     calculateDerivedData();
@@ -350,13 +348,9 @@ void RigidBody::getGLTransform(float matrix[16]) const {
         for (int row = 0; row < 4; ++row) matrix[col * 4 + row] = static_cast<float>(m(row, col));
 }
 
-Matrix4 RigidBody::getTransform() const { return transformMatrix; }
-
 Vector3 RigidBody::getPointInLocalSpace(const Vector3 &point) const {
     return transformMatrix.linear().transpose() * (point - transformMatrix.translation());
 }
-
-Vector3 RigidBody::getPointInWorldSpace(const Vector3 &point) const { return transformMatrix * point; }
 
 Vector3 RigidBody::getDirectionInLocalSpace(const Vector3 &direction) const {
     return transformMatrix.linear().transpose() * direction;

@@ -333,4 +333,9 @@ private:
     const StepFactors &stepFactors(real duration);
 };
 
+// Defined here, inline: a World's step reads them for every contact point.
+inline Vector3 RigidBody::getPosition() const { return position; }
+inline Matrix4 RigidBody::getTransform() const { return transformMatrix; }
+inline Vector3 RigidBody::getPointInWorldSpace(const Vector3 &point) const { return transformMatrix * point; }
+
 }  // namespace cyclone
