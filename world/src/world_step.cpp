@@ -189,7 +189,7 @@ void World::Impl::updateBroadphase() {
             const BodyRecord &r = bodies[index];
             if (!r.object) continue;
             const fcl::AABBd &box = r.object->getAABB();
-            const Vector3 centre = box.center();
+            const Vector3 centre = detail::boxCentre(box);
             const Vector3 half = 0.5 * (box.max_ - box.min_);
             const real lowest = n.dot(centre) - n.cwiseAbs().dot(half);
             if (lowest <= offset + settings.speculativeDistance) candidates.push_back({plane, index});
