@@ -112,10 +112,11 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
     lastFrameAcceleration = acceleration + forceAccum * inverseMass;
     const Vector3 angularAcceleration = inverseInertiaTensorWorld * torqueAccum;
 
+    const StepFactors &factors = stepFactors(duration);
     velocity += lastFrameAcceleration * duration;
     rotation += angularAcceleration * duration;
-    velocity *= std::pow(linearDamping, duration);
-    rotation *= std::pow(angularDamping, duration);
+    velocity *= factors.linear;
+    rotation *= factors.angular;
 
     position += velocity * duration;
     // q += 1/2 dt (0, w) q, then normalised: the seed's first-order orientation update.
@@ -127,13 +128,26 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
     clearAccumulators();
 
     const real currentMotion = velocity.squaredNorm() + rotation.squaredNorm();
-    const real bias = std::pow(real(0.5), duration);
+    const real bias = factors.motionBias;
     motion = bias * motion + (1 - bias) * currentMotion;
     if (mayFallAsleep && canSleep && motion < sleepEpsilon) {
         setAwake(false);
     } else if (motion > 10 * sleepEpsilon) {
         motion = 10 * sleepEpsilon;
     }
+}
+
+const RigidBody::StepFactors &RigidBody::stepFactors(real duration) {
+    StepFactors &f = lastStepFactors;
+    if (f.duration != duration || f.linearDamping != linearDamping || f.angularDamping != angularDamping) {
+        f.duration = duration;
+        f.linearDamping = linearDamping;
+        f.angularDamping = angularDamping;
+        f.linear = std::pow(linearDamping, duration);
+        f.angular = std::pow(angularDamping, duration);
+        f.motionBias = std::pow(real(0.5), duration);
+    }
+    return f;
 }
 
 bool RigidBody::hasIsotropicInertia() const {
@@ -292,14 +306,13 @@ real RigidBody::getAngularDamping() const { return angularDamping; }
 void RigidBody::setPosition(const Vector3 &newPosition) {
     requireFinite("setPosition", "position", newPosition);
     position = newPosition;
-    calculateDerivedData();
+    // The rotation and world inertia depend on the orientation only: they are current.
+    transformMatrix.translation() = position;
 }
 
 void RigidBody::setPosition(const real x, const real y, const real z) { setPosition(Vector3(x, y, z)); }
 
 void RigidBody::getPosition(Vector3 *out) const { *out = position; }
-
-Vector3 RigidBody::getPosition() const { return position; }
 
 void RigidBody::setOrientation(const Quaternion &newOrientation) {
     orientation = normalisedOrientation("setOrientation", newOrientation);
@@ -335,13 +348,9 @@ void RigidBody::getGLTransform(float matrix[16]) const {
         for (int row = 0; row < 4; ++row) matrix[col * 4 + row] = static_cast<float>(m(row, col));
 }
 
-Matrix4 RigidBody::getTransform() const { return transformMatrix; }
-
 Vector3 RigidBody::getPointInLocalSpace(const Vector3 &point) const {
     return transformMatrix.linear().transpose() * (point - transformMatrix.translation());
 }
-
-Vector3 RigidBody::getPointInWorldSpace(const Vector3 &point) const { return transformMatrix * point; }
 
 Vector3 RigidBody::getDirectionInLocalSpace(const Vector3 &direction) const {
     return transformMatrix.linear().transpose() * direction;

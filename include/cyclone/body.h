@@ -315,6 +315,27 @@ protected:
     Vector3 torqueAccum;              ///< N m, world space, cleared each step.
     Vector3 acceleration;             ///< Constant acceleration, m/s^2 (gravity).
     Vector3 lastFrameAcceleration;    ///< Linear acceleration of the last step, m/s^2.
+
+private:
+    /// integrate()'s factors for one duration and damping: std::pow is costly, and a
+    /// body is usually integrated with the same duration step after step.
+    struct StepFactors {
+        real duration = -1;        ///< s; -1 (no valid duration): not computed yet.
+        real linearDamping = -1;
+        real angularDamping = -1;
+        real linear = 1;           ///< linearDamping^duration.
+        real angular = 1;          ///< angularDamping^duration.
+        real motionBias = 1;       ///< 0.5^duration: weight of the old motion average.
+    };
+    StepFactors lastStepFactors;
+
+    /// The factors for `duration` and the current damping (recomputed when they changed).
+    const StepFactors &stepFactors(real duration);
 };
+
+// Defined here, inline: a World's step reads them for every contact point.
+inline Vector3 RigidBody::getPosition() const { return position; }
+inline Matrix4 RigidBody::getTransform() const { return transformMatrix; }
+inline Vector3 RigidBody::getPointInWorldSpace(const Vector3 &point) const { return transformMatrix * point; }
 
 }  // namespace cyclone

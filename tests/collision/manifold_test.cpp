@@ -134,6 +134,29 @@ TEST(Manifold, ContactOrderKeepsPointsThatAddNothingLast) {
     EXPECT_EQ(order[2], 2);
 }
 
+TEST(Manifold, ContactOrderGivesBackAFreshManifoldsOrder) {
+    // A box tilted about two axes lies on its four bottom corners, each at its own depth
+    // (0.5 cm down to about -1 cm). contactOrder on those points listed from the third
+    // on must give the order collide() listed them in: a reused manifold is solved as a
+    // fresh one. (The last two corners span equal triangles with the first two, and a
+    // tie goes to the one listed first: the rotation keeps those two in their order.)
+    const Quaternion tilt = rotation(0.01, Vector3::UnitZ()) * rotation(0.005, Vector3::UnitX());
+    const Matrix4 boxPose = pose(Vector3(0, 0.49, 0), tilt);
+    const std::vector<Manifold> fresh = collide(kBox, boxPose, kFloor, Matrix4::Identity());
+    ASSERT_EQ(fresh.size(), 1u);
+    const Manifold &m = fresh[0];
+    ASSERT_EQ(m.count, 4);
+    Vector3 pointB[4];
+    real depth[4];
+    for (int i = 0; i < 4; ++i) {
+        pointB[i] = m.points[(i + 2) % 4].pointB;
+        depth[i] = m.points[(i + 2) % 4].depth;
+    }
+    int order[4];
+    detail::contactOrder(pointB, depth, 4, m.normal, order);
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(order[i], (i + 2) % 4);
+}
+
 TEST(Manifold, NothingWhenApart) {
     // 1 cm apart: within the speculative distance but not touching; FCL reports nothing.
     EXPECT_TRUE(collide(kBox, pose(Vector3(0, 0.51, 0)), kFloor, Matrix4::Identity()).empty());

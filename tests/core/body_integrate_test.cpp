@@ -167,6 +167,34 @@ TEST(RigidBodyIntegrate, AngularDampingIsAPowerOfTheDuration) {
     EXPECT_TRUE(near(body.getRotation(), Vector3(0, 0, 2)));
 }
 
+TEST(RigidBodyIntegrate, DampingFollowsChangesOfDampingAndDuration) {
+    // integrate() keeps its damping factors while duration and damping stay the same;
+    // each change must give the new power. (Awake throughout: slow, it would fall asleep.)
+    RigidBody body;
+    body.setCanSleep(false);
+    body.setDamping(0.5, 0.25);
+    body.setVelocity(16, 0, 0);
+    body.setRotation(0, 0, 16);
+    body.integrate(1);
+    // v = 16 * 0.5 = 8, w = 16 * 0.25 = 4.
+    EXPECT_EQ(body.getVelocity(), Vector3(8, 0, 0));
+    EXPECT_EQ(body.getRotation(), Vector3(0, 0, 4));
+    body.integrate(2);
+    // A longer step: v = 8 * 0.5^2 = 2, w = 4 * 0.25^2 = 0.25.
+    EXPECT_EQ(body.getVelocity(), Vector3(2, 0, 0));
+    EXPECT_EQ(body.getRotation(), Vector3(0, 0, 0.25));
+    body.setLinearDamping(0.25);
+    body.integrate(2);
+    // New linear damping, same duration: v = 2 * 0.25^2 = 0.125; w = 0.25 * 0.25^2.
+    EXPECT_EQ(body.getVelocity(), Vector3(0.125, 0, 0));
+    EXPECT_EQ(body.getRotation(), Vector3(0, 0, 0.015625));
+    body.setAngularDamping(1);
+    body.integrate(2);
+    // New angular damping: w = 0.015625 * 1 = 0.015625; v = 0.125 * 0.0625.
+    EXPECT_EQ(body.getVelocity(), Vector3(0.0078125, 0, 0));
+    EXPECT_EQ(body.getRotation(), Vector3(0, 0, 0.015625));
+}
+
 TEST(RigidBodyIntegrate, DampingZeroStopsTheBodyAtOnce) {
     RigidBody body;
     body.setDamping(0, 0);

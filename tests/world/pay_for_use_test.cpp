@@ -135,5 +135,35 @@ TEST(PayForUse, SleepingBodiesCostNoStepWork) {
     EXPECT_TRUE(f.world.events().fellAsleep.empty());
 }
 
+// A step in which no broadphase box moved gives the last walk's pairs again: those must
+// still follow every change. Unit boxes, no gravity: 1.01 m apart their fat boxes (2 cm
+// margin, +-0.52 m) overlap, 5 m apart they do not. The static box is in a tree of its
+// own; moved below the first box, 0.2 m aside, its fat box stops at x = 0.32, short of
+// the second box's at 0.49.
+TEST(PayForUse, BroadphasePairsFollowMovedBodies) {
+    WorldSettings settings = noSleep();
+    settings.gravity = Vector3::Zero();
+    WorldFixture f(settings);
+    f.box(Vector3(0, 0, 0));
+    const BodyId b = f.box(Vector3(5, 0, 0));
+    const BodyId wall = f.staticBox(Vector3(0, -5, 0), Vector3(0.5, 0.5, 0.5));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().broadphasePairs, 0);
+    f.world.setPosition(b, Vector3(1.01, 0, 0));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().broadphasePairs, 1);
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().broadphasePairs, 1) << "nothing moved";
+    f.world.setPosition(wall, Vector3(-0.2, -1.01, 0));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().broadphasePairs, 2);
+    f.world.setPosition(b, Vector3(5, 0, 0));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().broadphasePairs, 1);
+    f.world.removeBody(wall);
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().broadphasePairs, 0);
+}
+
 }  // namespace
 }  // namespace cyclone::test

@@ -45,6 +45,7 @@ fcl::DynamicAABBTreeCollisionManagerd *Broadphase::manager(Tree tree) {
 
 void Broadphase::place(fcl::CollisionObjectd *object, Tree from, Tree to) {
     if (from == to) return;
+    changed_ = true;
     if (auto *source = manager(from)) source->unregisterObject(object);
     if (auto *target = manager(to)) {
         target->registerObject(object);
@@ -53,11 +54,16 @@ void Broadphase::place(fcl::CollisionObjectd *object, Tree from, Tree to) {
 }
 
 void Broadphase::refitAwake(const std::vector<fcl::CollisionObjectd *> &moved) {
-    if (!moved.empty()) awake_.update(moved);
+    if (moved.empty()) return;
+    awake_.update(moved);
+    changed_ = true;
 }
 
 void Broadphase::refit(fcl::CollisionObjectd *object, Tree tree) {
-    if (auto *m = manager(tree)) m->update(object);
+    if (auto *m = manager(tree)) {
+        m->update(object);
+        changed_ = true;
+    }
 }
 
 const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
@@ -71,10 +77,18 @@ const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
 }
 
 void Broadphase::findPairs(std::vector<CandidatePair> &out) {
-    if (awake_.empty()) return;
-    awake_.collide(&out, recordPair);
-    if (!asleep_.empty()) awake_.collide(&asleep_, &out, recordPair);
-    if (!static_.empty()) awake_.collide(&static_, &out, recordPair);
+    // Resting bodies stay inside their fat boxes: most steps of a settled scene change no
+    // tree, and the walk would find the same pairs in the same order.
+    if (changed_) {
+        pairs_.clear();
+        if (!awake_.empty()) {
+            awake_.collide(&pairs_, recordPair);
+            if (!asleep_.empty()) awake_.collide(&asleep_, &pairs_, recordPair);
+            if (!static_.empty()) awake_.collide(&static_, &pairs_, recordPair);
+        }
+        changed_ = false;
+    }
+    out.insert(out.end(), pairs_.begin(), pairs_.end());
 }
 
 }  // namespace cyclone::detail

@@ -18,6 +18,13 @@ namespace cyclone::detail {
 /// costs no tree update.
 inline constexpr double kBroadphaseMargin = 0.02;
 
+// FCL's AABBd::center() and contain(), inline: FCL defines them out of line, and they
+// are called for every awake body every step.
+inline fcl::Vector3d boxCentre(const fcl::AABBd &box) { return (box.min_ + box.max_) * 0.5; }
+inline bool boxContains(const fcl::AABBd &outer, const fcl::AABBd &inner) {
+    return !(outer.min_.array() > inner.min_.array()).any() && !(outer.max_.array() < inner.max_.array()).any();
+}
+
 /// A body's FCL collision object whose broadphase box is fattened by a margin, so that
 /// a body moving a little stays in its tree node and the tree is not rebuilt each step.
 class BodyObject : public fcl::CollisionObjectd {
@@ -31,11 +38,11 @@ public:
         // FCL's computeAABB bounds a rotated shape by its bounding sphere (a rotated unit
         // box gets a 1.73 m box); the rotated local box is much tighter.
         const fcl::AABBd &local = collisionGeometry()->aabb_local;
-        const fcl::Vector3d centre = pose * local.center();
+        const fcl::Vector3d centre = pose * boxCentre(local);
         const fcl::Vector3d half = pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_));
         aabb.min_ = centre - half;
         aabb.max_ = centre + half;
-        if (fat_.contain(aabb)) {
+        if (boxContains(fat_, aabb)) {
             aabb = fat_;
             return false;
         }
@@ -69,7 +76,9 @@ public:
     void refitAwake(const std::vector<fcl::CollisionObjectd *> &moved);
     /// Refits one object in `tree` after its box moved.
     void refit(fcl::CollisionObjectd *object, Tree tree);
-    /// Appends every pair of overlapping AABBs with at least one awake member.
+    /// Appends every pair of overlapping AABBs with at least one awake member. When no
+    /// tree has changed since the last call, the pairs (and their order) are the same:
+    /// they are given again without walking the trees.
     void findPairs(std::vector<CandidatePair> &out);
     /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
     /// leaf's data is its collision object.
@@ -83,6 +92,8 @@ private:
     fcl::DynamicAABBTreeCollisionManagerd asleep_;
     fcl::DynamicAABBTreeCollisionManagerd static_;
     std::unique_ptr<fcl::CollisionObjectd> probe_;  ///< Carries the box of overlapping().
+    std::vector<CandidatePair> pairs_;  ///< What findPairs() found when it last walked the trees.
+    bool changed_ = true;               ///< Whether a tree changed since then.
 
     fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree);
 };

@@ -123,11 +123,11 @@ Vector3 polygonNormal(const SupportFeature &f) {
     return length > 0 ? Vector3(sum / length) : Vector3::Zero();
 }
 
-// The choice behind reduce() and contactOrder(): at most four of `count` points, given
-// their B-side positions and depths, in the order reduce() lists them.
+// The choice behind reduce() and contactOrder(): at most `most` (<= 4) of `count`
+// points, given their B-side positions and depths, in the order reduce() lists them.
 template <class PointB, class Depth>
-int spreadOrder(int count, const Vector3 &n, const PointB &pointB, const Depth &depth, int chosen[4]) {
-    if (count <= 0) return 0;
+int spreadOrder(int count, int most, const Vector3 &n, const PointB &pointB, const Depth &depth, int chosen[4]) {
+    if (count <= 0 || most <= 0) return 0;
     chosen[0] = 0;
     chosen[1] = chosen[2] = chosen[3] = -1;
     real deepest = depth(0);
@@ -143,6 +143,7 @@ int spreadOrder(int count, const Vector3 &n, const PointB &pointB, const Depth &
         const real d = (pointB(i) - centre).squaredNorm();
         if (d > best) best = d, chosen[0] = i;
     }
+    if (most == 1) return 1;
     const Vector3 p0 = pointB(chosen[0]);
     best = kPointTolerance * kPointTolerance;
     for (int i = 0; i < count; ++i) {
@@ -150,6 +151,7 @@ int spreadOrder(int count, const Vector3 &n, const PointB &pointB, const Depth &
         if (d > best) best = d, chosen[1] = i;
     }
     if (chosen[1] < 0) return 1;
+    if (most == 2) return 2;
     const Vector3 edge = pointB(chosen[1]) - p0;
     best = kPointTolerance * edge.norm();
     for (int i = 0; i < count; ++i) {
@@ -157,6 +159,7 @@ int spreadOrder(int count, const Vector3 &n, const PointB &pointB, const Depth &
         if (area > best) best = area, chosen[2] = i;
     }
     if (chosen[2] < 0) return 2;
+    if (most == 3) return 3;
     const Vector3 corners[3] = {p0, pointB(chosen[1]), pointB(chosen[2])};
     const real orientation = (corners[1] - corners[0]).cross(corners[2] - corners[0]).dot(n) > 0 ? 1 : -1;
     best = kPointTolerance * edge.norm();
@@ -181,7 +184,7 @@ void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &ou
     out.normal = n;
     int chosen[4];
     const int found = spreadOrder(
-        count, n, [&](int i) -> const Vector3 & { return in[i].pointB; }, [&](int i) { return in[i].depth; }, chosen);
+        count, Manifold::kMaxPoints, n, [&](int i) -> const Vector3 & { return in[i].pointB; }, [&](int i) { return in[i].depth; }, chosen);
     for (int k = 0; k < found; ++k) {
         ContactPoint &p = out.points[out.count++];
         p.pointA = in[chosen[k]].pointA;
@@ -760,9 +763,12 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
 }  // namespace
 
 void contactOrder(const Vector3 *pointB, const real *depth, int count, const Vector3 &normal, int *order) {
+    // The last of `count` points goes last whether spreadOrder would choose it or not (it
+    // is the only one left, and unchosen points follow the chosen ones): choosing one
+    // point fewer gives the same order and skips the costliest search.
     int chosen[4];
     const int found = spreadOrder(
-        count, normal, [&](int i) -> const Vector3 & { return pointB[i]; }, [&](int i) { return depth[i]; }, chosen);
+        count, count - 1, normal, [&](int i) -> const Vector3 & { return pointB[i]; }, [&](int i) { return depth[i]; }, chosen);
     bool taken[Manifold::kMaxPoints] = {};
     int k = 0;
     for (; k < found; ++k) order[k] = chosen[k], taken[chosen[k]] = true;

@@ -109,9 +109,9 @@ void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &p
     // the same corner step after step, which rocked a 12-box tower 3 cm (docs/solver.md).
     int order[Manifold::kMaxPoints];
     contactOrder(pointB, depth, m.count, m.normal, order);
-    PersistentPoint ordered[Manifold::kMaxPoints];
-    for (int i = 0; i < m.count; ++i) ordered[i] = m.points[order[i]];
-    std::copy(ordered, ordered + m.count, m.points);
+    if (std::is_sorted(order, order + m.count)) return;  // already in that order
+    const ManifoldState before = m;
+    for (int i = 0; i < m.count; ++i) m.points[i] = before.points[order[i]];
 }
 
 void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance) {

@@ -2,6 +2,7 @@
 // in both bodies' frames, and the impulses that warm-start the solver.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -43,6 +44,12 @@ public:
     std::uint32_t findOrAdd(std::uint32_t i, std::uint32_t j, bool &created);
     /// Index of the pair of i and j, or -1.
     long find(std::uint32_t i, std::uint32_t j) const;
+    /// Whether slot `pair` holds the live pair of bodies i and j (any order): a cheap
+    /// check of a slot remembered from an earlier step, with no table look-up.
+    bool holds(std::uint32_t pair, std::uint32_t i, std::uint32_t j) const {
+        if (pair >= pairs_.size() || !pairs_[pair].alive) return false;
+        return pairs_[pair].a == std::min(i, j) && pairs_[pair].b == std::max(i, j);
+    }
     void remove(std::uint32_t pair);
     PairState &operator[](std::uint32_t pair) { return pairs_[pair]; }
     const PairState &operator[](std::uint32_t pair) const { return pairs_[pair]; }

@@ -73,6 +73,13 @@ struct ImplicitSpring {
     Eigen::PartialPivLU<Matrix3> system;  ///< 1 + h (h K + C) W.
 };
 
+/// A manifold on its way to the solver: its solve-order key and where it comes from.
+struct ManifoldKey {
+    real height = 0;          ///< SolverManifold::height: lower contacts are solved first.
+    std::uint32_t listed = 0; ///< Position in the pair walk: equal heights keep this order.
+    std::uint32_t source = 0; ///< Pair index << 2 | manifold, as in World::Impl::solverSource.
+};
+
 /// A pair slot's touching state at the end of the last step, for contact events.
 struct ContactTrack {
     BodyId a;
@@ -105,11 +112,15 @@ struct World::Impl {
     std::vector<std::uint32_t> simulatedBodies;
     std::vector<fcl::CollisionObjectd *> movedObjects;  ///< Objects whose fat box moved.
     std::vector<detail::CandidatePair> candidates;
+    /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
+    std::vector<std::uint32_t> candidateSlots;
+    static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::vector<detail::Manifold> fresh;
     std::vector<std::uint32_t> touchingPairs;
     std::vector<detail::SolverBody> solverBodies;
     std::vector<detail::SolverManifold> solverManifolds;
     std::vector<std::uint32_t> solverSource;  ///< Pair index and manifold of each solver manifold.
+    std::vector<ManifoldKey> manifoldKeys;    ///< The solver manifolds to build, in solve order.
     std::vector<std::uint32_t> solverOrder;
     std::vector<detail::SolverGroup> solverGroups;  ///< Coupled passes' order (solver_schedule.h).
     std::vector<char> scheduleScratch;
@@ -172,6 +183,7 @@ struct World::Impl {
     void runNarrowphase();
     void buildManifolds(real dt);
     void orderManifolds();
+    void addSolverManifold(const ManifoldKey &key);
     real contactHeight(const BodyRecord &a, const BodyRecord &b) const;
     void buildIslands();
     void prepareSolver(real h);

@@ -189,7 +189,7 @@ void World::Impl::updateBroadphase() {
             const BodyRecord &r = bodies[index];
             if (!r.object) continue;
             const fcl::AABBd &box = r.object->getAABB();
-            const Vector3 centre = box.center();
+            const Vector3 centre = detail::boxCentre(box);
             const Vector3 half = 0.5 * (box.max_ - box.min_);
             const real lowest = n.dot(centre) - n.cwiseAbs().dot(half);
             if (lowest <= offset + settings.speculativeDistance) candidates.push_back({plane, index});
@@ -203,10 +203,18 @@ void World::Impl::updateBroadphase() {
 void World::Impl::runNarrowphase() {
     const detail::NarrowphaseSettings np{settings.speculativeDistance};
     touchingPairs.clear();
-    for (const detail::CandidatePair &c : candidates) {
+    // The broadphase lists a settled scene's pairs in the same order step after step:
+    // the slot each candidate had last step is checked first, saving most table look-ups.
+    candidateSlots.resize(candidates.size(), kNoSlot);
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const detail::CandidatePair &c = candidates[k];
         if (bodies[c.a].isStatic && bodies[c.b].isStatic) continue;
-        bool created = false;
-        const std::uint32_t p = findOrAddPair(c.a, c.b, created);
+        std::uint32_t p = candidateSlots[k];
+        if (!pairs.holds(p, c.a, c.b)) {
+            bool created = false;
+            p = findOrAddPair(c.a, c.b, created);
+            candidateSlots[k] = p;
+        }
         detail::PairState &pair = pairs[p];
         if (pair.lastSeen == stepCount) continue;  // reported twice
         pair.lastSeen = stepCount;
@@ -272,46 +280,58 @@ void World::Impl::runNarrowphase() {
 // --- manifolds ----------------------------------------------------------------------------
 
 void World::Impl::buildManifolds(real) {
-    solverManifolds.clear();
-    solverSource.clear();
+    // The solve order is settled on small keys first and the solver manifolds are then
+    // built in that order: sorting the built manifolds (~2 KB each) meant copying all of
+    // them every step.
+    manifoldKeys.clear();
     for (std::uint32_t p : touchingPairs) {
         const detail::PairState &pair = pairs[p];
         const BodyRecord &a = bodies[pair.a];
         const BodyRecord &b = bodies[pair.b];
-        const int ia = a.simulated ? a.solverIndex : 0;
-        const int ib = b.simulated ? b.solverIndex : 0;
-        if (ia == 0 && ib == 0) continue;
-        const real friction = std::sqrt(a.material.friction * b.material.friction);
+        if (!a.simulated && !b.simulated) continue;
+        const real height = contactHeight(a, b);
         for (std::size_t k = 0; k < pair.manifolds.size(); ++k) {
-            const detail::ManifoldState &m = pair.manifolds[k];
-            if (m.count == 0) continue;
-            detail::SolverManifold &sm = solverManifolds.emplace_back();
-            sm.a = ia;
-            sm.b = ib;
-            sm.normal = m.normal;
-            detail::tangentBasis(sm.normal, sm.tangent[0], sm.tangent[1]);
-            sm.friction = friction;
-            sm.count = m.count;
-            for (int i = 0; i < m.count; ++i) {
-                const detail::PersistentPoint &src = m.points[i];
-                detail::SolverPoint &dst = sm.points[i];
-                dst.localA = src.localA;
-                dst.localB = src.localB;
-                dst.depth = src.depth;
-                const bool warm = settings.warmStarting;
-                dst.normal.impulse = warm ? src.normalImpulse : 0;
-                dst.tangent[0].impulse = warm ? src.frictionImpulse.dot(sm.tangent[0]) : 0;
-                dst.tangent[1].impulse = warm ? src.frictionImpulse.dot(sm.tangent[1]) : 0;
-                stats.maxPenetration = std::max(stats.maxPenetration, src.depth);
-            }
-            sm.height = contactHeight(a, b);
-            solverSource.push_back((p << 2) | static_cast<std::uint32_t>(k));
-            ++stats.manifolds;
-            stats.contacts += m.count;
-            if (friction > 0) stats.frictionRows += 2 * m.count;
+            if (pair.manifolds[k].count == 0) continue;
+            const auto listed = static_cast<std::uint32_t>(manifoldKeys.size());
+            manifoldKeys.push_back({height, listed, (p << 2) | static_cast<std::uint32_t>(k)});
         }
     }
     orderManifolds();
+    solverManifolds.clear();
+    solverSource.clear();
+    for (const ManifoldKey &key : manifoldKeys) addSolverManifold(key);
+}
+
+void World::Impl::addSolverManifold(const ManifoldKey &key) {
+    const detail::PairState &pair = pairs[key.source >> 2];
+    const detail::ManifoldState &m = pair.manifolds[key.source & 3];
+    const BodyRecord &a = bodies[pair.a];
+    const BodyRecord &b = bodies[pair.b];
+    const real friction = std::sqrt(a.material.friction * b.material.friction);
+    detail::SolverManifold &sm = solverManifolds.emplace_back();
+    sm.a = a.simulated ? a.solverIndex : 0;
+    sm.b = b.simulated ? b.solverIndex : 0;
+    sm.normal = m.normal;
+    detail::tangentBasis(sm.normal, sm.tangent[0], sm.tangent[1]);
+    sm.friction = friction;
+    sm.count = m.count;
+    const bool warm = settings.warmStarting;
+    for (int i = 0; i < m.count; ++i) {
+        const detail::PersistentPoint &src = m.points[i];
+        detail::SolverPoint &dst = sm.points[i];
+        dst.localA = src.localA;
+        dst.localB = src.localB;
+        dst.depth = src.depth;
+        dst.normal.impulse = warm ? src.normalImpulse : 0;
+        dst.tangent[0].impulse = warm ? src.frictionImpulse.dot(sm.tangent[0]) : 0;
+        dst.tangent[1].impulse = warm ? src.frictionImpulse.dot(sm.tangent[1]) : 0;
+        stats.maxPenetration = std::max(stats.maxPenetration, src.depth);
+    }
+    sm.height = key.height;
+    solverSource.push_back(key.source);
+    ++stats.manifolds;
+    stats.contacts += m.count;
+    if (friction > 0) stats.frictionRows += 2 * m.count;
 }
 
 real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b) const {
@@ -325,23 +345,11 @@ real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b) const 
 void World::Impl::orderManifolds() {
     // Gauss-Seidel carries a stack's weight down in one pass when the contacts nearest
     // the ground come first; the order must not depend on the broadphase's.
-    solverOrder.resize(solverManifolds.size());
-    std::iota(solverOrder.begin(), solverOrder.end(), 0u);
     // Equal heights keep their order (what std::stable_sort gives, without the buffer it
     // allocates on every call).
-    std::sort(solverOrder.begin(), solverOrder.end(), [&](std::uint32_t x, std::uint32_t y) {
-        const real hx = solverManifolds[x].height;
-        const real hy = solverManifolds[y].height;
-        return hx < hy || (hx == hy && x < y);
+    std::sort(manifoldKeys.begin(), manifoldKeys.end(), [](const ManifoldKey &x, const ManifoldKey &y) {
+        return x.height < y.height || (x.height == y.height && x.listed < y.listed);
     });
-    sortedManifolds.resize(solverManifolds.size());
-    sortedSource.resize(solverSource.size());
-    for (std::size_t i = 0; i < solverOrder.size(); ++i) {
-        sortedManifolds[i] = solverManifolds[solverOrder[i]];
-        sortedSource[i] = solverSource[solverOrder[i]];
-    }
-    solverManifolds.swap(sortedManifolds);
-    solverSource.swap(sortedSource);
 }
 
 // --- islands ------------------------------------------------------------------------------
