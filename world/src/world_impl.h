@@ -121,11 +121,8 @@ struct World::Impl {
     std::vector<detail::SolverManifold> solverManifolds;
     std::vector<std::uint32_t> solverSource;  ///< Pair index and manifold of each solver manifold.
     std::vector<ManifoldKey> manifoldKeys;    ///< The solver manifolds to build, in solve order.
-    std::vector<std::uint32_t> solverOrder;
     std::vector<detail::SolverGroup> solverGroups;  ///< Coupled passes' order (solver_schedule.h).
     std::vector<char> scheduleScratch;
-    std::vector<detail::SolverManifold> sortedManifolds;
-    std::vector<std::uint32_t> sortedSource;
     std::vector<int> islandParent;
     std::vector<int> islandStart;
     std::vector<std::uint32_t> islandBodies;
