@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <type_traits>
 
 namespace cyclone::detail {
 namespace {
@@ -136,30 +135,6 @@ CYCLONE_INLINE void solveManifoldPair(PairVelocities &vel0, SolverManifold &m0, 
     }
 }
 
-// One manifold of a velocity pass. Against a supporting body (kOnlyA, kOnlyB) it sweeps
-// until a sweep changes the moving body's velocity by less than the tolerance (at its
-// contact points: w times the lever arm), at most `sweeps` times.
-template <Moving kMoving>
-CYCLONE_INLINE void solveVelocityManifold(SolverBody &a, SolverBody &b, SolverManifold &m, bool reverse, int sweeps) {
-    PairVelocities vel(a, b, false);
-    if (sweeps == 1) {
-        solveManifold<kMoving>(vel, m, reverse);
-    } else {
-        const SolverRow &first = m.points[0].normal;
-        const real lever = m.count == 0 ? 0 : std::sqrt(kMoving == kOnlyA ? dot3(first.rAxd, first.rAxd)
-                                                                           : dot3(first.rBxd, first.rBxd));
-        for (int i = 0; i < sweeps; ++i) {
-            const Lanes v = kMoving == kOnlyA ? vel.va : vel.vb;
-            const Lanes w = kMoving == kOnlyA ? vel.wa : vel.wb;
-            solveManifold<kMoving>(vel, m, reverse != ((i & 1) != 0));
-            const Lanes dv = (kMoving == kOnlyA ? vel.va : vel.vb) - v;
-            const Lanes dw = (kMoving == kOnlyA ? vel.wa : vel.wb) - w;
-            if (std::sqrt(dot3(dv, dv)) + std::sqrt(dot3(dw, dw)) * lever < kSupportTolerance) break;
-        }
-    }
-    vel.store<kMoving>(a, b, false);
-}
-
 template <Moving kMoving>
 CYCLONE_INLINE void solvePseudoManifold(SolverBody &a, SolverBody &b, SolverManifold &m) {
     PairVelocities vel(a, b, true);
@@ -174,38 +149,6 @@ CYCLONE_INLINE void solvePseudoManifold(SolverBody &a, SolverBody &b, SolverMani
         vel.apply<kMoving>(n, p.normal, updated - old);
     }
     vel.store<kMoving>(a, b, true);
-}
-enum Pass { kVelocityPass, kPseudoPass };
-
-// Solves each manifold once (a velocity or a pseudo-velocity pass). In a support pass, a
-// manifold with a supporting side moves only the other body, `sweeps` times. Against a
-// static or sleeping body that is the true problem and its impulses are kept; against a
-// moving carrier the accumulated impulses are put back afterwards: computed with the
-// carried body's mass alone, kept, they would swing the warm start of a heavy body on a
-// light one by the mass ratio times its error, and the stack diverges.
-template <Pass kPass>
-CYCLONE_INLINE void forEachManifold(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                                    bool support, bool reverse, int sweeps) {
-    auto solve = [&](auto moving, SolverBody &a, SolverBody &b, SolverManifold &m, int count)
-                     __attribute__((always_inline)) {
-        constexpr Moving kMoving = decltype(moving)::value;
-        if (kPass == kVelocityPass) solveVelocityManifold<kMoving>(a, b, m, reverse, count);
-        else solvePseudoManifold<kMoving>(a, b, m);
-    };
-    for (SolverManifold &m : manifolds) {
-        SolverBody &a = bodies[m.a];
-        SolverBody &b = bodies[m.b];
-        if (!support || m.support == kNoSupport) {
-            solve(std::integral_constant<Moving, kBoth>(), a, b, m, 1);
-        } else {
-            const bool carrierMoves = m.a != 0 && m.b != 0;
-            SavedImpulses saved;
-            if (carrierMoves) saved.save(m);
-            if (m.support == kASupportsB) solve(std::integral_constant<Moving, kOnlyB>(), a, b, m, sweeps);
-            else solve(std::integral_constant<Moving, kOnlyA>(), a, b, m, sweeps);
-            if (carrierMoves) saved.restore(m);
-        }
-    }
 }
 
 }  // namespace
@@ -298,7 +241,11 @@ void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &
         solveManifold<kBoth>(vel, m, reverse);
         vel.store<kBoth>(bodies[m.a], bodies[m.b], false);
     }
-    // Each carried body against all its carriers at once, bottom up. One carrier after
+    // Each carried body against all its carriers at once, bottom up. Against a static or
+    // sleeping carrier that is the true problem and the impulses are kept; against a
+    // moving one they are put back afterwards: computed with the carried body's mass
+    // alone, kept, they would swing the warm start of a heavy body on a light one by the
+    // mass ratio times its error, and the stack diverges. One carrier after
     // the other would leave the body as high as the highest contact point of any
     // carrier pushed it (an impulse that lifts it is never taken back), and a tall
     // pyramid rose by millimetres in its first step; swept together, a carrier's
@@ -412,7 +359,23 @@ CYCLONE_SIMD_CLONES
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool support) {
     // One sweep: more did not change how a stack settles (measured on 1:1000:1 and the
     // 20-level pyramid).
-    forEachManifold<kPseudoPass>(bodies, manifolds, support, false, 1);
+    // With `support`, a manifold with a carrier moves only the carried body. Against a
+    // static or sleeping body that is the true problem and its impulses are kept;
+    // against a moving carrier they are put back afterwards, as in solveSupport.
+    for (SolverManifold &m : manifolds) {
+        SolverBody &a = bodies[m.a];
+        SolverBody &b = bodies[m.b];
+        if (!support || m.support == kNoSupport) {
+            solvePseudoManifold<kBoth>(a, b, m);
+            continue;
+        }
+        const bool carrierMoves = m.a != 0 && m.b != 0;
+        SavedImpulses saved;
+        if (carrierMoves) saved.save(m);
+        if (m.support == kASupportsB) solvePseudoManifold<kOnlyB>(a, b, m);
+        else solvePseudoManifold<kOnlyA>(a, b, m);
+        if (carrierMoves) saved.restore(m);
+    }
 }
 
 }  // namespace cyclone::detail
