@@ -120,20 +120,71 @@ CYCLONE_INLINE void solveManifold(PairVelocities &vel, SolverManifold &m, bool r
 
 // Two manifolds that share no moving body, row by row side by side: the same numbers
 // as one after the other, but the two chains of rows overlap in the CPU.
+template <Moving kMoving0 = kBoth, Moving kMoving1 = kBoth>
 CYCLONE_INLINE void solveManifoldPair(PairVelocities &vel0, SolverManifold &m0, PairVelocities &vel1,
                                       SolverManifold &m1, bool reverse) {
     const int most = std::max(m0.count, m1.count);
     const bool friction0 = m0.friction > 0;
     const bool friction1 = m1.friction > 0;
     for (int i = 0; i < most; ++i) {
-        if (friction0 && i < m0.count) solveFrictionPoint<kBoth>(vel0, m0, i);
-        if (friction1 && i < m1.count) solveFrictionPoint<kBoth>(vel1, m1, i);
+        if (friction0 && i < m0.count) solveFrictionPoint<kMoving0>(vel0, m0, i);
+        if (friction1 && i < m1.count) solveFrictionPoint<kMoving1>(vel1, m1, i);
     }
     for (int k = 0; k < most; ++k) {
-        if (k < m0.count) solveNormalPoint<kBoth>(vel0, m0, k, reverse);
-        if (k < m1.count) solveNormalPoint<kBoth>(vel1, m1, k, reverse);
+        if (k < m0.count) solveNormalPoint<kMoving0>(vel0, m0, k, reverse);
+        if (k < m1.count) solveNormalPoint<kMoving1>(vel1, m1, k, reverse);
     }
 }
+
+// Which side of a manifold the support pass moves.
+CYCLONE_INLINE Moving supportedSide(const SolverManifold &m) { return m.support == kASupportsB ? kOnlyB : kOnlyA; }
+
+// A support manifold: only its carried body moves.
+CYCLONE_INLINE void solveCarried(std::vector<SolverBody> &bodies, SolverManifold &m, bool reverse) {
+    SolverBody &a = bodies[m.a];
+    SolverBody &b = bodies[m.b];
+    PairVelocities vel(a, b, false);
+    if (supportedSide(m) == kOnlyB) {
+        solveManifold<kOnlyB>(vel, m, reverse);
+        vel.store<kOnlyB>(a, b, false);
+    } else {
+        solveManifold<kOnlyA>(vel, m, reverse);
+        vel.store<kOnlyA>(a, b, false);
+    }
+}
+
+template <Moving kMoving0, Moving kMoving1>
+CYCLONE_INLINE void solveCarriedPair(std::vector<SolverBody> &bodies, SolverManifold &m0, SolverManifold &m1,
+                                     bool reverse) {
+    PairVelocities vel0(bodies[m0.a], bodies[m0.b], false);
+    PairVelocities vel1(bodies[m1.a], bodies[m1.b], false);
+    solveManifoldPair<kMoving0, kMoving1>(vel0, m0, vel1, m1, reverse);
+    vel0.store<kMoving0>(bodies[m0.a], bodies[m0.b], false);
+    vel1.store<kMoving1>(bodies[m1.a], bodies[m1.b], false);
+}
+
+// Two support manifolds of different carried bodies, side by side.
+CYCLONE_INLINE void solveCarriedPair(std::vector<SolverBody> &bodies, SolverManifold &m0, SolverManifold &m1,
+                                     bool reverse) {
+    const bool b0 = supportedSide(m0) == kOnlyB;
+    const bool b1 = supportedSide(m1) == kOnlyB;
+    if (b0 && b1) solveCarriedPair<kOnlyB, kOnlyB>(bodies, m0, m1, reverse);
+    else if (b0) solveCarriedPair<kOnlyB, kOnlyA>(bodies, m0, m1, reverse);
+    else if (b1) solveCarriedPair<kOnlyA, kOnlyB>(bodies, m0, m1, reverse);
+    else solveCarriedPair<kOnlyA, kOnlyA>(bodies, m0, m1, reverse);
+}
+
+// One carried body's sweeps against its carriers (a run of SupportRuns).
+struct CarriedRun {
+    int first = 0;  ///< Its manifolds: runs.manifolds[first .. last).
+    int last = 0;
+    SolverBody *body = nullptr;
+    real lever = 0;       ///< Lever arm of its first contact, m (for the stopping test).
+    bool active = false;  ///< Still sweeping.
+    Lanes v{}, w{};       ///< The body's velocity before the current sweep.
+
+    int size() const { return active ? last - first : 0; }
+};
 
 template <Moving kMoving>
 CYCLONE_INLINE void solvePseudoManifold(SolverBody &a, SolverBody &b, SolverManifold &m) {
@@ -231,6 +282,74 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
     }
 }
 
+namespace {
+
+CarriedRun beginRun(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
+                    std::size_t r) {
+    CarriedRun run;
+    run.first = runs.start[r];
+    run.last = runs.start[r + 1];
+    const SolverManifold &lead = manifolds[runs.manifolds[run.first]];
+    const bool bMoves = lead.support == kASupportsB;
+    run.body = &bodies[bMoves ? lead.b : lead.a];
+    for (int k = run.first; k < run.last; ++k) {
+        const SolverManifold &m = manifolds[runs.manifolds[k]];
+        if (m.a != 0 && m.b != 0) runs.saved[k].save(m);
+    }
+    const SolverRow &row = lead.points[0].normal;
+    run.lever = lead.count == 0 ? 0 : std::sqrt(bMoves ? dot3(row.rBxd, row.rBxd) : dot3(row.rAxd, row.rAxd));
+    run.active = true;
+    return run;
+}
+
+void endRun(std::vector<SolverManifold> &manifolds, const SupportRuns &runs, const CarriedRun &run) {
+    for (int k = run.first; k < run.last; ++k) {
+        SolverManifold &m = manifolds[runs.manifolds[k]];
+        if (m.a != 0 && m.b != 0) runs.saved[k].restore(m);
+    }
+}
+
+void startSweep(CarriedRun &run) {
+    run.v = run.body->v;
+    run.w = run.body->w;
+}
+
+// A sweep that changed the body's velocity (at its contact points: w times the lever
+// arm) by less than the tolerance ends the run.
+void finishSweep(CarriedRun &run) {
+    if (!run.active) return;
+    const Lanes dv = run.body->v - run.v;
+    const Lanes dw = run.body->w - run.w;
+    if (std::sqrt(dot3(dv, dv)) + std::sqrt(dot3(dw, dw)) * run.lever < kSupportTolerance) run.active = false;
+}
+
+// Sweeps two runs of carried bodies on the same level (neither carries the other, so
+// they commute) side by side until both stop; run1 may be empty.
+CYCLONE_INLINE void sweepRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                              const SupportRuns &runs, CarriedRun &run0, CarriedRun &run1, bool reverse) {
+    for (int sweep = 0; sweep < kSupportSweeps && (run0.active || run1.active); ++sweep) {
+        const bool backwards = reverse != ((sweep & 1) != 0);
+        if (run0.active) startSweep(run0);
+        if (run1.active) startSweep(run1);
+        const int n0 = run0.size();
+        const int n1 = run1.size();
+        for (int k = 0; k < std::max(n0, n1); ++k) {
+            if (k < n0 && k < n1) {
+                solveCarriedPair(bodies, manifolds[runs.manifolds[run0.first + k]],
+                                 manifolds[runs.manifolds[run1.first + k]], backwards);
+            } else if (k < n0) {
+                solveCarried(bodies, manifolds[runs.manifolds[run0.first + k]], backwards);
+            } else {
+                solveCarried(bodies, manifolds[runs.manifolds[run1.first + k]], backwards);
+            }
+        }
+        finishSweep(run0);
+        finishSweep(run1);
+    }
+}
+
+}  // namespace
+
 CYCLONE_SIMD_CLONES
 void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
                   bool reverse) {
@@ -250,45 +369,19 @@ void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &
     // carrier pushed it (an impulse that lifts it is never taken back), and a tall
     // pyramid rose by millimetres in its first step; swept together, a carrier's
     // impulse falls again when another lifts the body.
-    for (std::size_t r = 0; r + 1 < runs.start.size(); ++r) {
-        const int first = runs.start[r];
-        const int last = runs.start[r + 1];
-        const SolverManifold &lead = manifolds[runs.manifolds[first]];
-        const bool bMoves = lead.support == kASupportsB;
-        SolverBody &body = bodies[bMoves ? lead.b : lead.a];
-        for (int k = first; k < last; ++k) {
-            const SolverManifold &m = manifolds[runs.manifolds[k]];
-            if (m.a != 0 && m.b != 0) runs.saved[k].save(m);
-        }
-        // Sweeps until one changes the body's velocity by less than the tolerance (at
-        // its contact points: w times the lever arm).
-        const SolverRow &row = lead.points[0].normal;
-        const real lever = lead.count == 0 ? 0 : std::sqrt(bMoves ? dot3(row.rBxd, row.rBxd) : dot3(row.rAxd, row.rAxd));
-        for (int sweep = 0; sweep < kSupportSweeps; ++sweep) {
-            const Lanes v = body.v;
-            const Lanes w = body.w;
-            const bool backwards = reverse != ((sweep & 1) != 0);
-            for (int k = first; k < last; ++k) {
-                SolverManifold &m = manifolds[runs.manifolds[k]];
-                SolverBody &a = bodies[m.a];
-                SolverBody &b = bodies[m.b];
-                PairVelocities vel(a, b, false);
-                if (m.support == kASupportsB) {
-                    solveManifold<kOnlyB>(vel, m, backwards);
-                    vel.store<kOnlyB>(a, b, false);
-                } else {
-                    solveManifold<kOnlyA>(vel, m, backwards);
-                    vel.store<kOnlyA>(a, b, false);
-                }
-            }
-            const Lanes dv = body.v - v;
-            const Lanes dw = body.w - w;
-            if (std::sqrt(dot3(dv, dv)) + std::sqrt(dot3(dw, dw)) * lever < kSupportTolerance) break;
-        }
-        for (int k = first; k < last; ++k) {
-            SolverManifold &m = manifolds[runs.manifolds[k]];
-            if (m.a != 0 && m.b != 0) runs.saved[k].restore(m);
-        }
+    //
+    // Bodies on the same level move only themselves against carriers below them: two
+    // of them are swept side by side, the same numbers as one after the other.
+    const std::size_t count = runs.level.size();
+    for (std::size_t r = 0; r < count;) {
+        CarriedRun run0 = beginRun(bodies, manifolds, runs, r);
+        CarriedRun run1;
+        const bool paired = r + 1 < count && runs.level[r + 1] == runs.level[r];
+        if (paired) run1 = beginRun(bodies, manifolds, runs, r + 1);
+        sweepRuns(bodies, manifolds, runs, run0, run1, reverse);
+        endRun(manifolds, runs, run0);
+        if (paired) endRun(manifolds, runs, run1);
+        r += paired ? 2 : 1;
     }
 }
 

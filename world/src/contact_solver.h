@@ -116,6 +116,7 @@ struct SavedImpulses {
 /// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]).
 struct SupportRuns {
     std::vector<int> start;
+    std::vector<int> level;  ///< Per run: the carried body's distance from the ground in contacts.
     std::vector<int> manifolds;
     std::vector<SavedImpulses> saved;  ///< Scratch, one per entry of `manifolds`.
 };
