@@ -40,7 +40,7 @@ install(FILES ${PROJECT_BINARY_DIR}/cycloneConfig.cmake ${PROJECT_BINARY_DIR}/cy
 # .pc file adds -std=c++11, so it is named by library rather than required.
 if(CYCLONE_BUILD_WORLD)
   set(cyclone_pc_world "-lcyclone_world")
-  set(cyclone_pc_deps "-lfcl -lccd -lqhull_r -lm")
+  set(cyclone_pc_deps "-lfcl -lccd -lqhull_r -pthread -lm")
 else()
   set(cyclone_pc_world "")
   set(cyclone_pc_deps "")

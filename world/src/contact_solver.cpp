@@ -231,8 +231,10 @@ void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, co
 }
 
 CYCLONE_SIMD_CLONES
-void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds) {
-    for (const SolverManifold &m : manifolds) {
+void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+               const std::vector<int> &order) {
+    for (int index : order) {
+        const SolverManifold &m = manifolds[index];
         SolverBody &a = bodies[m.a];
         SolverBody &b = bodies[m.b];
         PairVelocities vel(a, b, false);
@@ -285,7 +287,7 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
 namespace {
 
 CarriedRun beginRun(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
-                    std::size_t r) {
+                    int r) {
     CarriedRun run;
     run.first = runs.start[r];
     run.last = runs.start[r + 1];
@@ -351,32 +353,33 @@ CYCLONE_INLINE void sweepRuns(std::vector<SolverBody> &bodies, std::vector<Solve
 }  // namespace
 
 CYCLONE_SIMD_CLONES
-void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
-                  bool reverse) {
-    // Manifolds where neither side carries the other: one coupled pass, in order.
+void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse) {
     for (SolverManifold &m : manifolds) {
         if (m.support != kNoSupport) continue;
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
         solveManifold<kBoth>(vel, m, reverse);
         vel.store<kBoth>(bodies[m.a], bodies[m.b], false);
     }
-    // Each carried body against all its carriers at once, bottom up. Against a static or
-    // sleeping carrier that is the true problem and the impulses are kept; against a
-    // moving one they are put back afterwards: computed with the carried body's mass
-    // alone, kept, they would swing the warm start of a heavy body on a light one by the
-    // mass ratio times its error, and the stack diverges. One carrier after
-    // the other would leave the body as high as the highest contact point of any
-    // carrier pushed it (an impulse that lifts it is never taken back), and a tall
-    // pyramid rose by millimetres in its first step; swept together, a carrier's
-    // impulse falls again when another lifts the body.
-    //
-    // Bodies on the same level move only themselves against carriers below them: two
-    // of them are swept side by side, the same numbers as one after the other.
-    const std::size_t count = runs.level.size();
-    for (std::size_t r = 0; r < count;) {
+}
+
+// Each carried body against all its carriers at once. Against a static or sleeping
+// carrier that is the true problem and the impulses are kept; against a moving one they
+// are put back afterwards: computed with the carried body's mass alone, kept, they would
+// swing the warm start of a heavy body on a light one by the mass ratio times its error,
+// and the stack diverges. One carrier after the other would leave the body as high as
+// the highest contact point of any carrier pushed it (an impulse that lifts it is never
+// taken back), and a tall pyramid rose by millimetres in its first step; swept together,
+// a carrier's impulse falls again when another lifts the body.
+//
+// Bodies on one level move only themselves against carriers below them: two of them are
+// swept side by side, the same numbers as one after the other.
+CYCLONE_SIMD_CLONES
+void solveCarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
+                  int firstRun, int lastRun, bool reverse) {
+    for (int r = firstRun; r < lastRun;) {
         CarriedRun run0 = beginRun(bodies, manifolds, runs, r);
         CarriedRun run1;
-        const bool paired = r + 1 < count && runs.level[r + 1] == runs.level[r];
+        const bool paired = r + 1 < lastRun;
         if (paired) run1 = beginRun(bodies, manifolds, runs, r + 1);
         sweepRuns(bodies, manifolds, runs, run0, run1, reverse);
         endRun(manifolds, runs, run0);

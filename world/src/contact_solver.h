@@ -113,10 +113,12 @@ struct SavedImpulses {
 };
 
 /// The support pass's order (assignSupport): the carried bodies bottom up; run r is one
-/// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]).
+/// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]). A level holds
+/// the bodies equally far from the ground (in contacts); no body carries another of its
+/// level.
 struct SupportRuns {
     std::vector<int> start;
-    std::vector<int> level;  ///< Per run: the carried body's distance from the ground in contacts.
+    std::vector<int> levelStart;  ///< Level l's runs are [levelStart[l], levelStart[l + 1]).
     std::vector<int> manifolds;
     std::vector<SavedImpulses> saved;  ///< Scratch, one per entry of `manifolds`.
 };
@@ -170,23 +172,28 @@ void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, co
 /// Fills supportedMass of every row of manifolds that have a supporting side.
 void prepareSupportedMasses(const std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds);
 
-/// Applies the accumulated impulses (warm start).
-void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds);
+/// Applies the accumulated impulses (warm start) of the manifolds listed in `order`.
+void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+               const std::vector<int> &order);
 /// One Gauss-Seidel pass over friction and normal rows, group by group
 /// (solver_schedule.h); `reverse` visits each manifold's points in reverse order
 /// (alternating passes keep the first point from taking the largest share of a new
 /// contact's load, which would tilt the body).
 void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                      const std::vector<SolverGroup> &groups, bool reverse);
-/// The support pass (shock propagation): like solveVelocities, but a manifold whose
-/// `support` names a carrying body treats that body as immovable and solves the carried
-/// one against it with up to kSupportSweeps sweeps. Run last, bottom up, it leaves no
-/// body of a resting stack sinking into the one below or turning on it, whatever their
-/// mass ratio (plain Gauss-Seidel converges ever slower as a heavy body rests on a
+/// The support pass (shock propagation), run after the coupled passes: first one plain
+/// pass over the manifolds where neither side carries the other (solveUnsupported), then,
+/// level by level bottom up (SupportRuns::levelStart), each carried body against its
+/// carriers as immovable bodies with up to kSupportSweeps sweeps (solveCarried). It leaves
+/// no body of a resting stack sinking into the one below or turning on it, whatever
+/// their mass ratio (plain Gauss-Seidel converges ever slower as a heavy body rests on a
 /// lighter one). Its impulses change velocities only: the accumulated impulses stay those
-/// of the coupled passes.
-void solveSupport(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
-                  bool reverse);
+/// of the coupled passes. The runs of one level are independent: any of them may be
+/// solved at the same time.
+void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse);
+/// Runs [firstRun, lastRun) of the support pass (see solveUnsupported).
+void solveCarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
+                  int firstRun, int lastRun, bool reverse);
 /// One pass of penetration recovery on the pseudo-velocities (`support` as above).
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                            bool support = false);

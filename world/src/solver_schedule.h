@@ -27,8 +27,9 @@ struct SolverGroup {
 /// How far ahead (in manifolds) the schedule looks for a partner.
 inline constexpr int kScheduleWindow = 8;
 
-/// Groups `manifolds` in their order. `taken` is scratch kept between steps.
-void buildSchedule(const std::vector<SolverManifold> &manifolds, std::vector<SolverGroup> &groups,
-                   std::vector<char> &taken);
+/// Groups the manifolds listed in `order` (indices into `manifolds`), keeping that
+/// order's results. `taken` is scratch kept between steps.
+void buildSchedule(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
+                   std::vector<SolverGroup> &groups, std::vector<char> &taken);
 
 }  // namespace cyclone::detail

@@ -28,15 +28,17 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
         return x.manifold < y.manifold;
     });
     runs.start.clear();
-    runs.level.clear();
+    runs.levelStart.clear();
     runs.manifolds.clear();
     for (std::size_t k = 0; k < keys.size(); ++k) {
         if (k == 0 || keys[k].body != keys[k - 1].body) {
+            if (k == 0 || keys[k].level != keys[k - 1].level)
+                runs.levelStart.push_back(static_cast<int>(runs.start.size()));
             runs.start.push_back(static_cast<int>(k));
-            runs.level.push_back(keys[k].level);
         }
         runs.manifolds.push_back(keys[k].manifold);
     }
+    runs.levelStart.push_back(static_cast<int>(runs.start.size()));
     runs.start.push_back(static_cast<int>(keys.size()));
     runs.saved.resize(keys.size());
 }

@@ -48,6 +48,8 @@ void validateSettings(const char *function, const WorldSettings &s) {
     requirePositive(function, "maxPushVelocity", s.maxPushVelocity);
     requireNonNegative(function, "speculativeDistance", s.speculativeDistance);
     requireNonNegative(function, "manifoldReuseTolerance", s.manifoldReuseTolerance);
+    if (s.threads < 1 || s.threads > 64)
+        refuse(function, "threads", "must be in [1, 64], got " + std::to_string(s.threads));
 }
 
 // Builds the RigidBody of a settings struct; throws (nothing else changed) on bad input.

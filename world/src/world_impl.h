@@ -19,7 +19,9 @@
 #include "broadphase.h"
 #include "collision_shape.h"
 #include "contact_solver.h"
+#include "solver_partition.h"
 #include "solver_schedule.h"
+#include "task_pool.h"
 #include "cyclone/world/world.h"
 #include "narrowphase.h"
 #include "pair_cache.h"
@@ -121,8 +123,9 @@ struct World::Impl {
     std::vector<detail::SolverManifold> solverManifolds;
     std::vector<std::uint32_t> solverSource;  ///< Pair index and manifold of each solver manifold.
     std::vector<ManifoldKey> manifoldKeys;    ///< The solver manifolds to build, in solve order.
-    std::vector<detail::SolverGroup> solverGroups;  ///< Coupled passes' order (solver_schedule.h).
-    std::vector<char> scheduleScratch;
+    detail::SolverPartition partition;  ///< Coupled passes' order (solver_partition.h).
+    detail::PartitionScratch partitionScratch;
+    std::vector<Vector3> solverPositions;  ///< Position of each solver body (entry 0 unused).
     std::vector<int> islandParent;
     std::vector<int> islandStart;
     std::vector<std::uint32_t> islandBodies;
@@ -144,6 +147,10 @@ struct World::Impl {
     /// Pair slots whose touching state may have changed since the last contact events:
     /// seen by the narrowphase or removed (detectContactEvents looks at these only).
     std::vector<std::uint32_t> eventSlots;
+
+    /// The step's other threads (settings.threads > 1), started by the first step that
+    /// needs them.
+    std::unique_ptr<detail::TaskPool> pool;
 
     detail::SupportScratch supportScratch;
     detail::SupportRuns supportRuns;
@@ -183,7 +190,20 @@ struct World::Impl {
     void addSolverManifold(const ManifoldKey &key);
     real contactHeight(const BodyRecord &a, const BodyRecord &b) const;
     void buildIslands();
+    /// Runs task(i) for i in [0, count), on the pool's threads when there is one; the
+    /// tasks must be independent.
+    template <class Task>
+    void forEachTask(int count, const Task &task) {
+        if (pool) pool->run(count, task);
+        else for (int i = 0; i < count; ++i) task(i);
+    }
+    /// Starts or stops threads to match settings.threads.
+    void matchThreads();
     void prepareSolver(real h);
+    void prepareManifold(std::size_t s);
+    void warmStart();
+    void solveCoupledPass(bool reverse);
+    void solveSupportPass(bool reverse);
     void solve(real h, bool firstSubstep);
     void integrate(real h);
     void recoverPenetration(real h);

@@ -14,6 +14,11 @@
 namespace cyclone {
 namespace {
 
+// Manifolds prepared per task, and the fewest carried bodies worth a task of their own:
+// a task must outweigh handing it to another thread (a microsecond or so).
+constexpr int kManifoldChunk = 64;
+constexpr int kRunChunk = 8;
+
 // Finite, and within the coordinates FCL can place: otherwise the body is isolated.
 bool stateFinite(const RigidBody &body) {
     return body.getPosition().allFinite() && body.getPosition().cwiseAbs().maxCoeff() <= detail::kMaxCoordinate && body.getOrientation().coeffs().allFinite() &&
@@ -22,6 +27,11 @@ bool stateFinite(const RigidBody &body) {
 }
 
 }  // namespace
+
+void World::Impl::matchThreads() {
+    if (settings.threads <= 1) pool.reset();
+    else if (!pool || pool->threads() != settings.threads) pool = std::make_unique<detail::TaskPool>(settings.threads);
+}
 
 void World::Impl::prepareSolver(real h) {
     const std::size_t n = simulatedBodies.size();
@@ -51,34 +61,76 @@ void World::Impl::prepareSolver(real h) {
         soft.slop = settings.penetrationSlop;
         soft.maxPushVelocity = settings.maxPushVelocity;
     }
-    // Jacobians and effective masses are set once per step, at the step's poses.
-    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
-        detail::SolverManifold &m = solverManifolds[s];
-        const detail::PairState &pair = pairs[solverSource[s] >> 2];
-        const RigidBody &a = bodies[pair.a].body;
-        const RigidBody &b = bodies[pair.b].body;
-        m.restitution = std::max(bodies[pair.a].material.restitution, bodies[pair.b].material.restitution);
-        m.touchesStatic = m.a == 0 || m.b == 0;
-        const detail::SolverBody &sa = solverBodies[m.a];
-        const detail::SolverBody &sb = solverBodies[m.b];
-        detail::prepareDirections(m);
-        for (int i = 0; i < m.count; ++i) {
-            detail::SolverPoint &p = m.points[i];
-            const Vector3 c = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
-            detail::prepareRows(sa, sb, c - a.getPosition(), c - b.getPosition(), m, p);
-            p.maxNormalImpulse = 0;
-            p.approachSpeed = 0;
-            if (m.restitution == 0) continue;  // no restitution, nothing to measure
-            p.approachSpeed = detail::normalVelocity(sa, sb, m, p);
-            if (p.approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
-        }
+    // Jacobians and effective masses are set once per step, at the step's poses; each
+    // manifold's rows on their own, so chunks of manifolds are prepared at once.
+    const int chunks = (static_cast<int>(solverManifolds.size()) + kManifoldChunk - 1) / kManifoldChunk;
+    forEachTask(chunks, [&](int chunk) {
+        const std::size_t end = std::min(solverManifolds.size(), std::size_t(chunk + 1) * kManifoldChunk);
+        for (std::size_t s = std::size_t(chunk) * kManifoldChunk; s < end; ++s) prepareManifold(s);
+    });
+    for (const detail::SolverManifold &m : solverManifolds) {
+        if (m.restitution == 0) continue;
+        for (int i = 0; i < m.count; ++i)
+            if (m.points[i].approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
     }
-    if (settings.contactSolver == ContactSolverType::SplitImpulse)
-        detail::buildSchedule(solverManifolds, solverGroups, scheduleScratch);
+    solverPositions.resize(n + 1);
+    for (std::size_t k = 0; k < n; ++k) solverPositions[k + 1] = bodies[simulatedBodies[k]].body.getPosition();
+    detail::partitionManifolds(solverManifolds, solverPositions, partitionScratch, partition);
     if (settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse) {
         detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch,
                               supportRuns);
         detail::prepareSupportedMasses(solverBodies, solverManifolds);
+    }
+}
+
+void World::Impl::prepareManifold(std::size_t s) {
+    detail::SolverManifold &m = solverManifolds[s];
+    const detail::PairState &pair = pairs[solverSource[s] >> 2];
+    const RigidBody &a = bodies[pair.a].body;
+    const RigidBody &b = bodies[pair.b].body;
+    m.restitution = std::max(bodies[pair.a].material.restitution, bodies[pair.b].material.restitution);
+    m.touchesStatic = m.a == 0 || m.b == 0;
+    const detail::SolverBody &sa = solverBodies[m.a];
+    const detail::SolverBody &sb = solverBodies[m.b];
+    detail::prepareDirections(m);
+    for (int i = 0; i < m.count; ++i) {
+        detail::SolverPoint &p = m.points[i];
+        const Vector3 c = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
+        detail::prepareRows(sa, sb, c - a.getPosition(), c - b.getPosition(), m, p);
+        p.maxNormalImpulse = 0;
+        // The normal velocity when the step began, measured only for restitution.
+        p.approachSpeed = m.restitution == 0 ? 0 : detail::normalVelocity(sa, sb, m, p);
+    }
+}
+
+// The warm start and each coupled pass: the two halves of the partition at once, then
+// the seam.
+void World::Impl::warmStart() {
+    forEachTask(partition.split ? 2 : 1, [&](int half) {
+        detail::warmStart(solverBodies, solverManifolds, partition.order[half]);
+    });
+    detail::warmStart(solverBodies, solverManifolds, partition.order[detail::SolverPartition::kSeam]);
+}
+
+void World::Impl::solveCoupledPass(bool reverse) {
+    forEachTask(partition.split ? 2 : 1, [&](int half) {
+        detail::solveVelocities(solverBodies, solverManifolds, partition.groups[half], reverse);
+    });
+    detail::solveVelocities(solverBodies, solverManifolds, partition.groups[detail::SolverPartition::kSeam], reverse);
+}
+
+// Level by level: a level's carried bodies at once, in chunks.
+void World::Impl::solveSupportPass(bool reverse) {
+    detail::solveUnsupported(solverBodies, solverManifolds, reverse);
+    const std::vector<int> &levels = supportRuns.levelStart;
+    for (std::size_t l = 0; l + 1 < levels.size(); ++l) {
+        const int first = levels[l];
+        const int count = levels[l + 1] - first;
+        const int chunks = pool ? std::min(pool->threads(), (count + kRunChunk - 1) / kRunChunk) : 1;
+        forEachTask(chunks, [&](int chunk) {
+            detail::solveCarried(solverBodies, solverManifolds, supportRuns, first + count * chunk / chunks,
+                                 first + count * (chunk + 1) / chunks, reverse);
+        });
     }
 }
 
@@ -143,16 +195,15 @@ void World::Impl::solve(real h, bool firstSubstep) {
         }
     }
 
-    if (settings.warmStarting) detail::warmStart(solverBodies, solverManifolds);
+    if (settings.warmStarting) warmStart();
     for (int it = 0; it < settings.velocityIterations; ++it) {
-        if (split) detail::solveVelocities(solverBodies, solverManifolds, solverGroups, (it & 1) != 0);
+        if (split) solveCoupledPass((it & 1) != 0);
         else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
     }
     stats.velocityIterations += settings.velocityIterations;
     // The support pass comes after the coupled passes, never instead of one: alone, it
     // would let no body push the bodies carrying it.
-    if (split && settings.shockPropagation)
-        detail::solveSupport(solverBodies, solverManifolds, supportRuns, (settings.velocityIterations & 1) != 0);
+    if (split && settings.shockPropagation) solveSupportPass((settings.velocityIterations & 1) != 0);
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.

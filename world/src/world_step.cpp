@@ -62,6 +62,7 @@ void World::Impl::step(real dt) {
     stats.ms.islands = timer.lap();
 
     const real h = dt / settings.substeps;
+    matchThreads();
     prepareSolver(h);
     stats.ms.solve += timer.lap();
     for (int substep = 0; substep < settings.substeps; ++substep) {

@@ -104,6 +104,10 @@ struct WorldSettings {
     /// Stacks then hold at any mass ratio and do not lean; off, every pass is plain
     /// Gauss-Seidel.
     bool shockPropagation = true;
+    /// Threads that run a step, the calling thread included, in [1, 64]. The contact
+    /// solver shares its work among them; the results are the same whatever the count
+    /// (docs/solver.md, "Threads"). 1 starts no thread.
+    int threads = 1;
 };
 
 /// Surface properties of a body.

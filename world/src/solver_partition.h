@@ -1,0 +1,44 @@
+// Which manifolds two threads may solve at once.
+//
+// Design note. A coupled pass is Gauss-Seidel: one manifold reads the velocities the one
+// before it wrote. Split the moving bodies in two halves by place (a plane through the
+// median body across the scene's widest extent): manifolds inside one half never touch a
+// body of the other, so the two halves' manifolds commute and can be solved by two
+// threads; the seam, whose manifolds join the halves, is solved after both. The split
+// depends on the scene only, never on the thread count, so a world gives the same
+// numbers with one thread or several. Small scenes are not split: their pass is too short
+// to share, and they keep the plain order.
+#pragma once
+
+#include <vector>
+
+#include "contact_solver.h"
+#include "solver_schedule.h"
+
+namespace cyclone::detail {
+
+/// Scenes with fewer manifolds than this keep one list (no split).
+inline constexpr int kMinSplitManifolds = 128;
+
+/// The coupled passes' order in three parts: the two halves (solvable at once), then the
+/// seam. Unsplit, part 0 holds every manifold in the plain order and the others are empty.
+struct SolverPartition {
+    static constexpr int kSeam = 2;
+    std::vector<int> order[3];          ///< Manifold indices of each part, in solve order.
+    std::vector<SolverGroup> groups[3];  ///< The same, grouped (solver_schedule.h).
+    bool split = false;
+};
+
+/// Scratch kept between steps (no allocation in a steady step).
+struct PartitionScratch {
+    std::vector<real> places;
+    std::vector<signed char> side;
+    std::vector<char> taken;
+};
+
+/// Splits `manifolds` by `positions` of the solver bodies (entry 0, the immovable world,
+/// is ignored) and schedules each part in the manifolds' order.
+void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<Vector3> &positions,
+                        PartitionScratch &scratch, SolverPartition &partition);
+
+}  // namespace cyclone::detail
