@@ -169,8 +169,9 @@ real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifo
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p);
 
-/// Fills supportedMass of every row of manifolds that have a supporting side.
-void prepareSupportedMasses(const std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds);
+/// Fills supportedMass of every row of a manifold that has a supporting side (after
+/// assignSupport).
+void prepareSupportedMasses(const std::vector<SolverBody> &bodies, SolverManifold &m);
 
 /// Applies the accumulated impulses (warm start) of the manifolds listed in `order`.
 void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
@@ -194,8 +195,9 @@ void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifol
 /// Runs [firstRun, lastRun) of the support pass (see solveUnsupported).
 void solveCarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
                   int firstRun, int lastRun, bool reverse);
-/// One pass of penetration recovery on the pseudo-velocities (`support` as above).
+/// One pass of penetration recovery on the pseudo-velocities of the manifolds listed in
+/// `order` (`support` as above).
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                           bool support = false);
+                           const std::vector<int> &order, bool support);
 
 }  // namespace cyclone::detail

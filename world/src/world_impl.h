@@ -126,6 +126,7 @@ struct World::Impl {
     detail::SolverPartition partition;  ///< Coupled passes' order (solver_partition.h).
     detail::PartitionScratch partitionScratch;
     std::vector<Vector3> solverPositions;  ///< Position of each solver body (entry 0 unused).
+    std::vector<char> bodyFlags;           ///< Per simulated body, for a stage's own use.
     std::vector<int> islandParent;
     std::vector<int> islandStart;
     std::vector<std::uint32_t> islandBodies;
@@ -196,6 +197,25 @@ struct World::Impl {
     void forEachTask(int count, const Task &task) {
         if (pool) pool->run(count, task);
         else for (int i = 0; i < count; ++i) task(i);
+    }
+    /// Runs task(s) for every solver manifold s, in chunks of kChunk.
+    template <class Task>
+    void forEachManifold(const Task &task) {
+        forEachInChunks(solverManifolds.size(), task);
+    }
+    /// Runs task(k) for every simulated body k, in chunks of kChunk.
+    template <class Task>
+    void forEachBody(const Task &task) {
+        forEachInChunks(simulatedBodies.size(), task);
+    }
+    /// Items handed to a thread at once: enough to outweigh the handing (a microsecond).
+    static constexpr std::size_t kChunk = 64;
+    template <class Task>
+    void forEachInChunks(std::size_t count, const Task &task) {
+        forEachTask(static_cast<int>((count + kChunk - 1) / kChunk), [&](int chunk) {
+            const std::size_t end = std::min(count, std::size_t(chunk + 1) * kChunk);
+            for (std::size_t i = std::size_t(chunk) * kChunk; i < end; ++i) task(i);
+        });
     }
     /// Starts or stops threads to match settings.threads.
     void matchThreads();

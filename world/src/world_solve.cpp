@@ -6,6 +6,7 @@
 // corrects them, the correction reaches the body through addVelocity / addRotation,
 // and RigidBody::integrate(h) moves it. Penetration is then recovered without adding
 // energy: pseudo-velocities (SplitImpulse) or a rigid relax pass (SoftStep).
+#include <atomic>
 #include <cmath>
 
 #include "validation.h"
@@ -14,9 +15,8 @@
 namespace cyclone {
 namespace {
 
-// Manifolds prepared per task, and the fewest carried bodies worth a task of their own:
-// a task must outweigh handing it to another thread (a microsecond or so).
-constexpr int kManifoldChunk = 64;
+// Carried bodies per task of the support pass at the least: a task must outweigh handing
+// it to another thread (a microsecond or so).
 constexpr int kRunChunk = 8;
 
 // Finite, and within the coordinates FCL can place: otherwise the body is isolated.
@@ -61,25 +61,22 @@ void World::Impl::prepareSolver(real h) {
         soft.slop = settings.penetrationSlop;
         soft.maxPushVelocity = settings.maxPushVelocity;
     }
-    // Jacobians and effective masses are set once per step, at the step's poses; each
-    // manifold's rows on their own, so chunks of manifolds are prepared at once.
-    const int chunks = (static_cast<int>(solverManifolds.size()) + kManifoldChunk - 1) / kManifoldChunk;
-    forEachTask(chunks, [&](int chunk) {
-        const std::size_t end = std::min(solverManifolds.size(), std::size_t(chunk + 1) * kManifoldChunk);
-        for (std::size_t s = std::size_t(chunk) * kManifoldChunk; s < end; ++s) prepareManifold(s);
+    solverPositions.resize(n + 1);
+    for (std::size_t k = 0; k < n; ++k) solverPositions[k + 1] = bodies[simulatedBodies[k]].body.getPosition();
+    detail::partitionManifolds(solverManifolds, solverPositions, partitionScratch, partition);
+    const bool support = settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse;
+    if (support)
+        detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch,
+                              supportRuns);
+    // Jacobians and effective masses are set once per step, at the step's poses.
+    forEachManifold([&](std::size_t s) {
+        prepareManifold(s);
+        if (support) detail::prepareSupportedMasses(solverBodies, solverManifolds[s]);
     });
     for (const detail::SolverManifold &m : solverManifolds) {
         if (m.restitution == 0) continue;
         for (int i = 0; i < m.count; ++i)
             if (m.points[i].approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
-    }
-    solverPositions.resize(n + 1);
-    for (std::size_t k = 0; k < n; ++k) solverPositions[k + 1] = bodies[simulatedBodies[k]].body.getPosition();
-    detail::partitionManifolds(solverManifolds, solverPositions, partitionScratch, partition);
-    if (settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse) {
-        detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch,
-                              supportRuns);
-        detail::prepareSupportedMasses(solverBodies, solverManifolds);
     }
 }
 
@@ -177,7 +174,7 @@ void World::Impl::solve(real h, bool firstSubstep) {
 
     // Current separations from the anchors (positions move only between sub-steps).
     const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
-    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+    forEachManifold([&](std::size_t s) {
         detail::SolverManifold &m = solverManifolds[s];
         const detail::PairState &pair = pairs[solverSource[s] >> 2];
         const RigidBody &a = bodies[pair.a].body;
@@ -193,7 +190,7 @@ void World::Impl::solve(real h, bool firstSubstep) {
                 p.velocityBias = -m.restitution * p.approachSpeed;
             }
         }
-    }
+    });
 
     if (settings.warmStarting) warmStart();
     for (int it = 0; it < settings.velocityIterations; ++it) {
@@ -217,12 +214,15 @@ void World::Impl::solve(real h, bool firstSubstep) {
 }
 
 void World::Impl::integrate(real h) {
-    for (std::uint32_t index : simulatedBodies) {
-        BodyRecord &r = bodies[index];
-        if (r.quarantined) continue;
-        r.body.integrate(h, false);
-        if (!stateFinite(r.body)) quarantine(index);
-    }
+    bodyFlags.assign(simulatedBodies.size(), 0);
+    forEachBody([&](std::size_t k) {
+        RigidBody &body = bodies[simulatedBodies[k]].body;
+        if (bodies[simulatedBodies[k]].quarantined) return;
+        body.integrate(h, false);
+        bodyFlags[k] = !stateFinite(body);
+    });
+    for (std::size_t k = 0; k < simulatedBodies.size(); ++k)
+        if (bodyFlags[k]) quarantine(simulatedBodies[k]);
 }
 
 void World::Impl::recoverPenetration(real h) {
@@ -248,8 +248,8 @@ void World::Impl::recoverPenetration(real h) {
 
     // Split impulse: pseudo-velocities push penetration beyond the slop out by a fraction
     // per sub-step; they move positions only and are forgotten, so they add no energy.
-    bool needed = false;
-    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+    std::atomic<bool> needed{false};
+    forEachManifold([&](std::size_t s) {
         detail::SolverManifold &m = solverManifolds[s];
         const detail::PairState &pair = pairs[solverSource[s] >> 2];
         const RigidBody &a = bodies[pair.a].body;
@@ -268,20 +268,26 @@ void World::Impl::recoverPenetration(real h) {
             detail::SolverPoint &p = m.points[i];
             p.pseudoImpulse = 0;
             p.pseudoTarget = settings.penetrationRecovery * std::max(p.depth - allowed, real(0)) / h;
-            needed = needed || p.pseudoTarget > 0;
+            if (p.pseudoTarget > 0) needed.store(true, std::memory_order_relaxed);
         }
-    }
+    });
     if (!needed) return;
     const int last = settings.positionIterations - 1;
-    for (int it = 0; it <= last; ++it)
-        detail::solvePseudoVelocities(solverBodies, solverManifolds, it == last && settings.shockPropagation);
+    for (int it = 0; it <= last; ++it) {
+        const bool support = it == last && settings.shockPropagation;
+        forEachTask(partition.split ? 2 : 1, [&](int half) {
+            detail::solvePseudoVelocities(solverBodies, solverManifolds, partition.order[half], support);
+        });
+        detail::solvePseudoVelocities(solverBodies, solverManifolds, partition.order[detail::SolverPartition::kSeam],
+                                      support);
+    }
     stats.positionIterations += settings.positionIterations;
-    for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
+    forEachBody([&](std::size_t k) {
         BodyRecord &r = bodies[simulatedBodies[k]];
         detail::SolverBody &sb = solverBodies[k + 1];
         const Vector3 pv = detail::toVector3(sb.pv);
         const Vector3 pw = detail::toVector3(sb.pw);
-        if (r.quarantined || (pv.isZero(0) && pw.isZero(0))) continue;
+        if (r.quarantined || (pv.isZero(0) && pw.isZero(0))) return;
         Quaternion q = r.body.getOrientation();
         const Quaternion spin(0, pw.x() * h, pw.y() * h, pw.z() * h);
         q.coeffs() += 0.5 * (spin * q).coeffs();
@@ -289,7 +295,7 @@ void World::Impl::recoverPenetration(real h) {
         r.body.setOrientation(q);
         sb.pv = detail::Lanes{};
         sb.pw = detail::Lanes{};
-    }
+    });
 }
 
 void World::Impl::restitution() {

@@ -1,0 +1,162 @@
+// Threads share a step's work and change nothing in its results: the same scene with 1,
+// 2 or 3 threads gives bit-identical states (docs/solver.md, "Threads"). The scene is
+// large enough for the solver to split its passes in two halves (solver_partition.h).
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "task_pool.h"
+#include "world_fixture.h"
+
+namespace cyclone::test {
+namespace {
+
+bool sameBits(const RigidBody &x, const RigidBody &y) {
+    const auto same = [](const auto &u, const auto &v) { return std::memcmp(u.data(), v.data(), sizeof(real) * u.size()) == 0; };
+    return same(x.getPosition(), y.getPosition()) && same(x.getOrientation().coeffs(), y.getOrientation().coeffs()) &&
+           same(x.getVelocity(), y.getVelocity()) && same(x.getRotation(), y.getRotation()) &&
+           x.getAwake() == y.getAwake();
+}
+
+// A 16-box-wide pyramid (136 boxes, some 270 manifolds), with spheres, capsules and boxes
+// thrown onto it with spin and a spring on one of them; sleep on.
+struct Scene {
+    std::unique_ptr<World> world;
+    std::vector<BodyId> ids;
+
+    explicit Scene(int threads) {
+        WorldSettings settings;
+        settings.threads = threads;
+        world = std::make_unique<World>(settings);
+        BodySettings floor;
+        floor.isStatic = true;
+        floor.shape = Shape::plane(Vector3::UnitY(), 0);
+        ids.push_back(world->addBody(floor));
+        constexpr int kBase = 16;
+        for (int row = 0; row < kBase; ++row) {
+            for (int i = 0; i < kBase - row; ++i) {
+                BodySettings box;
+                box.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
+                box.position = Vector3(-0.5 * (kBase - 1) + 0.5 * row + i + 0.01 * (row % 3), 0.5 + row, 0);
+                ids.push_back(world->addBody(box));
+            }
+        }
+        const Shape shapes[] = {Shape::sphere(0.4), Shape::capsule(0.25, 0.6), Shape::box(Vector3(0.4, 0.3, 0.5))};
+        for (int i = 0; i < 12; ++i) {
+            BodySettings s;
+            s.shape = shapes[i % 3];
+            s.position = Vector3(-6 + 1.1 * i, 18 + 0.5 * (i % 2), 0.3 * (i % 3) - 0.3);
+            s.orientation = Quaternion(1, 0.1 * i, 0.2, -0.05 * i);
+            s.velocity = Vector3(0.5, -2, 0.2 * (i % 2));
+            s.rotation = Vector3(0.5 * i, -1, 2);
+            s.material.restitution = 0.2 * (i % 2);
+            ids.push_back(world->addBody(s));
+        }
+        SpringSettings spring;
+        spring.a = ids.back();
+        spring.bPoint = Vector3(6, 22, 0);
+        spring.restLength = 3;
+        spring.stiffness = 40;
+        spring.damping = 1;
+        world->addSpring(spring);
+    }
+};
+
+::testing::AssertionResult sameState(const Scene &x, const Scene &y) {
+    for (std::size_t i = 0; i < x.ids.size(); ++i)
+        if (!sameBits(x.world->body(x.ids[i]), y.world->body(y.ids[i])))
+            return ::testing::AssertionFailure() << "body " << i << " differs";
+    return ::testing::AssertionSuccess();
+}
+
+TEST(Threads, OneTwoAndThreeThreadsGiveBitIdenticalStates) {
+    Scene one(1), two(2), three(3);
+    int mostManifolds = 0;
+    for (int i = 0; i < 240; ++i) {
+        one.world->step(kDt);
+        two.world->step(kDt);
+        three.world->step(kDt);
+        ASSERT_TRUE(sameState(one, two)) << "2 threads, after step " << i + 1;
+        ASSERT_TRUE(sameState(one, three)) << "3 threads, after step " << i + 1;
+        mostManifolds = std::max(mostManifolds, one.world->stats().manifolds);
+    }
+    // The split is what is compared: it takes 128 manifolds (kMinSplitManifolds).
+    EXPECT_GE(mostManifolds, 200);
+}
+
+TEST(Threads, ChangingTheCountBetweenStepsChangesNothing) {
+    Scene fixed(1), changed(1);
+    const int counts[] = {2, 1, 4, 2};
+    for (int i = 0; i < 160; ++i) {
+        if (i % 40 == 0) {
+            WorldSettings settings = changed.world->settings();
+            settings.threads = counts[i / 40];
+            changed.world->setSettings(settings);
+        }
+        fixed.world->step(kDt);
+        changed.world->step(kDt);
+        ASSERT_TRUE(sameState(fixed, changed)) << "after step " << i + 1;
+    }
+}
+
+TEST(Threads, CountsOutsideOneTo64AreRefused) {
+    for (int threads : {0, -1, 65}) {
+        WorldSettings settings;
+        settings.threads = threads;
+        try {
+            World world(settings);
+            ADD_FAILURE() << "threads = " << threads << " accepted";
+        } catch (const InvalidArgument &e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find("World::World"), std::string::npos) << message;
+            EXPECT_NE(message.find("threads"), std::string::npos) << message;
+            EXPECT_NE(message.find(std::to_string(threads)), std::string::npos) << message;
+        }
+    }
+    World world;
+    WorldSettings settings;
+    settings.threads = 65;
+    EXPECT_THROW(world.setSettings(settings), InvalidArgument);
+    EXPECT_EQ(world.settings().threads, 1);
+}
+
+// The pool itself: every task of a job runs exactly once, whatever the count, and jobs
+// run after the workers have gone to sleep.
+TEST(TaskPool, RunsEveryTaskOnce) {
+    detail::TaskPool pool(3);
+    EXPECT_EQ(pool.threads(), 3);
+    for (int count : {0, 1, 2, 3, 7, 100, 1000}) {
+        std::vector<std::atomic<int>> runs(static_cast<std::size_t>(count));
+        for (int job = 0; job < 20; ++job) pool.run(count, [&](int i) { runs[static_cast<std::size_t>(i)]++; });
+        for (int i = 0; i < count; ++i) EXPECT_EQ(runs[static_cast<std::size_t>(i)].load(), 20) << "task " << i;
+    }
+}
+
+TEST(TaskPool, RunsJobsAfterTheWorkersBlocked) {
+    detail::TaskPool pool(2);
+    std::atomic<int> sum{0};
+    for (int job = 0; job < 3; ++job) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));  // past the workers' polling time
+        pool.run(4, [&](int i) { sum += i + 1; });
+    }
+    EXPECT_EQ(sum.load(), 3 * (1 + 2 + 3 + 4));
+}
+
+TEST(TaskPool, OneThreadRunsTasksInOrderOnTheCaller) {
+    detail::TaskPool pool(1);
+    std::vector<int> order;
+    const std::thread::id caller = std::this_thread::get_id();
+    bool onCaller = true;
+    pool.run(5, [&](int i) {
+        order.push_back(i);
+        onCaller = onCaller && std::this_thread::get_id() == caller;
+    });
+    EXPECT_EQ(order, (std::vector<int>{0, 1, 2, 3, 4}));
+    EXPECT_TRUE(onCaller);
+}
+
+}  // namespace
+}  // namespace cyclone::test
