@@ -61,6 +61,7 @@ struct Options {
     int steps = 600;
     int repeats = 1;
     int substeps = kDefaultSubsteps;
+    int threads = 1;
     std::string csv;
     bool inProcess = false;
 };
@@ -393,7 +394,7 @@ void writeCsv(std::ofstream &out, const std::vector<Row> &rows) {
 // --- Command line ------------------------------------------------------------------------
 
 void printUsage(std::ostream &out) {
-    out << "usage: cyclone-bench [--scene NAME]... [--steps N] [--repeat R] [--substeps S]\n"
+    out << "usage: cyclone-bench [--scene NAME]... [--steps N] [--repeat R] [--substeps S] [--threads T]\n"
            "                     [--engine cyclone|bullet|both] [--csv FILE] [--in-process] [--list]\n"
            "  --scene NAME   run only this scene (repeatable, or comma-separated); default: all\n"
            "  --steps N      steps of 1/60 s per run, N >= 1; default 600 (10 s)\n"
@@ -402,7 +403,9 @@ void printUsage(std::ostream &out) {
            "  --substeps S   spread cyclone's velocity passes per frame over S sub-steps (S divides\n"
            "                 them; Bullet always takes one step); default "
         << kDefaultSubsteps << "\n"
-        << "  --engine E     cyclone, bullet or both; default: every engine built in\n"
+        << "  --threads T    threads of cyclone's step, 1 to 64 (WorldSettings::threads; Bullet\n"
+           "                 always uses one); default 1\n"
+           "  --engine E     cyclone, bullet or both; default: every engine built in\n"
            "  --csv FILE     also write the results as CSV to FILE\n"
            "  --in-process   run everything in this process (for profilers; peak RSS then\n"
            "                 includes earlier runs' heap)\n"
@@ -483,6 +486,16 @@ bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
                 return false;
             }
             options.substeps = static_cast<int>(substeps);
+        } else if (arg == "--threads") {
+            const char *v = value("--threads");
+            if (!v) return false;
+            char *end = nullptr;
+            const long threads = std::strtol(v, &end, 10);
+            if (*v == '\0' || *end != '\0' || threads < 1 || threads > 64) {
+                std::cerr << "cyclone-bench: --threads must be an integer in [1, 64], got \"" << v << "\"\n";
+                return false;
+            }
+            options.threads = static_cast<int>(threads);
         } else if (arg == "--engine") {
             const char *v = value("--engine");
             if (!v) return false;
@@ -557,7 +570,8 @@ int run(int argc, char **argv) {
                  "otherwise\n"
               << "- cyclone: WorldSettings defaults except sleep, " << options.substeps << " sub-step(s) x "
               << kVelocityPassesPerFrame / options.substeps << " velocity iterations, "
-              << WorldSettings().positionIterations << " position iterations per sub-step\n";
+              << WorldSettings().positionIterations << " position iterations per sub-step, " << options.threads
+              << " thread(s)\n";
 #ifdef CYCLONE_BENCH_HAVE_BULLET
     if (std::find(options.engines.begin(), options.engines.end(), "bullet") != options.engines.end())
         std::cout << bulletSettingsNote();
@@ -570,6 +584,7 @@ int run(int argc, char **argv) {
     for (const std::string &sceneName : options.scenes) {
         Scene scene = makeScene(sceneName);
         splitSubsteps(scene, options.substeps);
+        scene.world.threads = options.threads;
         const std::vector<RunResult> results = measure(scene, options.engines, options);
         for (std::size_t e = 0; e < results.size(); ++e) rows.push_back(Row{sceneName, options.engines[e], results[e]});
     }

@@ -34,8 +34,10 @@ inline __attribute__((always_inline)) real dot3(const Lanes &a, const Lanes &b) 
 
 // Compiles a function twice, for x86-64-v3 (AVX2, FMA) and for the baseline, and picks
 // one when the program loads (GCC function multi-versioning). Elsewhere: one version.
+// ThreadSanitizer instruments the picking function, which runs before it is set up, and
+// the program crashes while loading: no clones under it.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
-    !defined(CYCLONE_NO_SIMD_CLONES)
+    !defined(__SANITIZE_THREAD__) && !defined(CYCLONE_NO_SIMD_CLONES)
 #define CYCLONE_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
 #define CYCLONE_SIMD_CLONES
