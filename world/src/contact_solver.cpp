@@ -38,10 +38,18 @@ struct PairVelocities {
         : va(pseudo ? a.pv : a.v), wa(pseudo ? a.pw : a.w), vb(pseudo ? b.pv : b.v), wb(pseudo ? b.pw : b.w),
           invMassA(a.invMass), invMassB(b.invMass) {}
 
+    // Writes the moving bodies back. Never the immovable world (entry 0), which it would
+    // leave unchanged: two threads may hold it at once (solver_partition.h).
     template <Moving kMoving>
-    CYCLONE_INLINE void store(SolverBody &a, SolverBody &b, bool pseudo) const {
-        if (kMoving != kOnlyB) (pseudo ? a.pv : a.v) = va, (pseudo ? a.pw : a.w) = wa;
-        if (kMoving != kOnlyA) (pseudo ? b.pv : b.v) = vb, (pseudo ? b.pw : b.w) = wb;
+    CYCLONE_INLINE void store(std::vector<SolverBody> &bodies, const SolverManifold &m, bool pseudo) const {
+        if (kMoving != kOnlyB && m.a != 0) {
+            SolverBody &a = bodies[m.a];
+            (pseudo ? a.pv : a.v) = va, (pseudo ? a.pw : a.w) = wa;
+        }
+        if (kMoving != kOnlyA && m.b != 0) {
+            SolverBody &b = bodies[m.b];
+            (pseudo ? b.pv : b.v) = vb, (pseudo ? b.pw : b.w) = wb;
+        }
     }
 
     // Relative velocity of B with respect to A along direction d of a row.
@@ -141,15 +149,13 @@ CYCLONE_INLINE Moving supportedSide(const SolverManifold &m) { return m.support 
 
 // A support manifold: only its carried body moves.
 CYCLONE_INLINE void solveCarried(std::vector<SolverBody> &bodies, SolverManifold &m, bool reverse) {
-    SolverBody &a = bodies[m.a];
-    SolverBody &b = bodies[m.b];
-    PairVelocities vel(a, b, false);
+    PairVelocities vel(bodies[m.a], bodies[m.b], false);
     if (supportedSide(m) == kOnlyB) {
         solveManifold<kOnlyB>(vel, m, reverse);
-        vel.store<kOnlyB>(a, b, false);
+        vel.store<kOnlyB>(bodies, m, false);
     } else {
         solveManifold<kOnlyA>(vel, m, reverse);
-        vel.store<kOnlyA>(a, b, false);
+        vel.store<kOnlyA>(bodies, m, false);
     }
 }
 
@@ -159,8 +165,8 @@ CYCLONE_INLINE void solveCarriedPair(std::vector<SolverBody> &bodies, SolverMani
     PairVelocities vel0(bodies[m0.a], bodies[m0.b], false);
     PairVelocities vel1(bodies[m1.a], bodies[m1.b], false);
     solveManifoldPair<kMoving0, kMoving1>(vel0, m0, vel1, m1, reverse);
-    vel0.store<kMoving0>(bodies[m0.a], bodies[m0.b], false);
-    vel1.store<kMoving1>(bodies[m1.a], bodies[m1.b], false);
+    vel0.store<kMoving0>(bodies, m0, false);
+    vel1.store<kMoving1>(bodies, m1, false);
 }
 
 // Two support manifolds of different carried bodies, side by side.
@@ -187,8 +193,8 @@ struct CarriedRun {
 };
 
 template <Moving kMoving>
-CYCLONE_INLINE void solvePseudoManifold(SolverBody &a, SolverBody &b, SolverManifold &m) {
-    PairVelocities vel(a, b, true);
+CYCLONE_INLINE void solvePseudoManifold(std::vector<SolverBody> &bodies, SolverManifold &m) {
+    PairVelocities vel(bodies[m.a], bodies[m.b], true);
     const Lanes &n = m.direction[0];
     for (int i = 0; i < m.count; ++i) {
         SolverPoint &p = m.points[i];
@@ -199,7 +205,7 @@ CYCLONE_INLINE void solvePseudoManifold(SolverBody &a, SolverBody &b, SolverMani
         p.pseudoImpulse = updated;
         vel.apply<kMoving>(n, p.normal, updated - old);
     }
-    vel.store<kMoving>(a, b, true);
+    vel.store<kMoving>(bodies, m, true);
 }
 
 }  // namespace
@@ -235,16 +241,14 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
                const std::vector<int> &order) {
     for (int index : order) {
         const SolverManifold &m = manifolds[index];
-        SolverBody &a = bodies[m.a];
-        SolverBody &b = bodies[m.b];
-        PairVelocities vel(a, b, false);
+        PairVelocities vel(bodies[m.a], bodies[m.b], false);
         for (int i = 0; i < m.count; ++i) {
             const SolverPoint &p = m.points[i];
             vel.apply(m.direction[0], p.normal, p.normal.impulse);
             vel.apply(m.direction[1], p.tangent[0], p.tangent[0].impulse);
             vel.apply(m.direction[2], p.tangent[1], p.tangent[1].impulse);
         }
-        vel.store<kBoth>(a, b, false);
+        vel.store<kBoth>(bodies, m, false);
     }
 }
 
@@ -276,9 +280,9 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
             SolverManifold &m1 = manifolds[g.manifold[1]];
             PairVelocities vel1(bodies[m1.a], bodies[m1.b], false);
             solveManifoldPair(vel0, m0, vel1, m1, reverse);
-            vel1.store<kBoth>(bodies[m1.a], bodies[m1.b], false);
+            vel1.store<kBoth>(bodies, m1, false);
         }
-        vel0.store<kBoth>(bodies[m0.a], bodies[m0.b], false);
+        vel0.store<kBoth>(bodies, m0, false);
     }
 }
 
@@ -356,7 +360,7 @@ void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifol
         if (m.support != kNoSupport) continue;
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
         solveManifold<kBoth>(vel, m, reverse);
-        vel.store<kBoth>(bodies[m.a], bodies[m.b], false);
+        vel.store<kBoth>(bodies, m, false);
     }
 }
 
@@ -400,9 +404,7 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
                const SoftStepSettings &settings) {
     const real inverseH = 1 / h;
     for (SolverManifold &m : manifolds) {
-        SolverBody &a = bodies[m.a];
-        SolverBody &b = bodies[m.b];
-        PairVelocities vel(a, b, false);
+        PairVelocities vel(bodies[m.a], bodies[m.b], false);
         const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
         for (int i = 0; i < m.count; ++i) {
             SolverPoint &p = m.points[i];
@@ -426,16 +428,14 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
             vel.apply(m.direction[0], p.normal, updated - old);
         }
         if (m.friction > 0) solveFriction<kBoth>(vel, m);
-        vel.store<kBoth>(a, b, false);
+        vel.store<kBoth>(bodies, m, false);
     }
 }
 
 void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real threshold) {
     for (SolverManifold &m : manifolds) {
         if (m.restitution == 0) continue;
-        SolverBody &a = bodies[m.a];
-        SolverBody &b = bodies[m.b];
-        PairVelocities vel(a, b, false);
+        PairVelocities vel(bodies[m.a], bodies[m.b], false);
         for (int i = 0; i < m.count; ++i) {
             SolverPoint &p = m.points[i];
             if (p.approachSpeed > -threshold || p.maxNormalImpulse == 0) continue;
@@ -445,7 +445,7 @@ void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifol
             p.normal.impulse = updated;
             vel.apply(m.direction[0], p.normal, updated - old);
         }
-        vel.store<kBoth>(a, b, false);
+        vel.store<kBoth>(bodies, m, false);
     }
 }
 
@@ -459,17 +459,15 @@ void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverMa
     // against a moving carrier they are put back afterwards, as in solveSupport.
     for (int index : order) {
         SolverManifold &m = manifolds[index];
-        SolverBody &a = bodies[m.a];
-        SolverBody &b = bodies[m.b];
         if (!support || m.support == kNoSupport) {
-            solvePseudoManifold<kBoth>(a, b, m);
+            solvePseudoManifold<kBoth>(bodies, m);
             continue;
         }
         const bool carrierMoves = m.a != 0 && m.b != 0;
         SavedImpulses saved;
         if (carrierMoves) saved.save(m);
-        if (m.support == kASupportsB) solvePseudoManifold<kOnlyB>(a, b, m);
-        else solvePseudoManifold<kOnlyA>(a, b, m);
+        if (m.support == kASupportsB) solvePseudoManifold<kOnlyB>(bodies, m);
+        else solvePseudoManifold<kOnlyA>(bodies, m);
         if (carrierMoves) saved.restore(m);
     }
 }
