@@ -180,7 +180,8 @@ struct World::Impl {
     void runNarrowphase();
     void buildManifolds(real dt);
     void orderManifolds();
-    void addSolverManifold(const ManifoldKey &key);
+    /// Fills solverManifolds[slot] and solverSource[slot] from the manifold `key` names.
+    void addSolverManifold(const ManifoldKey &key, std::size_t slot);
     real contactHeight(const BodyRecord &a, const BodyRecord &b) const;
     void buildIslands();
     void prepareSolver(real h);

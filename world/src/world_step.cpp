@@ -297,23 +297,38 @@ void World::Impl::buildManifolds(real) {
         }
     }
     orderManifolds();
-    solverManifolds.clear();
-    solverSource.clear();
-    for (const ManifoldKey &key : manifoldKeys) addSolverManifold(key);
+    // Last step's manifolds are overwritten in place (see addSolverManifold); only new
+    // slots are value-initialised.
+    solverManifolds.resize(manifoldKeys.size());
+    solverSource.resize(manifoldKeys.size());
+    for (std::size_t s = 0; s < manifoldKeys.size(); ++s) addSolverManifold(manifoldKeys[s], s);
 }
 
-void World::Impl::addSolverManifold(const ManifoldKey &key) {
+// addSolverManifold writes every field of a solver manifold and of its points but the
+// Jacobians (SolverManifold::direction, SolverRow's lanes and masses), which prepareSolver
+// computes for every point. A field added to either struct must be reset there too.
+static_assert(sizeof(detail::SolverPoint) == 608 && sizeof(detail::SolverManifold) == 2688,
+              "a solver manifold or point field was added or removed: reset it in addSolverManifold");
+
+void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     const detail::PairState &pair = pairs[key.source >> 2];
     const detail::ManifoldState &m = pair.manifolds[key.source & 3];
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
     const real friction = std::sqrt(a.material.friction * b.material.friction);
-    detail::SolverManifold &sm = solverManifolds.emplace_back();
+    // The slot holds an earlier step's manifold, or a value-initialised one. Resetting
+    // all of its ~2.7 KB every step cost more than the rest of this stage, and
+    // prepareSolver overwrites the Jacobians, most of it, anyway.
+    detail::SolverManifold &sm = solverManifolds[slot];
     sm.a = a.simulated ? a.solverIndex : 0;
     sm.b = b.simulated ? b.solverIndex : 0;
     sm.normal = m.normal;
     detail::tangentBasis(sm.normal, sm.tangent[0], sm.tangent[1]);
     sm.friction = friction;
+    sm.restitution = 0;
+    sm.touchesStatic = false;
+    sm.height = key.height;
+    sm.support = detail::kNoSupport;
     sm.count = m.count;
     const bool warm = settings.warmStarting;
     for (int i = 0; i < m.count; ++i) {
@@ -321,14 +336,18 @@ void World::Impl::addSolverManifold(const ManifoldKey &key) {
         detail::SolverPoint &dst = sm.points[i];
         dst.localA = src.localA;
         dst.localB = src.localB;
-        dst.depth = src.depth;
         dst.normal.impulse = warm ? src.normalImpulse : 0;
         dst.tangent[0].impulse = warm ? src.frictionImpulse.dot(sm.tangent[0]) : 0;
         dst.tangent[1].impulse = warm ? src.frictionImpulse.dot(sm.tangent[1]) : 0;
+        dst.velocityBias = 0;
+        dst.depth = src.depth;
+        dst.pseudoImpulse = 0;
+        dst.pseudoTarget = 0;
+        dst.approachSpeed = 0;
+        dst.maxNormalImpulse = 0;
         stats.maxPenetration = std::max(stats.maxPenetration, src.depth);
     }
-    sm.height = key.height;
-    solverSource.push_back(key.source);
+    solverSource[slot] = key.source;
     ++stats.manifolds;
     stats.contacts += m.count;
     if (friction > 0) stats.frictionRows += 2 * m.count;
