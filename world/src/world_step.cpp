@@ -32,6 +32,19 @@ private:
 // longer reports the pair before the contact is dropped, m.
 constexpr real kContactKeepDistance = 0.002;
 
+// Whether a pair moved less than `tolerance` since its last test: shift + |angle| radius
+// < tolerance, with the angle Eigen's AngleAxis gives for `turn`, 2 atan2(|v|, |w|) of
+// its vector and scalar parts. As atan x <= x, that angle is at most 2 |v|_1 / |w| (the
+// factor 1 + 1e-9 covers rounding, a few ulps, by far), and rounding is monotonic: when
+// that bound passes, or the shift alone fails, the answer is known without the atan2 a
+// settled scene would otherwise pay for every pair every step.
+bool movedLess(real shift, const Eigen::Quaternion<real> &turn, real radius, real tolerance) {
+    if (!(shift < tolerance)) return false;
+    const real w = std::abs(turn.w());
+    if (w > 0 && shift + 2 * turn.vec().lpNorm<1>() / w * (1 + 1e-9) * radius < tolerance) return true;
+    return shift + std::abs(Eigen::AngleAxis<real>(turn).angle()) * radius < tolerance;
+}
+
 int findRoot(std::vector<int> &parent, int i) {
     while (parent[i] != i) {
         parent[i] = parent[parent[i]];
@@ -230,9 +243,9 @@ void World::Impl::runNarrowphase() {
         bool reuse = false;
         if (pair.tested && pair.touching() && settings.manifoldReuseTolerance > 0) {
             const real shift = (relative.translation() - pair.relativePose.translation()).norm();
-            const Eigen::AngleAxis<real> turn(relative.linear() * pair.relativePose.linear().transpose());
+            const Eigen::Quaternion<real> turn(relative.linear() * pair.relativePose.linear().transpose());
             const real radius = std::max(a.boundingRadius, b.boundingRadius);
-            reuse = shift + std::abs(turn.angle()) * radius < settings.manifoldReuseTolerance;
+            reuse = movedLess(shift, turn, radius, settings.manifoldReuseTolerance);
         }
         if (reuse) {
             for (detail::ManifoldState &m : pair.manifolds) detail::refreshFromAnchors(m, poseA, poseB);
