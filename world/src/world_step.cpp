@@ -317,9 +317,10 @@ void World::Impl::buildManifolds(real) {
     for (std::size_t s = 0; s < manifoldKeys.size(); ++s) addSolverManifold(manifoldKeys[s], s);
 }
 
-// addSolverManifold writes every field of a solver manifold and of its points but the
-// Jacobians (SolverManifold::direction, SolverRow's lanes and masses), which prepareSolver
-// computes for every point. A field added to either struct must be reset there too.
+// addSolverManifold writes every field of a solver manifold and of its first `count`
+// points but the Jacobians (SolverManifold::direction, SolverRow's lanes and masses),
+// which prepareSolver computes for every point; points past `count` keep whatever they
+// held, as nothing reads them. A field added to either struct must be reset there too.
 static_assert(sizeof(detail::SolverPoint) == 608 && sizeof(detail::SolverManifold) == 2688,
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
