@@ -182,7 +182,8 @@ struct World::Impl {
     void orderManifolds();
     /// Fills solverManifolds[slot] and solverSource[slot] from the manifold `key` names.
     void addSolverManifold(const ManifoldKey &key, std::size_t slot);
-    real contactHeight(const BodyRecord &a, const BodyRecord &b) const;
+    /// Solve-order height of a contact between a and b: the lower body's, m along `up`.
+    real contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) const;
     void buildIslands();
     void prepareSolver(real h);
     void solve(real h, bool firstSubstep);

@@ -297,12 +297,13 @@ void World::Impl::buildManifolds(real) {
     // built in that order: sorting the built manifolds (~2 KB each) meant copying all of
     // them every step.
     manifoldKeys.clear();
+    const Vector3 up = -settings.gravity;
     for (std::uint32_t p : touchingPairs) {
         const detail::PairState &pair = pairs[p];
         const BodyRecord &a = bodies[pair.a];
         const BodyRecord &b = bodies[pair.b];
         if (!a.simulated && !b.simulated) continue;
-        const real height = contactHeight(a, b);
+        const real height = contactHeight(a, b, up);
         for (std::size_t k = 0; k < pair.manifolds.size(); ++k) {
             if (pair.manifolds[k].count == 0) continue;
             const auto listed = static_cast<std::uint32_t>(manifoldKeys.size());
@@ -367,9 +368,8 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     if (friction > 0) stats.frictionRows += 2 * m.count;
 }
 
-real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b) const {
+real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) const {
     const real lowest = -std::numeric_limits<real>::infinity();
-    const Vector3 up = -settings.gravity;
     const real ha = a.isStatic ? lowest : a.body.getPosition().dot(up);
     const real hb = b.isStatic ? lowest : b.body.getPosition().dot(up);
     return std::min(ha, hb);
@@ -404,21 +404,27 @@ void World::Impl::buildIslands() {
         const BodyRecord &b = bodies[s.settings.b->index];
         if (a.simulated && b.simulated) unite(a.solverIndex - 1, b.solverIndex - 1);
     }
-    // Compact roots into island numbers, then lay the members out island by island.
-    islandStart.assign(n + 1, 0);
+    // Islands are numbered in the order of their first members. A parent never comes
+    // after its child (unite keeps the smaller root), so in one walk each entry's parent
+    // already holds its island, stored as ~island to tell it from a parent's index.
     int islands = 0;
     for (int k = 0; k < n; ++k) {
-        const int root = findRoot(islandParent, k);
-        if (root == k) bodies[simulatedBodies[k]].island = islands++;
-        else bodies[simulatedBodies[k]].island = bodies[simulatedBodies[root]].island;
+        const int up = islandParent[k];
+        islandParent[k] = up == k ? ~islands++ : islandParent[up];
     }
+    // Lay the members out island by island. islandStart is the cursor, which leaves each
+    // island's entry at the next island's start: shifted back at the end.
     islandStart.assign(islands + 1, 0);
-    for (int k = 0; k < n; ++k) ++islandStart[bodies[simulatedBodies[k]].island + 1];
+    for (int k = 0; k < n; ++k) {
+        const int island = ~islandParent[k];
+        bodies[simulatedBodies[k]].island = island;
+        ++islandStart[island + 1];
+    }
     for (int i = 0; i < islands; ++i) islandStart[i + 1] += islandStart[i];
     islandBodies.resize(n);
-    std::vector<int> &cursor = islandParent;  // reused as scratch
-    cursor.assign(islandStart.begin(), islandStart.end() - 1);
-    for (int k = 0; k < n; ++k) islandBodies[cursor[bodies[simulatedBodies[k]].island]++] = simulatedBodies[k];
+    for (int k = 0; k < n; ++k) islandBodies[islandStart[~islandParent[k]]++] = simulatedBodies[k];
+    for (int i = islands - 1; i > 0; --i) islandStart[i] = islandStart[i - 1];
+    islandStart[0] = 0;
     stats.islands = islands;
 }
 
