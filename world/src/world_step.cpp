@@ -331,9 +331,9 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
     const real friction = std::sqrt(a.material.friction * b.material.friction);
-    // The slot holds an earlier step's manifold, or a value-initialised one. Resetting
-    // all of its ~2.7 KB every step cost more than the rest of this stage, and
-    // prepareSolver overwrites the Jacobians, most of it, anyway.
+    // The slot holds an earlier step's manifold (or a value-initialised one). Resetting
+    // all ~2.7 KB of it every step cost more than the rest of this function, and most of
+    // it is the Jacobians, which prepareSolver writes anyway.
     detail::SolverManifold &sm = solverManifolds[slot];
     sm.a = a.simulated ? a.solverIndex : 0;
     sm.b = b.simulated ? b.solverIndex : 0;
