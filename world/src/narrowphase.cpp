@@ -144,9 +144,13 @@ int spreadOrder(int count, int most, const Vector3 &n, const PointB &pointB, con
         if (d > best) best = d, chosen[0] = i;
     }
     if (most == 1) return 1;
+    // The searches below skip the points already chosen: their distance or area is zero
+    // (up to a fused multiply-add's rounding, far below the tolerances), so they could
+    // never win. A reused manifold's order is worked out every step.
     const Vector3 p0 = pointB(chosen[0]);
     best = kPointTolerance * kPointTolerance;
     for (int i = 0; i < count; ++i) {
+        if (i == chosen[0]) continue;
         const real d = (pointB(i) - p0).squaredNorm();
         if (d > best) best = d, chosen[1] = i;
     }
@@ -155,6 +159,7 @@ int spreadOrder(int count, int most, const Vector3 &n, const PointB &pointB, con
     const Vector3 edge = pointB(chosen[1]) - p0;
     best = kPointTolerance * edge.norm();
     for (int i = 0; i < count; ++i) {
+        if (i == chosen[0] || i == chosen[1]) continue;
         const real area = std::abs(edge.cross(pointB(i) - p0).dot(n));
         if (area > best) best = area, chosen[2] = i;
     }
@@ -769,11 +774,17 @@ void contactOrder(const Vector3 *pointB, const real *depth, int count, const Vec
     int chosen[4];
     const int found = spreadOrder(
         count, count - 1, normal, [&](int i) -> const Vector3 & { return pointB[i]; }, [&](int i) { return depth[i]; }, chosen);
-    bool taken[Manifold::kMaxPoints] = {};
-    int k = 0;
-    for (; k < found; ++k) order[k] = chosen[k], taken[chosen[k]] = true;
-    for (int i = 0; i < count; ++i)
-        if (!taken[i]) order[k++] = i;
+    unsigned taken = 0;
+    for (int k = 0; k < found; ++k) taken |= 1u << chosen[k];
+    int next = 0;  // the first point not chosen and not yet listed
+    for (int k = 0; k < count; ++k) {
+        if (k < found) {
+            order[k] = chosen[k];
+            continue;
+        }
+        while (taken >> next & 1u) ++next;
+        order[k] = next++;
+    }
 }
 
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,

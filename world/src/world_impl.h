@@ -188,8 +188,10 @@ struct World::Impl {
     void runNarrowphase();
     void buildManifolds(real dt);
     void orderManifolds();
-    void addSolverManifold(const ManifoldKey &key);
-    real contactHeight(const BodyRecord &a, const BodyRecord &b) const;
+    /// Fills solverManifolds[slot] and solverSource[slot] from the manifold `key` names.
+    void addSolverManifold(const ManifoldKey &key, std::size_t slot);
+    /// Solve-order height of a contact between a and b: the lower body's, m along `up`.
+    real contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) const;
     void buildIslands();
     /// Runs task(i) for i in [0, count), on the pool's threads when there is one; the
     /// tasks must be independent.

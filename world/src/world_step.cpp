@@ -32,6 +32,19 @@ private:
 // longer reports the pair before the contact is dropped, m.
 constexpr real kContactKeepDistance = 0.002;
 
+// Whether a pair moved less than `tolerance` since its last test: shift + |angle| radius
+// < tolerance, with the angle Eigen's AngleAxis gives for `turn`, 2 atan2(|v|, |w|) of
+// its vector and scalar parts. As atan x <= x, that angle is at most 2 |v|_1 / |w| (the
+// factor 1 + 1e-9 covers rounding, a few ulps, by far), and rounding is monotonic: when
+// that bound passes, or the shift alone fails, the answer is known without the atan2 a
+// settled scene would otherwise pay for every pair every step.
+bool movedLess(real shift, const Eigen::Quaternion<real> &turn, real radius, real tolerance) {
+    if (!(shift < tolerance)) return false;
+    const real w = std::abs(turn.w());
+    if (w > 0 && shift + 2 * turn.vec().lpNorm<1>() / w * (1 + 1e-9) * radius < tolerance) return true;
+    return shift + std::abs(Eigen::AngleAxis<real>(turn).angle()) * radius < tolerance;
+}
+
 int findRoot(std::vector<int> &parent, int i) {
     while (parent[i] != i) {
         parent[i] = parent[parent[i]];
@@ -231,9 +244,9 @@ void World::Impl::runNarrowphase() {
         bool reuse = false;
         if (pair.tested && pair.touching() && settings.manifoldReuseTolerance > 0) {
             const real shift = (relative.translation() - pair.relativePose.translation()).norm();
-            const Eigen::AngleAxis<real> turn(relative.linear() * pair.relativePose.linear().transpose());
+            const Eigen::Quaternion<real> turn(relative.linear() * pair.relativePose.linear().transpose());
             const real radius = std::max(a.boundingRadius, b.boundingRadius);
-            reuse = shift + std::abs(turn.angle()) * radius < settings.manifoldReuseTolerance;
+            reuse = movedLess(shift, turn, radius, settings.manifoldReuseTolerance);
         }
         if (reuse) {
             for (detail::ManifoldState &m : pair.manifolds) detail::refreshFromAnchors(m, poseA, poseB);
@@ -285,12 +298,13 @@ void World::Impl::buildManifolds(real) {
     // built in that order: sorting the built manifolds (~2 KB each) meant copying all of
     // them every step.
     manifoldKeys.clear();
+    const Vector3 up = -settings.gravity;
     for (std::uint32_t p : touchingPairs) {
         const detail::PairState &pair = pairs[p];
         const BodyRecord &a = bodies[pair.a];
         const BodyRecord &b = bodies[pair.b];
         if (!a.simulated && !b.simulated) continue;
-        const real height = contactHeight(a, b);
+        const real height = contactHeight(a, b, up);
         for (std::size_t k = 0; k < pair.manifolds.size(); ++k) {
             if (pair.manifolds[k].count == 0) continue;
             const auto listed = static_cast<std::uint32_t>(manifoldKeys.size());
@@ -298,23 +312,39 @@ void World::Impl::buildManifolds(real) {
         }
     }
     orderManifolds();
-    solverManifolds.clear();
-    solverSource.clear();
-    for (const ManifoldKey &key : manifoldKeys) addSolverManifold(key);
+    // Last step's manifolds are overwritten in place (see addSolverManifold); only new
+    // slots are value-initialised.
+    solverManifolds.resize(manifoldKeys.size());
+    solverSource.resize(manifoldKeys.size());
+    for (std::size_t s = 0; s < manifoldKeys.size(); ++s) addSolverManifold(manifoldKeys[s], s);
 }
 
-void World::Impl::addSolverManifold(const ManifoldKey &key) {
+// addSolverManifold writes every field of a solver manifold and of its first `count`
+// points but the Jacobians (SolverManifold::direction, SolverRow's lanes and masses),
+// which prepareSolver computes for every point; points past `count` keep whatever they
+// held, as nothing reads them. A field added to either struct must be reset there too.
+static_assert(sizeof(detail::SolverPoint) == 608 && sizeof(detail::SolverManifold) == 2688,
+              "a solver manifold or point field was added or removed: reset it in addSolverManifold");
+
+void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     const detail::PairState &pair = pairs[key.source >> 2];
     const detail::ManifoldState &m = pair.manifolds[key.source & 3];
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
     const real friction = std::sqrt(a.material.friction * b.material.friction);
-    detail::SolverManifold &sm = solverManifolds.emplace_back();
+    // The slot holds an earlier step's manifold (or a value-initialised one). Resetting
+    // all ~2.7 KB of it every step cost more than the rest of this function, and most of
+    // it is the Jacobians, which prepareSolver writes anyway.
+    detail::SolverManifold &sm = solverManifolds[slot];
     sm.a = a.simulated ? a.solverIndex : 0;
     sm.b = b.simulated ? b.solverIndex : 0;
     sm.normal = m.normal;
     detail::tangentBasis(sm.normal, sm.tangent[0], sm.tangent[1]);
     sm.friction = friction;
+    sm.restitution = 0;
+    sm.touchesStatic = false;
+    sm.height = key.height;
+    sm.support = detail::kNoSupport;
     sm.count = m.count;
     const bool warm = settings.warmStarting;
     for (int i = 0; i < m.count; ++i) {
@@ -322,22 +352,25 @@ void World::Impl::addSolverManifold(const ManifoldKey &key) {
         detail::SolverPoint &dst = sm.points[i];
         dst.localA = src.localA;
         dst.localB = src.localB;
-        dst.depth = src.depth;
         dst.normal.impulse = warm ? src.normalImpulse : 0;
         dst.tangent[0].impulse = warm ? src.frictionImpulse.dot(sm.tangent[0]) : 0;
         dst.tangent[1].impulse = warm ? src.frictionImpulse.dot(sm.tangent[1]) : 0;
+        dst.velocityBias = 0;
+        dst.depth = src.depth;
+        dst.pseudoImpulse = 0;
+        dst.pseudoTarget = 0;
+        dst.approachSpeed = 0;
+        dst.maxNormalImpulse = 0;
         stats.maxPenetration = std::max(stats.maxPenetration, src.depth);
     }
-    sm.height = key.height;
-    solverSource.push_back(key.source);
+    solverSource[slot] = key.source;
     ++stats.manifolds;
     stats.contacts += m.count;
     if (friction > 0) stats.frictionRows += 2 * m.count;
 }
 
-real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b) const {
+real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) const {
     const real lowest = -std::numeric_limits<real>::infinity();
-    const Vector3 up = -settings.gravity;
     const real ha = a.isStatic ? lowest : a.body.getPosition().dot(up);
     const real hb = b.isStatic ? lowest : b.body.getPosition().dot(up);
     return std::min(ha, hb);
@@ -372,21 +405,27 @@ void World::Impl::buildIslands() {
         const BodyRecord &b = bodies[s.settings.b->index];
         if (a.simulated && b.simulated) unite(a.solverIndex - 1, b.solverIndex - 1);
     }
-    // Compact roots into island numbers, then lay the members out island by island.
-    islandStart.assign(n + 1, 0);
+    // Islands are numbered in the order of their first members. A parent never comes
+    // after its child (unite keeps the smaller root), so in one walk each entry's parent
+    // already holds its island, stored as ~island to tell it from a parent's index.
     int islands = 0;
     for (int k = 0; k < n; ++k) {
-        const int root = findRoot(islandParent, k);
-        if (root == k) bodies[simulatedBodies[k]].island = islands++;
-        else bodies[simulatedBodies[k]].island = bodies[simulatedBodies[root]].island;
+        const int up = islandParent[k];
+        islandParent[k] = up == k ? ~islands++ : islandParent[up];
     }
+    // Lay the members out island by island. islandStart is the cursor, which leaves each
+    // island's entry at the next island's start: shifted back at the end.
     islandStart.assign(islands + 1, 0);
-    for (int k = 0; k < n; ++k) ++islandStart[bodies[simulatedBodies[k]].island + 1];
+    for (int k = 0; k < n; ++k) {
+        const int island = ~islandParent[k];
+        bodies[simulatedBodies[k]].island = island;
+        ++islandStart[island + 1];
+    }
     for (int i = 0; i < islands; ++i) islandStart[i + 1] += islandStart[i];
     islandBodies.resize(n);
-    std::vector<int> &cursor = islandParent;  // reused as scratch
-    cursor.assign(islandStart.begin(), islandStart.end() - 1);
-    for (int k = 0; k < n; ++k) islandBodies[cursor[bodies[simulatedBodies[k]].island]++] = simulatedBodies[k];
+    for (int k = 0; k < n; ++k) islandBodies[islandStart[~islandParent[k]]++] = simulatedBodies[k];
+    for (int i = islands - 1; i > 0; --i) islandStart[i] = islandStart[i - 1];
+    islandStart[0] = 0;
     stats.islands = islands;
 }
 
