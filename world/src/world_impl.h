@@ -118,6 +118,8 @@ struct World::Impl {
     std::vector<std::uint32_t> candidateSlots;
     static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::vector<detail::Manifold> fresh;
+    std::vector<std::uint32_t> stepPairs;  ///< Pair slots the broadphase reported this step.
+    std::vector<char> pairReused;          ///< Per entry of stepPairs.
     std::vector<std::uint32_t> touchingPairs;
     std::vector<detail::SolverBody> solverBodies;
     std::vector<detail::SolverManifold> solverManifolds;
@@ -186,6 +188,11 @@ struct World::Impl {
     void addImplicitSpringForces(real h);
     void updateBroadphase();
     void runNarrowphase();
+    /// Refreshes pair p's manifolds from their anchors when its bodies hardly moved
+    /// relative to each other since it was last tested; false: it must be tested.
+    bool reuseManifolds(std::uint32_t p);
+    /// Runs FCL on pair p and merges what it finds into the pair's manifolds.
+    void testPair(std::uint32_t p);
     void buildManifolds(real dt);
     void orderManifolds();
     /// Fills solverManifolds[slot] and solverSource[slot] from the manifold `key` names.

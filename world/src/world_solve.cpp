@@ -315,18 +315,18 @@ void World::Impl::restitution() {
 }
 
 void World::Impl::storeImpulses() {
-    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+    forEachManifold([&](std::size_t s) {
         const detail::SolverManifold &m = solverManifolds[s];
         detail::PairState &pair = pairs[solverSource[s] >> 2];
         const std::size_t k = solverSource[s] & 3;
-        if (!pair.alive || k >= pair.manifolds.size()) continue;  // a body was quarantined
+        if (!pair.alive || k >= pair.manifolds.size()) return;  // a body was quarantined
         detail::ManifoldState &state = pair.manifolds[k];
         for (int i = 0; i < m.count; ++i) {
             const detail::SolverPoint &p = m.points[i];
             state.points[i].normalImpulse = p.normal.impulse;
             state.points[i].frictionImpulse = p.tangent[0].impulse * m.tangent[0] + p.tangent[1].impulse * m.tangent[1];
         }
-    }
+    });
 }
 
 }  // namespace cyclone

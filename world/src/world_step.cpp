@@ -215,8 +215,8 @@ void World::Impl::updateBroadphase() {
 // --- narrowphase --------------------------------------------------------------------------
 
 void World::Impl::runNarrowphase() {
-    const detail::NarrowphaseSettings np{settings.speculativeDistance};
-    touchingPairs.clear();
+    // The step's pairs, each once, in the broadphase's order.
+    stepPairs.clear();
     // The broadphase lists a settled scene's pairs in the same order step after step:
     // the slot each candidate had last step is checked first, saving most table look-ups.
     candidateSlots.resize(candidates.size(), kNoSlot);
@@ -233,49 +233,26 @@ void World::Impl::runNarrowphase() {
         if (pair.lastSeen == stepCount) continue;  // reported twice
         pair.lastSeen = stepCount;
         eventSlots.push_back(p);
-        BodyRecord &a = bodies[pair.a];
-        BodyRecord &b = bodies[pair.b];
-        const Matrix4 poseA = a.body.getTransform();
-        const Matrix4 poseB = b.body.getTransform();
-        const Matrix4 relative = poseA.inverse() * poseB;
+        stepPairs.push_back(p);
+    }
 
-        // Only a touching pair is reused: one with no manifold may come into contact
-        // within the tolerance, and FCL does not see contacts that are apart by a hair.
-        bool reuse = false;
-        if (pair.tested && pair.touching() && settings.manifoldReuseTolerance > 0) {
-            const real shift = (relative.translation() - pair.relativePose.translation()).norm();
-            const Eigen::Quaternion<real> turn(relative.linear() * pair.relativePose.linear().transpose());
-            const real radius = std::max(a.boundingRadius, b.boundingRadius);
-            reuse = movedLess(shift, turn, radius, settings.manifoldReuseTolerance);
-        }
-        if (reuse) {
-            for (detail::ManifoldState &m : pair.manifolds) detail::refreshFromAnchors(m, poseA, poseB);
-            ++stats.pairsReused;
-        } else {
-            fresh.clear();
-            const int n = detail::collide(*a.shape, poseA, *b.shape, poseB, np, fresh);
-            ++stats.pairsTested;
-            pair.tested = true;
-            pair.relativePose = relative;
-            const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
-                                       b.isPlane ? a.boundingRadius : b.boundingRadius);
-            const real matchDistance = std::clamp(0.1 * size, real(0.001), real(0.05));
-            if (n == 0 && !pair.manifolds.empty()) {
-                // FCL sees only overlap: a resting contact that opens by a hair would be
-                // lost with its warm-start impulses and found again a step later. Keep
-                // its points as speculative contacts while they stay close.
-                detail::keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance);
-            } else {
-                // At most four manifolds per pair (a mesh may report more normals).
-                const int kept = std::min(n, 4);
-                pair.manifolds.resize(kept);
-                for (int k = 0; k < kept; ++k)
-                    detail::mergeManifold(pair.manifolds[k], fresh[k], poseA, poseB, matchDistance);
-            }
-        }
+    // Pairs that hardly moved keep their manifolds, each on its own (in chunks at once);
+    // the others go through FCL, one after another.
+    pairReused.assign(stepPairs.size(), 0);
+    forEachInChunks(stepPairs.size(), [&](std::size_t k) { pairReused[k] = reuseManifolds(stepPairs[k]); });
+    for (std::size_t k = 0; k < stepPairs.size(); ++k) {
+        if (pairReused[k]) ++stats.pairsReused;
+        else testPair(stepPairs[k]);
+    }
+
+    touchingPairs.clear();
+    for (std::uint32_t p : stepPairs) {
+        const detail::PairState &pair = pairs[p];
         if (!pair.touching()) continue;
         touchingPairs.push_back(p);
         // A new contact with an awake body wakes a sleeping one (from the next step on).
+        const BodyRecord &a = bodies[pair.a];
+        const BodyRecord &b = bodies[pair.b];
         if (a.simulated && !b.isStatic && !b.simulated) wake(pair.b);
         if (b.simulated && !a.isStatic && !a.simulated) wake(pair.a);
     }
@@ -289,6 +266,51 @@ void World::Impl::runNarrowphase() {
             if (pairs[p].lastSeen != stepCount) removePair(p);
         }
     }
+}
+
+// Only a touching pair is reused: one with no manifold may come into contact within the
+// tolerance, and FCL does not see contacts that are apart by a hair.
+bool World::Impl::reuseManifolds(std::uint32_t p) {
+    detail::PairState &pair = pairs[p];
+    if (!pair.tested || !pair.touching() || settings.manifoldReuseTolerance <= 0) return false;
+    const BodyRecord &a = bodies[pair.a];
+    const BodyRecord &b = bodies[pair.b];
+    const Matrix4 poseA = a.body.getTransform();
+    const Matrix4 poseB = b.body.getTransform();
+    const Matrix4 relative = poseA.inverse() * poseB;
+    const real shift = (relative.translation() - pair.relativePose.translation()).norm();
+    const Eigen::Quaternion<real> turn(relative.linear() * pair.relativePose.linear().transpose());
+    const real radius = std::max(a.boundingRadius, b.boundingRadius);
+    if (!movedLess(shift, turn, radius, settings.manifoldReuseTolerance)) return false;
+    for (detail::ManifoldState &m : pair.manifolds) detail::refreshFromAnchors(m, poseA, poseB);
+    return true;
+}
+
+void World::Impl::testPair(std::uint32_t p) {
+    detail::PairState &pair = pairs[p];
+    const BodyRecord &a = bodies[pair.a];
+    const BodyRecord &b = bodies[pair.b];
+    const Matrix4 poseA = a.body.getTransform();
+    const Matrix4 poseB = b.body.getTransform();
+    fresh.clear();
+    const int n = detail::collide(*a.shape, poseA, *b.shape, poseB, {settings.speculativeDistance}, fresh);
+    ++stats.pairsTested;
+    pair.tested = true;
+    pair.relativePose = poseA.inverse() * poseB;
+    const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
+                               b.isPlane ? a.boundingRadius : b.boundingRadius);
+    const real matchDistance = std::clamp(0.1 * size, real(0.001), real(0.05));
+    if (n == 0 && !pair.manifolds.empty()) {
+        // FCL sees only overlap: a resting contact that opens by a hair would be lost
+        // with its warm-start impulses and found again a step later. Keep its points as
+        // speculative contacts while they stay close.
+        detail::keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance);
+        return;
+    }
+    // At most four manifolds per pair (a mesh may report more normals).
+    const int kept = std::min(n, 4);
+    pair.manifolds.resize(kept);
+    for (int k = 0; k < kept; ++k) detail::mergeManifold(pair.manifolds[k], fresh[k], poseA, poseB, matchDistance);
 }
 
 // --- manifolds ----------------------------------------------------------------------------
@@ -316,7 +338,13 @@ void World::Impl::buildManifolds(real) {
     // slots are value-initialised.
     solverManifolds.resize(manifoldKeys.size());
     solverSource.resize(manifoldKeys.size());
-    for (std::size_t s = 0; s < manifoldKeys.size(); ++s) addSolverManifold(manifoldKeys[s], s);
+    forEachInChunks(manifoldKeys.size(), [&](std::size_t s) { addSolverManifold(manifoldKeys[s], s); });
+    for (const detail::SolverManifold &m : solverManifolds) {
+        ++stats.manifolds;
+        stats.contacts += m.count;
+        if (m.friction > 0) stats.frictionRows += 2 * m.count;
+        for (int i = 0; i < m.count; ++i) stats.maxPenetration = std::max(stats.maxPenetration, m.points[i].depth);
+    }
 }
 
 // addSolverManifold writes every field of a solver manifold and of its first `count`
@@ -361,12 +389,8 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
         dst.pseudoTarget = 0;
         dst.approachSpeed = 0;
         dst.maxNormalImpulse = 0;
-        stats.maxPenetration = std::max(stats.maxPenetration, src.depth);
     }
     solverSource[slot] = key.source;
-    ++stats.manifolds;
-    stats.contacts += m.count;
-    if (friction > 0) stats.frictionRows += 2 * m.count;
 }
 
 real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) const {
