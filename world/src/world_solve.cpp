@@ -61,6 +61,7 @@ void World::Impl::prepareSolver(real h) {
         soft.slop = settings.penetrationSlop;
         soft.maxPushVelocity = settings.maxPushVelocity;
     }
+    if (solverManifolds.empty()) return;  // nothing below is read without contacts
     solverPositions.resize(n + 1);
     for (std::size_t k = 0; k < n; ++k) solverPositions[k + 1] = bodies[simulatedBodies[k]].body.getPosition();
     detail::partitionManifolds(solverManifolds, solverPositions, partitionScratch, partition);
@@ -192,15 +193,17 @@ void World::Impl::solve(real h, bool firstSubstep) {
         }
     });
 
-    if (settings.warmStarting) warmStart();
-    for (int it = 0; it < settings.velocityIterations; ++it) {
-        if (split) solveCoupledPass((it & 1) != 0);
-        else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
+    if (!solverManifolds.empty()) {
+        if (settings.warmStarting) warmStart();
+        for (int it = 0; it < settings.velocityIterations; ++it) {
+            if (split) solveCoupledPass((it & 1) != 0);
+            else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
+        }
+        stats.velocityIterations += settings.velocityIterations;
+        // The support pass comes after the coupled passes, never instead of one: alone,
+        // it would let no body push the bodies carrying it.
+        if (split && settings.shockPropagation) solveSupportPass((settings.velocityIterations & 1) != 0);
     }
-    stats.velocityIterations += settings.velocityIterations;
-    // The support pass comes after the coupled passes, never instead of one: alone, it
-    // would let no body push the bodies carrying it.
-    if (split && settings.shockPropagation) solveSupportPass((settings.velocityIterations & 1) != 0);
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.
