@@ -434,6 +434,20 @@ bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
             }
             return argv[++i];
         };
+        // An integer option in [low, high].
+        auto intValue = [&](const char *name, long low, long high, int &out) {
+            const char *v = value(name);
+            if (!v) return false;
+            char *end = nullptr;
+            const long parsed = std::strtol(v, &end, 10);
+            if (*v == '\0' || *end != '\0' || parsed < low || parsed > high) {
+                std::cerr << "cyclone-bench: " << name << " must be an integer in [" << low << ", " << high
+                          << "], got \"" << v << "\"\n";
+                return false;
+            }
+            out = static_cast<int>(parsed);
+            return true;
+        };
         if (arg == "--help" || arg == "-h") {
             printUsage(std::cout);
             std::exit(0);
@@ -456,25 +470,9 @@ bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
                 }
             }
         } else if (arg == "--steps") {
-            const char *v = value("--steps");
-            if (!v) return false;
-            char *end = nullptr;
-            const long steps = std::strtol(v, &end, 10);
-            if (*v == '\0' || *end != '\0' || steps < 1 || steps > 10000000) {
-                std::cerr << "cyclone-bench: --steps must be an integer in [1, 10000000], got \"" << v << "\"\n";
-                return false;
-            }
-            options.steps = static_cast<int>(steps);
+            if (!intValue("--steps", 1, 10000000, options.steps)) return false;
         } else if (arg == "--repeat") {
-            const char *v = value("--repeat");
-            if (!v) return false;
-            char *end = nullptr;
-            const long repeats = std::strtol(v, &end, 10);
-            if (*v == '\0' || *end != '\0' || repeats < 1 || repeats > 100) {
-                std::cerr << "cyclone-bench: --repeat must be an integer in [1, 100], got \"" << v << "\"\n";
-                return false;
-            }
-            options.repeats = static_cast<int>(repeats);
+            if (!intValue("--repeat", 1, 100, options.repeats)) return false;
         } else if (arg == "--substeps") {
             const char *v = value("--substeps");
             if (!v) return false;
@@ -487,15 +485,7 @@ bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
             }
             options.substeps = static_cast<int>(substeps);
         } else if (arg == "--threads") {
-            const char *v = value("--threads");
-            if (!v) return false;
-            char *end = nullptr;
-            const long threads = std::strtol(v, &end, 10);
-            if (*v == '\0' || *end != '\0' || threads < 1 || threads > 64) {
-                std::cerr << "cyclone-bench: --threads must be an integer in [1, 64], got \"" << v << "\"\n";
-                return false;
-            }
-            options.threads = static_cast<int>(threads);
+            if (!intValue("--threads", 1, 64, options.threads)) return false;
         } else if (arg == "--engine") {
             const char *v = value("--engine");
             if (!v) return false;
