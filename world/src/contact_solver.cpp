@@ -148,7 +148,7 @@ CYCLONE_INLINE void solveManifoldPair(PairVelocities &vel0, SolverManifold &m0, 
 CYCLONE_INLINE Moving supportedSide(const SolverManifold &m) { return m.support == kASupportsB ? kOnlyB : kOnlyA; }
 
 // A support manifold: only its carried body moves.
-CYCLONE_INLINE void solveCarried(std::vector<SolverBody> &bodies, SolverManifold &m, bool reverse) {
+CYCLONE_INLINE void solveCarriedManifold(std::vector<SolverBody> &bodies, SolverManifold &m, bool reverse) {
     PairVelocities vel(bodies[m.a], bodies[m.b], false);
     if (supportedSide(m) == kOnlyB) {
         solveManifold<kOnlyB>(vel, m, reverse);
@@ -342,9 +342,9 @@ CYCLONE_INLINE void sweepRuns(std::vector<SolverBody> &bodies, std::vector<Solve
                 solveCarriedPair(bodies, manifolds[runs.manifolds[run0.first + k]],
                                  manifolds[runs.manifolds[run1.first + k]], backwards);
             } else if (k < n0) {
-                solveCarried(bodies, manifolds[runs.manifolds[run0.first + k]], backwards);
+                solveCarriedManifold(bodies, manifolds[runs.manifolds[run0.first + k]], backwards);
             } else {
-                solveCarried(bodies, manifolds[runs.manifolds[run1.first + k]], backwards);
+                solveCarriedManifold(bodies, manifolds[runs.manifolds[run1.first + k]], backwards);
             }
         }
         finishSweep(run0);
