@@ -376,18 +376,20 @@ void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifol
 // Bodies on one level move only themselves against carriers below them: two of them are
 // swept side by side, the same numbers as one after the other.
 CYCLONE_SIMD_CLONES
+void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
+                      int run0, int run1, bool reverse) {
+    CarriedRun sweep0 = beginRun(bodies, manifolds, runs, run0);
+    CarriedRun sweep1;
+    if (run1 >= 0) sweep1 = beginRun(bodies, manifolds, runs, run1);
+    sweepRuns(bodies, manifolds, runs, sweep0, sweep1, reverse);
+    endRun(manifolds, runs, sweep0);
+    if (run1 >= 0) endRun(manifolds, runs, sweep1);
+}
+
 void solveCarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
                   int firstRun, int lastRun, bool reverse) {
-    for (int r = firstRun; r < lastRun;) {
-        CarriedRun run0 = beginRun(bodies, manifolds, runs, r);
-        CarriedRun run1;
-        const bool paired = r + 1 < lastRun;
-        if (paired) run1 = beginRun(bodies, manifolds, runs, r + 1);
-        sweepRuns(bodies, manifolds, runs, run0, run1, reverse);
-        endRun(manifolds, runs, run0);
-        if (paired) endRun(manifolds, runs, run1);
-        r += paired ? 2 : 1;
-    }
+    for (int r = firstRun; r < lastRun; r += 2)
+        solveCarriedRuns(bodies, manifolds, runs, r, r + 1 < lastRun ? r + 1 : -1, reverse);
 }
 
 Softness makeSoftness(real hertz, real zeta, real h) {

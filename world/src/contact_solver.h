@@ -195,6 +195,10 @@ void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifol
 /// Runs [firstRun, lastRun) of the support pass (see solveUnsupported).
 void solveCarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
                   int firstRun, int lastRun, bool reverse);
+/// Runs run0 and run1 (-1: none) of one level side by side: the same numbers as one
+/// after the other.
+void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
+                      int run0, int run1, bool reverse);
 /// One pass of penetration recovery on the pseudo-velocities of the manifolds listed in
 /// `order` (`support` as above).
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,

@@ -26,6 +26,7 @@
 #include "narrowphase.h"
 #include "pair_cache.h"
 #include "support.h"
+#include "support_lanes.h"
 
 namespace cyclone {
 
@@ -157,6 +158,7 @@ struct World::Impl {
 
     detail::SupportScratch supportScratch;
     detail::SupportRuns supportRuns;
+    detail::SupportLanes supportLanes;
     detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
     StepStats stats;

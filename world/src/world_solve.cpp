@@ -15,10 +15,6 @@
 namespace cyclone {
 namespace {
 
-// Carried bodies per task of the support pass at the least: a task must outweigh handing
-// it to another thread (a microsecond or so).
-constexpr int kRunChunk = 8;
-
 // Finite, and within the coordinates FCL can place: otherwise the body is isolated.
 bool stateFinite(const RigidBody &body) {
     return body.getPosition().allFinite() && body.getPosition().cwiseAbs().maxCoeff() <= detail::kMaxCoordinate && body.getOrientation().coeffs().allFinite() &&
@@ -66,9 +62,13 @@ void World::Impl::prepareSolver(real h) {
     for (std::size_t k = 0; k < n; ++k) solverPositions[k + 1] = bodies[simulatedBodies[k]].body.getPosition();
     detail::partitionManifolds(solverManifolds, solverPositions, partitionScratch, partition);
     const bool support = settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse;
-    if (support)
+    if (support) {
         detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch,
                               supportRuns);
+        const bool shared = pool && partition.split;
+        detail::buildSupportLanes(supportRuns, solverManifolds, shared ? &partitionScratch.side : nullptr,
+                                  static_cast<int>(solverBodies.size()), supportLanes);
+    }
     // Jacobians and effective masses are set once per step, at the step's poses.
     forEachManifold([&](std::size_t s) {
         prepareManifold(s);
@@ -117,19 +117,13 @@ void World::Impl::solveCoupledPass(bool reverse) {
     detail::solveVelocities(solverBodies, solverManifolds, partition.groups[detail::SolverPartition::kSeam], reverse);
 }
 
-// Level by level: a level's carried bodies at once, in chunks.
+// The partition's halves at once, each run once its carriers are done (support_lanes.h).
 void World::Impl::solveSupportPass(bool reverse) {
     detail::solveUnsupported(solverBodies, solverManifolds, reverse);
-    const std::vector<int> &levels = supportRuns.levelStart;
-    for (std::size_t l = 0; l + 1 < levels.size(); ++l) {
-        const int first = levels[l];
-        const int count = levels[l + 1] - first;
-        const int chunks = pool ? std::min(pool->threads(), (count + kRunChunk - 1) / kRunChunk) : 1;
-        forEachTask(chunks, [&](int chunk) {
-            detail::solveCarried(solverBodies, solverManifolds, supportRuns, first + count * chunk / chunks,
-                                 first + count * (chunk + 1) / chunks, reverse);
-        });
-    }
+    detail::beginSupportPass(supportLanes);
+    forEachTask(supportLanes.lane[1].empty() ? 1 : 2, [&](int lane) {
+        detail::solveSupportLane(solverBodies, solverManifolds, supportRuns, supportLanes, lane, reverse);
+    });
 }
 
 void World::Impl::solve(real h, bool firstSubstep) {

@@ -1,0 +1,77 @@
+#include "support_lanes.h"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace cyclone::detail {
+namespace {
+
+int carriedBody(const SolverManifold &m) { return m.support == kASupportsB ? m.b : m.a; }
+int carrierBody(const SolverManifold &m) { return m.support == kASupportsB ? m.a : m.b; }
+
+inline void relax() {
+#if defined(__x86_64__) || defined(__i386__)
+    _mm_pause();
+#endif
+}
+
+// Waits until every carrier of run r that has a run of its own has finished it.
+void awaitCarriers(const std::vector<SolverManifold> &manifolds, const SupportRuns &runs, const SupportLanes &lanes,
+                   int r) {
+    for (int k = runs.start[r]; k < runs.start[r + 1]; ++k) {
+        const int carrier = carrierBody(manifolds[runs.manifolds[k]]);
+        const int carrierRun = lanes.runOf[carrier];
+        if (carrierRun < 0) continue;
+        while (lanes.finished[carrierRun].load(std::memory_order_acquire) != lanes.pass) relax();
+    }
+}
+
+}  // namespace
+
+void buildSupportLanes(const SupportRuns &runs, const std::vector<SolverManifold> &manifolds,
+                       const std::vector<signed char> *side, int bodyCount, SupportLanes &lanes) {
+    const int runCount = static_cast<int>(runs.start.size()) - 1;
+    lanes.runOf.assign(bodyCount, -1);
+    lanes.runLevel.resize(runCount);
+    for (int l = 0; l + 1 < static_cast<int>(runs.levelStart.size()); ++l)
+        for (int r = runs.levelStart[l]; r < runs.levelStart[l + 1]; ++r) lanes.runLevel[r] = l;
+    lanes.lane[0].clear();
+    lanes.lane[1].clear();
+    for (int r = 0; r < runCount; ++r) {
+        const int body = carriedBody(manifolds[runs.manifolds[runs.start[r]]]);
+        lanes.runOf[body] = r;
+        lanes.lane[side ? (*side)[body] : 0].push_back(r);
+    }
+    if (static_cast<std::size_t>(runCount) > lanes.capacity) {
+        lanes.capacity = static_cast<std::size_t>(runCount) * 2;
+        lanes.finished = std::make_unique<std::atomic<std::uint32_t>[]>(lanes.capacity);
+        lanes.pass = 0;
+    }
+}
+
+void beginSupportPass(SupportLanes &lanes) {
+    if (++lanes.pass == 0) {  // wrapped: no flag may look finished in this pass
+        for (std::size_t r = 0; r < lanes.capacity; ++r) lanes.finished[r].store(0, std::memory_order_relaxed);
+        lanes.pass = 1;
+    }
+}
+
+void solveSupportLane(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
+                      SupportLanes &lanes, int lane, bool reverse) {
+    const std::vector<int> &list = lanes.lane[lane];
+    for (std::size_t k = 0; k < list.size();) {
+        const int r0 = list[k];
+        // Two runs of one level never carry each other: they are swept side by side.
+        const bool paired = k + 1 < list.size() && lanes.runLevel[list[k + 1]] == lanes.runLevel[r0];
+        const int r1 = paired ? list[k + 1] : -1;
+        awaitCarriers(manifolds, runs, lanes, r0);
+        if (paired) awaitCarriers(manifolds, runs, lanes, r1);
+        solveCarriedRuns(bodies, manifolds, runs, r0, r1, reverse);
+        lanes.finished[r0].store(lanes.pass, std::memory_order_release);
+        if (paired) lanes.finished[r1].store(lanes.pass, std::memory_order_release);
+        k += paired ? 2 : 1;
+    }
+}
+
+}  // namespace cyclone::detail
