@@ -10,17 +10,36 @@ namespace {
 
 #define CYCLONE_INLINE inline __attribute__((always_inline))
 
-void fillRow(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
-             const Vector3 &d, SolverRow &row) {
-    const Vector3 rAxd = rA.cross(d);
-    const Vector3 rBxd = rB.cross(d);
-    const Vector3 angA = a.invInertia * rAxd;
-    const Vector3 angB = b.invInertia * rBxd;
-    const real k = a.invMass + b.invMass + rAxd.dot(angA) + rBxd.dot(angB);
-    setLanes(row.rAxd, rAxd);
-    setLanes(row.rBxd, rBxd);
-    setLanes(row.angA, angA);
-    setLanes(row.angB, angB);
+using LaneIndices = long long __attribute__((vector_size(4 * sizeof(long long))));
+
+// out = a x b in lanes: the products and differences of Eigen's cross, in its order.
+CYCLONE_INLINE void crossLanes(const Lanes &a, const Lanes &b, Lanes &out) {
+    const LaneIndices yzx = {1, 2, 0, 3};
+    const LaneIndices zxy = {2, 0, 1, 3};
+    out = __builtin_shuffle(a, yzx) * __builtin_shuffle(b, zxy) - __builtin_shuffle(a, zxy) * __builtin_shuffle(b, yzx);
+}
+
+// The columns of a 3 x 3 matrix in lanes.
+struct LaneMatrix {
+    Lanes column[3];
+
+    CYCLONE_INLINE explicit LaneMatrix(const Matrix3 &m) {
+        for (int k = 0; k < 3; ++k) setLanes(column[k], m.col(k));
+    }
+    // out = m v, each row summed left to right (Eigen's product may round otherwise).
+    CYCLONE_INLINE void multiply(const Lanes &v, Lanes &out) const {
+        out = column[0] * v[0] + column[1] * v[1] + column[2] * v[2];
+    }
+};
+
+// One row along d, in lanes.
+CYCLONE_INLINE void fillRow(real invMasses, const LaneMatrix &inertiaA, const LaneMatrix &inertiaB, const Lanes &rA,
+                            const Lanes &rB, const Lanes &d, SolverRow &row) {
+    crossLanes(rA, d, row.rAxd);
+    crossLanes(rB, d, row.rBxd);
+    inertiaA.multiply(row.rAxd, row.angA);
+    inertiaB.multiply(row.rBxd, row.angB);
+    const real k = invMasses + dot3(row.rAxd, row.angA) + dot3(row.rBxd, row.angB);
     row.mass = k > 0 ? 1 / k : 0;
     row.supportedMass = row.mass;
 }
@@ -229,11 +248,18 @@ real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifo
     return PairVelocities(a, b, false).along(m.direction[0], p.normal);
 }
 
+CYCLONE_SIMD_CLONES
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p) {
-    fillRow(a, b, rA, rB, m.normal, p.normal);
-    fillRow(a, b, rA, rB, m.tangent[0], p.tangent[0]);
-    fillRow(a, b, rA, rB, m.tangent[1], p.tangent[1]);
+    const real invMasses = a.invMass + b.invMass;
+    const LaneMatrix inertiaA(a.invInertia);
+    const LaneMatrix inertiaB(b.invInertia);
+    Lanes rALanes, rBLanes;
+    setLanes(rALanes, rA);
+    setLanes(rBLanes, rB);
+    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[0], p.normal);
+    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[1], p.tangent[0]);
+    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[2], p.tangent[1]);
 }
 
 CYCLONE_SIMD_CLONES

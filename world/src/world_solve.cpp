@@ -37,7 +37,8 @@ void World::Impl::prepareSolver(real h) {
     predictedW.resize(n);
     linearFactor.resize(n);
     angularFactor.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
+    solverPositions.resize(n + 1);
+    forEachBody([&](std::size_t k) {
         const RigidBody &body = bodies[simulatedBodies[k]].body;
         detail::SolverBody &sb = solverBodies[k + 1];
         sb = detail::SolverBody();
@@ -47,7 +48,8 @@ void World::Impl::prepareSolver(real h) {
         sb.invInertia = body.getInverseInertiaTensorWorld();
         linearFactor[k] = std::pow(body.getLinearDamping(), h);
         angularFactor[k] = std::pow(body.getAngularDamping(), h);
-    }
+        solverPositions[k + 1] = body.getPosition();
+    });
     if (settings.contactSolver == ContactSolverType::SoftStep) {
         // A contact spring faster than a quarter of the sub-step rate is not resolved.
         soft.dynamicSoftness = detail::makeSoftness(std::min(settings.contactHertz, 0.25 / h),
@@ -58,13 +60,18 @@ void World::Impl::prepareSolver(real h) {
         soft.maxPushVelocity = settings.maxPushVelocity;
     }
     if (solverManifolds.empty()) return;  // nothing below is read without contacts
-    solverPositions.resize(n + 1);
-    for (std::size_t k = 0; k < n; ++k) solverPositions[k + 1] = bodies[simulatedBodies[k]].body.getPosition();
-    detail::partitionManifolds(solverManifolds, solverPositions, partitionScratch, partition);
+    // The split reads the manifolds' bodies, the support their normals, and writes only
+    // `support`: the two run at once.
     const bool support = settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse;
+    forEachTask(support ? 2 : 1, [&](int task) {
+        if (task == 0) {
+            detail::partitionManifolds(solverManifolds, solverPositions, partitionScratch, partition);
+        } else {
+            detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds,
+                                  supportScratch, supportRuns);
+        }
+    });
     if (support) {
-        detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds, supportScratch,
-                              supportRuns);
         const bool shared = pool && partition.split;
         detail::buildSupportLanes(supportRuns, solverManifolds, shared ? &partitionScratch.side : nullptr,
                                   static_cast<int>(solverBodies.size()), supportLanes);
