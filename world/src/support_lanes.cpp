@@ -1,20 +1,12 @@
 #include "support_lanes.h"
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#endif
+#include "task_pool.h"
 
 namespace cyclone::detail {
 namespace {
 
 int carriedBody(const SolverManifold &m) { return m.support == kASupportsB ? m.b : m.a; }
 int carrierBody(const SolverManifold &m) { return m.support == kASupportsB ? m.a : m.b; }
-
-inline void relax() {
-#if defined(__x86_64__) || defined(__i386__)
-    _mm_pause();
-#endif
-}
 
 // Waits until every carrier of run r that has a run of its own has finished it.
 void awaitCarriers(const std::vector<SolverManifold> &manifolds, const SupportRuns &runs, const SupportLanes &lanes,
@@ -23,7 +15,7 @@ void awaitCarriers(const std::vector<SolverManifold> &manifolds, const SupportRu
         const int carrier = carrierBody(manifolds[runs.manifolds[k]]);
         const int carrierRun = lanes.runOf[carrier];
         if (carrierRun < 0) continue;
-        while (lanes.finished[carrierRun].load(std::memory_order_acquire) != lanes.pass) relax();
+        while (lanes.finished[carrierRun].load(std::memory_order_acquire) != lanes.pass) cpuRelax();
     }
 }
 

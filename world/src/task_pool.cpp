@@ -2,22 +2,12 @@
 
 #include <chrono>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#endif
-
 namespace cyclone::detail {
 namespace {
 
 // How long an idle worker polls for the next job before it blocks: longer than the gaps
 // between the jobs of one step, far shorter than the gap between a game's frames.
 constexpr std::chrono::microseconds kSpinTime(200);
-
-inline void relax() {
-#if defined(__x86_64__) || defined(__i386__)
-    _mm_pause();
-#endif
-}
 
 bool isOpen(std::uint64_t generation) { return (generation & 1) != 0; }
 
@@ -52,9 +42,9 @@ void TaskPool::runJob(int count, Call call, const void *context) {
     }
     wakeUp_.notify_all();
     takeTasks();
-    while (finished_.load() < count) relax();
+    while (finished_.load() < count) cpuRelax();
     generation_.fetch_add(1);  // closed
-    while (joined_.load() != 0) relax();
+    while (joined_.load() != 0) cpuRelax();
 }
 
 void TaskPool::takeTasks() {
@@ -77,7 +67,7 @@ void TaskPool::workerLoop() {
                 std::unique_lock<std::mutex> lock(mutex_);
                 wakeUp_.wait(lock, [&] { return fresh(generation_.load()) || stopping_.load(); });
             }
-            relax();
+            cpuRelax();
         }
         if (stopping_.load()) return;
         seen = generation_.load();

@@ -15,7 +15,18 @@
 #include <thread>
 #include <vector>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace cyclone::detail {
+
+/// Tells the CPU that this thread is spinning on a flag another thread will set.
+inline void cpuRelax() {
+#if defined(__x86_64__) || defined(__i386__)
+    _mm_pause();
+#endif
+}
 
 class TaskPool {
 public:
