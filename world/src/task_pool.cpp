@@ -70,7 +70,11 @@ void TaskPool::workerLoop() {
             cpuRelax();
         }
         if (stopping_.load()) return;
-        seen = generation_.load();
+        // The job seen open may have closed since: joining a closed job, this worker
+        // could read the next job's fields while the caller writes them.
+        const std::uint64_t current = generation_.load();
+        if (!isOpen(current)) continue;
+        seen = current;
         joined_.fetch_add(1);
         if (generation_.load() == seen) takeTasks();
         joined_.fetch_sub(1);
