@@ -16,7 +16,8 @@ WorldSettings noSleep() {
 
 // Three unit boxes stacked on the ground, the bottom one frictionless: friction is the
 // geometric mean of the two materials, so only the top pair has any. Each face contact
-// has 4 points: 12 contacts, and 2 friction rows for each of the top pair's 4 points.
+// has 4 points: 12 contacts, and the top pair's patch has 3 friction rows (two tangents
+// and a twist), not 2 for each of its points.
 TEST(PayForUse, FrictionRowsOnlyForPairsWithFriction) {
     WorldFixture f(noSleep());
     f.ground(0.6);
@@ -26,7 +27,18 @@ TEST(PayForUse, FrictionRowsOnlyForPairsWithFriction) {
     f.simulate(1);
     EXPECT_EQ(f.world.stats().manifolds, 3);
     EXPECT_EQ(f.world.stats().contacts, 12);
-    EXPECT_EQ(f.world.stats().frictionRows, 8);
+    EXPECT_EQ(f.world.stats().frictionRows, 3);
+}
+
+// A sphere touches the ground at one point: its patch has the two tangent rows and no
+// twist row (nothing to turn about).
+TEST(PayForUse, OnePointContactHasNoTwistRow) {
+    WorldFixture f(noSleep());
+    f.ground(0.6);
+    f.sphere(Vector3(0, 0.5, 0));
+    f.simulate(0.1);
+    EXPECT_EQ(f.world.stats().contacts, 1);
+    EXPECT_EQ(f.world.stats().frictionRows, 2);
 }
 
 TEST(PayForUse, FrictionlessStackHasNoFrictionRows) {

@@ -141,6 +141,31 @@ TEST(Physics, FrictionlessBoxKeepsSliding) {
     EXPECT_EQ(f.world.stats().restitutionContacts, 0);
 }
 
+// A unit box (1 kg) spinning flat on the ground about the vertical stops by torsional
+// friction. Its four corners lie r = sqrt(0.5^2 + 0.5^2) = 0.7071 m from the patch's
+// centre, so friction gives at most tau = mu m g r = 0.6 * 9.81 * 0.7071 = 4.162 N m
+// against I = m (1 + 1) / 12 = 1/6 kg m^2: alpha = 24.97 rad/s^2. From 5 rad/s: 2.503 rad/s
+// after 0.1 s, at rest after 0.2002 s, having turned w0^2 / (2 alpha) = 0.5006 rad; the
+// semi-implicit step turns the body with the velocity after each sub-step (4 of 1/240 s),
+// sum over j of (5 - 0.10405 j) / 240 = 0.490 rad.
+TEST(Physics, SpinningBoxStopsAtTorsionalFrictionRate) {
+    WorldSettings settings;
+    settings.sleep = false;
+    WorldFixture f(settings);
+    f.ground(0.6);
+    const BodyId box = f.box(Vector3(0, 0.5, 0));
+    f.simulate(0.2);
+    const Quaternion start = f.world.body(box).getOrientation();
+    f.world.setRotation(box, Vector3(0, 5, 0));
+    f.simulate(0.1);
+    EXPECT_NEAR(f.world.body(box).getRotation().y(), 2.503, 0.05);
+    f.simulate(0.4);
+    EXPECT_NEAR(f.world.body(box).getRotation().norm(), 0, 0.01);
+    const Quaternion turn = f.world.body(box).getOrientation() * start.conjugate();
+    EXPECT_NEAR(2 * std::atan2(turn.y(), turn.w()), 0.490, 0.015);
+    EXPECT_NEAR(f.position(box).y(), 0.5, 0.002);
+}
+
 // A ball dropped from 2 m with e = 0.5 rebounds to about e^2 h = 0.5 m.
 TEST(Physics, BouncingBallReachesRestitutionHeight) {
     WorldSettings settings;

@@ -44,6 +44,18 @@ CYCLONE_INLINE void fillRow(real invMasses, const LaneMatrix &inertiaA, const La
     row.supportedMass = row.mass;
 }
 
+// The twist row about the normal n: angular only, its lever arms are n itself.
+CYCLONE_INLINE void fillTwistRow(const LaneMatrix &inertiaA, const LaneMatrix &inertiaB, const Lanes &n,
+                                 SolverRow &row) {
+    row.rAxd = n;
+    row.rBxd = n;
+    inertiaA.multiply(n, row.angA);
+    inertiaB.multiply(n, row.angB);
+    const real k = dot3(n, row.angA) + dot3(n, row.angB);
+    row.mass = k > 0 ? 1 / k : 0;
+    row.supportedMass = row.mass;
+}
+
 // Which bodies a pass moves: both, or only the one a supporting body carries.
 enum Moving { kBoth, kOnlyA, kOnlyB };
 
@@ -76,6 +88,16 @@ struct PairVelocities {
         return sum3(d * (vb - va) + row.rBxd * wb - row.rAxd * wa);
     }
 
+    // Relative angular velocity of B with respect to A about an angular-only row's axis.
+    CYCLONE_INLINE real turning(const SolverRow &row) const { return sum3(row.rBxd * wb - row.rAxd * wa); }
+
+    // Applies an angular impulse along an angular-only row (on B; its opposite on A).
+    template <Moving kMoving = kBoth>
+    CYCLONE_INLINE void applyTurning(const SolverRow &row, real impulse) {
+        if (kMoving != kOnlyB) wa -= impulse * row.angA;
+        if (kMoving != kOnlyA) wb += impulse * row.angB;
+    }
+
     // Applies impulse * d (on B; its opposite on A) through a row's angular terms.
     template <Moving kMoving = kBoth>
     CYCLONE_INLINE void apply(const Lanes &d, const SolverRow &row, real impulse) {
@@ -96,20 +118,30 @@ CYCLONE_INLINE real massOf(const SolverRow &row) {
     return kMoving == kBoth ? row.mass : row.supportedMass;
 }
 
-// The friction rows of point i, limited by its normal impulse to Coulomb's cone (not a
-// box: friction is isotropic in the contact plane).
+// The patch's friction: the tangents and the twist solved together (the impulses that
+// stop the patch sliding and turning at once), then the tangents limited by the points'
+// summed normal impulse to Coulomb's cone (not a box: friction is isotropic in the
+// contact plane) and the twist by the same sum times the twist radius.
 template <Moving kMoving>
-CYCLONE_INLINE void solveFrictionPoint(PairVelocities &vel, SolverManifold &m, int i) {
+CYCLONE_INLINE void solveFriction(PairVelocities &vel, SolverManifold &m) {
     const Lanes &t0 = m.direction[1];
     const Lanes &t1 = m.direction[2];
-    SolverPoint &p = m.points[i];
-    SolverRow &row0 = p.tangent[0];
-    SolverRow &row1 = p.tangent[1];
-    const real limit = m.friction * p.normal.impulse;
+    SolverRow &row0 = m.frictionRow[0];
+    SolverRow &row1 = m.frictionRow[1];
+    SolverRow &twist = m.twist;
+    const bool turns = m.twistRadius > 0;
+    const real *k = kMoving == kBoth ? m.frictionInverse : m.supportedFrictionInverse;
+    real load = 0;
+    for (int i = 0; i < m.count; ++i) load += m.points[i].normal.impulse;
+    const real limit = m.friction * load;
+    const real v0 = vel.along(t0, row0);
+    const real v1 = vel.along(t1, row1);
+    const real v2 = turns ? vel.turning(twist) : 0;
     const real old0 = row0.impulse;
     const real old1 = row1.impulse;
-    real new0 = old0 - massOf<kMoving>(row0) * vel.along(t0, row0);
-    real new1 = old1 - massOf<kMoving>(row1) * vel.along(t1, row1);
+    const real old2 = twist.impulse;
+    real new0 = old0 - (k[0] * v0 + k[1] * v1 + k[2] * v2);
+    real new1 = old1 - (k[1] * v0 + k[3] * v1 + k[4] * v2);
     const real magnitude2 = new0 * new0 + new1 * new1;
     if (magnitude2 > limit * limit) {
         const real scale = limit / std::sqrt(magnitude2);
@@ -120,6 +152,12 @@ CYCLONE_INLINE void solveFrictionPoint(PairVelocities &vel, SolverManifold &m, i
     row1.impulse = new1;
     vel.apply<kMoving>(t0, row0, new0 - old0);
     vel.apply<kMoving>(t1, row1, new1 - old1);
+    if (turns) {
+        const real twistLimit = limit * m.twistRadius;
+        const real new2 = std::clamp(old2 - (k[2] * v0 + k[4] * v1 + k[5] * v2), -twistLimit, twistLimit);
+        twist.impulse = new2;
+        vel.applyTurning<kMoving>(twist, new2 - old2);
+    }
 }
 
 // The normal row of the k-th point (from the end with `reverse`).
@@ -131,11 +169,6 @@ CYCLONE_INLINE void solveNormalPoint(PairVelocities &vel, SolverManifold &m, int
     const real updated = std::max(old - massOf<kMoving>(p.normal) * (vn - p.velocityBias), real(0));
     p.normal.impulse = updated;
     vel.apply<kMoving>(m.direction[0], p.normal, updated - old);
-}
-
-template <Moving kMoving>
-CYCLONE_INLINE void solveFriction(PairVelocities &vel, SolverManifold &m) {
-    for (int i = 0; i < m.count; ++i) solveFrictionPoint<kMoving>(vel, m, i);
 }
 
 // Friction, then the normal rows (the ones that must hold have the last word).
@@ -151,12 +184,8 @@ template <Moving kMoving0 = kBoth, Moving kMoving1 = kBoth>
 CYCLONE_INLINE void solveManifoldPair(PairVelocities &vel0, SolverManifold &m0, PairVelocities &vel1,
                                       SolverManifold &m1, bool reverse) {
     const int most = std::max(m0.count, m1.count);
-    const bool friction0 = m0.friction > 0;
-    const bool friction1 = m1.friction > 0;
-    for (int i = 0; i < most; ++i) {
-        if (friction0 && i < m0.count) solveFrictionPoint<kMoving0>(vel0, m0, i);
-        if (friction1 && i < m1.count) solveFrictionPoint<kMoving1>(vel1, m1, i);
-    }
+    if (m0.friction > 0) solveFriction<kMoving0>(vel0, m0);
+    if (m1.friction > 0) solveFriction<kMoving1>(vel1, m1);
     for (int k = 0; k < most; ++k) {
         if (k < m0.count) solveNormalPoint<kMoving0>(vel0, m0, k, reverse);
         if (k < m1.count) solveNormalPoint<kMoving1>(vel1, m1, k, reverse);
@@ -258,8 +287,64 @@ void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, co
     setLanes(rALanes, rA);
     setLanes(rBLanes, rB);
     fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[0], p.normal);
-    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[1], p.tangent[0]);
-    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[2], p.tangent[1]);
+}
+
+namespace {
+
+// Coupling of rows x and y through the bodies a pass moves: the angular terms (the
+// tangents are orthogonal, so the linear ones cancel off the diagonal).
+real coupling(const SolverRow &x, const SolverRow &y, Moving moving) {
+    const real a = dot3(x.rAxd, y.angA);
+    const real b = dot3(x.rBxd, y.angB);
+    return moving == kBoth ? a + b : moving == kOnlyA ? a : b;
+}
+
+// The inverse of the friction block's effective-mass matrix (SolverManifold::
+// frictionInverse) for the bodies a pass moves, whose summed inverse masses are
+// invMasses. A singular block (no moving body) gives zeros: no friction impulse.
+void invertFrictionBlock(const SolverManifold &m, Moving moving, real invMasses, real out[6]) {
+    const SolverRow &t0 = m.frictionRow[0];
+    const SolverRow &t1 = m.frictionRow[1];
+    const bool turns = m.twistRadius > 0;
+    // Without a twist row the block is the tangents' 2 x 2 one: a unit third row and
+    // column leave the cofactors below its inverse.
+    const real k00 = invMasses + coupling(t0, t0, moving);
+    const real k01 = coupling(t0, t1, moving);
+    const real k11 = invMasses + coupling(t1, t1, moving);
+    const real k02 = turns ? coupling(t0, m.twist, moving) : 0;
+    const real k12 = turns ? coupling(t1, m.twist, moving) : 0;
+    const real k22 = turns ? coupling(m.twist, m.twist, moving) : 1;
+    // The symmetric inverse by cofactors.
+    const real c00 = k11 * k22 - k12 * k12;
+    const real c01 = k02 * k12 - k01 * k22;
+    const real c02 = k01 * k12 - k02 * k11;
+    const real c11 = k00 * k22 - k02 * k02;
+    const real c12 = k01 * k02 - k00 * k12;
+    const real c22 = k00 * k11 - k01 * k01;
+    const real det = k00 * c00 + k01 * c01 + k02 * c02;
+    const real inverse = det > 0 && std::isfinite(det) ? 1 / det : 0;
+    out[0] = c00 * inverse, out[1] = c01 * inverse, out[3] = c11 * inverse;
+    out[2] = turns ? c02 * inverse : 0;
+    out[4] = turns ? c12 * inverse : 0;
+    out[5] = turns ? c22 * inverse : 0;
+}
+
+}  // namespace
+
+CYCLONE_SIMD_CLONES
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
+                         SolverManifold &m) {
+    const real invMasses = a.invMass + b.invMass;
+    const LaneMatrix inertiaA(a.invInertia);
+    const LaneMatrix inertiaB(b.invInertia);
+    Lanes rALanes, rBLanes;
+    setLanes(rALanes, rA);
+    setLanes(rBLanes, rB);
+    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[1], m.frictionRow[0]);
+    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[2], m.frictionRow[1]);
+    fillTwistRow(inertiaA, inertiaB, m.direction[0], m.twist);
+    invertFrictionBlock(m, kBoth, invMasses, m.frictionInverse);
+    std::copy(m.frictionInverse, m.frictionInverse + 6, m.supportedFrictionInverse);
 }
 
 CYCLONE_SIMD_CLONES
@@ -268,12 +353,10 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
     for (int index : order) {
         const SolverManifold &m = manifolds[index];
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
-        for (int i = 0; i < m.count; ++i) {
-            const SolverPoint &p = m.points[i];
-            vel.apply(m.direction[0], p.normal, p.normal.impulse);
-            vel.apply(m.direction[1], p.tangent[0], p.tangent[0].impulse);
-            vel.apply(m.direction[2], p.tangent[1], p.tangent[1].impulse);
-        }
+        for (int i = 0; i < m.count; ++i) vel.apply(m.direction[0], m.points[i].normal, m.points[i].normal.impulse);
+        vel.apply(m.direction[1], m.frictionRow[0], m.frictionRow[0].impulse);
+        vel.apply(m.direction[2], m.frictionRow[1], m.frictionRow[1].impulse);
+        vel.applyTurning(m.twist, m.twist.impulse);
         vel.store<kBoth>(bodies, m, false);
     }
 }
@@ -283,15 +366,12 @@ void prepareSupportedMasses(const std::vector<SolverBody> &bodies, SolverManifol
     if (m.support == kNoSupport || m.a == 0 || m.b == 0) return;
     const bool bMoves = m.support == kASupportsB;
     const real invMass = bodies[bMoves ? m.b : m.a].invMass;
-    auto fill = [&](SolverRow &row) {
-        const real k = bMoves ? invMass + dot3(row.rBxd, row.angB) : invMass + dot3(row.rAxd, row.angA);
+    auto fill = [&](SolverRow &row, real linear) {
+        const real k = linear + (bMoves ? dot3(row.rBxd, row.angB) : dot3(row.rAxd, row.angA));
         row.supportedMass = k > 0 ? 1 / k : 0;
     };
-    for (int i = 0; i < m.count; ++i) {
-        fill(m.points[i].normal);
-        fill(m.points[i].tangent[0]);
-        fill(m.points[i].tangent[1]);
-    }
+    for (int i = 0; i < m.count; ++i) fill(m.points[i].normal, invMass);
+    invertFrictionBlock(m, bMoves ? kOnlyB : kOnlyA, invMass, m.supportedFrictionInverse);
 }
 
 CYCLONE_SIMD_CLONES
@@ -492,7 +572,7 @@ void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverMa
             continue;
         }
         const bool carrierMoves = m.a != 0 && m.b != 0;
-        SavedImpulses saved;
+        SavedImpulses saved{};
         if (carrierMoves) saved.save(m);
         if (m.support == kASupportsB) solvePseudoManifold<kOnlyB>(bodies, m);
         else solvePseudoManifold<kOnlyA>(bodies, m);

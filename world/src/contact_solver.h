@@ -1,6 +1,7 @@
 // The contact solver: sequential impulses with accumulated-impulse clamping, warm
-// starting, Coulomb friction on two tangents, restitution above a threshold, and
-// penetration recovery by pseudo-velocities (split impulse) that never add energy.
+// starting, Coulomb friction per contact patch (two tangents and a twist), restitution
+// above a threshold, and penetration recovery by pseudo-velocities (split impulse) that
+// never add energy.
 //
 // Design note. The solver works on its own contiguous arrays (SolverBody,
 // SolverManifold) rather than on RigidBody: those are what every iteration touches.
@@ -44,7 +45,6 @@ struct SolverPoint {
     Vector3 localA;          ///< Anchor on A, A's body space, m.
     Vector3 localB;          ///< Anchor on B, B's body space, m.
     SolverRow normal;
-    SolverRow tangent[2];
     real velocityBias = 0;   ///< Target normal velocity (restitution or speculative), m/s.
     real depth = 0;          ///< Penetration at the start of the step, m (< 0: apart).
     real pseudoImpulse = 0;  ///< Accumulated pseudo impulse, N s.
@@ -62,12 +62,27 @@ inline constexpr int kSupportSweeps = 8;
 /// velocity by more than this, m/s (10 s of such an error would move a body 0.1 mm).
 inline constexpr real kSupportTolerance = 1e-5;
 
+/// Friction acts on the manifold's contact patch as a whole, not point by point: two
+/// tangent rows at the centre of its points, limited together to the friction cone of the
+/// points' summed normal impulse, and a twist row about the normal, limited by the same
+/// sum times twistRadius (the points' mean distance from the centre: the torque that
+/// friction at the points could give at most). For a one-point contact that is the
+/// per-point model; a face's four corners need three friction rows instead of eight.
 struct SolverManifold {
     int a = 0;  ///< Index into the SolverBody array (0 = static world).
     int b = 0;
     Vector3 normal;      ///< From A to B.
     Vector3 tangent[2];
     Lanes direction[3]{};  ///< normal, tangent[0], tangent[1] in lanes (prepareDirections).
+    SolverRow frictionRow[2];  ///< Along tangent[0], tangent[1], at the patch's centre.
+    SolverRow twist;           ///< About the normal (its rAxd and rBxd are the normal).
+    real twistRadius = 0;      ///< Mean distance of the points from the centre, m (0: no twist row).
+    /// The inverse of the friction rows' 3 x 3 effective-mass matrix (tangents, twist),
+    /// upper triangle row by row: the three rows are solved together, exactly, because
+    /// the centre's lever arm couples a tangent with the twist. Without a twist row it is
+    /// the tangents' 2 x 2 inverse (entries 2, 4, 5 zero).
+    real frictionInverse[6] = {};
+    real supportedFrictionInverse[6] = {};  ///< The same with the supporting body immovable.
     real friction = 0;
     real restitution = 0;
     bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
@@ -90,25 +105,27 @@ struct SolverGroup;
 /// the coupled passes left them.
 struct SavedImpulses {
     real normal[kMaxManifoldPoints];
-    real tangent0[kMaxManifoldPoints];
-    real tangent1[kMaxManifoldPoints];
     real pseudo[kMaxManifoldPoints];
+    real friction[2];
+    real twist;
 
     void save(const SolverManifold &m) {
         for (int i = 0; i < m.count; ++i) {
             normal[i] = m.points[i].normal.impulse;
-            tangent0[i] = m.points[i].tangent[0].impulse;
-            tangent1[i] = m.points[i].tangent[1].impulse;
             pseudo[i] = m.points[i].pseudoImpulse;
         }
+        friction[0] = m.frictionRow[0].impulse;
+        friction[1] = m.frictionRow[1].impulse;
+        twist = m.twist.impulse;
     }
     void restore(SolverManifold &m) const {
         for (int i = 0; i < m.count; ++i) {
             m.points[i].normal.impulse = normal[i];
-            m.points[i].tangent[0].impulse = tangent0[i];
-            m.points[i].tangent[1].impulse = tangent1[i];
             m.points[i].pseudoImpulse = pseudo[i];
         }
+        m.frictionRow[0].impulse = friction[0];
+        m.frictionRow[1].impulse = friction[1];
+        m.twist.impulse = twist;
     }
 };
 
@@ -165,9 +182,13 @@ void prepareDirections(SolverManifold &m);
 /// Relative velocity of B with respect to A along a point's normal, m/s.
 real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifold &m, const SolverPoint &p);
 
-/// Fills the Jacobian terms and effective masses of one point along n, t1, t2.
+/// Fills the Jacobian terms and effective mass of one point's normal row.
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p);
+/// Fills the manifold's friction rows at the patch centre (rA, rB: the centre from A's
+/// and B's centre of mass), its twist row and frictionInverse.
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
+                         SolverManifold &m);
 
 /// Fills supportedMass of every row of a manifold that has a supporting side (after
 /// assignSupport).

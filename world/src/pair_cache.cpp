@@ -136,6 +136,12 @@ void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &p
                    real matchDistance) {
     ManifoldState old = state;
     const bool sameNormal = old.count > 0 && old.normal.dot(fresh.normal) > 0.95;
+    // The patch's friction belongs to the contact as a whole: it carries over while the
+    // normal does, whichever points the fresh manifold has.
+    if (!sameNormal) {
+        state.frictionImpulse.setZero();
+        state.twistImpulse = 0;
+    }
     state.normal = fresh.normal;
     state.localNormal = poseA.linear().transpose() * fresh.normal;
     state.count = fresh.count;
@@ -146,7 +152,6 @@ void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &p
         p.localB = poseB.inverse() * fresh.points[i].pointB;
         p.depth = fresh.points[i].depth;
         p.normalImpulse = 0;
-        p.frictionImpulse.setZero();
         if (!sameNormal) continue;
         real best = match2;
         for (int j = 0; j < old.count; ++j) {
@@ -154,7 +159,6 @@ void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &p
             if (d2 < best) {
                 best = d2;
                 p.normalImpulse = old.points[j].normalImpulse;
-                p.frictionImpulse = old.points[j].frictionImpulse;
             }
         }
     }

@@ -17,7 +17,6 @@ struct PersistentPoint {
     Vector3 localB = Vector3::Zero();  ///< Anchor on B, B's body space, m.
     real depth = 0;                    ///< Penetration, m (< 0: apart, speculative).
     real normalImpulse = 0;            ///< Last step's accumulated normal impulse, N s.
-    Vector3 frictionImpulse = Vector3::Zero();  ///< Last step's friction impulse, world, N s.
 };
 
 struct ManifoldState {
@@ -25,6 +24,8 @@ struct ManifoldState {
     Vector3 localNormal = Vector3::UnitY();  ///< The normal in A's body space.
     int count = 0;
     PersistentPoint points[Manifold::kMaxPoints];
+    Vector3 frictionImpulse = Vector3::Zero();  ///< Last step's patch friction impulse, world, N s.
+    real twistImpulse = 0;  ///< Last step's twist friction impulse about the normal, N m s.
 };
 
 struct PairState {

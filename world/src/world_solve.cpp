@@ -98,6 +98,8 @@ void World::Impl::prepareManifold(std::size_t s) {
     const detail::SolverBody &sa = solverBodies[m.a];
     const detail::SolverBody &sb = solverBodies[m.b];
     detail::prepareDirections(m);
+    Vector3 points[detail::kMaxManifoldPoints];
+    Vector3 centre = Vector3::Zero();
     for (int i = 0; i < m.count; ++i) {
         detail::SolverPoint &p = m.points[i];
         const Vector3 c = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
@@ -105,7 +107,16 @@ void World::Impl::prepareManifold(std::size_t s) {
         p.maxNormalImpulse = 0;
         // The normal velocity when the step began, measured only for restitution.
         p.approachSpeed = m.restitution == 0 ? 0 : detail::normalVelocity(sa, sb, m, p);
+        points[i] = c;
+        centre += c;
     }
+    if (m.count > 0) centre /= m.count;
+    // The twist radius: the torque about the normal that friction at the points could
+    // give at most, per unit of friction force.
+    real radius = 0;
+    for (int i = 0; i < m.count; ++i) radius += (points[i] - centre).norm();
+    m.twistRadius = m.count > 1 ? radius / m.count : 0;
+    detail::prepareFrictionRows(sa, sb, centre - a.getPosition(), centre - b.getPosition(), m);
 }
 
 // The warm start and each coupled pass: the two halves of the partition at once, then
@@ -325,11 +336,9 @@ void World::Impl::storeImpulses() {
         const std::size_t k = solverSource[s] & 3;
         if (!pair.alive || k >= pair.manifolds.size()) return;  // a body was quarantined
         detail::ManifoldState &state = pair.manifolds[k];
-        for (int i = 0; i < m.count; ++i) {
-            const detail::SolverPoint &p = m.points[i];
-            state.points[i].normalImpulse = p.normal.impulse;
-            state.points[i].frictionImpulse = p.tangent[0].impulse * m.tangent[0] + p.tangent[1].impulse * m.tangent[1];
-        }
+        for (int i = 0; i < m.count; ++i) state.points[i].normalImpulse = m.points[i].normal.impulse;
+        state.frictionImpulse = m.frictionRow[0].impulse * m.tangent[0] + m.frictionRow[1].impulse * m.tangent[1];
+        state.twistImpulse = m.twist.impulse;
     });
 }
 

@@ -342,16 +342,17 @@ void World::Impl::buildManifolds(real) {
     for (const detail::SolverManifold &m : solverManifolds) {
         ++stats.manifolds;
         stats.contacts += m.count;
-        if (m.friction > 0) stats.frictionRows += 2 * m.count;
+        if (m.friction > 0) stats.frictionRows += m.count > 1 ? 3 : 2;  // the patch: two tangents, a twist
         for (int i = 0; i < m.count; ++i) stats.maxPenetration = std::max(stats.maxPenetration, m.points[i].depth);
     }
 }
 
 // addSolverManifold writes every field of a solver manifold and of its first `count`
-// points but the Jacobians (SolverManifold::direction, SolverRow's lanes and masses),
-// which prepareSolver computes for every point; points past `count` keep whatever they
-// held, as nothing reads them. A field added to either struct must be reset there too.
-static_assert(sizeof(detail::SolverPoint) == 608 && sizeof(detail::SolverManifold) == 2688,
+// points but the Jacobians (SolverManifold::direction, SolverRow's lanes and masses) and
+// the twist radius, which prepareSolver computes for every manifold; points past `count`
+// keep whatever they held, as nothing reads them. A field added to either struct must be
+// reset there too.
+static_assert(sizeof(detail::SolverPoint) == 288 && sizeof(detail::SolverManifold) == 1984,
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
 void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
@@ -375,14 +376,15 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     sm.support = detail::kNoSupport;
     sm.count = m.count;
     const bool warm = settings.warmStarting;
+    sm.frictionRow[0].impulse = warm ? m.frictionImpulse.dot(sm.tangent[0]) : 0;
+    sm.frictionRow[1].impulse = warm ? m.frictionImpulse.dot(sm.tangent[1]) : 0;
+    sm.twist.impulse = warm ? m.twistImpulse : 0;
     for (int i = 0; i < m.count; ++i) {
         const detail::PersistentPoint &src = m.points[i];
         detail::SolverPoint &dst = sm.points[i];
         dst.localA = src.localA;
         dst.localB = src.localB;
         dst.normal.impulse = warm ? src.normalImpulse : 0;
-        dst.tangent[0].impulse = warm ? src.frictionImpulse.dot(sm.tangent[0]) : 0;
-        dst.tangent[1].impulse = warm ? src.frictionImpulse.dot(sm.tangent[1]) : 0;
         dst.velocityBias = 0;
         dst.depth = src.depth;
         dst.pseudoImpulse = 0;

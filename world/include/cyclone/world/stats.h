@@ -32,7 +32,7 @@ struct StepStats {
     int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
     int manifolds = 0;          ///< Contact manifolds given to the solver.
     int contacts = 0;           ///< Contact points given to the solver.
-    int frictionRows = 0;       ///< Friction constraint rows (2 per point with friction).
+    int frictionRows = 0;       ///< Friction constraint rows (per manifold with friction: 2 tangents, plus a twist with 2 or more points).
     int restitutionContacts = 0;///< Points that bounce this step.
     int islands = 0;            ///< Islands of awake dynamic bodies.
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
