@@ -44,6 +44,23 @@ CYCLONE_INLINE void fillRow(real invMasses, const LaneMatrix &inertiaA, const La
     row.supportedMass = row.mass;
 }
 
+// A manifold's two bodies, set up to fill rows at one place: their summed inverse
+// masses, inverse inertias, and the place's lever arms from A and B in lanes.
+struct RowFrame {
+    real invMasses;
+    LaneMatrix inertiaA, inertiaB;
+    Lanes rA{}, rB{};
+
+    CYCLONE_INLINE RowFrame(const SolverBody &a, const SolverBody &b, const Vector3 &leverA, const Vector3 &leverB)
+        : invMasses(a.invMass + b.invMass), inertiaA(a.invInertia), inertiaB(b.invInertia) {
+        setLanes(rA, leverA);
+        setLanes(rB, leverB);
+    }
+    CYCLONE_INLINE void fill(const Lanes &d, SolverRow &row) const {
+        fillRow(invMasses, inertiaA, inertiaB, rA, rB, d, row);
+    }
+};
+
 // The twist row about the normal n: angular only, its lever arms are n itself.
 CYCLONE_INLINE void fillTwistRow(const LaneMatrix &inertiaA, const LaneMatrix &inertiaB, const Lanes &n,
                                  SolverRow &row) {
@@ -280,13 +297,7 @@ real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifo
 CYCLONE_SIMD_CLONES
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p) {
-    const real invMasses = a.invMass + b.invMass;
-    const LaneMatrix inertiaA(a.invInertia);
-    const LaneMatrix inertiaB(b.invInertia);
-    Lanes rALanes, rBLanes;
-    setLanes(rALanes, rA);
-    setLanes(rBLanes, rB);
-    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[0], p.normal);
+    RowFrame(a, b, rA, rB).fill(m.direction[0], p.normal);
 }
 
 namespace {
@@ -334,16 +345,11 @@ void invertFrictionBlock(const SolverManifold &m, Moving moving, real invMasses,
 CYCLONE_SIMD_CLONES
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                          SolverManifold &m) {
-    const real invMasses = a.invMass + b.invMass;
-    const LaneMatrix inertiaA(a.invInertia);
-    const LaneMatrix inertiaB(b.invInertia);
-    Lanes rALanes, rBLanes;
-    setLanes(rALanes, rA);
-    setLanes(rBLanes, rB);
-    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[1], m.frictionRow[0]);
-    fillRow(invMasses, inertiaA, inertiaB, rALanes, rBLanes, m.direction[2], m.frictionRow[1]);
-    fillTwistRow(inertiaA, inertiaB, m.direction[0], m.twist);
-    invertFrictionBlock(m, kBoth, invMasses, m.frictionInverse);
+    const RowFrame frame(a, b, rA, rB);
+    frame.fill(m.direction[1], m.frictionRow[0]);
+    frame.fill(m.direction[2], m.frictionRow[1]);
+    fillTwistRow(frame.inertiaA, frame.inertiaB, m.direction[0], m.twist);
+    invertFrictionBlock(m, kBoth, frame.invMasses, m.frictionInverse);
     std::copy(m.frictionInverse, m.frictionInverse + 6, m.supportedFrictionInverse);
 }
 
