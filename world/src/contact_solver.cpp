@@ -32,13 +32,19 @@ struct LaneMatrix {
     }
 };
 
-// One row along d, in lanes.
-CYCLONE_INLINE void fillRow(real invMasses, const LaneMatrix &inertiaA, const LaneMatrix &inertiaB, const Lanes &rA,
-                            const Lanes &rB, const Lanes &d, SolverRow &row) {
+// The Jacobian terms of one row along d, in lanes.
+CYCLONE_INLINE void fillJacobian(const LaneMatrix &inertiaA, const LaneMatrix &inertiaB, const Lanes &rA,
+                                 const Lanes &rB, const Lanes &d, SolverRow &row) {
     crossLanes(rA, d, row.rAxd);
     crossLanes(rB, d, row.rBxd);
     inertiaA.multiply(row.rAxd, row.angA);
     inertiaB.multiply(row.rBxd, row.angB);
+}
+
+// One row along d with its effective mass, in lanes.
+CYCLONE_INLINE void fillRow(real invMasses, const LaneMatrix &inertiaA, const LaneMatrix &inertiaB, const Lanes &rA,
+                            const Lanes &rB, const Lanes &d, SolverRow &row) {
+    fillJacobian(inertiaA, inertiaB, rA, rB, d, row);
     const real k = invMasses + dot3(row.rAxd, row.angA) + dot3(row.rBxd, row.angB);
     row.mass = k > 0 ? 1 / k : 0;
     row.supportedMass = row.mass;
@@ -59,18 +65,18 @@ struct RowFrame {
     CYCLONE_INLINE void fill(const Lanes &d, SolverRow &row) const {
         fillRow(invMasses, inertiaA, inertiaB, rA, rB, d, row);
     }
+    CYCLONE_INLINE void fillJacobianOnly(const Lanes &d, SolverRow &row) const {
+        fillJacobian(inertiaA, inertiaB, rA, rB, d, row);
+    }
 };
 
-// The twist row about the normal n: angular only, its lever arms are n itself.
+// The twist row's Jacobian about the normal n: angular only, its lever arms are n itself.
 CYCLONE_INLINE void fillTwistRow(const LaneMatrix &inertiaA, const LaneMatrix &inertiaB, const Lanes &n,
                                  SolverRow &row) {
     row.rAxd = n;
     row.rBxd = n;
     inertiaA.multiply(n, row.angA);
     inertiaB.multiply(n, row.angB);
-    const real k = dot3(n, row.angA) + dot3(n, row.angB);
-    row.mass = k > 0 ? 1 / k : 0;
-    row.supportedMass = row.mass;
 }
 
 // Which bodies a pass moves: both, or only the one a supporting body carries.
@@ -343,11 +349,19 @@ void invertFrictionBlock(const SolverManifold &m, Moving moving, real invMasses,
 }  // namespace
 
 CYCLONE_SIMD_CLONES
-void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
-                         SolverManifold &m) {
-    const RowFrame frame(a, b, rA, rB);
-    frame.fill(m.direction[1], m.frictionRow[0]);
-    frame.fill(m.direction[2], m.frictionRow[1]);
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
+                         const Vector3 &positionB, SolverManifold &m) {
+    Vector3 centre = Vector3::Zero();
+    for (int i = 0; i < m.count; ++i) centre += points[i];
+    if (m.count > 0) centre /= m.count;
+    // The twist radius: the torque about the normal that friction at the points could
+    // give at most, per unit of friction force.
+    real radius = 0;
+    for (int i = 0; i < m.count; ++i) radius += (points[i] - centre).norm();
+    m.twistRadius = m.count > 1 ? radius / m.count : 0;
+    const RowFrame frame(a, b, centre - positionA, centre - positionB);
+    frame.fillJacobianOnly(m.direction[1], m.frictionRow[0]);
+    frame.fillJacobianOnly(m.direction[2], m.frictionRow[1]);
     fillTwistRow(frame.inertiaA, frame.inertiaB, m.direction[0], m.twist);
     invertFrictionBlock(m, kBoth, frame.invMasses, m.frictionInverse);
     std::copy(m.frictionInverse, m.frictionInverse + 6, m.supportedFrictionInverse);

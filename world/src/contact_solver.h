@@ -36,7 +36,9 @@ struct SolverRow {
     Lanes rBxd{};      ///< rB x d.
     Lanes angA{};      ///< IA^-1 (rA x d).
     Lanes angB{};      ///< IB^-1 (rB x d).
-    real mass = 0;     ///< Effective mass along d, kg.
+    /// Effective mass along d, kg. Normal rows only: the friction rows are solved as a
+    /// block through SolverManifold::frictionInverse and leave both masses unset.
+    real mass = 0;
     real supportedMass = 0;  ///< Effective mass with the supporting body immovable (support pass), kg.
     real impulse = 0;  ///< Accumulated impulse, N s.
 };
@@ -185,10 +187,11 @@ real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifo
 /// Fills the Jacobian terms and effective mass of one point's normal row.
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p);
-/// Fills the manifold's friction rows at the patch centre (rA, rB: the centre from A's
-/// and B's centre of mass), its twist row and frictionInverse.
-void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
-                         SolverManifold &m);
+/// Fills the manifold's patch friction from its contact points (world space, `count`
+/// of them) and the bodies' centres of mass: the twist radius, the friction rows at the
+/// points' centre, the twist row and frictionInverse.
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
+                         const Vector3 &positionB, SolverManifold &m);
 
 /// Fills supportedMass of every row of a manifold that has a supporting side (after
 /// assignSupport).

@@ -82,6 +82,7 @@ void World::Impl::prepareSolver(real h) {
         if (support) detail::prepareSupportedMasses(solverBodies, solverManifolds[s]);
     });
     for (const detail::SolverManifold &m : solverManifolds) {
+        if (m.friction > 0) stats.frictionRows += m.twistRadius > 0 ? 3 : 2;  // the patch: two tangents, a twist
         if (m.restitution == 0) continue;
         for (int i = 0; i < m.count; ++i)
             if (m.points[i].approachSpeed < -settings.restitutionThreshold) ++stats.restitutionContacts;
@@ -99,7 +100,6 @@ void World::Impl::prepareManifold(std::size_t s) {
     const detail::SolverBody &sb = solverBodies[m.b];
     detail::prepareDirections(m);
     Vector3 points[detail::kMaxManifoldPoints];
-    Vector3 centre = Vector3::Zero();
     for (int i = 0; i < m.count; ++i) {
         detail::SolverPoint &p = m.points[i];
         const Vector3 c = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
@@ -108,15 +108,8 @@ void World::Impl::prepareManifold(std::size_t s) {
         // The normal velocity when the step began, measured only for restitution.
         p.approachSpeed = m.restitution == 0 ? 0 : detail::normalVelocity(sa, sb, m, p);
         points[i] = c;
-        centre += c;
     }
-    if (m.count > 0) centre /= m.count;
-    // The twist radius: the torque about the normal that friction at the points could
-    // give at most, per unit of friction force.
-    real radius = 0;
-    for (int i = 0; i < m.count; ++i) radius += (points[i] - centre).norm();
-    m.twistRadius = m.count > 1 ? radius / m.count : 0;
-    detail::prepareFrictionRows(sa, sb, centre - a.getPosition(), centre - b.getPosition(), m);
+    detail::prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m);
 }
 
 // The warm start and each coupled pass: the two halves of the partition at once, then

@@ -342,7 +342,6 @@ void World::Impl::buildManifolds(real) {
     for (const detail::SolverManifold &m : solverManifolds) {
         ++stats.manifolds;
         stats.contacts += m.count;
-        if (m.friction > 0) stats.frictionRows += m.count > 1 ? 3 : 2;  // the patch: two tangents, a twist
         for (int i = 0; i < m.count; ++i) stats.maxPenetration = std::max(stats.maxPenetration, m.points[i].depth);
     }
 }
