@@ -50,6 +50,40 @@ TEST(PayForUse, FrictionlessStackHasNoFrictionRows) {
     EXPECT_EQ(f.world.stats().frictionRows, 0);
 }
 
+// The solve stage's parts (StageTimes::solveParts) show what a solver setting costs: no
+// support pass time with shock propagation off, no position time when nothing needs
+// recovering, and the parts never add up to more than the stage.
+TEST(PayForUse, SolvePartsAreZeroForWhatDidNotRun) {
+    WorldSettings settings = noSleep();
+    settings.shockPropagation = false;
+    WorldFixture f(settings);
+    f.ground(0.6);
+    for (int level = 0; level < 3; ++level) f.box(Vector3(0, 0.5 + level, 0), Vector3(0.5, 0.5, 0.5));
+    f.simulate(1);
+    const StageTimes &ms = f.world.stats().ms;
+    EXPECT_EQ(ms.solveParts.support, 0.0);
+    EXPECT_GT(ms.solveParts.velocity, 0.0);
+    // Each part is timed within the stage's own intervals; the 1e-9 covers the rounding
+    // of summing the same intervals in another order.
+    EXPECT_LE(ms.solveParts.setup + ms.solveParts.velocity + ms.solveParts.position, ms.solve * (1 + 1e-9));
+
+    WorldFixture withSupport(noSleep());
+    withSupport.ground(0.6);
+    for (int level = 0; level < 3; ++level) withSupport.box(Vector3(0, 0.5 + level, 0), Vector3(0.5, 0.5, 0.5));
+    withSupport.simulate(1);
+    const SolveTimes &parts = withSupport.world.stats().ms.solveParts;
+    EXPECT_GT(parts.support, 0.0);
+    EXPECT_LE(parts.setup + parts.velocity + parts.support + parts.position,
+              withSupport.world.stats().ms.solve * (1 + 1e-9));
+
+    // A body alone in the air: no contacts, so no pass runs at all.
+    WorldFixture alone(noSleep());
+    alone.sphere(Vector3(0, 5, 0));
+    alone.world.step(1.0 / 60);
+    EXPECT_EQ(alone.world.stats().ms.solveParts.support, 0.0);
+    EXPECT_EQ(alone.world.stats().ms.solveParts.position, 0.0);
+}
+
 // No spring is evaluated while both its ends sleep; waking one end wakes the other and
 // the spring is evaluated once per step.
 TEST(PayForUse, SpringsEvaluatedOnlyWithAnAwakeEnd) {

@@ -7,6 +7,7 @@
 // and RigidBody::integrate(h) moves it. Penetration is then recovered without adding
 // energy: pseudo-velocities (SplitImpulse) or a rigid relax pass (SoftStep).
 #include <atomic>
+#include <chrono>
 #include <cmath>
 
 #include "validation.h"
@@ -21,6 +22,19 @@ bool stateFinite(const RigidBody &body) {
            body.getVelocity().allFinite() && body.getRotation().allFinite() &&
            std::isfinite(body.getVelocity().squaredNorm() + body.getRotation().squaredNorm());
 }
+
+// Adds the milliseconds of its scope to `total` (a part of StageTimes::solve).
+class AddTime {
+public:
+    explicit AddTime(double &total) : total_(total) {}
+    AddTime(const AddTime &) = delete;
+    AddTime &operator=(const AddTime &) = delete;
+    ~AddTime() { total_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count(); }
+
+private:
+    double &total_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
 
 }  // namespace
 
@@ -207,7 +221,10 @@ void World::Impl::solve(real h, bool firstSubstep) {
         stats.velocityIterations += settings.velocityIterations;
         // The support pass comes after the coupled passes, never instead of one: alone,
         // it would let no body push the bodies carrying it.
-        if (split && settings.shockPropagation) solveSupportPass((settings.velocityIterations & 1) != 0);
+        if (split && settings.shockPropagation) {
+            const AddTime timed(stats.ms.solveParts.support);
+            solveSupportPass((settings.velocityIterations & 1) != 0);
+        }
     }
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
@@ -235,6 +252,7 @@ void World::Impl::integrate(real h) {
 
 void World::Impl::recoverPenetration(real h) {
     if (settings.positionIterations == 0 || solverManifolds.empty()) return;
+    const AddTime timed(stats.ms.solveParts.position);
     if (settings.contactSolver == ContactSolverType::SoftStep) {
         // Relax: rigid passes without bias remove the velocity the soft push added.
         for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {

@@ -77,15 +77,19 @@ void World::Impl::step(real dt) {
     const real h = dt / settings.substeps;
     matchThreads();
     prepareSolver(h);
-    stats.ms.solve += timer.lap();
+    stats.ms.solveParts.setup = timer.lap();
+    stats.ms.solve += stats.ms.solveParts.setup;
     for (int substep = 0; substep < settings.substeps; ++substep) {
         substepForces(h, substep == 0);
         stats.ms.forces += timer.lap();
+        const double supportBefore = stats.ms.solveParts.support;  // solve() times its support pass
         solve(h, substep == 0);
-        stats.ms.solve += timer.lap();
+        const double solved = timer.lap();
+        stats.ms.solve += solved;
+        stats.ms.solveParts.velocity += solved - (stats.ms.solveParts.support - supportBefore);
         integrate(h);
         stats.ms.integrate += timer.lap();
-        recoverPenetration(h);
+        recoverPenetration(h);  // times itself into solveParts.position
         stats.ms.solve += timer.lap();
     }
     restitution();

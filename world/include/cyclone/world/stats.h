@@ -7,6 +7,15 @@
 
 namespace cyclone {
 
+/// Milliseconds of the solve stage's parts (each included in StageTimes::solve), to see
+/// what a solver setting costs.
+struct SolveTimes {
+    double setup = 0;     ///< Jacobians, effective masses, the passes' order (once per step).
+    double velocity = 0;  ///< Predicted velocities, warm start and the coupled velocity passes.
+    double support = 0;   ///< The support pass (WorldSettings::shockPropagation; 0 when off or without contacts).
+    double position = 0;  ///< Penetration recovery (positionIterations; 0 when 0 or without contacts).
+};
+
 /// Milliseconds spent in each stage of the last step.
 struct StageTimes {
     double forces = 0;       ///< Gravity, user forces and springs (every sub-step).
@@ -15,11 +24,12 @@ struct StageTimes {
     double events = 0;       ///< Contact begin and end detection.
     double manifolds = 0;    ///< Point matching, warm-start data, solver set-up.
     double islands = 0;      ///< Island building and wake propagation.
-    double solve = 0;        ///< Velocity and position iterations.
+    double solve = 0;        ///< Velocity and position iterations (parts in solveParts).
     double integrate = 0;    ///< RigidBody::integrate and position correction.
     double ccd = 0;          ///< Continuous collision of fast bodies with BodySettings::ccd.
     double sleep = 0;        ///< Island sleep decisions.
     double total = 0;        ///< The whole step.
+    SolveTimes solveParts;   ///< Where the solve stage's time went (the rest: restitution, storing impulses).
 };
 
 /// Counters of the last step.

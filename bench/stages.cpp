@@ -1,0 +1,116 @@
+// cyclone-stages: where a step's time goes. Steps each benchmark scene in cyclone's World
+// and prints the median milliseconds of every stage (StepStats::ms) and of the solve
+// stage's parts (StageTimes::solveParts), over the steps after the first second.
+//
+//   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T]
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cyclone/world/world.h"
+#include "scenes.h"
+
+namespace {
+
+using namespace cyclone;
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+}
+
+struct Column {
+    const char *name;
+    double (*read)(const StageTimes &);
+};
+
+const Column kColumns[] = {
+    {"total", [](const StageTimes &t) { return t.total; }},
+    {"forces", [](const StageTimes &t) { return t.forces; }},
+    {"broadphase", [](const StageTimes &t) { return t.broadphase; }},
+    {"narrowphase", [](const StageTimes &t) { return t.narrowphase; }},
+    {"events", [](const StageTimes &t) { return t.events; }},
+    {"manifolds", [](const StageTimes &t) { return t.manifolds; }},
+    {"islands", [](const StageTimes &t) { return t.islands; }},
+    {"solve", [](const StageTimes &t) { return t.solve; }},
+    {"solve: setup", [](const StageTimes &t) { return t.solveParts.setup; }},
+    {"solve: velocity", [](const StageTimes &t) { return t.solveParts.velocity; }},
+    {"solve: support", [](const StageTimes &t) { return t.solveParts.support; }},
+    {"solve: position", [](const StageTimes &t) { return t.solveParts.position; }},
+    {"integrate", [](const StageTimes &t) { return t.integrate; }},
+    {"ccd", [](const StageTimes &t) { return t.ccd; }},
+    {"sleep", [](const StageTimes &t) { return t.sleep; }},
+};
+
+int run(int argc, char **argv) {
+    std::vector<std::string> scenes;
+    int steps = 600;
+    int threads = 1;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (i + 1 >= argc) {
+            std::fprintf(stderr, "cyclone-stages: %s needs a value\n", arg.c_str());
+            return 2;
+        }
+        const std::string value = argv[++i];
+        if (arg == "--scene") {
+            std::stringstream list(value);
+            for (std::string name; std::getline(list, name, ',');) scenes.push_back(name);
+        } else if (arg == "--steps") {
+            steps = std::atoi(value.c_str());
+        } else if (arg == "--threads") {
+            threads = std::atoi(value.c_str());
+        } else {
+            std::fprintf(stderr, "cyclone-stages: unknown option %s\n", arg.c_str());
+            return 2;
+        }
+    }
+    if (steps <= 60) {
+        std::fprintf(stderr, "cyclone-stages: --steps must be > 60 (the first second is not counted)\n");
+        return 2;
+    }
+    if (scenes.empty()) scenes = bench::sceneNames();
+    std::vector<bench::Scene> built;  // every name checked before the table starts
+    for (const std::string &name : scenes) built.push_back(bench::makeScene(name));
+
+    std::printf("| scene |");
+    for (const Column &c : kColumns) std::printf(" %s |", c.name);
+    std::printf("\n|---|");
+    for (std::size_t k = 0; k < std::size(kColumns); ++k) std::printf("--:|");
+    std::printf("\n");
+    for (bench::Scene &scene : built) {
+        scene.world.threads = threads;
+        World world(scene.world);
+        for (const BodySettings &body : scene.bodies) world.addBody(body);
+        std::vector<StageTimes> times;
+        for (int i = 0; i < steps; ++i) {
+            world.step(1.0 / 60);
+            if (i >= 60) times.push_back(world.stats().ms);
+        }
+        std::printf("| %s |", scene.name.c_str());
+        for (const Column &c : kColumns) {
+            std::vector<double> values;
+            for (const StageTimes &t : times) values.push_back(c.read(t));
+            std::printf(" %.3f |", median(values));
+        }
+        std::printf("\n");
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "cyclone-stages: %s\n", e.what());
+        return 2;
+    }
+}
