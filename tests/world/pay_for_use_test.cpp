@@ -51,8 +51,8 @@ TEST(PayForUse, FrictionlessStackHasNoFrictionRows) {
 }
 
 // The solve stage's parts (StageTimes::solveParts) show what a solver setting costs: no
-// support pass time with shock propagation off, no position time when nothing needs
-// recovering, and the parts never add up to more than the stage.
+// support pass time with shock propagation off, neither support nor position time
+// without contacts, and the parts never add up to more than the stage.
 TEST(PayForUse, SolvePartsAreZeroForWhatDidNotRun) {
     WorldSettings settings = noSleep();
     settings.shockPropagation = false;
