@@ -18,13 +18,13 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "alloc_counter.h"
 #include "engine.h"
 #include "scenes.h"
+#include "statistics.h"
 
 namespace cyclone::bench {
 namespace {
@@ -100,18 +100,6 @@ bool resetPeakRss() {
     const bool ok = write(fd, "5", 1) == 1;
     close(fd);
     return ok;
-}
-
-double percentile(std::vector<double> sorted, double fraction) {
-    std::sort(sorted.begin(), sorted.end());
-    const std::size_t rank = static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(sorted.size())));
-    return sorted[std::max<std::size_t>(rank, 1) - 1];
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
 struct Run {
@@ -412,15 +400,6 @@ void printUsage(std::ostream &out) {
            "  --list         print the scenes and exit\n";
 }
 
-std::vector<std::string> splitCommas(const std::string &text) {
-    std::vector<std::string> parts;
-    std::stringstream stream(text);
-    std::string part;
-    while (std::getline(stream, part, ','))
-        if (!part.empty()) parts.push_back(part);
-    return parts;
-}
-
 // Returns false after printing the reason when the command line is wrong.
 bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
     const std::vector<std::string> known = sceneNames();
@@ -458,7 +437,7 @@ bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
         } else if (arg == "--scene") {
             const char *v = value("--scene");
             if (!v) return false;
-            for (const std::string &name : splitCommas(v)) {
+            for (const std::string &name : splitSceneList(v)) {
                 if (name != "all" && std::find(known.begin(), known.end(), name) == known.end()) {
                     std::cerr << "cyclone-bench: --scene \"" << name << "\" is not a scene; --list shows them\n";
                     return false;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 #include <stdexcept>
 
 namespace cyclone::bench {
@@ -226,6 +227,15 @@ void splitSubsteps(Scene &scene, int substeps) {
     }
     scene.world.substeps = substeps;
     scene.world.velocityIterations = passes / substeps;
+}
+
+std::vector<std::string> splitSceneList(const std::string &list) {
+    std::vector<std::string> names;
+    std::stringstream stream(list);
+    std::string name;
+    while (std::getline(stream, name, ','))
+        if (!name.empty()) names.push_back(name);
+    return names;
 }
 
 }  // namespace cyclone::bench

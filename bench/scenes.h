@@ -32,6 +32,9 @@ struct Scene {
 /// Names of every scene, in the order the benchmark runs them.
 std::vector<std::string> sceneNames();
 
+/// The names in a comma-separated list ("pyramid10,pyramid20"), empty entries skipped.
+std::vector<std::string> splitSceneList(const std::string &list);
+
 /// The scene called `name`; throws std::invalid_argument for an unknown name.
 Scene makeScene(const std::string &name);
 

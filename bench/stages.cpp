@@ -3,27 +3,20 @@
 // stage's parts (StageTimes::solveParts), over the steps after the first second.
 //
 //   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T]
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <iterator>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cyclone/world/world.h"
 #include "scenes.h"
+#include "statistics.h"
 
 namespace {
 
 using namespace cyclone;
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
 
 struct Column {
     const char *name;
@@ -60,8 +53,7 @@ int run(int argc, char **argv) {
         }
         const std::string value = argv[++i];
         if (arg == "--scene") {
-            std::stringstream list(value);
-            for (std::string name; std::getline(list, name, ',');) scenes.push_back(name);
+            for (const std::string &name : bench::splitSceneList(value)) scenes.push_back(name);
         } else if (arg == "--steps") {
             steps = std::atoi(value.c_str());
         } else if (arg == "--threads") {
@@ -97,7 +89,7 @@ int run(int argc, char **argv) {
         for (const Column &c : kColumns) {
             std::vector<double> values;
             for (const StageTimes &t : times) values.push_back(c.read(t));
-            std::printf(" %.3f |", median(values));
+            std::printf(" %.3f |", bench::median(values));
         }
         std::printf("\n");
     }

@@ -22,7 +22,7 @@ struct StageTimes {
     double broadphase = 0;   ///< AABB updates and overlapping pairs.
     double narrowphase = 0;  ///< Contact tests (FCL or a pair's own) and manifold reuse.
     double events = 0;       ///< Contact begin and end detection.
-    double manifolds = 0;    ///< Point matching, warm-start data, solver set-up.
+    double manifolds = 0;    ///< Point matching, warm-start data, the solver's manifolds (its Jacobians: solveParts.setup).
     double islands = 0;      ///< Island building and wake propagation.
     double solve = 0;        ///< Velocity and position iterations (parts in solveParts).
     double integrate = 0;    ///< RigidBody::integrate and position correction.
