@@ -145,7 +145,8 @@ TEST(SupportLanes, RunsGoToTheirBodysHalfLevelByLevel) {
     }
     detail::SupportScratch scratch;
     detail::SupportRuns runs;
-    detail::assignSupport(7, Vector3::UnitY(), manifolds, scratch, runs);
+    const std::vector<int> order = {0, 1, 2, 3, 4, 5, 6};
+    detail::assignSupport(7, Vector3::UnitY(), manifolds, order, scratch, runs);
     const std::vector<signed char> side = {-1, 0, 1, 0, 1, 1, 0};
     detail::SupportLanes lanes;
     detail::buildSupportLanes(runs, manifolds, &side, 7, lanes);

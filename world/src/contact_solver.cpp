@@ -481,8 +481,10 @@ CYCLONE_INLINE void sweepRuns(std::vector<SolverBody> &bodies, std::vector<Solve
 }  // namespace
 
 CYCLONE_SIMD_CLONES
-void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse) {
-    for (SolverManifold &m : manifolds) {
+void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                      const std::vector<int> &order, bool reverse) {
+    for (int index : order) {
+        SolverManifold &m = manifolds[index];
         if (m.support != kNoSupport) continue;
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
         solveManifold<kBoth>(vel, m, reverse);
@@ -528,10 +530,11 @@ Softness makeSoftness(real hertz, real zeta, real h) {
 }
 
 CYCLONE_SIMD_CLONES
-void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real h, bool useBias,
-               const SoftStepSettings &settings) {
+void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
+               real h, bool useBias, const SoftStepSettings &settings) {
     const real inverseH = 1 / h;
-    for (SolverManifold &m : manifolds) {
+    for (int index : order) {
+        SolverManifold &m = manifolds[index];
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
         const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
         for (int i = 0; i < m.count; ++i) {
@@ -560,8 +563,10 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
     }
 }
 
-void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real threshold) {
-    for (SolverManifold &m : manifolds) {
+void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                      const std::vector<int> &order, real threshold) {
+    for (int index : order) {
+        SolverManifold &m = manifolds[index];
         if (m.restitution == 0) continue;
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
         for (int i = 0; i < m.count; ++i) {

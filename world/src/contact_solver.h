@@ -166,13 +166,15 @@ struct SoftStepSettings {
     real maxPushVelocity = 3;  ///< Fastest penetration recovery, m/s.
 };
 
-/// One pass of the soft-step solver. With `useBias` penetration pushes bodies apart
-/// softly; without it (relax) the contacts are rigid and bias velocity is removed.
-void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real h, bool useBias,
-               const SoftStepSettings &settings);
+/// One pass of the soft-step solver over the manifolds listed in `order`. With `useBias`
+/// penetration pushes bodies apart softly; without it (relax) the contacts are rigid and
+/// bias velocity is removed.
+void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
+               real h, bool useBias, const SoftStepSettings &settings);
 /// Applies restitution to points that approached faster than `threshold` and carried
-/// load this step.
-void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, real threshold);
+/// load this step (manifolds listed in `order`).
+void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                      const std::vector<int> &order, real threshold);
 
 /// Tangents of a normal: deterministic, so that the same normal gives the same basis
 /// every step and warm-started friction stays meaningful.
@@ -207,7 +209,8 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
 void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                      const std::vector<SolverGroup> &groups, bool reverse);
 /// The support pass (shock propagation), run after the coupled passes: first one plain
-/// pass over the manifolds where neither side carries the other (solveUnsupported), then,
+/// pass over the manifolds where neither side carries the other, in `order`
+/// (solveUnsupported), then,
 /// level by level bottom up (SupportRuns::levelStart), each carried body against its
 /// carriers as immovable bodies with up to kSupportSweeps sweeps (solveCarried). It leaves
 /// no body of a resting stack sinking into the one below or turning on it, whatever
@@ -215,7 +218,8 @@ void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold
 /// lighter one). Its impulses change velocities only: the accumulated impulses stay those
 /// of the coupled passes. The runs of one level are independent: any of them may be
 /// solved at the same time.
-void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, bool reverse);
+void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                      const std::vector<int> &order, bool reverse);
 /// Runs [firstRun, lastRun) of the support pass (see solveUnsupported).
 void solveCarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
                   int firstRun, int lastRun, bool reverse);

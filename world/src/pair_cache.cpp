@@ -114,9 +114,11 @@ void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &p
     for (int i = 0; i < m.count; ++i) m.points[i] = before.points[order[i]];
 }
 
-void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance) {
+void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance,
+                    std::uint64_t &anchorSettings) {
     std::size_t used = 0;
     for (ManifoldState &m : manifolds) {
+        m.anchors = ++anchorSettings;  // points may go, and the manifold may take another's place
         m.normal = poseA.linear() * m.localNormal;
         int kept = 0;
         for (int i = 0; i < m.count; ++i) {
@@ -133,8 +135,9 @@ void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA,
 }
 
 void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,
-                   real matchDistance) {
+                   real matchDistance, std::uint64_t anchors) {
     ManifoldState old = state;
+    state.anchors = anchors;
     const bool sameNormal = old.count > 0 && old.normal.dot(fresh.normal) > 0.95;
     // The patch's friction belongs to the contact as a whole: it carries over while the
     // normal does, whichever points the fresh manifold has.
@@ -152,6 +155,7 @@ void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &p
         p.localB = poseB.inverse() * fresh.points[i].pointB;
         p.depth = fresh.points[i].depth;
         p.normalImpulse = 0;
+        p.id = i;
         if (!sameNormal) continue;
         real best = match2;
         for (int j = 0; j < old.count; ++j) {

@@ -17,6 +17,9 @@ struct PersistentPoint {
     Vector3 localB = Vector3::Zero();  ///< Anchor on B, B's body space, m.
     real depth = 0;                    ///< Penetration, m (< 0: apart, speculative).
     real normalImpulse = 0;            ///< Last step's accumulated normal impulse, N s.
+    /// Its place in the manifold when its anchors were set: it stays with the point when
+    /// the points are put in another order (jacobian_stamp.h).
+    int id = 0;
 };
 
 struct ManifoldState {
@@ -26,6 +29,11 @@ struct ManifoldState {
     PersistentPoint points[Manifold::kMaxPoints];
     Vector3 frictionImpulse = Vector3::Zero();  ///< Last step's patch friction impulse, world, N s.
     real twistImpulse = 0;  ///< Last step's twist friction impulse about the normal, N m s.
+    /// Which setting of anchors its points have: a number no other setting in the world
+    /// had (World::Impl::anchorSettings), so that equal numbers mean the same anchors.
+    std::uint64_t anchors = 0;
+    std::uint32_t solverSlot = 0;  ///< Its solver slot in step solverStep (World::Impl::assignSlots).
+    std::uint64_t solverStep = ~std::uint64_t(0);  ///< The last step it was solved in (~0: never).
 };
 
 struct PairState {
@@ -86,12 +94,15 @@ private:
 void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &poseB);
 
 /// Refreshes the manifolds from their anchors and keeps only the points whose anchors
-/// are less than `distance` apart; drops manifolds left empty.
-void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance);
+/// are less than `distance` apart; drops manifolds left empty. Each manifold kept is
+/// numbered as a new setting of anchors from `anchorSettings` (counted up).
+void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance,
+                    std::uint64_t &anchorSettings);
 
 /// Replaces `state` with `fresh`, carrying each old point's impulses to the new point
-/// whose anchor on A lies within `matchDistance` (warm starting).
+/// whose anchor on A lies within `matchDistance` (warm starting). The new anchors are
+/// numbered `anchors`.
 void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,
-                   real matchDistance);
+                   real matchDistance, std::uint64_t anchors);
 
 }  // namespace cyclone::detail

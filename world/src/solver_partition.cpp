@@ -21,14 +21,14 @@ int widestAxis(const std::vector<Vector3> &positions) {
 
 }  // namespace
 
-void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<Vector3> &positions,
-                        PartitionScratch &scratch, SolverPartition &partition) {
-    const int n = static_cast<int>(manifolds.size());
+void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<int> &solveOrder,
+                        const std::vector<Vector3> &positions, PartitionScratch &scratch, SolverPartition &partition) {
+    const int n = static_cast<int>(solveOrder.size());
     std::vector<int>(&order)[3] = partition.order;
     for (std::vector<int> &part : order) part.clear();
     partition.split = n >= kMinSplitManifolds && positions.size() > 2;
     if (!partition.split) {
-        for (int i = 0; i < n; ++i) order[0].push_back(i);
+        order[0] = solveOrder;
     } else {
         const int axis = widestAxis(positions);
         std::vector<real> &places = scratch.places;
@@ -41,7 +41,7 @@ void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std:
         side.resize(positions.size());
         side[0] = -1;  // immovable: joins either half
         for (std::size_t k = 1; k < positions.size(); ++k) side[k] = positions[k][axis] < median ? 0 : 1;
-        for (int i = 0; i < n; ++i) {
+        for (int i : solveOrder) {
             const int a = side[manifolds[i].a];
             const int b = side[manifolds[i].b];
             const int part = a < 0 ? b : b < 0 ? a : a == b ? a : SolverPartition::kSeam;

@@ -21,7 +21,7 @@ namespace cyclone::detail {
 inline constexpr int kMinSplitManifolds = 128;
 
 /// The coupled passes' order in three parts: the two halves (solvable at once), then the
-/// seam. Unsplit, part 0 holds every manifold in the plain order and the others are empty.
+/// seam. Unsplit, part 0 holds every manifold in the solve order and the others are empty.
 struct SolverPartition {
     static constexpr int kSeam = 2;
     std::vector<int> order[3];          ///< Manifold indices of each part, in solve order.
@@ -36,9 +36,9 @@ struct PartitionScratch {
     std::vector<char> taken;
 };
 
-/// Splits `manifolds` by `positions` of the solver bodies (entry 0, the immovable world,
-/// is ignored) and schedules each part in the manifolds' order.
-void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<Vector3> &positions,
-                        PartitionScratch &scratch, SolverPartition &partition);
+/// Splits the manifolds listed in `order` by `positions` of the solver bodies (entry 0,
+/// the immovable world, is ignored) and schedules each part in that order.
+void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
+                        const std::vector<Vector3> &positions, PartitionScratch &scratch, SolverPartition &partition);
 
 }  // namespace cyclone::detail

@@ -7,19 +7,21 @@ namespace cyclone::detail {
 namespace {
 
 // The support pass's runs: each carried body's manifolds with its carriers, bodies by
-// level (bottom up; all level 0 without `level`), then by their first such manifold.
-void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<int> *level, int bodyCount,
-               SupportScratch &scratch, SupportRuns &runs) {
+// level (bottom up; all level 0 without `level`), then by their first such manifold in
+// `order`.
+void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
+               const std::vector<int> *level, int bodyCount, SupportScratch &scratch, SupportRuns &runs) {
     const auto carried = [](const SolverManifold &m) { return m.support == kASupportsB ? m.b : m.a; };
     std::vector<int> &first = scratch.first;
     first.assign(bodyCount, std::numeric_limits<int>::max());
     std::vector<SupportScratch::Key> &keys = scratch.keys;
     keys.clear();
-    for (int i = 0; i < static_cast<int>(manifolds.size()); ++i) {
-        if (manifolds[i].support == kNoSupport) continue;
-        const int body = carried(manifolds[i]);
-        first[body] = std::min(first[body], i);
-        keys.push_back({level ? (*level)[body] : 0, body, i});
+    for (int rank = 0; rank < static_cast<int>(order.size()); ++rank) {
+        const SolverManifold &m = manifolds[order[rank]];
+        if (m.support == kNoSupport) continue;
+        const int body = carried(m);
+        first[body] = std::min(first[body], rank);
+        keys.push_back({level ? (*level)[body] : 0, body, rank});
     }
     for (SupportScratch::Key &key : keys) key.body = first[key.body];  // group by first manifold
     std::sort(keys.begin(), keys.end(), [](const SupportScratch::Key &x, const SupportScratch::Key &y) {
@@ -36,7 +38,7 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
                 runs.levelStart.push_back(static_cast<int>(runs.start.size()));
             runs.start.push_back(static_cast<int>(k));
         }
-        runs.manifolds.push_back(keys[k].manifold);
+        runs.manifolds.push_back(order[keys[k].manifold]);
     }
     runs.levelStart.push_back(static_cast<int>(runs.start.size()));
     runs.start.push_back(static_cast<int>(keys.size()));
@@ -46,14 +48,14 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
 }  // namespace
 
 void assignSupport(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
-                   SupportScratch &scratch, SupportRuns &runs) {
+                   const std::vector<int> &order, SupportScratch &scratch, SupportRuns &runs) {
     for (SolverManifold &m : manifolds) {
         m.support = kNoSupport;
         if (m.a == 0) m.support = kASupportsB;  // static or asleep: immovable anyway
         if (m.b == 0) m.support = kBSupportsA;
     }
     if (up.isZero(0) || manifolds.empty()) {
-        buildRuns(manifolds, nullptr, bodyCount, scratch, runs);
+        buildRuns(manifolds, order, nullptr, bodyCount, scratch, runs);
         return;
     }
     const Vector3 u = up.normalized();
@@ -103,7 +105,7 @@ void assignSupport(int bodyCount, const Vector3 &up, std::vector<SolverManifold>
         if (la < lb && rise >= kRestingCosine) m.support = kASupportsB;
         else if (lb < la && rise <= -kRestingCosine) m.support = kBSupportsA;
     }
-    buildRuns(manifolds, &level, bodyCount, scratch, runs);
+    buildRuns(manifolds, order, &level, bodyCount, scratch, runs);
 }
 
 }  // namespace cyclone::detail

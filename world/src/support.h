@@ -15,8 +15,8 @@ struct SupportScratch {
     std::vector<int> queue;
     struct Key {
         int level;     ///< The carried body's.
-        int body;      ///< The carried body, then its first manifold's index.
-        int manifold;
+        int body;      ///< The carried body, then its first manifold's rank.
+        int manifold;  ///< Rank in the solve order.
     };
     std::vector<Key> keys;   ///< The support pass's order being sorted.
     std::vector<int> first;  ///< Per solver body: its first manifold with a carrier.
@@ -30,8 +30,9 @@ struct SupportScratch {
 /// moving bodies, those at the same level, side contacts and worlds without gravity
 /// (`up` zero) get none.
 /// `bodyCount` counts the solver bodies, body 0 included.
-/// Also lists the support pass's runs (SupportRuns) bottom up.
+/// Also lists the support pass's runs (SupportRuns) bottom up; within a level, the
+/// bodies and each body's manifolds in the solve order `order` (manifold indices).
 void assignSupport(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
-                   SupportScratch &scratch, SupportRuns &runs);
+                   const std::vector<int> &order, SupportScratch &scratch, SupportRuns &runs);
 
 }  // namespace cyclone::detail

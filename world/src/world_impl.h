@@ -19,6 +19,7 @@
 #include "broadphase.h"
 #include "collision_shape.h"
 #include "contact_solver.h"
+#include "jacobian_stamp.h"
 #include "solver_partition.h"
 #include "solver_schedule.h"
 #include "task_pool.h"
@@ -126,6 +127,12 @@ struct World::Impl {
     std::vector<detail::SolverManifold> solverManifolds;
     std::vector<std::uint32_t> solverSource;  ///< Pair index and manifold of each solver manifold.
     std::vector<ManifoldKey> manifoldKeys;    ///< The solver manifolds to build, in solve order.
+    /// Solver slot of each entry of manifoldKeys: the solve order (Gauss-Seidel's) of the
+    /// solver manifolds, which keep their slots from step to step (assignSlots).
+    std::vector<int> solveOrder;
+    std::vector<char> slotTaken;              ///< Scratch of assignSlots.
+    std::vector<std::uint32_t> keyOfSlot;     ///< Entry of manifoldKeys each slot holds.
+    std::vector<detail::JacobianStamp> jacobianStamps;  ///< What each solver slot's Jacobians were made from.
     detail::SolverPartition partition;  ///< Coupled passes' order (solver_partition.h).
     detail::PartitionScratch partitionScratch;
     std::vector<Vector3> solverPositions;  ///< Position of each solver body (entry 0 unused).
@@ -161,6 +168,7 @@ struct World::Impl {
     detail::SupportLanes supportLanes;
     detail::SoftStepSettings soft;
     std::uint64_t stepCount = 0;
+    std::uint64_t anchorSettings = 0;  ///< Settings of anchors so far (ManifoldState::anchors).
     StepStats stats;
 
     explicit Impl(const WorldSettings &s) : settings(s) {}
@@ -196,7 +204,17 @@ struct World::Impl {
     /// Runs FCL on pair p and merges what it finds into the pair's manifolds.
     void testPair(std::uint32_t p);
     void buildManifolds(real dt);
+    /// Sorts manifoldKeys for Gauss-Seidel: lower contacts first.
     void orderManifolds();
+    /// Gives each entry of manifoldKeys a solver slot (solveOrder).
+    void assignSlots();
+    detail::ManifoldState &manifoldOf(const ManifoldKey &key) { return pairs[key.source >> 2].manifolds[key.source & 3]; }
+    bool jacobiansHold(const detail::JacobianStamp &stamp, const detail::PairState &pair,
+                       const detail::ManifoldState &m) const;
+    /// Whether body `index` is still the stamped body, in the same role, within the
+    /// manifold-reuse tolerance of its stamped pose.
+    bool bodyStillStamped(const detail::StampedBody &stamped, std::uint32_t index) const;
+    void stampBody(detail::StampedBody &stamped, std::uint32_t index) const;
     /// Fills solverManifolds[slot] and solverSource[slot] from the manifold `key` names.
     void addSolverManifold(const ManifoldKey &key, std::size_t slot);
     /// Solve-order height of a contact between a and b: the lower body's, m along `up`.

@@ -79,10 +79,10 @@ void World::Impl::prepareSolver(real h) {
     const bool support = settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse;
     forEachTask(support ? 2 : 1, [&](int task) {
         if (task == 0) {
-            detail::partitionManifolds(solverManifolds, solverPositions, partitionScratch, partition);
+            detail::partitionManifolds(solverManifolds, solveOrder, solverPositions, partitionScratch, partition);
         } else {
             detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds,
-                                  supportScratch, supportRuns);
+                                  solveOrder, supportScratch, supportRuns);
         }
     });
     if (support) {
@@ -90,12 +90,19 @@ void World::Impl::prepareSolver(real h) {
         detail::buildSupportLanes(supportRuns, solverManifolds, shared ? &partitionScratch.side : nullptr,
                                   static_cast<int>(solverBodies.size()), supportLanes);
     }
-    // Jacobians and effective masses are set once per step, at the step's poses.
+    // Jacobians and effective masses are made once per step, at the step's poses, unless
+    // the slot's still hold (jacobian_stamp.h).
     forEachManifold([&](std::size_t s) {
         prepareManifold(s);
-        if (support) detail::prepareSupportedMasses(solverBodies, solverManifolds[s]);
+        detail::JacobianStamp &stamp = jacobianStamps[s];
+        if (support && stamp.support != solverManifolds[s].support) {
+            detail::prepareSupportedMasses(solverBodies, solverManifolds[s]);
+            stamp.support = solverManifolds[s].support;
+        }
     });
-    for (const detail::SolverManifold &m : solverManifolds) {
+    for (std::size_t s = 0; s < solverManifolds.size(); ++s) {
+        const detail::SolverManifold &m = solverManifolds[s];
+        if (!jacobianStamps[s].kept) ++stats.jacobiansMade;
         if (m.friction > 0) stats.frictionRows += m.twistRadius > 0 ? 3 : 2;  // the patch: two tangents, a twist
         if (m.restitution == 0) continue;
         for (int i = 0; i < m.count; ++i)
@@ -112,18 +119,22 @@ void World::Impl::prepareManifold(std::size_t s) {
     m.touchesStatic = m.a == 0 || m.b == 0;
     const detail::SolverBody &sa = solverBodies[m.a];
     const detail::SolverBody &sb = solverBodies[m.b];
-    detail::prepareDirections(m);
-    Vector3 points[detail::kMaxManifoldPoints];
+    if (!jacobianStamps[s].kept) {
+        detail::prepareDirections(m);
+        Vector3 points[detail::kMaxManifoldPoints];
+        for (int i = 0; i < m.count; ++i) {
+            const detail::SolverPoint &p = m.points[i];
+            points[i] = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
+            detail::prepareRows(sa, sb, points[i] - a.getPosition(), points[i] - b.getPosition(), m, m.points[i]);
+        }
+        detail::prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m);
+    }
     for (int i = 0; i < m.count; ++i) {
         detail::SolverPoint &p = m.points[i];
-        const Vector3 c = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
-        detail::prepareRows(sa, sb, c - a.getPosition(), c - b.getPosition(), m, p);
         p.maxNormalImpulse = 0;
         // The normal velocity when the step began, measured only for restitution.
         p.approachSpeed = m.restitution == 0 ? 0 : detail::normalVelocity(sa, sb, m, p);
-        points[i] = c;
     }
-    detail::prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m);
 }
 
 // The warm start and each coupled pass: the two halves of the partition at once, then
@@ -144,7 +155,7 @@ void World::Impl::solveCoupledPass(bool reverse) {
 
 // The partition's halves at once, each run once its carriers are done (support_lanes.h).
 void World::Impl::solveSupportPass(bool reverse) {
-    detail::solveUnsupported(solverBodies, solverManifolds, reverse);
+    detail::solveUnsupported(solverBodies, solverManifolds, solveOrder, reverse);
     detail::beginSupportPass(supportLanes);
     forEachTask(supportLanes.lane[1].empty() ? 1 : 2, [&](int lane) {
         detail::solveSupportLane(solverBodies, solverManifolds, supportRuns, supportLanes, lane, reverse);
@@ -216,7 +227,7 @@ void World::Impl::solve(real h, bool firstSubstep) {
         if (settings.warmStarting) warmStart();
         for (int it = 0; it < settings.velocityIterations; ++it) {
             if (split) solveCoupledPass((it & 1) != 0);
-            else detail::solveSoft(solverBodies, solverManifolds, h, true, soft);
+            else detail::solveSoft(solverBodies, solverManifolds, solveOrder, h, true, soft);
         }
         stats.velocityIterations += settings.velocityIterations;
         // The support pass comes after the coupled passes, never instead of one: alone,
@@ -261,7 +272,7 @@ void World::Impl::recoverPenetration(real h) {
             detail::setLanes(solverBodies[k + 1].w, body.getRotation());
         }
         for (int it = 0; it < settings.positionIterations; ++it)
-            detail::solveSoft(solverBodies, solverManifolds, h, false, soft);
+            detail::solveSoft(solverBodies, solverManifolds, solveOrder, h, false, soft);
         for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
             BodyRecord &r = bodies[simulatedBodies[k]];
             if (r.quarantined) continue;
@@ -331,7 +342,7 @@ void World::Impl::restitution() {
         detail::setLanes(solverBodies[k + 1].v, body.getVelocity());
         detail::setLanes(solverBodies[k + 1].w, body.getRotation());
     }
-    detail::applyRestitution(solverBodies, solverManifolds, settings.restitutionThreshold);
+    detail::applyRestitution(solverBodies, solverManifolds, solveOrder, settings.restitutionThreshold);
     for (std::size_t k = 0; k < simulatedBodies.size(); ++k) {
         BodyRecord &r = bodies[simulatedBodies[k]];
         if (r.quarantined) continue;

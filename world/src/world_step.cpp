@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 
+#include "pose_change.h"
 #include "validation.h"
 #include "world_impl.h"
 
@@ -31,19 +32,6 @@ private:
 // How far apart (along or across the normal) a contact's anchors may drift once FCL no
 // longer reports the pair before the contact is dropped, m.
 constexpr real kContactKeepDistance = 0.002;
-
-// Whether a pair moved less than `tolerance` since its last test: shift + |angle| radius
-// < tolerance, with the angle Eigen's AngleAxis gives for `turn`, 2 atan2(|v|, |w|) of
-// its vector and scalar parts. As atan x <= x, that angle is at most 2 |v|_1 / |w| (the
-// factor 1 + 1e-9 covers rounding, a few ulps, by far), and rounding is monotonic: when
-// that bound passes, or the shift alone fails, the answer is known without the atan2 a
-// settled scene would otherwise pay for every pair every step.
-bool movedLess(real shift, const Eigen::Quaternion<real> &turn, real radius, real tolerance) {
-    if (!(shift < tolerance)) return false;
-    const real w = std::abs(turn.w());
-    if (w > 0 && shift + 2 * turn.vec().lpNorm<1>() / w * (1 + 1e-9) * radius < tolerance) return true;
-    return shift + std::abs(Eigen::AngleAxis<real>(turn).angle()) * radius < tolerance;
-}
 
 int findRoot(std::vector<int> &parent, int i) {
     while (parent[i] != i) {
@@ -285,7 +273,7 @@ bool World::Impl::reuseManifolds(std::uint32_t p) {
     const real shift = (relative.translation() - pair.relativePose.translation()).norm();
     const Eigen::Quaternion<real> turn(relative.linear() * pair.relativePose.linear().transpose());
     const real radius = std::max(a.boundingRadius, b.boundingRadius);
-    if (!movedLess(shift, turn, radius, settings.manifoldReuseTolerance)) return false;
+    if (!detail::movedLess(shift, turn, radius, settings.manifoldReuseTolerance)) return false;
     for (detail::ManifoldState &m : pair.manifolds) detail::refreshFromAnchors(m, poseA, poseB);
     return true;
 }
@@ -308,13 +296,14 @@ void World::Impl::testPair(std::uint32_t p) {
         // FCL sees only overlap: a resting contact that opens by a hair would be lost
         // with its warm-start impulses and found again a step later. Keep its points as
         // speculative contacts while they stay close.
-        detail::keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance);
+        detail::keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance, anchorSettings);
         return;
     }
     // At most four manifolds per pair (a mesh may report more normals).
     const int kept = std::min(n, 4);
     pair.manifolds.resize(kept);
-    for (int k = 0; k < kept; ++k) detail::mergeManifold(pair.manifolds[k], fresh[k], poseA, poseB, matchDistance);
+    for (int k = 0; k < kept; ++k)
+        detail::mergeManifold(pair.manifolds[k], fresh[k], poseA, poseB, matchDistance, ++anchorSettings);
 }
 
 // --- manifolds ----------------------------------------------------------------------------
@@ -338,11 +327,14 @@ void World::Impl::buildManifolds(real) {
         }
     }
     orderManifolds();
+    assignSlots();
     // Last step's manifolds are overwritten in place (see addSolverManifold); only new
     // slots are value-initialised.
     solverManifolds.resize(manifoldKeys.size());
     solverSource.resize(manifoldKeys.size());
-    forEachInChunks(manifoldKeys.size(), [&](std::size_t s) { addSolverManifold(manifoldKeys[s], s); });
+    jacobianStamps.resize(manifoldKeys.size());
+    // Slot by slot: the slots are written in memory order.
+    forEachInChunks(manifoldKeys.size(), [&](std::size_t s) { addSolverManifold(manifoldKeys[keyOfSlot[s]], s); });
     for (const detail::SolverManifold &m : solverManifolds) {
         ++stats.manifolds;
         stats.contacts += m.count;
@@ -359,19 +351,43 @@ static_assert(sizeof(detail::SolverPoint) == 288 && sizeof(detail::SolverManifol
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
 void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
-    const detail::PairState &pair = pairs[key.source >> 2];
-    const detail::ManifoldState &m = pair.manifolds[key.source & 3];
+    detail::PairState &pair = pairs[key.source >> 2];
+    detail::ManifoldState &m = manifoldOf(key);
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
     const real friction = std::sqrt(a.material.friction * b.material.friction);
     // The slot holds an earlier step's manifold (or a value-initialised one). Resetting
     // all ~2.7 KB of it every step cost more than the rest of this function, and most of
-    // it is the Jacobians, which prepareSolver writes anyway.
+    // it is the Jacobians, which prepareSolver writes anyway unless they still hold.
     detail::SolverManifold &sm = solverManifolds[slot];
+    detail::JacobianStamp &stamp = jacobianStamps[slot];
+    stamp.kept = jacobiansHold(stamp, pair, m);
+    if (stamp.kept) {
+        // The manifold's points come in the order of their depths (refreshFromAnchors):
+        // their rows follow them, swapped into place (the row now at i goes to to[i]).
+        int to[detail::kMaxManifoldPoints];
+        for (int i = 0; i < m.count; ++i) to[stamp.rowOf[m.points[i].id]] = i;
+        for (int i = 0; i < m.count; ++i) {
+            while (to[i] != i) {
+                const int j = to[i];
+                std::swap(sm.points[i].normal, sm.points[j].normal);
+                std::swap(to[i], to[j]);
+            }
+        }
+    } else {
+        // The normal and tangents stay those the Jacobians were made with.
+        sm.normal = m.normal;
+        detail::tangentBasis(sm.normal, sm.tangent[0], sm.tangent[1]);
+        stamp.anchors = m.anchors;
+        stampBody(stamp.body[0], pair.a);
+        stampBody(stamp.body[1], pair.b);
+        stamp.support = detail::kSupportNotMade;
+    }
+    for (int i = 0; i < m.count; ++i) stamp.rowOf[m.points[i].id] = static_cast<signed char>(i);
+    m.solverSlot = static_cast<std::uint32_t>(slot);
+    m.solverStep = stepCount;
     sm.a = a.simulated ? a.solverIndex : 0;
     sm.b = b.simulated ? b.solverIndex : 0;
-    sm.normal = m.normal;
-    detail::tangentBasis(sm.normal, sm.tangent[0], sm.tangent[1]);
     sm.friction = friction;
     sm.restitution = 0;
     sm.touchesStatic = false;
@@ -398,11 +414,62 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     solverSource[slot] = key.source;
 }
 
+// Whether the Jacobians in a slot, made at an earlier step (jacobian_stamp.h), hold for
+// manifold `m` of `pair`: the same anchors (in any order), the same bodies in the same
+// roles, neither moved more than the manifold-reuse tolerance since.
+bool World::Impl::jacobiansHold(const detail::JacobianStamp &stamp, const detail::PairState &pair,
+                                const detail::ManifoldState &m) const {
+    return settings.manifoldReuseTolerance > 0 && m.anchors != 0 && stamp.anchors == m.anchors &&
+           bodyStillStamped(stamp.body[0], pair.a) && bodyStillStamped(stamp.body[1], pair.b);
+}
+
+bool World::Impl::bodyStillStamped(const detail::StampedBody &stamped, std::uint32_t index) const {
+    const BodyRecord &r = bodies[index];
+    if (stamped.index != index || stamped.generation != r.generation || stamped.movable != r.simulated) return false;
+    if (r.isPlane) return true;  // a plane cannot be moved (World::setPosition refuses it)
+    const real shift = (r.body.getPosition() - stamped.position).norm();
+    return detail::movedLess(shift, r.body.getOrientation() * stamped.orientation.conjugate(), r.boundingRadius,
+                             settings.manifoldReuseTolerance);
+}
+
+void World::Impl::stampBody(detail::StampedBody &stamped, std::uint32_t index) const {
+    const BodyRecord &r = bodies[index];
+    stamped.index = index;
+    stamped.generation = r.generation;
+    stamped.movable = r.simulated;
+    stamped.position = r.body.getPosition();
+    stamped.orientation = r.body.getOrientation();
+}
+
 real World::Impl::contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) const {
     const real lowest = -std::numeric_limits<real>::infinity();
     const real ha = a.isStatic ? lowest : a.body.getPosition().dot(up);
     const real hb = b.isStatic ? lowest : b.body.getPosition().dot(up);
     return std::min(ha, hb);
+}
+
+// Each manifold goes back to the slot it had last step when it can, so that the slot's
+// Jacobians may be kept (jacobian_stamp.h); the others take the free slots in solve
+// order. solveOrder lists the slots in solve order.
+void World::Impl::assignSlots() {
+    const std::size_t n = manifoldKeys.size();
+    solveOrder.assign(n, -1);
+    slotTaken.assign(n, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+        const detail::ManifoldState &m = manifoldOf(manifoldKeys[k]);
+        if (m.solverStep + 1 != stepCount || m.solverSlot >= n || slotTaken[m.solverSlot]) continue;
+        solveOrder[k] = static_cast<int>(m.solverSlot);
+        slotTaken[m.solverSlot] = 1;
+    }
+    std::size_t free = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (solveOrder[k] >= 0) continue;
+        while (slotTaken[free]) ++free;
+        solveOrder[k] = static_cast<int>(free);
+        slotTaken[free] = 1;
+    }
+    keyOfSlot.resize(n);
+    for (std::size_t k = 0; k < n; ++k) keyOfSlot[solveOrder[k]] = static_cast<std::uint32_t>(k);
 }
 
 void World::Impl::orderManifolds() {

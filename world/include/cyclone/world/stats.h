@@ -42,6 +42,7 @@ struct StepStats {
     int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
     int manifolds = 0;          ///< Contact manifolds given to the solver.
     int contacts = 0;           ///< Contact points given to the solver.
+    int jacobiansMade = 0;      ///< Manifolds whose Jacobians were made this step (the others kept theirs: WorldSettings::manifoldReuseTolerance).
     int frictionRows = 0;       ///< Friction constraint rows (per manifold with friction: 2 tangents, plus a twist with 2 or more points).
     int restitutionContacts = 0;///< Points that bounce this step.
     int islands = 0;            ///< Islands of awake dynamic bodies.
