@@ -92,6 +92,10 @@ struct WorldSettings {
     /// radius), >= 0; pairs without contact are always tested; 0 tests every pair every
     /// step. At the default 0.5 mm a resting 20-level pyramid reuses all of its 400
     /// manifolds and stays within a tenth of a millimetre (see docs/solver.md).
+    /// The same tolerance lets a manifold keep its solver Jacobians from an earlier step
+    /// while its anchors are the same and neither body moved more than this (translation
+    /// plus rotation times its bounding radius) since they were made
+    /// (StepStats::jacobiansMade counts the others); 0 makes them every step.
     real manifoldReuseTolerance = 0.0005;
     /// Whether impulses of the last step seed the solver (warm starting).
     bool warmStarting = true;
