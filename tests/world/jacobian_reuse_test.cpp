@@ -8,12 +8,6 @@
 namespace cyclone::test {
 namespace {
 
-WorldSettings noSleep() {
-    WorldSettings settings;
-    settings.sleep = false;
-    return settings;
-}
-
 // Two boxes on the ground, at rest: after the first step nothing moves by more than
 // the 0.5 mm tolerance, so no manifold makes its Jacobians again. With the tolerance at
 // 0 every manifold makes them every step.

@@ -8,12 +8,6 @@
 namespace cyclone::test {
 namespace {
 
-WorldSettings noSleep() {
-    WorldSettings settings;
-    settings.sleep = false;
-    return settings;
-}
-
 // Three unit boxes stacked on the ground, the bottom one frictionless: friction is the
 // geometric mean of the two materials, so only the top pair has any. Each face contact
 // has 4 points: 12 contacts, and the top pair's patch has 3 friction rows (two tangents

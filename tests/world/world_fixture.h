@@ -10,6 +10,13 @@ namespace cyclone::test {
 inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kDt = 1.0 / 60.0;
 
+/// The default settings with sleep off: what a test of per-step work wants.
+inline WorldSettings noSleep() {
+    WorldSettings settings;
+    settings.sleep = false;
+    return settings;
+}
+
 struct WorldFixture {
     World world;
 
