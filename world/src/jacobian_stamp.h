@@ -7,7 +7,8 @@
 // change from one step to the next by more than the manifold-reuse tolerance, and making
 // them again was a quarter of the solve. A slot keeps them while it holds a manifold with
 // the same anchors (ManifoldState::anchors: new contacts found by the narrowphase are new
-// anchors), of the same bodies in the same roles (movable or not in the solver), and
+// anchors, and a number belongs to one manifold, so to one pair of bodies), its bodies in
+// the same roles (movable or not in the solver), and
 // neither body moved more than WorldSettings::manifoldReuseTolerance (translation plus
 // rotation times its bounding radius) since they were made: the error is then of the
 // order of what manifold reuse accepts. Manifolds keep their slots from step to step
@@ -23,9 +24,7 @@ namespace cyclone::detail {
 
 /// One body of a stamped manifold as it was when the Jacobians were made.
 struct StampedBody {
-    std::uint32_t index = 0;       ///< Body index.
-    std::uint32_t generation = 0;  ///< Its generation: an index reused by a new body differs.
-    bool movable = false;          ///< Simulated (a solver body of its own) or immovable (entry 0).
+    bool movable = false;  ///< Simulated (a solver body of its own) or immovable (entry 0).
     Vector3 position = Vector3::Zero();
     Quaternion orientation = Quaternion::Identity();
 };

@@ -211,8 +211,8 @@ struct World::Impl {
     detail::ManifoldState &manifoldOf(const ManifoldKey &key) { return pairs[key.source >> 2].manifolds[key.source & 3]; }
     bool jacobiansHold(const detail::JacobianStamp &stamp, const detail::PairState &pair,
                        const detail::ManifoldState &m) const;
-    /// Whether body `index` is still the stamped body, in the same role, within the
-    /// manifold-reuse tolerance of its stamped pose.
+    /// Whether body `index` is still in its stamped role, within the manifold-reuse
+    /// tolerance of its stamped pose.
     bool bodyStillStamped(const detail::StampedBody &stamped, std::uint32_t index) const;
     void stampBody(detail::StampedBody &stamped, std::uint32_t index) const;
     /// Fills solverManifolds[slot] and solverSource[slot] from the manifold `key` names.

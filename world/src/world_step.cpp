@@ -416,8 +416,8 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
 }
 
 // Whether the Jacobians in a slot, made at an earlier step (jacobian_stamp.h), hold for
-// manifold `m` of `pair`: the same anchors (in any order), the same bodies in the same
-// roles, neither moved more than the manifold-reuse tolerance since.
+// manifold `m` of `pair`: the same anchors (in any order, and so the same bodies), the
+// bodies in the same roles, neither moved more than the manifold-reuse tolerance since.
 bool World::Impl::jacobiansHold(const detail::JacobianStamp &stamp, const detail::PairState &pair,
                                 const detail::ManifoldState &m) const {
     return settings.manifoldReuseTolerance > 0 && m.anchors != 0 && stamp.anchors == m.anchors &&
@@ -426,7 +426,7 @@ bool World::Impl::jacobiansHold(const detail::JacobianStamp &stamp, const detail
 
 bool World::Impl::bodyStillStamped(const detail::StampedBody &stamped, std::uint32_t index) const {
     const BodyRecord &r = bodies[index];
-    if (stamped.index != index || stamped.generation != r.generation || stamped.movable != r.simulated) return false;
+    if (stamped.movable != r.simulated) return false;
     if (r.isPlane) return true;  // a plane cannot be moved (World::setPosition refuses it)
     const real shift = (r.body.getPosition() - stamped.position).norm();
     return detail::movedLess(shift, r.body.getOrientation() * stamped.orientation.conjugate(), r.boundingRadius,
@@ -435,8 +435,6 @@ bool World::Impl::bodyStillStamped(const detail::StampedBody &stamped, std::uint
 
 void World::Impl::stampBody(detail::StampedBody &stamped, std::uint32_t index) const {
     const BodyRecord &r = bodies[index];
-    stamped.index = index;
-    stamped.generation = r.generation;
     stamped.movable = r.simulated;
     stamped.position = r.body.getPosition();
     stamped.orientation = r.body.getOrientation();
