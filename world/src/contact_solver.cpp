@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace cyclone::detail {
 namespace {
@@ -141,78 +142,179 @@ CYCLONE_INLINE real massOf(const SolverRow &row) {
     return kMoving == kBoth ? row.mass : row.supportedMass;
 }
 
-// The patch's friction: the tangents and the twist solved together (the impulses that
-// stop the patch sliding and turning at once), then the tangents limited by the points'
-// summed normal impulse to Coulomb's cone (not a box: friction is isotropic in the
-// contact plane) and the twist by the same sum times the twist radius.
-template <Moving kMoving>
-CYCLONE_INLINE void solveFriction(PairVelocities &vel, SolverManifold &m) {
-    const Lanes &t0 = m.direction[1];
-    const Lanes &t1 = m.direction[2];
-    SolverRow &row0 = m.frictionRow[0];
-    SolverRow &row1 = m.frictionRow[1];
-    SolverRow &twist = m.twist;
-    const bool turns = m.twistRadius > 0;
-    const real *k = kMoving == kBoth ? m.frictionInverse : m.supportedFrictionInverse;
-    real load = 0;
-    for (int i = 0; i < m.count; ++i) load += m.points[i].normal.impulse;
-    const real limit = m.friction * load;
-    const real v0 = vel.along(t0, row0);
-    const real v1 = vel.along(t1, row1);
-    const real v2 = turns ? vel.turning(twist) : 0;
-    const real old0 = row0.impulse;
-    const real old1 = row1.impulse;
-    const real old2 = twist.impulse;
-    real new0 = old0 - (k[0] * v0 + k[1] * v1 + k[2] * v2);
-    real new1 = old1 - (k[1] * v0 + k[3] * v1 + k[4] * v2);
-    const real magnitude2 = new0 * new0 + new1 * new1;
-    if (magnitude2 > limit * limit) {
-        const real scale = limit / std::sqrt(magnitude2);
-        new0 *= scale;
-        new1 *= scale;
+// One pass over one manifold's rows: friction, then the normal rows (the ones that must
+// hold have the last word), each solved against the velocities the rows before it left,
+// as Gauss-Seidel does. The bodies' velocities are read once: the friction rows' and the
+// points' normal velocities all at the start, and each impulse then updates the normal
+// velocities of the points after it through the manifold's couplings. The impulses reach
+// the bodies together at the end. The numbers are those of solving row after row on the
+// bodies' velocities, but a row waits only for a few scalar products, not for the
+// bodies' velocities to be updated and dotted again.
+//
+// kCount is the manifold's count: its loops unroll and the velocities stay in registers.
+template <Moving kMoving, int kCount>
+struct ManifoldSweep {
+    PairVelocities &vel;
+    SolverManifold &m;
+    const RowCouplings &couplings;
+    real vn[kCount];  // relative normal velocity at each point, m/s
+    real normalChange[kCount] = {};
+    Lanes frictionA{}, frictionB{};  // the friction impulses' angular changes of A and B
+    Lanes frictionLinear{};          // and their linear impulse
+
+    CYCLONE_INLINE ManifoldSweep(PairVelocities &v, SolverManifold &manifold)
+        : vel(v), m(manifold), couplings(kMoving == kBoth ? manifold.couplings : manifold.supportedCouplings) {
+        const real linear = dot3(m.direction[0], vel.vb - vel.va);
+        for (int i = 0; i < kCount; ++i) {
+            const SolverRow &row = m.points[i].normal;
+            vn[i] = linear + sum3(row.rBxd * vel.wb - row.rAxd * vel.wa);
+        }
     }
-    row0.impulse = new0;
-    row1.impulse = new1;
-    vel.apply<kMoving>(t0, row0, new0 - old0);
-    vel.apply<kMoving>(t1, row1, new1 - old1);
-    if (turns) {
-        const real twistLimit = limit * m.twistRadius;
-        const real new2 = std::clamp(old2 - (k[2] * v0 + k[4] * v1 + k[5] * v2), -twistLimit, twistLimit);
-        twist.impulse = new2;
-        vel.applyTurning<kMoving>(twist, new2 - old2);
+
+    // Adds `impulse` times a coupling to the points' normal velocities.
+    CYCLONE_INLINE void couple(const Lanes &coupling, real impulse) {
+        for (int i = 0; i < kCount; ++i) vn[i] += impulse * coupling[i];
+    }
+
+    // The patch's friction: the tangents and the twist solved together (the impulses that
+    // stop the patch sliding and turning at once), then the tangents limited by the
+    // points' summed normal impulse to Coulomb's cone (not a box: friction is isotropic in
+    // the contact plane) and the twist by the same sum times the twist radius.
+    CYCLONE_INLINE void friction() {
+        if (m.friction <= 0) return;
+        SolverRow &row0 = m.frictionRow[0];
+        SolverRow &row1 = m.frictionRow[1];
+        SolverRow &twist = m.twist;
+        const bool turns = m.twistRadius > 0;
+        const real *k = kMoving == kBoth ? m.frictionInverse : m.supportedFrictionInverse;
+        real load = 0;
+        for (int i = 0; i < kCount; ++i) load += m.points[i].normal.impulse;
+        const real limit = m.friction * load;
+        const real v0 = vel.along(m.direction[1], row0);
+        const real v1 = vel.along(m.direction[2], row1);
+        const real v2 = turns ? vel.turning(twist) : 0;
+        const real old0 = row0.impulse;
+        const real old1 = row1.impulse;
+        real new0 = old0 - (k[0] * v0 + k[1] * v1 + k[2] * v2);
+        real new1 = old1 - (k[1] * v0 + k[3] * v1 + k[4] * v2);
+        const real magnitude2 = new0 * new0 + new1 * new1;
+        if (magnitude2 > limit * limit) {
+            const real scale = limit / std::sqrt(magnitude2);
+            new0 *= scale;
+            new1 *= scale;
+        }
+        row0.impulse = new0;
+        row1.impulse = new1;
+        const real change0 = new0 - old0;
+        const real change1 = new1 - old1;
+        real change2 = 0;
+        if (turns) {
+            const real old2 = twist.impulse;
+            const real twistLimit = limit * m.twistRadius;
+            const real new2 = std::clamp(old2 - (k[2] * v0 + k[4] * v1 + k[5] * v2), -twistLimit, twistLimit);
+            twist.impulse = new2;
+            change2 = new2 - old2;
+        }
+        couple(couplings.friction[0], change0);
+        couple(couplings.friction[1], change1);
+        couple(couplings.friction[2], change2);
+        frictionLinear = change0 * m.direction[1] + change1 * m.direction[2];
+        if (kMoving != kOnlyB) frictionA = change0 * row0.angA + change1 * row1.angA + change2 * twist.angA;
+        if (kMoving != kOnlyA) frictionB = change0 * row0.angB + change1 * row1.angB + change2 * twist.angB;
+    }
+
+    // Sets point i's accumulated impulse `impulse` to `updated`.
+    CYCLONE_INLINE void setNormal(int i, real updated, real &impulse) {
+        normalChange[i] = updated - impulse;
+        impulse = updated;
+        couple(couplings.normal[i], normalChange[i]);
+    }
+
+    // Point i's normal row towards `target` normal velocity, on its accumulated impulse
+    // `impulse`.
+    CYCLONE_INLINE void normal(int i, real target, real &impulse) {
+        setNormal(i, std::max(impulse - massOf<kMoving>(m.points[i].normal) * (vn[i] - target), real(0)), impulse);
+    }
+
+    // Point i towards its velocity bias.
+    CYCLONE_INLINE void normal(int i) {
+        SolverPoint &p = m.points[i];
+        normal(i, p.velocityBias, p.normal.impulse);
+    }
+
+    // Gives the bodies the sweep's impulses.
+    CYCLONE_INLINE void finish() {
+        real total = 0;
+        Lanes angularA = frictionA, angularB = frictionB;
+        for (int i = 0; i < kCount; ++i) {
+            const SolverRow &row = m.points[i].normal;
+            total += normalChange[i];
+            if (kMoving != kOnlyB) angularA += normalChange[i] * row.angA;
+            if (kMoving != kOnlyA) angularB += normalChange[i] * row.angB;
+        }
+        const Lanes linear = total * m.direction[0] + frictionLinear;
+        if (kMoving != kOnlyB) {
+            vel.va -= vel.invMassA * linear;
+            vel.wa -= angularA;
+        }
+        if (kMoving != kOnlyA) {
+            vel.vb += vel.invMassB * linear;
+            vel.wb += angularB;
+        }
+    }
+
+    // The whole pass: friction, then the points (from the last with `reverse`).
+    CYCLONE_INLINE void solve(bool reverse) {
+        friction();
+        if (reverse) {
+            for (int i = kCount - 1; i >= 0; --i) normal(i);
+        } else {
+            for (int i = 0; i < kCount; ++i) normal(i);
+        }
+        finish();
+    }
+};
+
+// Calls f(std::integral_constant<int, count>()) for a count of 1 to kMaxManifoldPoints
+// (nothing for 0).
+template <typename F>
+CYCLONE_INLINE void withCount(int count, F &&f) {
+    switch (count) {
+    case 1: f(std::integral_constant<int, 1>()); break;
+    case 2: f(std::integral_constant<int, 2>()); break;
+    case 3: f(std::integral_constant<int, 3>()); break;
+    case 4: f(std::integral_constant<int, 4>()); break;
+    default: break;
     }
 }
 
-// The normal row of the k-th point (from the end with `reverse`).
-template <Moving kMoving>
-CYCLONE_INLINE void solveNormalPoint(PairVelocities &vel, SolverManifold &m, int k, bool reverse) {
-    SolverPoint &p = m.points[reverse ? m.count - 1 - k : k];
-    const real vn = vel.along(m.direction[0], p.normal);
-    const real old = p.normal.impulse;
-    const real updated = std::max(old - massOf<kMoving>(p.normal) * (vn - p.velocityBias), real(0));
-    p.normal.impulse = updated;
-    vel.apply<kMoving>(m.direction[0], p.normal, updated - old);
-}
-
-// Friction, then the normal rows (the ones that must hold have the last word).
 template <Moving kMoving>
 CYCLONE_INLINE void solveManifold(PairVelocities &vel, SolverManifold &m, bool reverse) {
-    if (m.friction > 0) solveFriction<kMoving>(vel, m);
-    for (int k = 0; k < m.count; ++k) solveNormalPoint<kMoving>(vel, m, k, reverse);
+    withCount(m.count, [&](auto count) __attribute__((always_inline)) { ManifoldSweep<kMoving, count()>(vel, m).solve(reverse); });
 }
 
-// Two manifolds that share no moving body, row by row side by side: the same numbers
-// as one after the other, but the two chains of rows overlap in the CPU.
+// Two manifolds that share no moving body, step by step side by side when both have four
+// points (else one after the other): the same numbers as one after the other, but the
+// two chains overlap in the CPU.
 template <Moving kMoving0 = kBoth, Moving kMoving1 = kBoth>
 CYCLONE_INLINE void solveManifoldPair(PairVelocities &vel0, SolverManifold &m0, PairVelocities &vel1,
                                       SolverManifold &m1, bool reverse) {
-    const int most = std::max(m0.count, m1.count);
-    if (m0.friction > 0) solveFriction<kMoving0>(vel0, m0);
-    if (m1.friction > 0) solveFriction<kMoving1>(vel1, m1);
-    for (int k = 0; k < most; ++k) {
-        if (k < m0.count) solveNormalPoint<kMoving0>(vel0, m0, k, reverse);
-        if (k < m1.count) solveNormalPoint<kMoving1>(vel1, m1, k, reverse);
+    if (m0.count != kMaxManifoldPoints || m1.count != kMaxManifoldPoints) {
+        solveManifold<kMoving0>(vel0, m0, reverse);
+        solveManifold<kMoving1>(vel1, m1, reverse);
+        return;
     }
+    ManifoldSweep<kMoving0, kMaxManifoldPoints> sweep0(vel0, m0);
+    ManifoldSweep<kMoving1, kMaxManifoldPoints> sweep1(vel1, m1);
+    sweep0.friction();
+    sweep1.friction();
+    if (reverse) {
+        for (int i = kMaxManifoldPoints - 1; i >= 0; --i) sweep0.normal(i), sweep1.normal(i);
+    } else {
+        for (int i = 0; i < kMaxManifoldPoints; ++i) sweep0.normal(i), sweep1.normal(i);
+    }
+    sweep0.finish();
+    sweep1.finish();
 }
 
 // Which side of a manifold the support pass moves.
@@ -266,16 +368,15 @@ struct CarriedRun {
 template <Moving kMoving>
 CYCLONE_INLINE void solvePseudoManifold(std::vector<SolverBody> &bodies, SolverManifold &m) {
     PairVelocities vel(bodies[m.a], bodies[m.b], true);
-    const Lanes &n = m.direction[0];
-    for (int i = 0; i < m.count; ++i) {
-        SolverPoint &p = m.points[i];
-        if (p.pseudoTarget <= 0 && p.pseudoImpulse == 0) continue;
-        const real vn = vel.along(n, p.normal);
-        const real old = p.pseudoImpulse;
-        const real updated = std::max(old - massOf<kMoving>(p.normal) * (vn - p.pseudoTarget), real(0));
-        p.pseudoImpulse = updated;
-        vel.apply<kMoving>(n, p.normal, updated - old);
-    }
+    withCount(m.count, [&](auto count) __attribute__((always_inline)) {
+        ManifoldSweep<kMoving, count()> sweep(vel, m);
+        for (int i = 0; i < count(); ++i) {
+            SolverPoint &p = m.points[i];
+            if (p.pseudoTarget <= 0 && p.pseudoImpulse == 0) continue;
+            sweep.normal(i, p.pseudoTarget, p.pseudoImpulse);
+        }
+        sweep.finish();
+    });
     vel.store<kMoving>(bodies, m, true);
 }
 
@@ -346,7 +447,44 @@ void invertFrictionBlock(const SolverManifold &m, Moving moving, real invMasses,
     out[5] = turns ? c22 * inverse : 0;
 }
 
+// The couplings (RowCouplings) through the bodies a pass moves, whose summed inverse
+// masses are invMasses. A normal row's linear terms meet another's along the same normal,
+// and none of a tangent's or the twist's.
+void fillCouplings(const SolverManifold &m, Moving moving, real invMasses, RowCouplings &out) {
+    out = RowCouplings{};
+    for (int j = 0; j < m.count; ++j) {
+        const SolverRow &row = m.points[j].normal;
+        for (int k = 0; k < m.count; ++k)
+            if (k != j) out.normal[k][j] = invMasses + coupling(row, m.points[k].normal, moving);
+        out.friction[0][j] = coupling(row, m.frictionRow[0], moving);
+        out.friction[1][j] = coupling(row, m.frictionRow[1], moving);
+        out.friction[2][j] = coupling(row, m.twist, moving);
+    }
+}
+
+// The couplings of a manifold whose point i was point from[i].
+void renumberCouplings(RowCouplings &c, const int *from, int count) {
+    const RowCouplings before = c;
+    for (int i = 0; i < count; ++i) {
+        for (int j = 0; j < count; ++j) c.normal[i][j] = before.normal[from[i]][from[j]];
+        for (int r = 0; r < 3; ++r) c.friction[r][i] = before.friction[r][from[i]];
+    }
+}
+
 }  // namespace
+
+void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &m) {
+    fillCouplings(m, kBoth, a.invMass + b.invMass, m.couplings);
+    m.supportedCouplings = m.couplings;
+}
+
+void renumberPointRows(SolverManifold &m, const int *from) {
+    SolverRow before[kMaxManifoldPoints];
+    for (int i = 0; i < m.count; ++i) before[i] = m.points[i].normal;
+    for (int i = 0; i < m.count; ++i) m.points[i].normal = before[from[i]];
+    renumberCouplings(m.couplings, from, m.count);
+    renumberCouplings(m.supportedCouplings, from, m.count);
+}
 
 CYCLONE_SIMD_CLONES
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
@@ -392,6 +530,7 @@ void prepareSupportedMasses(const std::vector<SolverBody> &bodies, SolverManifol
     };
     for (int i = 0; i < m.count; ++i) fill(m.points[i].normal, invMass);
     invertFrictionBlock(m, bMoves ? kOnlyB : kOnlyA, invMass, m.supportedFrictionInverse);
+    fillCouplings(m, bMoves ? kOnlyB : kOnlyA, invMass, m.supportedCouplings);
 }
 
 CYCLONE_SIMD_CLONES
@@ -537,28 +676,33 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
         SolverManifold &m = manifolds[index];
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
         const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
-        for (int i = 0; i < m.count; ++i) {
-            SolverPoint &p = m.points[i];
-            const real separation = -p.depth;
-            real bias = 0;
-            real massScale = 1;
-            real impulseScale = 0;
-            if (separation > 0) {
-                bias = separation * inverseH;  // speculative: close the gap, no more
-            } else if (useBias) {
-                bias = std::max(soft.biasRate * std::min(separation + settings.slop, real(0)), -settings.maxPushVelocity);
-                massScale = soft.massScale;
-                impulseScale = soft.impulseScale;
+        withCount(m.count, [&](auto count) __attribute__((always_inline)) {
+            ManifoldSweep<kBoth, count()> normals(vel, m);
+            for (int i = 0; i < count(); ++i) {
+                SolverPoint &p = m.points[i];
+                const real separation = -p.depth;
+                real bias = 0;
+                real massScale = 1;
+                real impulseScale = 0;
+                if (separation > 0) {
+                    bias = separation * inverseH;  // speculative: close the gap, no more
+                } else if (useBias) {
+                    bias = std::max(soft.biasRate * std::min(separation + settings.slop, real(0)),
+                                    -settings.maxPushVelocity);
+                    massScale = soft.massScale;
+                    impulseScale = soft.impulseScale;
+                }
+                const real old = p.normal.impulse;
+                const real delta = -p.normal.mass * massScale * (normals.vn[i] + bias) - impulseScale * old;
+                normals.setNormal(i, std::max(old + delta, real(0)), p.normal.impulse);
+                p.maxNormalImpulse = std::max(p.maxNormalImpulse, p.normal.impulse);
             }
-            const real vn = vel.along(m.direction[0], p.normal);
-            const real old = p.normal.impulse;
-            const real delta = -p.normal.mass * massScale * (vn + bias) - impulseScale * old;
-            const real updated = std::max(old + delta, real(0));
-            p.normal.impulse = updated;
-            p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
-            vel.apply(m.direction[0], p.normal, updated - old);
-        }
-        if (m.friction > 0) solveFriction<kBoth>(vel, m);
+            normals.finish();
+            // Friction after the normal rows, on the velocities they left.
+            ManifoldSweep<kBoth, count()> rub(vel, m);
+            rub.friction();
+            rub.finish();
+        });
         vel.store<kBoth>(bodies, m, false);
     }
 }

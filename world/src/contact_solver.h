@@ -57,9 +57,19 @@ struct SolverPoint {
 
 inline constexpr int kMaxManifoldPoints = 4;
 
+/// How an impulse on one row of a manifold changes the relative velocity along its
+/// points' normal rows, per N s: lane j of an entry is point j's. A pass solves the
+/// manifold's rows one after another, as Gauss-Seidel does, but reads the bodies'
+/// velocities once and tracks the normal velocities through these (see solveManifold).
+/// Lanes past the manifold's count, and point k's own lane of normal[k], are zero.
+struct RowCouplings {
+    Lanes normal[kMaxManifoldPoints];  ///< Per unit impulse on point k's normal row.
+    Lanes friction[3];                 ///< Per unit impulse on tangent 0, tangent 1, the twist.
+};
+
 /// Most Gauss-Seidel sweeps the support pass gives one body against a body that carries
 /// it: one sweep over a face's four corners leaves the body turning, and a stack leans.
-inline constexpr int kSupportSweeps = 8;
+inline constexpr int kSupportSweeps = 12;
 /// The support pass stops sweeping a contact once no impulse changes a relative
 /// velocity by more than this, m/s (10 s of such an error would move a body 0.1 mm).
 inline constexpr real kSupportTolerance = 1e-5;
@@ -85,6 +95,8 @@ struct SolverManifold {
     /// the tangents' 2 x 2 inverse (entries 2, 4, 5 zero).
     real frictionInverse[6] = {};
     real supportedFrictionInverse[6] = {};  ///< The same with the supporting body immovable.
+    RowCouplings couplings{};           ///< Through both bodies.
+    RowCouplings supportedCouplings{};  ///< Through the carried body alone (support pass).
     real friction = 0;
     real restitution = 0;
     bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
@@ -195,8 +207,16 @@ void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, co
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
                          const Vector3 &positionB, SolverManifold &m);
 
-/// Fills supportedMass of every row of a manifold that has a supporting side (after
-/// assignSupport).
+/// Fills the manifold's couplings from its rows (after prepareRows and
+/// prepareFrictionRows), and its supported couplings with the same.
+void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &m);
+
+/// Gives each point i of a manifold the normal row and couplings that point from[i] had
+/// (the points themselves are the caller's).
+void renumberPointRows(SolverManifold &m, const int *from);
+
+/// Fills supportedMass and the supported couplings of a manifold that has a supporting
+/// side (after assignSupport).
 void prepareSupportedMasses(const std::vector<SolverBody> &bodies, SolverManifold &m);
 
 /// Applies the accumulated impulses (warm start) of the manifolds listed in `order`.

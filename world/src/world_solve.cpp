@@ -128,6 +128,7 @@ void World::Impl::prepareManifold(std::size_t s) {
             detail::prepareRows(sa, sb, points[i] - a.getPosition(), points[i] - b.getPosition(), m, m.points[i]);
         }
         detail::prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m);
+        detail::prepareCouplings(sa, sb, m);
     }
     for (int i = 0; i < m.count; ++i) {
         detail::SolverPoint &p = m.points[i];

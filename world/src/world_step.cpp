@@ -348,7 +348,7 @@ void World::Impl::buildManifolds(real) {
 // still hold (then the normal and tangents are also kept, jacobian_stamp.h); points past `count`
 // keep whatever they held, as nothing reads them. A field added to either struct must be
 // reset there too.
-static_assert(sizeof(detail::SolverPoint) == 288 && sizeof(detail::SolverManifold) == 1984,
+static_assert(sizeof(detail::SolverPoint) == 288 && sizeof(detail::SolverManifold) == 2464,
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
 void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
@@ -365,16 +365,14 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     stamp.kept = jacobiansHold(stamp, pair, m);
     if (stamp.kept) {
         // The manifold's points come in the order of their depths (refreshFromAnchors):
-        // their rows follow them, swapped into place (the row now at i goes to to[i]).
-        int to[detail::kMaxManifoldPoints];
-        for (int i = 0; i < m.count; ++i) to[stamp.rowOf[m.points[i].id]] = i;
+        // their rows follow them.
+        int from[detail::kMaxManifoldPoints];
+        bool moved = false;
         for (int i = 0; i < m.count; ++i) {
-            while (to[i] != i) {
-                const int j = to[i];
-                std::swap(sm.points[i].normal, sm.points[j].normal);
-                std::swap(to[i], to[j]);
-            }
+            from[i] = stamp.rowOf[m.points[i].id];
+            moved = moved || from[i] != i;
         }
+        if (moved) detail::renumberPointRows(sm, from);
     } else {
         // The normal and tangents stay those the Jacobians were made with.
         sm.normal = m.normal;
