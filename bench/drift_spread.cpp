@@ -8,12 +8,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <string>
 #include <vector>
 
 #include "cyclone/world/world.h"
 #include "scenes.h"
+#include "tool_main.h"
 
 namespace {
 
@@ -40,12 +40,8 @@ int run(int argc, char **argv) {
     int runs = 5;
     int threads = 1;
     for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (i + 1 >= argc) {
-            std::fprintf(stderr, "cyclone-drift: %s needs a value\n", arg.c_str());
-            return 2;
-        }
-        const std::string value = argv[++i];
+        std::string arg, value;
+        if (!bench::readOption("cyclone-drift", argc, argv, i, arg, value)) return 2;
         if (arg == "--scene") {
             names = bench::splitSceneList(value);
         } else if (arg == "--runs") {
@@ -85,11 +81,4 @@ int run(int argc, char **argv) {
 
 }  // namespace
 
-int main(int argc, char **argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception &e) {
-        std::fprintf(stderr, "cyclone-drift: %s\n", e.what());
-        return 2;
-    }
-}
+int main(int argc, char **argv) { return cyclone::bench::guardedMain("cyclone-drift", run, argc, argv); }

@@ -5,13 +5,13 @@
 //   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T]
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <iterator>
 #include <string>
 #include <vector>
 
 #include "cyclone/world/world.h"
 #include "scenes.h"
+#include "tool_main.h"
 #include "statistics.h"
 
 namespace {
@@ -46,12 +46,8 @@ int run(int argc, char **argv) {
     int steps = 600;
     int threads = 1;
     for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (i + 1 >= argc) {
-            std::fprintf(stderr, "cyclone-stages: %s needs a value\n", arg.c_str());
-            return 2;
-        }
-        const std::string value = argv[++i];
+        std::string arg, value;
+        if (!bench::readOption("cyclone-stages", argc, argv, i, arg, value)) return 2;
         if (arg == "--scene") {
             for (const std::string &name : bench::splitSceneList(value)) scenes.push_back(name);
         } else if (arg == "--steps") {
@@ -98,11 +94,4 @@ int run(int argc, char **argv) {
 
 }  // namespace
 
-int main(int argc, char **argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception &e) {
-        std::fprintf(stderr, "cyclone-stages: %s\n", e.what());
-        return 2;
-    }
-}
+int main(int argc, char **argv) { return cyclone::bench::guardedMain("cyclone-stages", run, argc, argv); }
