@@ -60,7 +60,8 @@ inline constexpr int kMaxManifoldPoints = 4;
 /// How an impulse on one row of a manifold changes the relative velocity along its
 /// points' normal rows, per N s: lane j of an entry is point j's. A pass solves the
 /// manifold's rows one after another, as Gauss-Seidel does, but reads the bodies'
-/// velocities once and tracks the normal velocities through these (see solveManifold).
+/// velocities once and tracks the normal velocities through these (ManifoldSweep in
+/// contact_solver.cpp).
 /// Lanes past the manifold's count, and point k's own lane of normal[k], are zero.
 struct RowCouplings {
     Lanes normal[kMaxManifoldPoints];  ///< Per unit impulse on point k's normal row.

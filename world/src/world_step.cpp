@@ -343,11 +343,11 @@ void World::Impl::buildManifolds(real) {
 }
 
 // addSolverManifold writes every field of a solver manifold and of its first `count`
-// points but the Jacobians (SolverManifold::direction, SolverRow's lanes and masses) and
-// the twist radius, which prepareSolver makes for every manifold whose Jacobians do not
-// still hold (then the normal and tangents are also kept, jacobian_stamp.h); points past `count`
-// keep whatever they held, as nothing reads them. A field added to either struct must be
-// reset there too.
+// points but the Jacobians (SolverManifold::direction, SolverRow's lanes and masses, the
+// couplings) and the twist radius, which prepareSolver makes for every manifold whose
+// Jacobians do not still hold (then the normal and tangents are also kept,
+// jacobian_stamp.h); points past `count` keep whatever they held, as nothing reads them.
+// A field added to either struct must be reset there too.
 static_assert(sizeof(detail::SolverPoint) == 288 && sizeof(detail::SolverManifold) == 2464,
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
