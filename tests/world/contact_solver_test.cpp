@@ -49,6 +49,16 @@ struct FallingCube {
     Vector3 v() const { return detail::toVector3(bodies[1].v); }
     Vector3 w() const { return detail::toVector3(bodies[1].w); }
     real impulse(int i) const { return manifolds[0].points[i].normal.impulse; }
+
+    // The impulses of points 0 and 1 and the cube's v_y and w_z; nothing else moves.
+    void expect(real impulse0, real impulse1, real vy, real wz, real tolerance) const {
+        EXPECT_NEAR(impulse(0), impulse0, tolerance);
+        EXPECT_NEAR(impulse(1), impulse1, tolerance);
+        EXPECT_NEAR(v().y(), vy, tolerance);
+        EXPECT_NEAR(w().z(), wz, tolerance);
+        EXPECT_NEAR(v().x(), 0, tolerance);
+        EXPECT_NEAR(w().x(), 0, tolerance);
+    }
 };
 
 // By hand. Each row's angular term is rB x n = (0, 0, +-0.5), so its effective mass is
@@ -62,22 +72,14 @@ struct FallingCube {
 TEST(ContactSolverPass, EachRowSeesTheRowsBeforeIt) {
     FallingCube cube;
     cube.pass(false);
-    EXPECT_NEAR(cube.impulse(0), 0.4, 1e-12);
-    EXPECT_NEAR(cube.impulse(1), 0.48, 1e-12);
-    EXPECT_NEAR(cube.v().y(), -0.12, 1e-12);
-    EXPECT_NEAR(cube.w().z(), -0.24, 1e-12);
-    EXPECT_NEAR(cube.v().x(), 0, 1e-12);
-    EXPECT_NEAR(cube.w().x(), 0, 1e-12);
+    cube.expect(0.4, 0.48, -0.12, -0.24, 1e-12);
 }
 
 // Backwards the same numbers fall to the other point, and the cube turns the other way.
 TEST(ContactSolverPass, ReversePassMirrorsTheOrder) {
     FallingCube cube;
     cube.pass(true);
-    EXPECT_NEAR(cube.impulse(1), 0.4, 1e-12);
-    EXPECT_NEAR(cube.impulse(0), 0.48, 1e-12);
-    EXPECT_NEAR(cube.v().y(), -0.12, 1e-12);
-    EXPECT_NEAR(cube.w().z(), 0.24, 1e-12);
+    cube.expect(0.48, 0.4, -0.12, 0.24, 1e-12);
 }
 
 // Renumbering the points (as World does when a kept manifold's points come in another
@@ -88,10 +90,7 @@ TEST(ContactSolverPass, RenumberedPointsKeepTheirRowsAndCouplings) {
     const int from[2] = {1, 0};
     detail::renumberPointRows(cube.manifolds[0], from);
     cube.pass(false);
-    EXPECT_NEAR(cube.impulse(0), 0.4, 1e-12);  // was point 1
-    EXPECT_NEAR(cube.impulse(1), 0.48, 1e-12);
-    EXPECT_NEAR(cube.v().y(), -0.12, 1e-12);
-    EXPECT_NEAR(cube.w().z(), 0.24, 1e-12);
+    cube.expect(0.4, 0.48, -0.12, 0.24, 1e-12);  // point 0 was point 1
 }
 
 // Over many passes the two points share the cube's momentum equally and both come to
@@ -99,10 +98,7 @@ TEST(ContactSolverPass, RenumberedPointsKeepTheirRowsAndCouplings) {
 TEST(ContactSolverPass, PassesConvergeToTheRestingSolution) {
     FallingCube cube;
     for (int pass = 0; pass < 60; ++pass) cube.pass((pass & 1) != 0);
-    EXPECT_NEAR(cube.impulse(0), 0.5, 1e-9);
-    EXPECT_NEAR(cube.impulse(1), 0.5, 1e-9);
-    EXPECT_NEAR(cube.v().y(), 0, 1e-9);
-    EXPECT_NEAR(cube.w().z(), 0, 1e-9);
+    cube.expect(0.5, 0.5, 0, 0, 1e-9);
 }
 
 }  // namespace

@@ -104,7 +104,6 @@ struct SolverManifold {
     real friction = 0;
     real restitution = 0;
     bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
-    real height = 0;             ///< Solve order: lower contacts first (m along -gravity).
     /// Which body carries the other (the support pass treats it as immovable):
     /// kNoSupport, kASupportsB or kBSupportsA. A static or sleeping side always
     /// does. See assignSupport().

@@ -79,7 +79,7 @@ struct ImplicitSpring {
 
 /// A manifold on its way to the solver: its solve-order key and where it comes from.
 struct ManifoldKey {
-    real height = 0;          ///< SolverManifold::height: lower contacts are solved first.
+    real height = 0;          ///< Contact height, m along -gravity: lower contacts are solved first.
     std::uint32_t listed = 0; ///< Position in the pair walk: equal heights keep this order.
     std::uint32_t source = 0; ///< Pair index << 2 | manifold, as in World::Impl::solverSource.
 };

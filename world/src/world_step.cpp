@@ -348,7 +348,7 @@ void World::Impl::buildManifolds(real) {
 // Jacobians do not still hold (then the normal and tangents are also kept,
 // jacobian_stamp.h); points past `count` keep whatever they held, as nothing reads them.
 // A field added to either struct must be reset there too.
-static_assert(sizeof(detail::SolverPoint) == 288 && sizeof(detail::SolverManifold) == 2464,
+static_assert(sizeof(detail::SolverPoint) == 288 && sizeof(detail::SolverManifold) == 2432,
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
 void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
@@ -390,7 +390,6 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     sm.friction = friction;
     sm.restitution = 0;
     sm.touchesStatic = false;
-    sm.height = key.height;
     sm.support = detail::kNoSupport;
     sm.count = m.count;
     const bool warm = settings.warmStarting;
