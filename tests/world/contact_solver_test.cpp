@@ -8,6 +8,7 @@
 
 #include "contact_solver.h"
 #include "solver_schedule.h"
+#include "wide_pass.h"
 
 namespace cyclone::test {
 namespace {
@@ -15,37 +16,49 @@ namespace {
 using detail::SolverBody;
 using detail::SolverManifold;
 
-// A 1 kg unit cube (inertia 1/6 kg m^2 about each axis) falling at 1 m/s onto the
+// A 1 kg unit cube (inertia 1/6 kg m^2 about each axis) falling at `speed` m/s onto the
 // immovable world, frictionless, touching it at two points of its lower face's edges:
 // rB = (+0.5, -0.5, 0) and (-0.5, -0.5, 0), normal +y from the world (A) to the cube (B).
+// Adds the cube's body and manifold.
+void addFallingCube(real speed, std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
+    SolverBody cube;
+    detail::setLanes(cube.v, Vector3(0, -speed, 0));
+    cube.invMass = 1;
+    cube.invInertia = Matrix3::Identity() * 6;
+    SolverManifold m;
+    m.a = 0;
+    m.b = static_cast<int>(bodies.size());
+    m.count = 2;
+    m.normal = Vector3::UnitY();
+    detail::tangentBasis(m.normal, m.tangent[0], m.tangent[1]);
+    detail::prepareDirections(m);
+    const Vector3 points[2] = {Vector3(0.5, 0, 0), Vector3(-0.5, 0, 0)};
+    const Vector3 centre(0, 0.5, 0);
+    for (int i = 0; i < 2; ++i) detail::prepareRows(bodies[0], cube, points[i], points[i] - centre, m, m.points[i]);
+    detail::prepareFrictionRows(bodies[0], cube, points, Vector3::Zero(), centre, m);
+    detail::prepareCouplings(bodies[0], cube, m);
+    bodies.push_back(cube);
+    manifolds.push_back(m);
+}
+
+// One such cube at 1 m/s, solved alone.
 struct FallingCube {
-    std::vector<SolverBody> bodies{2};
-    std::vector<SolverManifold> manifolds{1};
+    std::vector<SolverBody> bodies{1};
+    std::vector<SolverManifold> manifolds;
     std::vector<detail::SolverGroup> groups{1};
+    std::vector<detail::WideManifold> wide;
 
     FallingCube() {
-        SolverBody &cube = bodies[1];
-        detail::setLanes(cube.v, Vector3(0, -1, 0));
-        cube.invMass = 1;
-        cube.invInertia = Matrix3::Identity() * 6;
-        SolverManifold &m = manifolds[0];
-        m.a = 0;
-        m.b = 1;
-        m.count = 2;
-        m.normal = Vector3::UnitY();
-        detail::tangentBasis(m.normal, m.tangent[0], m.tangent[1]);
-        detail::prepareDirections(m);
-        const Vector3 points[2] = {Vector3(0.5, 0, 0), Vector3(-0.5, 0, 0)};
-        const Vector3 centre(0, 0.5, 0);
-        for (int i = 0; i < 2; ++i)
-            detail::prepareRows(bodies[0], cube, points[i], points[i] - centre, m, m.points[i]);
-        detail::prepareFrictionRows(bodies[0], cube, points, Vector3::Zero(), centre, m);
-        detail::prepareCouplings(bodies[0], cube, m);
+        addFallingCube(1, bodies, manifolds);
         groups[0].manifold[0] = 0;
         groups[0].size = 1;
     }
 
-    void pass(bool reverse) { detail::solveVelocities(bodies, manifolds, groups, reverse); }
+    void pass(bool reverse) {
+        detail::loadWide(bodies, manifolds, groups, wide);
+        detail::solveWide(bodies, wide, reverse);
+        detail::storeWide(wide, groups, manifolds);
+    }
     Vector3 v() const { return detail::toVector3(bodies[1].v); }
     Vector3 w() const { return detail::toVector3(bodies[1].w); }
     real impulse(int i) const { return manifolds[0].points[i].normal.impulse; }
@@ -99,6 +112,33 @@ TEST(ContactSolverPass, PassesConvergeToTheRestingSolution) {
     FallingCube cube;
     for (int pass = 0; pass < 60; ++pass) cube.pass((pass & 1) != 0);
     cube.expect(0.5, 0.5, 0, 0, 1e-9);
+}
+
+// Four cubes in one group, one per lane, falling at 1, 2, 0.5 and 3 m/s. The pass is
+// linear in the speed while no impulse is clamped, so each cube gets the one-cube numbers
+// above times its speed: a lane that read or wrote another's rows or bodies would not.
+TEST(ContactSolverPass, EachLaneOfAGroupIsSolvedOnItsOwn) {
+    const real speeds[4] = {1, 2, 0.5, 3};
+    std::vector<SolverBody> bodies(1);
+    std::vector<SolverManifold> manifolds;
+    std::vector<detail::SolverGroup> groups(1);
+    for (int k = 0; k < 4; ++k) {
+        addFallingCube(speeds[k], bodies, manifolds);
+        groups[0].manifold[k] = 3 - k;  // lanes in another order than the manifolds
+    }
+    groups[0].size = 4;
+    std::vector<detail::WideManifold> wide;
+    detail::loadWide(bodies, manifolds, groups, wide);
+    detail::solveWide(bodies, wide, false);
+    detail::storeWide(wide, groups, manifolds);
+    for (int k = 0; k < 4; ++k) {
+        const real s = speeds[k];
+        EXPECT_NEAR(manifolds[k].points[0].normal.impulse, 0.4 * s, 1e-12) << "cube " << k;
+        EXPECT_NEAR(manifolds[k].points[1].normal.impulse, 0.48 * s, 1e-12) << "cube " << k;
+        EXPECT_NEAR(detail::toVector3(bodies[k + 1].v).y(), -0.12 * s, 1e-12) << "cube " << k;
+        EXPECT_NEAR(detail::toVector3(bodies[k + 1].w).z(), -0.24 * s, 1e-12) << "cube " << k;
+    }
+    EXPECT_EQ(detail::toVector3(bodies[0].v), Vector3::Zero());  // the world is never written
 }
 
 }  // namespace

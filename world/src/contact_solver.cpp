@@ -1,7 +1,5 @@
 #include "contact_solver.h"
 
-#include "solver_schedule.h"
-
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -531,24 +529,6 @@ void prepareSupportedMasses(const std::vector<SolverBody> &bodies, SolverManifol
     for (int i = 0; i < m.count; ++i) fill(m.points[i].normal, invMass);
     invertFrictionBlock(m, bMoves ? kOnlyB : kOnlyA, invMass, m.supportedFrictionInverse);
     fillCouplings(m, bMoves ? kOnlyB : kOnlyA, invMass, m.supportedCouplings);
-}
-
-CYCLONE_SIMD_CLONES
-void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                     const std::vector<SolverGroup> &groups, bool reverse) {
-    for (const SolverGroup &g : groups) {
-        SolverManifold &m0 = manifolds[g.manifold[0]];
-        PairVelocities vel0(bodies[m0.a], bodies[m0.b], false);
-        if (g.size == 1) {
-            solveManifold<kBoth>(vel0, m0, reverse);
-        } else {
-            SolverManifold &m1 = manifolds[g.manifold[1]];
-            PairVelocities vel1(bodies[m1.a], bodies[m1.b], false);
-            solveManifoldPair(vel0, m0, vel1, m1, reverse);
-            vel1.store<kBoth>(bodies, m1, false);
-        }
-        vel0.store<kBoth>(bodies, m0, false);
-    }
 }
 
 namespace {

@@ -116,8 +116,6 @@ inline constexpr int kNoSupport = 0;
 inline constexpr int kASupportsB = 1;
 inline constexpr int kBSupportsA = 2;
 
-struct SolverGroup;
-
 /// The accumulated impulses of a manifold, saved so that a support pass leaves them as
 /// the coupled passes left them.
 struct SavedImpulses {
@@ -225,12 +223,6 @@ void prepareSupportedMasses(const std::vector<SolverBody> &bodies, SolverManifol
 /// Applies the accumulated impulses (warm start) of the manifolds listed in `order`.
 void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
                const std::vector<int> &order);
-/// One Gauss-Seidel pass over friction and normal rows, group by group
-/// (solver_schedule.h); `reverse` visits each manifold's points in reverse order
-/// (alternating passes keep the first point from taking the largest share of a new
-/// contact's load, which would tilt the body).
-void solveVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                     const std::vector<SolverGroup> &groups, bool reverse);
 /// The support pass (shock propagation), run after the coupled passes: first one plain
 /// pass over the manifolds where neither side carries the other, in `order`
 /// (solveUnsupported), then,

@@ -16,7 +16,7 @@
 
 namespace cyclone::detail {
 
-inline constexpr int kGroupSize = 2;
+inline constexpr int kGroupSize = 4;
 
 /// Manifolds solved side by side (indices into the manifold array; `size` of them).
 struct SolverGroup {
@@ -25,7 +25,7 @@ struct SolverGroup {
 };
 
 /// How far ahead (in manifolds) the schedule looks for a partner.
-inline constexpr int kScheduleWindow = 8;
+inline constexpr int kScheduleWindow = 16;
 
 /// Groups the manifolds listed in `order` (indices into `manifolds`), keeping that
 /// order's results. `taken` is scratch kept between steps.

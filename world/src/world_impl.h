@@ -21,6 +21,7 @@
 #include "contact_solver.h"
 #include "jacobian_stamp.h"
 #include "solver_partition.h"
+#include "wide_pass.h"
 #include "solver_schedule.h"
 #include "task_pool.h"
 #include "cyclone/world/world.h"
@@ -135,6 +136,7 @@ struct World::Impl {
     std::vector<detail::JacobianStamp> jacobianStamps;  ///< What each solver slot's Jacobians were made from.
     detail::SolverPartition partition;  ///< Coupled passes' order (solver_partition.h).
     detail::PartitionScratch partitionScratch;
+    std::vector<detail::WideManifold> wideManifolds[3];  ///< Each part's groups' rows during a sub-step's coupled passes (wide_pass.h).
     std::vector<Vector3> solverPositions;  ///< Position of each solver body (entry 0 unused).
     std::vector<char> bodyFlags;           ///< Per simulated body, for a stage's own use.
     std::vector<int> islandParent;
@@ -251,7 +253,9 @@ struct World::Impl {
     void prepareSolver(real h);
     void prepareManifold(std::size_t s);
     void warmStart();
+    void loadCoupledPasses();
     void solveCoupledPass(bool reverse);
+    void storeCoupledPasses();
     void solveSupportPass(bool reverse);
     void solve(real h, bool firstSubstep);
     void integrate(real h);

@@ -147,11 +147,23 @@ void World::Impl::warmStart() {
     detail::warmStart(solverBodies, solverManifolds, partition.order[detail::SolverPartition::kSeam]);
 }
 
-void World::Impl::solveCoupledPass(bool reverse) {
-    forEachTask(partition.split ? 2 : 1, [&](int half) {
-        detail::solveVelocities(solverBodies, solverManifolds, partition.groups[half], reverse);
+// The coupled passes work on a copy of the rows they solve (wide_pass.h), taken after the
+// warm start and handed back, with the accumulated impulses, after the last pass.
+void World::Impl::loadCoupledPasses() {
+    forEachTask(partition.split ? 3 : 1, [&](int part) {
+        detail::loadWide(solverBodies, solverManifolds, partition.groups[part], wideManifolds[part]);
     });
-    detail::solveVelocities(solverBodies, solverManifolds, partition.groups[detail::SolverPartition::kSeam], reverse);
+}
+
+void World::Impl::solveCoupledPass(bool reverse) {
+    forEachTask(partition.split ? 2 : 1, [&](int half) { detail::solveWide(solverBodies, wideManifolds[half], reverse); });
+    detail::solveWide(solverBodies, wideManifolds[detail::SolverPartition::kSeam], reverse);
+}
+
+void World::Impl::storeCoupledPasses() {
+    forEachTask(partition.split ? 3 : 1, [&](int part) {
+        detail::storeWide(wideManifolds[part], partition.groups[part], solverManifolds);
+    });
 }
 
 // The partition's halves at once, each run once its carriers are done (support_lanes.h).
@@ -226,10 +238,12 @@ void World::Impl::solve(real h, bool firstSubstep) {
 
     if (!solverManifolds.empty()) {
         if (settings.warmStarting) warmStart();
+        if (split) loadCoupledPasses();
         for (int it = 0; it < settings.velocityIterations; ++it) {
             if (split) solveCoupledPass((it & 1) != 0);
             else detail::solveSoft(solverBodies, solverManifolds, solveOrder, h, true, soft);
         }
+        if (split) storeCoupledPasses();
         stats.velocityIterations += settings.velocityIterations;
         // The support pass comes after the coupled passes, never instead of one: alone,
         // it would let no body push the bodies carrying it.

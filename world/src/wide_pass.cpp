@@ -1,0 +1,309 @@
+#include "wide_pass.h"
+
+#include <cmath>
+
+namespace cyclone::detail {
+namespace {
+
+#define CYCLONE_INLINE inline __attribute__((always_inline))
+
+using LaneIndices = long long __attribute__((vector_size(4 * sizeof(long long))));
+
+// The 3-vectors of four bodies (x, y, z, 0 each) as x, y and z of four lanes.
+CYCLONE_INLINE void transposeIn(const Lanes &r0, const Lanes &r1, const Lanes &r2, const Lanes &r3,
+                                WideVector &out) {
+    const LaneIndices low = {0, 4, 1, 5}, high = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
+    const Lanes xy01 = __builtin_shuffle(r0, r1, low);  // x0 x1 y0 y1
+    const Lanes xy23 = __builtin_shuffle(r2, r3, low);
+    const Lanes z01 = __builtin_shuffle(r0, r1, high);  // z0 z1 0 0
+    const Lanes z23 = __builtin_shuffle(r2, r3, high);
+    out.x = __builtin_shuffle(xy01, xy23, first);
+    out.y = __builtin_shuffle(xy01, xy23, second);
+    out.z = __builtin_shuffle(z01, z23, first);
+}
+
+// Lanes r0..r3 as their columns: out[j] holds lane j of each.
+CYCLONE_INLINE void transpose(const Lanes &r0, const Lanes &r1, const Lanes &r2, const Lanes &r3,
+                              Lanes out[kWideLanes]) {
+    const LaneIndices low = {0, 4, 1, 5}, high = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
+    const Lanes xy01 = __builtin_shuffle(r0, r1, low);  // x0 x1 y0 y1
+    const Lanes xy23 = __builtin_shuffle(r2, r3, low);
+    const Lanes zw01 = __builtin_shuffle(r0, r1, high);  // z0 z1 w0 w1
+    const Lanes zw23 = __builtin_shuffle(r2, r3, high);
+    out[0] = __builtin_shuffle(xy01, xy23, first);
+    out[1] = __builtin_shuffle(xy01, xy23, second);
+    out[2] = __builtin_shuffle(zw01, zw23, first);
+    out[3] = __builtin_shuffle(zw01, zw23, second);
+}
+
+// Four manifolds' rows side by side.
+CYCLONE_INLINE void loadRow(const SolverRow &r0, const SolverRow &r1, const SolverRow &r2, const SolverRow &r3,
+                            WideRow &out) {
+    transposeIn(r0.rAxd, r1.rAxd, r2.rAxd, r3.rAxd, out.rAxd);
+    transposeIn(r0.rBxd, r1.rBxd, r2.rBxd, r3.rBxd, out.rBxd);
+    transposeIn(r0.angA, r1.angA, r2.angA, r3.angA, out.angA);
+    transposeIn(r0.angB, r1.angB, r2.angB, r3.angB, out.angB);
+}
+
+// The inverse of transposeIn: lane k of v as body k's (x, y, z, 0).
+CYCLONE_INLINE void transposeOut(const WideVector &v, Lanes out[kWideLanes]) {
+    const LaneIndices low = {0, 4, 1, 5}, high = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
+    const Lanes zero{};
+    const Lanes xy01 = __builtin_shuffle(v.x, v.y, low);  // x0 y0 x1 y1
+    const Lanes xy23 = __builtin_shuffle(v.x, v.y, high);
+    const Lanes z01 = __builtin_shuffle(v.z, zero, low);  // z0 0 z1 0
+    const Lanes z23 = __builtin_shuffle(v.z, zero, high);
+    out[0] = __builtin_shuffle(xy01, z01, first);
+    out[1] = __builtin_shuffle(xy01, z01, second);
+    out[2] = __builtin_shuffle(xy23, z23, first);
+    out[3] = __builtin_shuffle(xy23, z23, second);
+}
+
+// Per lane: out = d . (vb - va) + rBxd . wb - rAxd . wa, summed x + y + z as sum3 does.
+CYCLONE_INLINE void relative(const WideVector &d, const WideVector &va, const WideVector &vb, const WideRow &row,
+                             const WideVector &wa, const WideVector &wb, Lanes &out) {
+    const Lanes x = d.x * (vb.x - va.x) + row.rBxd.x * wb.x - row.rAxd.x * wa.x;
+    const Lanes y = d.y * (vb.y - va.y) + row.rBxd.y * wb.y - row.rAxd.y * wa.y;
+    const Lanes z = d.z * (vb.z - va.z) + row.rBxd.z * wb.z - row.rAxd.z * wa.z;
+    out = x + y + z;
+}
+
+CYCLONE_INLINE void addScaled(WideVector &out, const Lanes &s, const WideVector &v) {
+    out.x += s * v.x;
+    out.y += s * v.y;
+    out.z += s * v.z;
+}
+
+CYCLONE_INLINE void subtractScaled(WideVector &out, const Lanes &s, const WideVector &v) {
+    out.x -= s * v.x;
+    out.y -= s * v.y;
+    out.z -= s * v.z;
+}
+
+// The velocities of a wide manifold's bodies, held in registers over its rows.
+struct WideVelocities {
+    WideVector va, wa, vb, wb;
+
+    CYCLONE_INLINE WideVelocities(const std::vector<SolverBody> &bodies, const WideManifold &m) {
+        const SolverBody &a0 = bodies[m.a[0]], &a1 = bodies[m.a[1]], &a2 = bodies[m.a[2]], &a3 = bodies[m.a[3]];
+        const SolverBody &b0 = bodies[m.b[0]], &b1 = bodies[m.b[1]], &b2 = bodies[m.b[2]], &b3 = bodies[m.b[3]];
+        transposeIn(a0.v, a1.v, a2.v, a3.v, va);
+        transposeIn(a0.w, a1.w, a2.w, a3.w, wa);
+        transposeIn(b0.v, b1.v, b2.v, b3.v, vb);
+        transposeIn(b0.w, b1.w, b2.w, b3.w, wb);
+    }
+
+    // Writes the lanes in use back. Never the immovable world (entry 0), which they leave
+    // unchanged: two threads may hold it at once (solver_partition.h).
+    CYCLONE_INLINE void store(std::vector<SolverBody> &bodies, const WideManifold &m) const {
+        Lanes v[kWideLanes], w[kWideLanes];
+        transposeOut(va, v);
+        transposeOut(wa, w);
+        for (int k = 0; k < m.size; ++k) {
+            if (m.a[k] == 0) continue;
+            bodies[m.a[k]].v = v[k];
+            bodies[m.a[k]].w = w[k];
+        }
+        transposeOut(vb, v);
+        transposeOut(wb, w);
+        for (int k = 0; k < m.size; ++k) {
+            if (m.b[k] == 0) continue;
+            bodies[m.b[k]].v = v[k];
+            bodies[m.b[k]].w = w[k];
+        }
+    }
+};
+
+// Lanes where a comparison held: all bits set.
+using LaneMask = LaneIndices;
+
+// One pass over a wide manifold's rows, as ManifoldSweep (contact_solver.cpp) makes it for
+// one manifold: the friction rows' and the points' relative velocities are read from the
+// bodies at the start, each impulse then reaches the points after it through the
+// couplings, and all impulses reach the bodies together at the end.
+struct WideSweep {
+    WideVelocities &vel;
+    WideManifold &m;
+    Lanes vn[kMaxManifoldPoints];  // relative normal velocity at each point, m/s
+    Lanes v0, v1, v2;              // along tangent 0 and 1, m/s, and about the normal, rad/s
+    Lanes change[kMaxManifoldPoints];
+    Lanes change0, change1, change2;  // the friction rows'
+
+    CYCLONE_INLINE WideSweep(WideVelocities &v, WideManifold &manifold) : vel(v), m(manifold) {
+        const WideVector dv = {vel.vb.x - vel.va.x, vel.vb.y - vel.va.y, vel.vb.z - vel.va.z};
+        const WideVector dw = {vel.wb.x - vel.wa.x, vel.wb.y - vel.wa.y, vel.wb.z - vel.wa.z};
+        const Lanes linear = m.normal.x * dv.x + m.normal.y * dv.y + m.normal.z * dv.z;
+        for (int i = 0; i < kMaxManifoldPoints; ++i) {
+            const WideRow &row = m.points[i].row;
+            vn[i] = linear + (row.rBxd.x * vel.wb.x - row.rAxd.x * vel.wa.x) +
+                    (row.rBxd.y * vel.wb.y - row.rAxd.y * vel.wa.y) + (row.rBxd.z * vel.wb.z - row.rAxd.z * vel.wa.z);
+        }
+        relative(m.tangent[0], vel.va, vel.vb, m.friction[0], vel.wa, vel.wb, v0);
+        relative(m.tangent[1], vel.va, vel.vb, m.friction[1], vel.wa, vel.wb, v1);
+        v2 = m.normal.x * dw.x + m.normal.y * dw.y + m.normal.z * dw.z;
+    }
+
+    // Adds `impulse` times a row's couplings to the points' normal velocities.
+    CYCLONE_INLINE void couple(const Lanes coupling[kMaxManifoldPoints], const Lanes &impulse) {
+        for (int j = 0; j < kMaxManifoldPoints; ++j) vn[j] += impulse * coupling[j];
+    }
+
+    // The patch's friction, as ManifoldSweep::friction solves it: the tangents and the
+    // twist as a block, the tangents then limited to the cone of the points' summed
+    // normal impulse and the twist to the same sum times the twist radius.
+    CYCLONE_INLINE void friction() {
+        const Lanes zero{};
+        const Lanes one{1, 1, 1, 1};
+        const LaneMask rubs = m.coefficient > zero;  // lanes with friction rows
+        const LaneMask turns = m.twistRadius > zero;
+        const Lanes *k = m.frictionInverse;
+        Lanes load = m.points[0].impulse;
+        for (int i = 1; i < kMaxManifoldPoints; ++i) load += m.points[i].impulse;
+        const Lanes limit = m.coefficient * load;
+        const Lanes spin = turns ? v2 : zero;
+        const Lanes old0 = m.frictionImpulse[0], old1 = m.frictionImpulse[1], old2 = m.twistImpulse;
+        Lanes new0 = old0 - (k[0] * v0 + k[1] * v1 + k[2] * spin);
+        Lanes new1 = old1 - (k[1] * v0 + k[3] * v1 + k[4] * spin);
+        const Lanes magnitude2 = new0 * new0 + new1 * new1;
+        const LaneMask outside = magnitude2 > limit * limit;
+        const Lanes rooted = outside ? magnitude2 : one;  // lanes inside the cone take no root (theirs may be 0)
+        Lanes length;
+        for (int l = 0; l < kWideLanes; ++l) length[l] = std::sqrt(rooted[l]);
+        const Lanes scale = outside ? limit / length : one;
+        new0 = rubs ? new0 * scale : old0;
+        new1 = rubs ? new1 * scale : old1;
+        const Lanes twistLimit = limit * m.twistRadius;
+        Lanes new2 = old2 - (k[2] * v0 + k[4] * v1 + k[5] * spin);
+        new2 = new2 < -twistLimit ? -twistLimit : new2 > twistLimit ? twistLimit : new2;
+        new2 = (rubs & turns) ? new2 : old2;
+        m.frictionImpulse[0] = new0;
+        m.frictionImpulse[1] = new1;
+        m.twistImpulse = new2;
+        change0 = new0 - old0, change1 = new1 - old1, change2 = new2 - old2;
+        couple(m.frictionCoupling[0], change0);
+        couple(m.frictionCoupling[1], change1);
+        couple(m.frictionCoupling[2], change2);
+    }
+
+    // Point i's normal row towards its bias.
+    CYCLONE_INLINE void normal(int i) {
+        WidePoint &p = m.points[i];
+        const Lanes candidate = p.impulse - p.mass * (vn[i] - p.bias);
+        const Lanes zero{};
+        const Lanes updated = candidate > zero ? candidate : zero;
+        change[i] = updated - p.impulse;
+        p.impulse = updated;
+        couple(m.normalCoupling[i], change[i]);
+    }
+
+    // Gives the bodies the sweep's impulses.
+    CYCLONE_INLINE void finish() {
+        const Lanes total = (change[0] + change[1]) + (change[2] + change[3]);
+        const WideVector linear = {total * m.normal.x + change0 * m.tangent[0].x + change1 * m.tangent[1].x,
+                                   total * m.normal.y + change0 * m.tangent[0].y + change1 * m.tangent[1].y,
+                                   total * m.normal.z + change0 * m.tangent[0].z + change1 * m.tangent[1].z};
+        subtractScaled(vel.va, m.invMassA, linear);
+        addScaled(vel.vb, m.invMassB, linear);
+        for (int i = 0; i < kMaxManifoldPoints; ++i) {
+            subtractScaled(vel.wa, change[i], m.points[i].row.angA);
+            addScaled(vel.wb, change[i], m.points[i].row.angB);
+        }
+        subtractScaled(vel.wa, change0, m.friction[0].angA);
+        subtractScaled(vel.wa, change1, m.friction[1].angA);
+        subtractScaled(vel.wa, change2, m.twistA);
+        addScaled(vel.wb, change0, m.friction[0].angB);
+        addScaled(vel.wb, change1, m.friction[1].angB);
+        addScaled(vel.wb, change2, m.twistB);
+    }
+};
+
+}  // namespace
+
+CYCLONE_SIMD_CLONES
+void loadWide(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+              const std::vector<SolverGroup> &groups, std::vector<WideManifold> &wide) {
+    // Lanes past a group's size, and points past a manifold's count, read zeros.
+    static const SolverManifold empty{};
+    static const SolverRow zeroRow{};
+    wide.resize(groups.size());
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        WideManifold &w = wide[g];
+        const SolverManifold *m[kWideLanes];
+        for (int k = 0; k < kWideLanes; ++k) m[k] = k < groups[g].size ? &manifolds[groups[g].manifold[k]] : &empty;
+        w.size = groups[g].size;
+        for (int k = 0; k < kWideLanes; ++k) {
+            w.a[k] = m[k]->a;
+            w.b[k] = m[k]->b;
+        }
+        const auto lanes = [&](auto field, Lanes &out) __attribute__((always_inline)) {
+            out = Lanes{field(*m[0]), field(*m[1]), field(*m[2]), field(*m[3])};
+        };
+        const auto vectors = [&](auto field, WideVector &out) __attribute__((always_inline)) {
+            transposeIn(field(*m[0]), field(*m[1]), field(*m[2]), field(*m[3]), out);
+        };
+        w.invMassA = Lanes{bodies[w.a[0]].invMass, bodies[w.a[1]].invMass, bodies[w.a[2]].invMass, bodies[w.a[3]].invMass};
+        w.invMassB = Lanes{bodies[w.b[0]].invMass, bodies[w.b[1]].invMass, bodies[w.b[2]].invMass, bodies[w.b[3]].invMass};
+        for (int d = 0; d < 3; ++d)
+            vectors([d](const SolverManifold &x) -> const Lanes & { return x.direction[d]; }, d == 0 ? w.normal : w.tangent[d - 1]);
+        for (int i = 0; i < kMaxManifoldPoints; ++i) {
+            const auto row = [i](const SolverManifold &x) -> const SolverRow & {
+                return i < x.count ? x.points[i].normal : zeroRow;
+            };
+            const auto point = [i](const SolverManifold &x, real SolverPoint::*field) {
+                return i < x.count ? x.points[i].*field : real(0);
+            };
+            loadRow(row(*m[0]), row(*m[1]), row(*m[2]), row(*m[3]), w.points[i].row);
+            w.points[i].mass = Lanes{row(*m[0]).mass, row(*m[1]).mass, row(*m[2]).mass, row(*m[3]).mass};
+            w.points[i].impulse = Lanes{row(*m[0]).impulse, row(*m[1]).impulse, row(*m[2]).impulse, row(*m[3]).impulse};
+            w.points[i].bias = Lanes{point(*m[0], &SolverPoint::velocityBias), point(*m[1], &SolverPoint::velocityBias),
+                                     point(*m[2], &SolverPoint::velocityBias), point(*m[3], &SolverPoint::velocityBias)};
+            transpose(m[0]->couplings.normal[i], m[1]->couplings.normal[i], m[2]->couplings.normal[i],
+                      m[3]->couplings.normal[i], w.normalCoupling[i]);
+        }
+        for (int r = 0; r < 2; ++r) {
+            loadRow(m[0]->frictionRow[r], m[1]->frictionRow[r], m[2]->frictionRow[r], m[3]->frictionRow[r], w.friction[r]);
+            lanes([r](const SolverManifold &x) { return x.frictionRow[r].impulse; }, w.frictionImpulse[r]);
+        }
+        for (int r = 0; r < 3; ++r)
+            transpose(m[0]->couplings.friction[r], m[1]->couplings.friction[r], m[2]->couplings.friction[r],
+                      m[3]->couplings.friction[r], w.frictionCoupling[r]);
+        vectors([](const SolverManifold &x) -> const Lanes & { return x.twist.angA; }, w.twistA);
+        vectors([](const SolverManifold &x) -> const Lanes & { return x.twist.angB; }, w.twistB);
+        lanes([](const SolverManifold &x) { return x.twist.impulse; }, w.twistImpulse);
+        for (int e = 0; e < 6; ++e) lanes([e](const SolverManifold &x) { return x.frictionInverse[e]; }, w.frictionInverse[e]);
+        lanes([](const SolverManifold &x) { return x.friction; }, w.coefficient);
+        lanes([](const SolverManifold &x) { return x.twistRadius; }, w.twistRadius);
+    }
+}
+
+CYCLONE_SIMD_CLONES
+void solveWide(std::vector<SolverBody> &bodies, std::vector<WideManifold> &wide, bool reverse) {
+    for (WideManifold &m : wide) {
+        WideVelocities vel(bodies, m);
+        WideSweep sweep(vel, m);
+        sweep.friction();
+        if (reverse) {
+            for (int i = kMaxManifoldPoints - 1; i >= 0; --i) sweep.normal(i);
+        } else {
+            for (int i = 0; i < kMaxManifoldPoints; ++i) sweep.normal(i);
+        }
+        sweep.finish();
+        vel.store(bodies, m);
+    }
+}
+
+void storeWide(const std::vector<WideManifold> &wide, const std::vector<SolverGroup> &groups,
+               std::vector<SolverManifold> &manifolds) {
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        const WideManifold &w = wide[g];
+        for (int k = 0; k < w.size; ++k) {
+            SolverManifold &m = manifolds[groups[g].manifold[k]];
+            for (int i = 0; i < m.count; ++i) m.points[i].normal.impulse = w.points[i].impulse[k];
+            m.frictionRow[0].impulse = w.frictionImpulse[0][k];
+            m.frictionRow[1].impulse = w.frictionImpulse[1][k];
+            m.twist.impulse = w.twistImpulse[k];
+        }
+    }
+}
+
+}  // namespace cyclone::detail
