@@ -4,10 +4,11 @@
 // Design note. Gauss-Seidel is a chain: each row reads the velocities the row before it
 // wrote, so one manifold's rows run one after another at the speed of the CPU's latency,
 // not its throughput. Two manifolds that share no moving body commute: solving them in
-// either order, or interleaved row by row, gives the same numbers. The schedule puts
-// such manifolds into groups of up to kGroupSize, keeping the result of the plain order:
-// a manifold is taken forward into an earlier group only past manifolds it shares no
-// moving body with. Interleaved, the groups' chains overlap in the CPU.
+// either order, or at once row by row, gives the same numbers. The schedule puts such
+// manifolds into groups of up to kGroupSize, keeping the result of the plain order: a
+// manifold is taken forward into an earlier group only past manifolds it shares no
+// moving body with. A pass solves a group's manifolds at once, one per SIMD lane
+// (wide_pass.h).
 #pragma once
 
 #include <vector>
@@ -24,7 +25,8 @@ struct SolverGroup {
     int size = 0;
 };
 
-/// How far ahead (in manifolds) the schedule looks for a partner.
+/// How far ahead (in manifolds) the schedule looks for a group's members: at 8, groups
+/// of four held 73 % of pyramid40's manifolds, at 16 90 %, at 32 92 %.
 inline constexpr int kScheduleWindow = 16;
 
 /// Groups the manifolds listed in `order` (indices into `manifolds`), keeping that
