@@ -148,9 +148,11 @@ void World::Impl::warmStart() {
 }
 
 // The coupled passes work on a copy of the rows they solve (wide_pass.h), taken after the
-// warm start and handed back, with the accumulated impulses, after the last pass.
+// warm start and handed back, with the accumulated impulses, after the last pass. Every
+// part is loaded, the empty ones too: an unsplit step must not find the seam's rows of
+// an earlier split one.
 void World::Impl::loadCoupledPasses() {
-    forEachTask(partition.split ? 3 : 1, [&](int part) {
+    forEachTask(3, [&](int part) {
         detail::loadWide(solverBodies, solverManifolds, partition.groups[part], wideManifolds[part]);
     });
 }
@@ -161,7 +163,7 @@ void World::Impl::solveCoupledPass(bool reverse) {
 }
 
 void World::Impl::storeCoupledPasses() {
-    forEachTask(partition.split ? 3 : 1, [&](int part) {
+    forEachTask(3, [&](int part) {
         detail::storeWide(wideManifolds[part], partition.groups[part], solverManifolds);
     });
 }
