@@ -96,20 +96,20 @@ struct WideVelocities {
     // Writes the lanes in use back. Never the immovable world (entry 0), which they leave
     // unchanged: two threads may hold it at once (solver_partition.h).
     CYCLONE_INLINE void store(std::vector<SolverBody> &bodies, const WideManifold &m) const {
+        storeSide(bodies, m.a, m.size, va, wa);
+        storeSide(bodies, m.b, m.size, vb, wb);
+    }
+
+    // One side's bodies (A's or B's) of the first `size` lanes.
+    static CYCLONE_INLINE void storeSide(std::vector<SolverBody> &bodies, const int *index, int size,
+                                         const WideVector &linear, const WideVector &angular) {
         Lanes v[kWideLanes], w[kWideLanes];
-        transposeOut(va, v);
-        transposeOut(wa, w);
-        for (int k = 0; k < m.size; ++k) {
-            if (m.a[k] == 0) continue;
-            bodies[m.a[k]].v = v[k];
-            bodies[m.a[k]].w = w[k];
-        }
-        transposeOut(vb, v);
-        transposeOut(wb, w);
-        for (int k = 0; k < m.size; ++k) {
-            if (m.b[k] == 0) continue;
-            bodies[m.b[k]].v = v[k];
-            bodies[m.b[k]].w = w[k];
+        transposeOut(linear, v);
+        transposeOut(angular, w);
+        for (int k = 0; k < size; ++k) {
+            if (index[k] == 0) continue;
+            bodies[index[k]].v = v[k];
+            bodies[index[k]].w = w[k];
         }
     }
 };

@@ -12,9 +12,9 @@
 //
 // The rows are copied in after the warm start of each sub-step (loadWide) and the
 // accumulated impulses back after its coupled passes (storeWide): a pass reads only the
-// rows it solves, about 900 bytes per manifold instead of the whole SolverManifold. A lane
-// past a group's size, and a point past a member's count, hold zero rows, which change
-// nothing.
+// rows it solves, 4544 bytes per group of four (1136 per manifold; a SolverManifold is
+// 2432). A lane past a group's size, and a point past a member's count, hold zero rows,
+// which change nothing.
 #pragma once
 
 #include <vector>
