@@ -7,10 +7,6 @@
 namespace cyclone::detail {
 namespace {
 
-#define CYCLONE_INLINE inline __attribute__((always_inline))
-
-using LaneIndices = long long __attribute__((vector_size(4 * sizeof(long long))));
-
 // out = a x b in lanes: the products and differences of Eigen's cross, in its order.
 CYCLONE_INLINE void crossLanes(const Lanes &a, const Lanes &b, Lanes &out) {
     const LaneIndices yzx = {1, 2, 0, 3};
@@ -294,7 +290,7 @@ CYCLONE_INLINE void solveManifold(PairVelocities &vel, SolverManifold &m, bool r
 // Two manifolds that share no moving body, step by step side by side when both have four
 // points (else one after the other): the same numbers as one after the other, but the
 // two chains overlap in the CPU.
-template <Moving kMoving0 = kBoth, Moving kMoving1 = kBoth>
+template <Moving kMoving0, Moving kMoving1>
 CYCLONE_INLINE void solveManifoldPair(PairVelocities &vel0, SolverManifold &m0, PairVelocities &vel1,
                                       SolverManifold &m1, bool reverse) {
     if (m0.count != kMaxManifoldPoints || m1.count != kMaxManifoldPoints) {

@@ -61,7 +61,7 @@ inline constexpr int kMaxManifoldPoints = 4;
 /// points' normal rows, per N s: lane j of an entry is point j's. A pass solves the
 /// manifold's rows one after another, as Gauss-Seidel does, but reads the bodies'
 /// velocities once and tracks the normal velocities through these (ManifoldSweep in
-/// contact_solver.cpp).
+/// contact_solver.cpp; WideSweep in wide_pass.cpp, from loadWide's copy).
 /// Lanes past the manifold's count, and point k's own lane of normal[k], are zero.
 struct RowCouplings {
     Lanes normal[kMaxManifoldPoints];  ///< Per unit impulse on point k's normal row.

@@ -8,11 +8,11 @@
 // them again was a quarter of the solve. A slot keeps them while it holds a manifold with
 // the same anchors (ManifoldState::anchors: new contacts found by the narrowphase are new
 // anchors, and a number belongs to one manifold, so to one pair of bodies), its bodies in
-// the same roles (movable or not in the solver), and
-// neither body moved more than WorldSettings::manifoldReuseTolerance (translation plus
-// rotation times its bounding radius) since they were made: the error is then of the
-// order of what manifold reuse accepts. Manifolds keep their slots from step to step
-// (World::Impl::assignSlots) for this.
+// the same roles (movable or not in the solver), and neither body moved more than
+// WorldSettings::manifoldReuseTolerance (translation plus rotation times its bounding
+// radius) since they were made: the error is then of the order of what manifold reuse
+// accepts. Manifolds keep their slots from step to step (World::Impl::assignSlots) for
+// this.
 #pragma once
 
 #include <cstdint>

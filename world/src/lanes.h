@@ -16,6 +16,11 @@ namespace cyclone::detail {
 // Aligned to 32 bytes whatever the target: without AVX the compiler would give it 16, and
 // the AVX2 clone of a pass, which assumes 32, would fault on the baseline's arrays.
 using Lanes = double __attribute__((vector_size(4 * sizeof(double)), aligned(32)));
+/// Lane indices for __builtin_shuffle, and the masks comparisons of lanes give.
+using LaneIndices = long long __attribute__((vector_size(4 * sizeof(long long))));
+
+/// The solver's small helpers are always inlined: a call would pass lanes through memory.
+#define CYCLONE_INLINE inline __attribute__((always_inline))
 
 /// out = (v, 0), element by element: building the vector in registers first made GCC go
 /// through the stack with a store the next load could not forward from (slow).

@@ -5,23 +5,6 @@
 namespace cyclone::detail {
 namespace {
 
-#define CYCLONE_INLINE inline __attribute__((always_inline))
-
-using LaneIndices = long long __attribute__((vector_size(4 * sizeof(long long))));
-
-// The 3-vectors of four bodies (x, y, z, 0 each) as x, y and z of four lanes.
-CYCLONE_INLINE void transposeIn(const Lanes &r0, const Lanes &r1, const Lanes &r2, const Lanes &r3,
-                                WideVector &out) {
-    const LaneIndices low = {0, 4, 1, 5}, high = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
-    const Lanes xy01 = __builtin_shuffle(r0, r1, low);  // x0 x1 y0 y1
-    const Lanes xy23 = __builtin_shuffle(r2, r3, low);
-    const Lanes z01 = __builtin_shuffle(r0, r1, high);  // z0 z1 0 0
-    const Lanes z23 = __builtin_shuffle(r2, r3, high);
-    out.x = __builtin_shuffle(xy01, xy23, first);
-    out.y = __builtin_shuffle(xy01, xy23, second);
-    out.z = __builtin_shuffle(z01, z23, first);
-}
-
 // Lanes r0..r3 as their columns: out[j] holds lane j of each.
 CYCLONE_INLINE void transpose(const Lanes &r0, const Lanes &r1, const Lanes &r2, const Lanes &r3,
                               Lanes out[kWideLanes]) {
@@ -36,6 +19,16 @@ CYCLONE_INLINE void transpose(const Lanes &r0, const Lanes &r1, const Lanes &r2,
     out[3] = __builtin_shuffle(zw01, zw23, second);
 }
 
+// The 3-vectors of four bodies (x, y, z, 0 each) as x, y and z of four lanes.
+CYCLONE_INLINE void transposeIn(const Lanes &r0, const Lanes &r1, const Lanes &r2, const Lanes &r3,
+                                WideVector &out) {
+    Lanes columns[kWideLanes];
+    transpose(r0, r1, r2, r3, columns);
+    out.x = columns[0];
+    out.y = columns[1];
+    out.z = columns[2];
+}
+
 // Four manifolds' rows side by side.
 CYCLONE_INLINE void loadRow(const SolverRow &r0, const SolverRow &r1, const SolverRow &r2, const SolverRow &r3,
                             WideRow &out) {
@@ -47,16 +40,8 @@ CYCLONE_INLINE void loadRow(const SolverRow &r0, const SolverRow &r1, const Solv
 
 // The inverse of transposeIn: lane k of v as body k's (x, y, z, 0).
 CYCLONE_INLINE void transposeOut(const WideVector &v, Lanes out[kWideLanes]) {
-    const LaneIndices low = {0, 4, 1, 5}, high = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
     const Lanes zero{};
-    const Lanes xy01 = __builtin_shuffle(v.x, v.y, low);  // x0 y0 x1 y1
-    const Lanes xy23 = __builtin_shuffle(v.x, v.y, high);
-    const Lanes z01 = __builtin_shuffle(v.z, zero, low);  // z0 0 z1 0
-    const Lanes z23 = __builtin_shuffle(v.z, zero, high);
-    out[0] = __builtin_shuffle(xy01, z01, first);
-    out[1] = __builtin_shuffle(xy01, z01, second);
-    out[2] = __builtin_shuffle(xy23, z23, first);
-    out[3] = __builtin_shuffle(xy23, z23, second);
+    transpose(v.x, v.y, v.z, zero, out);
 }
 
 // Per lane: out = d . (vb - va) + rBxd . wb - rAxd . wa, summed x + y + z as sum3 does.
