@@ -287,78 +287,6 @@ CYCLONE_INLINE void solveManifold(PairVelocities &vel, SolverManifold &m, bool r
     withCount(m.count, [&](auto count) __attribute__((always_inline)) { ManifoldSweep<kMoving, count()>(vel, m).solve(reverse); });
 }
 
-// Two manifolds that share no moving body, step by step side by side when both have four
-// points (else one after the other): the same numbers as one after the other, but the
-// two chains overlap in the CPU.
-template <Moving kMoving0, Moving kMoving1>
-CYCLONE_INLINE void solveManifoldPair(PairVelocities &vel0, SolverManifold &m0, PairVelocities &vel1,
-                                      SolverManifold &m1, bool reverse) {
-    if (m0.count != kMaxManifoldPoints || m1.count != kMaxManifoldPoints) {
-        solveManifold<kMoving0>(vel0, m0, reverse);
-        solveManifold<kMoving1>(vel1, m1, reverse);
-        return;
-    }
-    ManifoldSweep<kMoving0, kMaxManifoldPoints> sweep0(vel0, m0);
-    ManifoldSweep<kMoving1, kMaxManifoldPoints> sweep1(vel1, m1);
-    sweep0.friction();
-    sweep1.friction();
-    if (reverse) {
-        for (int i = kMaxManifoldPoints - 1; i >= 0; --i) sweep0.normal(i), sweep1.normal(i);
-    } else {
-        for (int i = 0; i < kMaxManifoldPoints; ++i) sweep0.normal(i), sweep1.normal(i);
-    }
-    sweep0.finish();
-    sweep1.finish();
-}
-
-// Which side of a manifold the support pass moves.
-CYCLONE_INLINE Moving supportedSide(const SolverManifold &m) { return m.support == kASupportsB ? kOnlyB : kOnlyA; }
-
-// A support manifold: only its carried body moves.
-CYCLONE_INLINE void solveCarriedManifold(std::vector<SolverBody> &bodies, SolverManifold &m, bool reverse) {
-    PairVelocities vel(bodies[m.a], bodies[m.b], false);
-    if (supportedSide(m) == kOnlyB) {
-        solveManifold<kOnlyB>(vel, m, reverse);
-        vel.store<kOnlyB>(bodies, m, false);
-    } else {
-        solveManifold<kOnlyA>(vel, m, reverse);
-        vel.store<kOnlyA>(bodies, m, false);
-    }
-}
-
-template <Moving kMoving0, Moving kMoving1>
-CYCLONE_INLINE void solveCarriedPair(std::vector<SolverBody> &bodies, SolverManifold &m0, SolverManifold &m1,
-                                     bool reverse) {
-    PairVelocities vel0(bodies[m0.a], bodies[m0.b], false);
-    PairVelocities vel1(bodies[m1.a], bodies[m1.b], false);
-    solveManifoldPair<kMoving0, kMoving1>(vel0, m0, vel1, m1, reverse);
-    vel0.store<kMoving0>(bodies, m0, false);
-    vel1.store<kMoving1>(bodies, m1, false);
-}
-
-// Two support manifolds of different carried bodies, side by side.
-CYCLONE_INLINE void solveCarriedPair(std::vector<SolverBody> &bodies, SolverManifold &m0, SolverManifold &m1,
-                                     bool reverse) {
-    const bool b0 = supportedSide(m0) == kOnlyB;
-    const bool b1 = supportedSide(m1) == kOnlyB;
-    if (b0 && b1) solveCarriedPair<kOnlyB, kOnlyB>(bodies, m0, m1, reverse);
-    else if (b0) solveCarriedPair<kOnlyB, kOnlyA>(bodies, m0, m1, reverse);
-    else if (b1) solveCarriedPair<kOnlyA, kOnlyB>(bodies, m0, m1, reverse);
-    else solveCarriedPair<kOnlyA, kOnlyA>(bodies, m0, m1, reverse);
-}
-
-// One carried body's sweeps against its carriers (a run of SupportRuns).
-struct CarriedRun {
-    int first = 0;  ///< Its manifolds: runs.manifolds[first .. last).
-    int last = 0;
-    SolverBody *body = nullptr;
-    real lever = 0;       ///< Lever arm of its first contact, m (for the stopping test).
-    bool active = false;  ///< Still sweeping.
-    Lanes v{}, w{};       ///< The body's velocity before the current sweep.
-
-    int size() const { return active ? last - first : 0; }
-};
-
 template <Moving kMoving>
 CYCLONE_INLINE void solvePseudoManifold(std::vector<SolverBody> &bodies, SolverManifold &m) {
     PairVelocities vel(bodies[m.a], bodies[m.b], true);
@@ -527,74 +455,6 @@ void prepareSupportedMasses(const std::vector<SolverBody> &bodies, SolverManifol
     fillCouplings(m, bMoves ? kOnlyB : kOnlyA, invMass, m.supportedCouplings);
 }
 
-namespace {
-
-CarriedRun beginRun(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
-                    int r) {
-    CarriedRun run;
-    run.first = runs.start[r];
-    run.last = runs.start[r + 1];
-    const SolverManifold &lead = manifolds[runs.manifolds[run.first]];
-    const bool bMoves = lead.support == kASupportsB;
-    run.body = &bodies[bMoves ? lead.b : lead.a];
-    for (int k = run.first; k < run.last; ++k) {
-        const SolverManifold &m = manifolds[runs.manifolds[k]];
-        if (m.a != 0 && m.b != 0) runs.saved[k].save(m);
-    }
-    const SolverRow &row = lead.points[0].normal;
-    run.lever = lead.count == 0 ? 0 : std::sqrt(bMoves ? dot3(row.rBxd, row.rBxd) : dot3(row.rAxd, row.rAxd));
-    run.active = true;
-    return run;
-}
-
-void endRun(std::vector<SolverManifold> &manifolds, const SupportRuns &runs, const CarriedRun &run) {
-    for (int k = run.first; k < run.last; ++k) {
-        SolverManifold &m = manifolds[runs.manifolds[k]];
-        if (m.a != 0 && m.b != 0) runs.saved[k].restore(m);
-    }
-}
-
-void startSweep(CarriedRun &run) {
-    run.v = run.body->v;
-    run.w = run.body->w;
-}
-
-// A sweep that changed the body's velocity (at its contact points: w times the lever
-// arm) by less than the tolerance ends the run.
-void finishSweep(CarriedRun &run) {
-    if (!run.active) return;
-    const Lanes dv = run.body->v - run.v;
-    const Lanes dw = run.body->w - run.w;
-    if (std::sqrt(dot3(dv, dv)) + std::sqrt(dot3(dw, dw)) * run.lever < kSupportTolerance) run.active = false;
-}
-
-// Sweeps two runs of carried bodies on the same level (neither carries the other, so
-// they commute) side by side until both stop; run1 may be empty.
-CYCLONE_INLINE void sweepRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                              const SupportRuns &runs, CarriedRun &run0, CarriedRun &run1, bool reverse) {
-    for (int sweep = 0; sweep < kSupportSweeps && (run0.active || run1.active); ++sweep) {
-        const bool backwards = reverse != ((sweep & 1) != 0);
-        if (run0.active) startSweep(run0);
-        if (run1.active) startSweep(run1);
-        const int n0 = run0.size();
-        const int n1 = run1.size();
-        for (int k = 0; k < std::max(n0, n1); ++k) {
-            if (k < n0 && k < n1) {
-                solveCarriedPair(bodies, manifolds[runs.manifolds[run0.first + k]],
-                                 manifolds[runs.manifolds[run1.first + k]], backwards);
-            } else if (k < n0) {
-                solveCarriedManifold(bodies, manifolds[runs.manifolds[run0.first + k]], backwards);
-            } else {
-                solveCarriedManifold(bodies, manifolds[runs.manifolds[run1.first + k]], backwards);
-            }
-        }
-        finishSweep(run0);
-        finishSweep(run1);
-    }
-}
-
-}  // namespace
-
 CYCLONE_SIMD_CLONES
 void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                       const std::vector<int> &order, bool reverse) {
@@ -605,34 +465,6 @@ void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifol
         solveManifold<kBoth>(vel, m, reverse);
         vel.store<kBoth>(bodies, m, false);
     }
-}
-
-// Each carried body against all its carriers at once. Against a static or sleeping
-// carrier that is the true problem and the impulses are kept; against a moving one they
-// are put back afterwards: computed with the carried body's mass alone, kept, they would
-// swing the warm start of a heavy body on a light one by the mass ratio times its error,
-// and the stack diverges. One carrier after the other would leave the body as high as
-// the highest contact point of any carrier pushed it (an impulse that lifts it is never
-// taken back), and a tall pyramid rose by millimetres in its first step; swept together,
-// a carrier's impulse falls again when another lifts the body.
-//
-// Bodies on one level move only themselves against carriers below them: two of them are
-// swept side by side, the same numbers as one after the other.
-CYCLONE_SIMD_CLONES
-void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
-                      int run0, int run1, bool reverse) {
-    CarriedRun sweep0 = beginRun(bodies, manifolds, runs, run0);
-    CarriedRun sweep1;
-    if (run1 >= 0) sweep1 = beginRun(bodies, manifolds, runs, run1);
-    sweepRuns(bodies, manifolds, runs, sweep0, sweep1, reverse);
-    endRun(manifolds, runs, sweep0);
-    if (run1 >= 0) endRun(manifolds, runs, sweep1);
-}
-
-void solveCarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
-                  int firstRun, int lastRun, bool reverse) {
-    for (int r = firstRun; r < lastRun; r += 2)
-        solveCarriedRuns(bodies, manifolds, runs, r, r + 1 < lastRun ? r + 1 : -1, reverse);
 }
 
 Softness makeSoftness(real hertz, real zeta, real h) {

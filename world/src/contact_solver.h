@@ -152,7 +152,6 @@ struct SupportRuns {
     std::vector<int> start;
     std::vector<int> levelStart;  ///< Level l's runs are [levelStart[l], levelStart[l + 1]).
     std::vector<int> manifolds;
-    std::vector<SavedImpulses> saved;  ///< Scratch, one per entry of `manifolds`.
 };
 
 struct SolverSettings {
@@ -227,7 +226,8 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
 /// pass over the manifolds where neither side carries the other, in `order`
 /// (solveUnsupported), then,
 /// level by level bottom up (SupportRuns::levelStart), each carried body against its
-/// carriers as immovable bodies with up to kSupportSweeps sweeps (solveCarried). It leaves
+/// carriers as immovable bodies with up to kSupportSweeps sweeps (solveCarriedRuns in
+/// wide_support.h, four runs at a time; support_lanes.h on two threads). It leaves
 /// no body of a resting stack sinking into the one below or turning on it, whatever
 /// their mass ratio (plain Gauss-Seidel converges ever slower as a heavy body rests on a
 /// lighter one). Its impulses change velocities only: the accumulated impulses stay those
@@ -235,13 +235,6 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
 /// solved at the same time.
 void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                       const std::vector<int> &order, bool reverse);
-/// Runs [firstRun, lastRun) of the support pass (see solveUnsupported).
-void solveCarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
-                  int firstRun, int lastRun, bool reverse);
-/// Runs run0 and run1 (-1: none) of one level side by side: the same numbers as one
-/// after the other.
-void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, SupportRuns &runs,
-                      int run0, int run1, bool reverse);
 /// One pass of penetration recovery on the pseudo-velocities of the manifolds listed in
 /// `order` (`support` as above).
 void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,

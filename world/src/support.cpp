@@ -42,7 +42,6 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
     }
     runs.levelStart.push_back(static_cast<int>(runs.start.size()));
     runs.start.push_back(static_cast<int>(keys.size()));
-    runs.saved.resize(keys.size());
 }
 
 }  // namespace

@@ -53,16 +53,13 @@ void solveSupportLane(std::vector<SolverBody> &bodies, std::vector<SolverManifol
                       SupportLanes &lanes, int lane, bool reverse) {
     const std::vector<int> &list = lanes.lane[lane];
     for (std::size_t k = 0; k < list.size();) {
-        const int r0 = list[k];
-        // Two runs of one level never carry each other: they are swept side by side.
-        const bool paired = k + 1 < list.size() && lanes.runLevel[list[k + 1]] == lanes.runLevel[r0];
-        const int r1 = paired ? list[k + 1] : -1;
-        awaitCarriers(manifolds, runs, lanes, r0);
-        if (paired) awaitCarriers(manifolds, runs, lanes, r1);
-        solveCarriedRuns(bodies, manifolds, runs, r0, r1, reverse);
-        lanes.finished[r0].store(lanes.pass, std::memory_order_release);
-        if (paired) lanes.finished[r1].store(lanes.pass, std::memory_order_release);
-        k += paired ? 2 : 1;
+        // Runs of one level never carry each other: up to four are swept side by side.
+        std::size_t end = k + 1;
+        while (end < list.size() && end - k < kWideLanes && lanes.runLevel[list[end]] == lanes.runLevel[list[k]]) ++end;
+        for (std::size_t r = k; r < end; ++r) awaitCarriers(manifolds, runs, lanes, list[r]);
+        solveCarriedRuns(bodies, manifolds, runs, &list[k], static_cast<int>(end - k), reverse, lanes.scratch[lane]);
+        for (std::size_t r = k; r < end; ++r) lanes.finished[list[r]].store(lanes.pass, std::memory_order_release);
+        k = end;
     }
 }
 

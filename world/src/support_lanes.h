@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "contact_solver.h"
+#include "wide_support.h"
 
 namespace cyclone::detail {
 
@@ -29,6 +30,7 @@ struct SupportLanes {
     std::unique_ptr<std::atomic<std::uint32_t>[]> finished;
     std::size_t capacity = 0;  ///< Length of `finished`.
     std::uint32_t pass = 0;
+    WideSupportScratch scratch[2];  ///< Per lane.
 };
 
 /// Lists the runs of each lane: with `side` (per solver body, 0 or 1; the partition's

@@ -1,33 +1,7 @@
 #include "wide_pass.h"
 
-#include <cmath>
-
 namespace cyclone::detail {
 namespace {
-
-// Lanes r0..r3 as their columns: out[j] holds lane j of each.
-CYCLONE_INLINE void transpose(const Lanes &r0, const Lanes &r1, const Lanes &r2, const Lanes &r3,
-                              Lanes out[kWideLanes]) {
-    const LaneIndices low = {0, 4, 1, 5}, high = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
-    const Lanes xy01 = __builtin_shuffle(r0, r1, low);  // x0 x1 y0 y1
-    const Lanes xy23 = __builtin_shuffle(r2, r3, low);
-    const Lanes zw01 = __builtin_shuffle(r0, r1, high);  // z0 z1 w0 w1
-    const Lanes zw23 = __builtin_shuffle(r2, r3, high);
-    out[0] = __builtin_shuffle(xy01, xy23, first);
-    out[1] = __builtin_shuffle(xy01, xy23, second);
-    out[2] = __builtin_shuffle(zw01, zw23, first);
-    out[3] = __builtin_shuffle(zw01, zw23, second);
-}
-
-// The 3-vectors of four bodies (x, y, z, 0 each) as x, y and z of four lanes.
-CYCLONE_INLINE void transposeIn(const Lanes &r0, const Lanes &r1, const Lanes &r2, const Lanes &r3,
-                                WideVector &out) {
-    Lanes columns[kWideLanes];
-    transpose(r0, r1, r2, r3, columns);
-    out.x = columns[0];
-    out.y = columns[1];
-    out.z = columns[2];
-}
 
 // Four manifolds' rows side by side.
 CYCLONE_INLINE void loadRow(const SolverRow &r0, const SolverRow &r1, const SolverRow &r2, const SolverRow &r3,
@@ -38,12 +12,6 @@ CYCLONE_INLINE void loadRow(const SolverRow &r0, const SolverRow &r1, const Solv
     transposeIn(r0.angB, r1.angB, r2.angB, r3.angB, out.angB);
 }
 
-// The inverse of transposeIn: lane k of v as body k's (x, y, z, 0).
-CYCLONE_INLINE void transposeOut(const WideVector &v, Lanes out[kWideLanes]) {
-    const Lanes zero{};
-    transpose(v.x, v.y, v.z, zero, out);
-}
-
 // Per lane: out = d . (vb - va) + rBxd . wb - rAxd . wa, summed x + y + z as sum3 does.
 CYCLONE_INLINE void relative(const WideVector &d, const WideVector &va, const WideVector &vb, const WideRow &row,
                              const WideVector &wa, const WideVector &wb, Lanes &out) {
@@ -51,18 +19,6 @@ CYCLONE_INLINE void relative(const WideVector &d, const WideVector &va, const Wi
     const Lanes y = d.y * (vb.y - va.y) + row.rBxd.y * wb.y - row.rAxd.y * wa.y;
     const Lanes z = d.z * (vb.z - va.z) + row.rBxd.z * wb.z - row.rAxd.z * wa.z;
     out = x + y + z;
-}
-
-CYCLONE_INLINE void addScaled(WideVector &out, const Lanes &s, const WideVector &v) {
-    out.x += s * v.x;
-    out.y += s * v.y;
-    out.z += s * v.z;
-}
-
-CYCLONE_INLINE void subtractScaled(WideVector &out, const Lanes &s, const WideVector &v) {
-    out.x -= s * v.x;
-    out.y -= s * v.y;
-    out.z -= s * v.z;
 }
 
 // The velocities of a wide manifold's bodies, held in registers over its rows.
@@ -98,9 +54,6 @@ struct WideVelocities {
         }
     }
 };
-
-// Lanes where a comparison held: all bits set.
-using LaneMask = LaneIndices;
 
 // One pass over a wide manifold's rows, as ManifoldSweep (contact_solver.cpp) makes it for
 // one manifold: the friction rows' and the points' relative velocities are read from the
@@ -153,7 +106,7 @@ struct WideSweep {
         const LaneMask outside = magnitude2 > limit * limit;
         const Lanes rooted = outside ? magnitude2 : one;  // lanes inside the cone take no root (theirs may be 0)
         Lanes length;
-        for (int l = 0; l < kWideLanes; ++l) length[l] = std::sqrt(rooted[l]);
+        sqrtLanes(rooted, length);
         const Lanes scale = outside ? limit / length : one;
         new0 = rubs ? new0 * scale : old0;
         new1 = rubs ? new1 * scale : old1;

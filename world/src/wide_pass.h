@@ -21,16 +21,11 @@
 
 #include "contact_solver.h"
 #include "solver_schedule.h"
+#include "wide_lanes.h"
 
 namespace cyclone::detail {
 
-inline constexpr int kWideLanes = 4;
 static_assert(kGroupSize == kWideLanes, "a group fills one wide manifold");
-
-/// Four 3-vectors, one per lane.
-struct WideVector {
-    Lanes x, y, z;
-};
 
 /// One row's Jacobian terms for four manifolds (SolverRow).
 struct WideRow {
