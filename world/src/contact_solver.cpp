@@ -4,6 +4,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include "wide_lanes.h"
+
 namespace cyclone::detail {
 namespace {
 
@@ -384,13 +386,22 @@ void fillCouplings(const SolverManifold &m, Moving moving, real invMasses, RowCo
     }
 }
 
-// The couplings of a manifold whose point i was point from[i].
-void renumberCouplings(RowCouplings &c, const int *from, int count) {
-    const RowCouplings before = c;
-    for (int i = 0; i < count; ++i) {
-        for (int j = 0; j < count; ++j) c.normal[i][j] = before.normal[from[i]][from[j]];
-        for (int r = 0; r < 3; ++r) c.friction[r][i] = before.friction[r][from[i]];
-    }
+// The couplings of a manifold whose point i was point from[i] (of `count`): P C P^T for
+// the normal block, the rows picked whole and the columns through a transpose; the
+// friction rows' lanes the same way. Entries past the count are zero and stay so.
+CYCLONE_INLINE void renumberCouplings(RowCouplings &c, const int *from, int count) {
+    int f[kMaxManifoldPoints];
+    for (int i = 0; i < kMaxManifoldPoints; ++i) f[i] = i < count ? from[i] : i;
+    const Lanes zero{};
+    Lanes columns[kWideLanes], picked[kWideLanes];
+    transpose(c.normal[f[0]], c.normal[f[1]], c.normal[f[2]], c.normal[f[3]], columns);
+    for (int j = 0; j < kWideLanes; ++j) picked[j] = columns[f[j]];
+    transpose(picked[0], picked[1], picked[2], picked[3], c.normal);
+    transpose(c.friction[0], c.friction[1], c.friction[2], zero, columns);
+    for (int j = 0; j < kWideLanes; ++j) picked[j] = columns[f[j]];
+    Lanes rows[kWideLanes];
+    transpose(picked[0], picked[1], picked[2], picked[3], rows);
+    for (int r = 0; r < 3; ++r) c.friction[r] = rows[r];
 }
 
 }  // namespace
@@ -400,6 +411,7 @@ void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &
     m.supportedCouplings = m.couplings;
 }
 
+CYCLONE_SIMD_CLONES
 void renumberPointRows(SolverManifold &m, const int *from) {
     SolverRow before[kMaxManifoldPoints];
     for (int i = 0; i < m.count; ++i) before[i] = m.points[i].normal;
