@@ -1,5 +1,7 @@
 #include "wide_pass.h"
 
+#include "wide_friction.h"
+
 namespace cyclone::detail {
 namespace {
 
@@ -86,38 +88,15 @@ struct WideSweep {
         for (int j = 0; j < kMaxManifoldPoints; ++j) vn[j] += impulse * coupling[j];
     }
 
-    // The patch's friction, as ManifoldSweep::friction solves it: the tangents and the
-    // twist as a block, the tangents then limited to the cone of the points' summed
-    // normal impulse and the twist to the same sum times the twist radius.
+    // The patch's friction (wide_friction.h).
     CYCLONE_INLINE void friction() {
         const Lanes zero{};
-        const Lanes one{1, 1, 1, 1};
         const LaneMask rubs = m.coefficient > zero;  // lanes with friction rows
-        const LaneMask turns = m.twistRadius > zero;
-        const Lanes *k = m.frictionInverse;
         Lanes load = m.points[0].impulse;
         for (int i = 1; i < kMaxManifoldPoints; ++i) load += m.points[i].impulse;
-        const Lanes limit = m.coefficient * load;
-        const Lanes spin = turns ? v2 : zero;
-        const Lanes old0 = m.frictionImpulse[0], old1 = m.frictionImpulse[1], old2 = m.twistImpulse;
-        Lanes new0 = old0 - (k[0] * v0 + k[1] * v1 + k[2] * spin);
-        Lanes new1 = old1 - (k[1] * v0 + k[3] * v1 + k[4] * spin);
-        const Lanes magnitude2 = new0 * new0 + new1 * new1;
-        const LaneMask outside = magnitude2 > limit * limit;
-        const Lanes rooted = outside ? magnitude2 : one;  // lanes inside the cone take no root (theirs may be 0)
-        Lanes length;
-        sqrtLanes(rooted, length);
-        const Lanes scale = outside ? limit / length : one;
-        new0 = rubs ? new0 * scale : old0;
-        new1 = rubs ? new1 * scale : old1;
-        const Lanes twistLimit = limit * m.twistRadius;
-        Lanes new2 = old2 - (k[2] * v0 + k[4] * v1 + k[5] * spin);
-        new2 = new2 < -twistLimit ? -twistLimit : new2 > twistLimit ? twistLimit : new2;
-        new2 = (rubs & turns) ? new2 : old2;
-        m.frictionImpulse[0] = new0;
-        m.frictionImpulse[1] = new1;
-        m.twistImpulse = new2;
-        change0 = new0 - old0, change1 = new1 - old1, change2 = new2 - old2;
+        WideFrictionRows rows{m.frictionImpulse[0], m.frictionImpulse[1], m.twistImpulse};
+        solveWideFriction(v0, v1, v2, m.frictionInverse, load, m.coefficient, m.twistRadius, rubs, rows);
+        change0 = rows.change0, change1 = rows.change1, change2 = rows.change2;
         couple(m.frictionCoupling[0], change0);
         couple(m.frictionCoupling[1], change1);
         couple(m.frictionCoupling[2], change2);

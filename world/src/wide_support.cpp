@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "wide_friction.h"
+
 namespace cyclone::detail {
 namespace {
 
@@ -149,39 +151,19 @@ struct CarriedSweep {
         for (int j = 0; j < kMaxManifoldPoints; ++j) vn[j] += impulse * coupling[j];
     }
 
-    // The patch's friction, as WideSweep::friction (wide_pass.cpp) solves it.
+    // The patch's friction (wide_friction.h).
     CYCLONE_INLINE void friction() {
         const Lanes zero{};
-        const Lanes one{1, 1, 1, 1};
         const LaneMask rubs = (c.coefficient > zero) & active;
-        const LaneMask turns = c.twistRadius > zero;
         Lanes v0, v1, v2;
         relative(c.tangent[0], c.friction[0], c.frictionCarrier[0], v0);
         relative(c.tangent[1], c.friction[1], c.frictionCarrier[1], v1);
         dotLanes(c.normal, body.w, v2);
         v2 += c.frictionCarrier[2];
-        const Lanes *k = c.frictionInverse;
         const Lanes load = (c.impulse[0] + c.impulse[1]) + (c.impulse[2] + c.impulse[3]);
-        const Lanes limit = c.coefficient * load;
-        const Lanes spin = turns ? v2 : zero;
-        const Lanes old0 = c.frictionImpulse[0], old1 = c.frictionImpulse[1], old2 = c.twistImpulse;
-        Lanes new0 = old0 - (k[0] * v0 + k[1] * v1 + k[2] * spin);
-        Lanes new1 = old1 - (k[1] * v0 + k[3] * v1 + k[4] * spin);
-        const Lanes magnitude2 = new0 * new0 + new1 * new1;
-        const LaneMask outside = magnitude2 > limit * limit;
-        Lanes length;
-        sqrtLanes(outside ? magnitude2 : one, length);  // no root of lanes inside (theirs may be 0)
-        const Lanes scale = outside ? limit / length : one;
-        new0 = rubs ? new0 * scale : old0;
-        new1 = rubs ? new1 * scale : old1;
-        const Lanes twistLimit = limit * c.twistRadius;
-        Lanes new2 = old2 - (k[2] * v0 + k[4] * v1 + k[5] * spin);
-        new2 = new2 < -twistLimit ? -twistLimit : new2 > twistLimit ? twistLimit : new2;
-        new2 = (rubs & turns) ? new2 : old2;
-        c.frictionImpulse[0] = new0;
-        c.frictionImpulse[1] = new1;
-        c.twistImpulse = new2;
-        change0 = new0 - old0, change1 = new1 - old1, change2 = new2 - old2;
+        WideFrictionRows rows{c.frictionImpulse[0], c.frictionImpulse[1], c.twistImpulse};
+        solveWideFriction(v0, v1, v2, c.frictionInverse, load, c.coefficient, c.twistRadius, rubs, rows);
+        change0 = rows.change0, change1 = rows.change1, change2 = rows.change2;
         couple(c.frictionCoupling[0], change0);
         couple(c.frictionCoupling[1], change1);
         couple(c.frictionCoupling[2], change2);
