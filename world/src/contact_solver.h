@@ -116,8 +116,10 @@ inline constexpr int kNoSupport = 0;
 inline constexpr int kASupportsB = 1;
 inline constexpr int kBSupportsA = 2;
 
-/// The accumulated impulses of a manifold, saved so that a support pass leaves them as
-/// the coupled passes left them.
+/// The accumulated impulses of a manifold, saved so that the last penetration pass, which
+/// moves only a carried body, leaves those of a moving carrier's manifold as it found
+/// them (solvePseudoVelocities). The velocity support pass keeps its own copy instead
+/// (wide_support.h).
 struct SavedImpulses {
     real normal[kMaxManifoldPoints];
     real pseudo[kMaxManifoldPoints];
