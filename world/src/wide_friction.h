@@ -17,13 +17,18 @@ struct WideFrictionRows {
     Lanes change0{}, change1{}, change2{};
 };
 
+/// Points of a patch (contact_solver.h's kMaxManifoldPoints).
+inline constexpr int kWidePatchPoints = 4;
+
 /// Solves the lanes of `rubs` towards relative velocities v0, v1 along the tangents (m/s)
 /// and v2 about the normal (rad/s), with the block inverse k[6] (upper triangle row by
 /// row), the points' summed normal impulse `load`, the friction coefficient and the twist
-/// radius (0: no twist row); the other lanes keep their impulses.
+/// radius (0: no twist row); the other lanes keep their impulses. Each row's change then
+/// reaches the points' normal velocities `vn` through its couplings (RowCouplings::friction).
 CYCLONE_INLINE void solveWideFriction(const Lanes &v0, const Lanes &v1, const Lanes &v2, const Lanes k[6],
                                       const Lanes &load, const Lanes &coefficient, const Lanes &twistRadius,
-                                      const LaneMask &rubs, WideFrictionRows &rows) {
+                                      const LaneMask &rubs, const Lanes coupling[3][kWidePatchPoints],
+                                      Lanes vn[kWidePatchPoints], WideFrictionRows &rows) {
     const Lanes zero{};
     const Lanes one{1, 1, 1, 1};
     const LaneMask turns = twistRadius > zero;
@@ -48,6 +53,9 @@ CYCLONE_INLINE void solveWideFriction(const Lanes &v0, const Lanes &v1, const La
     rows.tangent1 = new1;
     rows.twist = new2;
     rows.change0 = new0 - old0, rows.change1 = new1 - old1, rows.change2 = new2 - old2;
+    for (int j = 0; j < kWidePatchPoints; ++j) vn[j] += rows.change0 * coupling[0][j];
+    for (int j = 0; j < kWidePatchPoints; ++j) vn[j] += rows.change1 * coupling[1][j];
+    for (int j = 0; j < kWidePatchPoints; ++j) vn[j] += rows.change2 * coupling[2][j];
 }
 
 }  // namespace cyclone::detail

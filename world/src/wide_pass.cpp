@@ -3,6 +3,9 @@
 #include "wide_friction.h"
 
 namespace cyclone::detail {
+
+static_assert(kWidePatchPoints == kMaxManifoldPoints, "wide_friction.h couples every point of a patch");
+
 namespace {
 
 // Four manifolds' rows side by side.
@@ -95,11 +98,8 @@ struct WideSweep {
         Lanes load = m.points[0].impulse;
         for (int i = 1; i < kMaxManifoldPoints; ++i) load += m.points[i].impulse;
         WideFrictionRows rows{m.frictionImpulse[0], m.frictionImpulse[1], m.twistImpulse};
-        solveWideFriction(v0, v1, v2, m.frictionInverse, load, m.coefficient, m.twistRadius, rubs, rows);
+        solveWideFriction(v0, v1, v2, m.frictionInverse, load, m.coefficient, m.twistRadius, rubs, m.frictionCoupling, vn, rows);
         change0 = rows.change0, change1 = rows.change1, change2 = rows.change2;
-        couple(m.frictionCoupling[0], change0);
-        couple(m.frictionCoupling[1], change1);
-        couple(m.frictionCoupling[2], change2);
     }
 
     // Point i's normal row towards its bias.

@@ -162,11 +162,8 @@ struct CarriedSweep {
         v2 += c.frictionCarrier[2];
         const Lanes load = (c.impulse[0] + c.impulse[1]) + (c.impulse[2] + c.impulse[3]);
         WideFrictionRows rows{c.frictionImpulse[0], c.frictionImpulse[1], c.twistImpulse};
-        solveWideFriction(v0, v1, v2, c.frictionInverse, load, c.coefficient, c.twistRadius, rubs, rows);
+        solveWideFriction(v0, v1, v2, c.frictionInverse, load, c.coefficient, c.twistRadius, rubs, c.frictionCoupling, vn, rows);
         change0 = rows.change0, change1 = rows.change1, change2 = rows.change2;
-        couple(c.frictionCoupling[0], change0);
-        couple(c.frictionCoupling[1], change1);
-        couple(c.frictionCoupling[2], change2);
     }
 
     // Point i's normal row towards its bias.
