@@ -127,6 +127,12 @@ struct World::Impl {
     std::vector<detail::SolverBody> solverBodies;
     std::vector<detail::SolverManifold> solverManifolds;
     std::vector<std::uint32_t> solverSource;  ///< Pair index and manifold of each solver manifold.
+    /// Body records of each solver manifold's A and B (the pair's): the passes over the
+    /// slots read them here, not from the pair, whose record is a cache miss away.
+    struct SlotBodies {
+        std::uint32_t a = 0, b = 0;
+    };
+    std::vector<SlotBodies> solverRecords;
     std::vector<ManifoldKey> manifoldKeys;    ///< The solver manifolds to build, in solve order.
     /// Solver slot of each entry of manifoldKeys: the solve order (Gauss-Seidel's) of the
     /// solver manifolds, which keep their slots from step to step (assignSlots).
@@ -217,7 +223,7 @@ struct World::Impl {
     /// tolerance of its stamped pose.
     bool bodyStillStamped(const detail::StampedBody &stamped, std::uint32_t index) const;
     void stampBody(detail::StampedBody &stamped, std::uint32_t index) const;
-    /// Fills solverManifolds[slot] and solverSource[slot] from the manifold `key` names.
+    /// Fills solverManifolds[slot], solverSource[slot] and solverRecords[slot] from the manifold `key` names.
     void addSolverManifold(const ManifoldKey &key, std::size_t slot);
     /// Solve-order height of a contact between a and b: the lower body's, m along `up`.
     real contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) const;

@@ -112,10 +112,10 @@ void World::Impl::prepareSolver(real h) {
 
 void World::Impl::prepareManifold(std::size_t s) {
     detail::SolverManifold &m = solverManifolds[s];
-    const detail::PairState &pair = pairs[solverSource[s] >> 2];
-    const RigidBody &a = bodies[pair.a].body;
-    const RigidBody &b = bodies[pair.b].body;
-    m.restitution = std::max(bodies[pair.a].material.restitution, bodies[pair.b].material.restitution);
+    const SlotBodies records = solverRecords[s];
+    const RigidBody &a = bodies[records.a].body;
+    const RigidBody &b = bodies[records.b].body;
+    m.restitution = std::max(bodies[records.a].material.restitution, bodies[records.b].material.restitution);
     m.touchesStatic = m.a == 0 || m.b == 0;
     const detail::SolverBody &sa = solverBodies[m.a];
     const detail::SolverBody &sb = solverBodies[m.b];
@@ -222,9 +222,8 @@ void World::Impl::solve(real h, bool firstSubstep) {
     const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
     forEachManifold([&](std::size_t s) {
         detail::SolverManifold &m = solverManifolds[s];
-        const detail::PairState &pair = pairs[solverSource[s] >> 2];
-        const RigidBody &a = bodies[pair.a].body;
-        const RigidBody &b = bodies[pair.b].body;
+        const RigidBody &a = bodies[solverRecords[s].a].body;
+        const RigidBody &b = bodies[solverRecords[s].b].body;
         for (int i = 0; i < m.count; ++i) {
             detail::SolverPoint &p = m.points[i];
             p.depth = (a.getPointInWorldSpace(p.localA) - b.getPointInWorldSpace(p.localB)).dot(m.normal);
@@ -305,9 +304,8 @@ void World::Impl::recoverPenetration(real h) {
     std::atomic<bool> needed{false};
     forEachManifold([&](std::size_t s) {
         detail::SolverManifold &m = solverManifolds[s];
-        const detail::PairState &pair = pairs[solverSource[s] >> 2];
-        const RigidBody &a = bodies[pair.a].body;
-        const RigidBody &b = bodies[pair.b].body;
+        const RigidBody &a = bodies[solverRecords[s].a].body;
+        const RigidBody &b = bodies[solverRecords[s].b].body;
         // The slop is left alone only where the whole manifold is that deep: a tilt
         // (one side deeper than the other) is corrected even when it is below the slop,
         // or it would never be, and a stack would lean on it.

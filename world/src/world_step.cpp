@@ -332,6 +332,7 @@ void World::Impl::buildManifolds(real) {
     // slots are value-initialised.
     solverManifolds.resize(manifoldKeys.size());
     solverSource.resize(manifoldKeys.size());
+    solverRecords.resize(manifoldKeys.size());
     jacobianStamps.resize(manifoldKeys.size());
     // Slot by slot: the slots are written in memory order.
     forEachInChunks(manifoldKeys.size(), [&](std::size_t s) { addSolverManifold(manifoldKeys[keyOfSlot[s]], s); });
@@ -410,6 +411,7 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
         dst.maxNormalImpulse = 0;
     }
     solverSource[slot] = key.source;
+    solverRecords[slot] = {pair.a, pair.b};
 }
 
 // Whether the Jacobians in a slot, made at an earlier step (jacobian_stamp.h), hold for
