@@ -60,6 +60,28 @@ struct WideVelocities {
     }
 };
 
+// Gives the bodies of a wide manifold impulses along its rows: normal[i] along point i's
+// normal row, tangent0 and tangent1 along the friction rows, twist about the normal.
+CYCLONE_INLINE void giveImpulses(WideVelocities &vel, const WideManifold &m, const Lanes normal[kMaxManifoldPoints],
+                                 const Lanes &tangent0, const Lanes &tangent1, const Lanes &twist) {
+    const Lanes total = (normal[0] + normal[1]) + (normal[2] + normal[3]);
+    const WideVector linear = {total * m.normal.x + tangent0 * m.tangent[0].x + tangent1 * m.tangent[1].x,
+                               total * m.normal.y + tangent0 * m.tangent[0].y + tangent1 * m.tangent[1].y,
+                               total * m.normal.z + tangent0 * m.tangent[0].z + tangent1 * m.tangent[1].z};
+    subtractScaled(vel.va, m.invMassA, linear);
+    addScaled(vel.vb, m.invMassB, linear);
+    for (int i = 0; i < kMaxManifoldPoints; ++i) {
+        subtractScaled(vel.wa, normal[i], m.points[i].row.angA);
+        addScaled(vel.wb, normal[i], m.points[i].row.angB);
+    }
+    subtractScaled(vel.wa, tangent0, m.friction[0].angA);
+    subtractScaled(vel.wa, tangent1, m.friction[1].angA);
+    subtractScaled(vel.wa, twist, m.twistA);
+    addScaled(vel.wb, tangent0, m.friction[0].angB);
+    addScaled(vel.wb, tangent1, m.friction[1].angB);
+    addScaled(vel.wb, twist, m.twistB);
+}
+
 // One pass over a wide manifold's rows, as ManifoldSweep (contact_solver.cpp) makes it for
 // one manifold: the friction rows' and the points' relative velocities are read from the
 // bodies at the start, each impulse then reaches the points after it through the
@@ -114,31 +136,14 @@ struct WideSweep {
     }
 
     // Gives the bodies the sweep's impulses.
-    CYCLONE_INLINE void finish() {
-        const Lanes total = (change[0] + change[1]) + (change[2] + change[3]);
-        const WideVector linear = {total * m.normal.x + change0 * m.tangent[0].x + change1 * m.tangent[1].x,
-                                   total * m.normal.y + change0 * m.tangent[0].y + change1 * m.tangent[1].y,
-                                   total * m.normal.z + change0 * m.tangent[0].z + change1 * m.tangent[1].z};
-        subtractScaled(vel.va, m.invMassA, linear);
-        addScaled(vel.vb, m.invMassB, linear);
-        for (int i = 0; i < kMaxManifoldPoints; ++i) {
-            subtractScaled(vel.wa, change[i], m.points[i].row.angA);
-            addScaled(vel.wb, change[i], m.points[i].row.angB);
-        }
-        subtractScaled(vel.wa, change0, m.friction[0].angA);
-        subtractScaled(vel.wa, change1, m.friction[1].angA);
-        subtractScaled(vel.wa, change2, m.twistA);
-        addScaled(vel.wb, change0, m.friction[0].angB);
-        addScaled(vel.wb, change1, m.friction[1].angB);
-        addScaled(vel.wb, change2, m.twistB);
-    }
+    CYCLONE_INLINE void finish() { giveImpulses(vel, m, change, change0, change1, change2); }
 };
 
 }  // namespace
 
 CYCLONE_SIMD_CLONES
-void loadWide(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
-              const std::vector<SolverGroup> &groups, std::vector<WideManifold> &wide) {
+void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+              const std::vector<SolverGroup> &groups, bool warmStart, std::vector<WideManifold> &wide) {
     // Lanes past a group's size, and points past a manifold's count, read zeros.
     static const SolverManifold empty{};
     static const SolverRow zeroRow{};
@@ -190,6 +195,13 @@ void loadWide(const std::vector<SolverBody> &bodies, const std::vector<SolverMan
         for (int e = 0; e < 6; ++e) lanes([e](const SolverManifold &x) { return x.frictionInverse[e]; }, w.frictionInverse[e]);
         lanes([](const SolverManifold &x) { return x.friction; }, w.coefficient);
         lanes([](const SolverManifold &x) { return x.twistRadius; }, w.twistRadius);
+        // The warm start, while the group's rows are still in the cache.
+        if (!warmStart) continue;
+        WideVelocities vel(bodies, w);
+        const Lanes normal[kMaxManifoldPoints] = {w.points[0].impulse, w.points[1].impulse, w.points[2].impulse,
+                                                  w.points[3].impulse};
+        giveImpulses(vel, w, normal, w.frictionImpulse[0], w.frictionImpulse[1], w.twistImpulse);
+        vel.store(bodies, w);
     }
 }
 

@@ -10,8 +10,9 @@
 // after another, each impulse reaching the later rows through the couplings, so the
 // numbers are row-by-row Gauss-Seidel's.
 //
-// The rows are copied in after the warm start of each sub-step (loadWide) and the
-// accumulated impulses back after its coupled passes (storeWide): a pass reads only the
+// The rows are copied in at the start of each sub-step, each group giving the bodies its
+// warm-start impulses as it is copied (loadWide), and the accumulated impulses go back
+// after the coupled passes (storeWide): a pass reads only the
 // rows it solves, 4544 bytes per group of four (1136 per manifold; a SolverManifold is
 // 2432). A lane past a group's size, and a point past a member's count, hold zero rows,
 // which change nothing.
@@ -62,9 +63,11 @@ struct WideManifold {
     Lanes twistRadius{};            ///< m (0: no twist row).
 };
 
-/// Copies the rows of the manifolds of `groups` into `wide`, one per group.
-void loadWide(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds, const std::vector<SolverGroup> &groups,
-              std::vector<WideManifold> &wide);
+/// Copies the rows of the manifolds of `groups` into `wide`, one per group, and with
+/// `warmStart` gives the bodies each group's accumulated impulses once it is copied, as
+/// warmStart (contact_solver.h) does for its manifolds.
+void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds, const std::vector<SolverGroup> &groups,
+              bool warmStart, std::vector<WideManifold> &wide);
 /// One coupled pass over the wide manifolds, in order: in each, friction and then the
 /// points' normal rows, from the last point with `reverse` (alternating passes keep the
 /// first point from taking the largest share of a new contact's load, which would tilt

@@ -138,8 +138,8 @@ void World::Impl::prepareManifold(std::size_t s) {
     }
 }
 
-// The warm start and each coupled pass: the two halves of the partition at once, then
-// the seam.
+// The warm start (without split impulse: loadCoupledPasses makes it) and each coupled
+// pass: the two halves of the partition at once, then the seam.
 void World::Impl::warmStart() {
     forEachTask(partition.split ? 2 : 1, [&](int half) {
         detail::warmStart(solverBodies, solverManifolds, partition.order[half]);
@@ -147,14 +147,18 @@ void World::Impl::warmStart() {
     detail::warmStart(solverBodies, solverManifolds, partition.order[detail::SolverPartition::kSeam]);
 }
 
-// The coupled passes work on a copy of the rows they solve (wide_pass.h), taken after the
-// warm start and handed back, with the accumulated impulses, after the last pass. Every
-// part is loaded, the empty ones too: an unsplit step must not find the seam's rows of
-// an earlier split one.
+// The coupled passes work on a copy of the rows they solve (wide_pass.h), taken at the
+// warm start, which each group makes as it is copied, and handed back, with the
+// accumulated impulses, after the last pass. Every part is loaded, the empty ones too: an
+// unsplit step must not find the seam's rows of an earlier split one. The seam comes
+// last, as in a pass: its warm start moves bodies of both halves.
 void World::Impl::loadCoupledPasses() {
-    forEachTask(3, [&](int part) {
-        detail::loadWide(solverBodies, solverManifolds, partition.groups[part], wideManifolds[part]);
+    const bool warm = settings.warmStarting;
+    forEachTask(2, [&](int half) {
+        detail::loadWide(solverBodies, solverManifolds, partition.groups[half], warm, wideManifolds[half]);
     });
+    const int seam = detail::SolverPartition::kSeam;
+    detail::loadWide(solverBodies, solverManifolds, partition.groups[seam], warm, wideManifolds[seam]);
 }
 
 void World::Impl::solveCoupledPass(bool reverse) {
@@ -238,8 +242,8 @@ void World::Impl::solve(real h, bool firstSubstep) {
     });
 
     if (!solverManifolds.empty()) {
-        if (settings.warmStarting) warmStart();
         if (split) loadCoupledPasses();
+        else if (settings.warmStarting) warmStart();
         for (int it = 0; it < settings.velocityIterations; ++it) {
             if (split) solveCoupledPass((it & 1) != 0);
             else detail::solveSoft(solverBodies, solverManifolds, solveOrder, h, true, soft);
