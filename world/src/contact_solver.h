@@ -43,16 +43,19 @@ struct SolverRow {
     real impulse = 0;  ///< Accumulated impulse, N s.
 };
 
+/// The fields that the depth loops read and write (World::Impl::solve and
+/// recoverPenetration) come first, in the point's first two cache lines, and the row
+/// last, where its lanes need no padding: 256 bytes in all.
 struct SolverPoint {
     Vector3 localA;          ///< Anchor on A, A's body space, m.
     Vector3 localB;          ///< Anchor on B, B's body space, m.
-    SolverRow normal;
-    real velocityBias = 0;   ///< Target normal velocity (restitution or speculative), m/s.
     real depth = 0;          ///< Penetration at the start of the step, m (< 0: apart).
-    real pseudoImpulse = 0;  ///< Accumulated pseudo impulse, N s.
+    real velocityBias = 0;   ///< Target normal velocity (restitution or speculative), m/s.
     real pseudoTarget = 0;   ///< Target pseudo normal velocity, m/s.
+    real pseudoImpulse = 0;  ///< Accumulated pseudo impulse, N s.
     real approachSpeed = 0;  ///< Normal relative velocity when the step began, m/s.
     real maxNormalImpulse = 0;  ///< Largest normal impulse of the step, N s.
+    SolverRow normal;
 };
 
 inline constexpr int kMaxManifoldPoints = 4;

@@ -14,7 +14,7 @@
 // warm-start impulses as it is copied (loadWide), and the accumulated impulses go back
 // after the coupled passes (storeWide): a pass reads only the
 // rows it solves, 4544 bytes per group of four (1136 per manifold; a SolverManifold is
-// 2432). A lane past a group's size, and a point past a member's count, hold zero rows,
+// 2304). A lane past a group's size, and a point past a member's count, hold zero rows,
 // which change nothing.
 #pragma once
 

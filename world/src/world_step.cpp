@@ -349,7 +349,7 @@ void World::Impl::buildManifolds(real) {
 // Jacobians do not still hold (then the normal and tangents are also kept,
 // jacobian_stamp.h); points past `count` keep whatever they held, as nothing reads them.
 // A field added to either struct must be reset there too.
-static_assert(sizeof(detail::SolverPoint) == 288 && sizeof(detail::SolverManifold) == 2432,
+static_assert(sizeof(detail::SolverPoint) == 256 && sizeof(detail::SolverManifold) == 2304,
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
 void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
@@ -359,7 +359,7 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     const BodyRecord &b = bodies[pair.b];
     const real friction = std::sqrt(a.material.friction * b.material.friction);
     // The slot holds an earlier step's manifold (or a value-initialised one). Resetting
-    // all ~2.7 KB of it every step cost more than the rest of this function, and most of
+    // all ~2.3 KB of it every step cost more than the rest of this function, and most of
     // it is the Jacobians, which prepareSolver writes anyway unless they still hold.
     detail::SolverManifold &sm = solverManifolds[slot];
     detail::JacobianStamp &stamp = jacobianStamps[slot];
