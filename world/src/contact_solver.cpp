@@ -259,16 +259,8 @@ struct ManifoldSweep {
         }
     }
 
-    // The whole pass: friction, then the points (from the last with `reverse`).
-    CYCLONE_INLINE void solve(bool reverse) {
-        friction();
-        if (reverse) {
-            for (int i = kCount - 1; i >= 0; --i) normal(i);
-        } else {
-            for (int i = 0; i < kCount; ++i) normal(i);
-        }
-        finish();
-    }
+    // The whole pass (sweepRows).
+    CYCLONE_INLINE void solve(bool reverse) { sweepRows(*this, kCount, reverse); }
 };
 
 // Calls f(std::integral_constant<int, count>()) for a count of 1 to kMaxManifoldPoints

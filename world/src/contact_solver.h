@@ -60,6 +60,22 @@ struct SolverPoint {
 
 inline constexpr int kMaxManifoldPoints = 4;
 
+/// The order of a pass over one manifold's rows (ManifoldSweep in contact_solver.cpp,
+/// WideSweep in wide_pass.cpp, CarriedSweep in wide_support.cpp): the patch's friction,
+/// then the `count` points' normal rows, from the last with `reverse` (alternate passes
+/// keep the first point from taking the largest share of a new load), then the impulses
+/// reach the bodies.
+template <class Sweep>
+CYCLONE_INLINE void sweepRows(Sweep &sweep, int count, bool reverse) {
+    sweep.friction();
+    if (reverse) {
+        for (int i = count - 1; i >= 0; --i) sweep.normal(i);
+    } else {
+        for (int i = 0; i < count; ++i) sweep.normal(i);
+    }
+    sweep.finish();
+}
+
 /// How an impulse on one row of a manifold changes the relative velocity along its
 /// points' normal rows, per N s: lane j of an entry is point j's. A pass solves the
 /// manifold's rows one after another, as Gauss-Seidel does, but reads the bodies'

@@ -210,13 +210,7 @@ void solveWide(std::vector<SolverBody> &bodies, std::vector<WideManifold> &wide,
     for (WideManifold &m : wide) {
         WideVelocities vel(bodies, m);
         WideSweep sweep(vel, m);
-        sweep.friction();
-        if (reverse) {
-            for (int i = kMaxManifoldPoints - 1; i >= 0; --i) sweep.normal(i);
-        } else {
-            for (int i = 0; i < kMaxManifoldPoints; ++i) sweep.normal(i);
-        }
-        sweep.finish();
+        sweepRows(sweep, kMaxManifoldPoints, reverse);
         vel.store(bodies, m);
     }
 }

@@ -189,15 +189,7 @@ struct CarriedSweep {
         addScaled(body.w, change2, c.twist);
     }
 
-    CYCLONE_INLINE void solve(bool backwards) {
-        friction();
-        if (backwards) {
-            for (int i = kMaxManifoldPoints - 1; i >= 0; --i) normal(i);
-        } else {
-            for (int i = 0; i < kMaxManifoldPoints; ++i) normal(i);
-        }
-        finish();
-    }
+    CYCLONE_INLINE void solve(bool backwards) { sweepRows(*this, kMaxManifoldPoints, backwards); }
 };
 
 CYCLONE_INLINE bool any(const LaneMask &mask) { return (mask[0] | mask[1] | mask[2] | mask[3]) != 0; }
