@@ -97,6 +97,14 @@ RigidBody::RigidBody()
 void RigidBody::calculateDerivedData() {
     transformMatrix.linear() = orientation.toRotationMatrix();
     transformMatrix.translation() = position;
+    // c I turns into itself: R (c I) R^T = c I, exactly, without the rounding of the products.
+    const Matrix3 &t = inverseInertiaTensor;
+    const bool isotropic = t(0, 1) == 0 && t(0, 2) == 0 && t(1, 0) == 0 && t(1, 2) == 0 && t(2, 0) == 0 &&
+                           t(2, 1) == 0 && t(0, 0) == t(1, 1) && t(0, 0) == t(2, 2);
+    if (isotropic) {
+        inverseInertiaTensorWorld = t;
+        return;
+    }
     const Matrix3 &r = transformMatrix.linear();
     inverseInertiaTensorWorld = r * inverseInertiaTensor * r.transpose();
 }
@@ -324,8 +332,6 @@ void RigidBody::setOrientation(const real r, const real i, const real j, const r
 }
 
 void RigidBody::getOrientation(Quaternion *out) const { *out = orientation; }
-
-Quaternion RigidBody::getOrientation() const { return orientation; }
 
 void RigidBody::getOrientation(Matrix3 *matrix) const { *matrix = transformMatrix.linear(); }
 

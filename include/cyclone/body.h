@@ -335,6 +335,7 @@ private:
 
 // Defined here, inline: a World's step reads them for every contact point.
 inline Vector3 RigidBody::getPosition() const { return position; }
+inline Quaternion RigidBody::getOrientation() const { return orientation; }
 inline Matrix4 RigidBody::getTransform() const { return transformMatrix; }
 inline Vector3 RigidBody::getPointInWorldSpace(const Vector3 &point) const { return transformMatrix * point; }
 

@@ -72,7 +72,7 @@ std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &creat
     p.a = std::min(i, j);
     p.b = std::max(i, j);
     p.manifolds.clear();
-    p.relativePose = Matrix4::Identity();
+    p.relativePose = RelativePose();
     p.lastSeen = 0;
     p.tested = false;
     p.alive = true;
@@ -97,12 +97,15 @@ void PairCache::remove(std::uint32_t pair) {
 
 void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &poseB) {
     m.normal = poseA.linear() * m.localNormal;
+    // (A's point - B's point) . n, with A's point taken along the normal in A's frame
+    // (A's rotation turns localNormal into n): B's points are needed for the order anyway.
+    const real offsetA = poseA.translation().dot(m.normal);
     Vector3 pointB[Manifold::kMaxPoints];
     real depth[Manifold::kMaxPoints];
     for (int i = 0; i < m.count; ++i) {
         PersistentPoint &p = m.points[i];
         pointB[i] = poseB * p.localB;
-        p.depth = (poseA * p.localA - pointB[i]).dot(m.normal);
+        p.depth = p.localA.dot(m.localNormal) + offsetA - pointB[i].dot(m.normal);
         depth[i] = p.depth;
     }
     // In the order a fresh manifold would have: a frozen order makes Gauss-Seidel favour
@@ -110,8 +113,9 @@ void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &p
     int order[Manifold::kMaxPoints];
     contactOrder(pointB, depth, m.count, m.normal, order);
     if (std::is_sorted(order, order + m.count)) return;  // already in that order
-    const ManifoldState before = m;
-    for (int i = 0; i < m.count; ++i) m.points[i] = before.points[order[i]];
+    PersistentPoint before[Manifold::kMaxPoints];
+    std::copy(m.points, m.points + m.count, before);
+    for (int i = 0; i < m.count; ++i) m.points[i] = before[order[i]];
 }
 
 void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA, const Matrix4 &poseB, real distance,

@@ -8,6 +8,7 @@
 
 #include "cyclone/core.h"
 #include "narrowphase.h"
+#include "pose_change.h"
 
 namespace cyclone::detail {
 
@@ -40,7 +41,7 @@ struct PairState {
     std::uint32_t a = 0;  ///< Body index of A (the smaller index).
     std::uint32_t b = 0;  ///< Body index of B.
     std::vector<ManifoldState> manifolds;
-    Matrix4 relativePose = Matrix4::Identity();  ///< A^-1 B at the last narrowphase.
+    RelativePose relativePose;    ///< B seen from A at the last narrowphase.
     std::uint64_t lastSeen = 0;   ///< Step in which the broadphase last reported the pair.
     bool tested = false;          ///< Whether it has been through the narrowphase.
     bool alive = false;

@@ -29,9 +29,15 @@ struct SolverGroup {
 /// of four held 73 % of pyramid40's manifolds, at 16 90 %, at 32 92 %.
 inline constexpr int kScheduleWindow = 16;
 
+/// buildSchedule's working memory, kept between steps.
+struct ScheduleScratch {
+    std::vector<char> taken;     ///< Per entry of `order`: already in a group.
+    std::vector<int> blockedFor;  ///< Per body: the group start it is blocked for.
+};
+
 /// Groups the manifolds listed in `order` (indices into `manifolds`), keeping that
-/// order's results. `taken` is scratch kept between steps.
+/// order's results.
 void buildSchedule(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
-                   std::vector<SolverGroup> &groups, std::vector<char> &taken);
+                   std::vector<SolverGroup> &groups, ScheduleScratch &scratch);
 
 }  // namespace cyclone::detail

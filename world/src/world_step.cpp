@@ -33,6 +33,12 @@ private:
 // longer reports the pair before the contact is dropped, m.
 constexpr real kContactKeepDistance = 0.002;
 
+// B's pose seen from A (the manifold-reuse test compares it with the last narrowphase's).
+detail::RelativePose relativePose(const RigidBody &a, const RigidBody &b) {
+    return detail::relativePose(a.getTransform().linear(), a.getPosition(), a.getOrientation(), b.getPosition(),
+                                b.getOrientation());
+}
+
 int findRoot(std::vector<int> &parent, int i) {
     while (parent[i] != i) {
         parent[i] = parent[parent[i]];
@@ -269,9 +275,9 @@ bool World::Impl::reuseManifolds(std::uint32_t p) {
     const BodyRecord &b = bodies[pair.b];
     const Matrix4 poseA = a.body.getTransform();
     const Matrix4 poseB = b.body.getTransform();
-    const Matrix4 relative = poseA.inverse() * poseB;
-    const real shift = (relative.translation() - pair.relativePose.translation()).norm();
-    const Eigen::Quaternion<real> turn(relative.linear() * pair.relativePose.linear().transpose());
+    const detail::RelativePose relative = relativePose(a.body, b.body);
+    const real shift = (relative.position - pair.relativePose.position).norm();
+    const Quaternion turn = relative.orientation * pair.relativePose.orientation.conjugate();
     const real radius = std::max(a.boundingRadius, b.boundingRadius);
     if (!detail::movedLess(shift, turn, radius, settings.manifoldReuseTolerance)) return false;
     for (detail::ManifoldState &m : pair.manifolds) detail::refreshFromAnchors(m, poseA, poseB);
@@ -288,7 +294,7 @@ void World::Impl::testPair(std::uint32_t p) {
     const int n = detail::collide(*a.shape, poseA, *b.shape, poseB, {settings.speculativeDistance}, fresh);
     ++stats.pairsTested;
     pair.tested = true;
-    pair.relativePose = poseA.inverse() * poseB;
+    pair.relativePose = relativePose(a.body, b.body);
     const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
                                b.isPlane ? a.boundingRadius : b.boundingRadius);
     const real matchDistance = std::clamp(0.1 * size, real(0.001), real(0.05));
