@@ -8,40 +8,54 @@ namespace {
 
 // The support pass's runs: each carried body's manifolds with its carriers, bodies by
 // level (bottom up; all level 0 without `level`), then by their first such manifold in
-// `order`.
+// `order`, each body's manifolds in `order`. Bucketed, not sorted: the bodies are met in
+// the order of their first manifolds, and a stable count by level keeps that order.
 void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
                const std::vector<int> *level, int bodyCount, SupportScratch &scratch, SupportRuns &runs) {
     const auto carried = [](const SolverManifold &m) { return m.support == kASupportsB ? m.b : m.a; };
-    std::vector<int> &first = scratch.first;
-    first.assign(bodyCount, std::numeric_limits<int>::max());
-    std::vector<SupportScratch::Key> &keys = scratch.keys;
-    keys.clear();
-    for (int rank = 0; rank < static_cast<int>(order.size()); ++rank) {
-        const SolverManifold &m = manifolds[order[rank]];
+    const auto levelOf = [&](int body) { return level ? (*level)[body] : 0; };
+    // The carried bodies by first manifold, and how many manifolds each has.
+    std::vector<int> &count = scratch.count;
+    count.assign(bodyCount, 0);
+    std::vector<int> &met = scratch.met;
+    met.clear();
+    int levels = 0;
+    for (int index : order) {
+        const SolverManifold &m = manifolds[index];
         if (m.support == kNoSupport) continue;
         const int body = carried(m);
-        first[body] = std::min(first[body], rank);
-        keys.push_back({level ? (*level)[body] : 0, body, rank});
-    }
-    for (SupportScratch::Key &key : keys) key.body = first[key.body];  // group by first manifold
-    std::sort(keys.begin(), keys.end(), [](const SupportScratch::Key &x, const SupportScratch::Key &y) {
-        if (x.level != y.level) return x.level < y.level;
-        if (x.body != y.body) return x.body < y.body;
-        return x.manifold < y.manifold;
-    });
-    runs.start.clear();
-    runs.levelStart.clear();
-    runs.manifolds.clear();
-    for (std::size_t k = 0; k < keys.size(); ++k) {
-        if (k == 0 || keys[k].body != keys[k - 1].body) {
-            if (k == 0 || keys[k].level != keys[k - 1].level)
-                runs.levelStart.push_back(static_cast<int>(runs.start.size()));
-            runs.start.push_back(static_cast<int>(k));
+        if (count[body]++ == 0) {
+            met.push_back(body);
+            levels = std::max(levels, levelOf(body) + 1);
         }
-        runs.manifolds.push_back(order[keys[k].manifold]);
     }
-    runs.levelStart.push_back(static_cast<int>(runs.start.size()));
-    runs.start.push_back(static_cast<int>(keys.size()));
+    // The bodies by level, each level's in the order met.
+    std::vector<int> &levelStart = runs.levelStart;
+    levelStart.assign(levels + 1, 0);
+    for (int body : met) ++levelStart[levelOf(body) + 1];
+    for (int l = 0; l < levels; ++l) levelStart[l + 1] += levelStart[l];
+    std::vector<int> &bodies = scratch.bodies;
+    bodies.resize(met.size());
+    std::vector<int> &cursor = scratch.first;  // per level, then per body
+    cursor.assign(levelStart.begin(), levelStart.end() - 1);
+    for (int body : met) bodies[cursor[levelOf(body)]++] = body;
+    // Each body's run: its manifolds in order.
+    runs.start.resize(bodies.size() + 1);
+    cursor.assign(bodyCount, 0);
+    int next = 0;
+    for (std::size_t r = 0; r < bodies.size(); ++r) {
+        runs.start[r] = next;
+        cursor[bodies[r]] = next;
+        next += count[bodies[r]];
+    }
+    runs.start[bodies.size()] = next;
+    runs.manifolds.resize(next);
+    for (int index : order) {
+        const SolverManifold &m = manifolds[index];
+        if (m.support != kNoSupport) runs.manifolds[cursor[carried(m)]++] = index;
+    }
+    // Levels without a carried body have no runs: levelStart lists those that have.
+    levelStart.erase(std::unique(levelStart.begin(), levelStart.end()), levelStart.end());
 }
 
 }  // namespace

@@ -13,13 +13,10 @@ struct SupportScratch {
     std::vector<int> start;     ///< Per solver body: first entry in `adjacent`.
     std::vector<int> adjacent;  ///< Neighbours of each body, body by body.
     std::vector<int> queue;
-    struct Key {
-        int level;     ///< The carried body's.
-        int body;      ///< The carried body, then its first manifold's rank.
-        int manifold;  ///< Rank in the solve order.
-    };
-    std::vector<Key> keys;   ///< The support pass's order being sorted.
-    std::vector<int> first;  ///< Per solver body: its first manifold with a carrier.
+    std::vector<int> count;   ///< Per solver body: its manifolds with a carrier.
+    std::vector<int> met;     ///< Carried bodies in the order of their first manifolds.
+    std::vector<int> bodies;  ///< The same, by level.
+    std::vector<int> first;   ///< Cursors: per level, then per solver body.
 };
 
 /// Sets `support` of every manifold. A static or sleeping side (solver body 0) always
