@@ -174,6 +174,19 @@ TEST(RigidBodyInertia, WorldTensorOfAQuarterTurnSwapsXAndY) {
     EXPECT_TRUE(near(body.getInertiaTensor(), diag(2, 4, 8)));
 }
 
+// A cube's (or sphere's) inertia c I looks the same from any orientation: R (c I) R^T = c I
+// exactly, with none of the rounding the two products would leave off the diagonal.
+TEST(RigidBodyInertia, IsotropicWorldTensorIsExactAtAnyOrientation) {
+    RigidBody body;
+    body.setInertiaTensor(diag(4, 4, 4));
+    body.setOrientation(std::cos(0.35), 0.6 * std::sin(0.35), 0, 0.8 * std::sin(0.35));  // 40 deg about (0.6, 0, 0.8)
+    EXPECT_EQ(body.getInverseInertiaTensorWorld(), diag(0.25, 0.25, 0.25));
+    // Not isotropic (one axis differs by far more than rounding): rotated as before.
+    body.setInertiaTensor(diag(4, 4, 8));
+    body.setOrientation(quarterTurnZ() * Quaternion(kHalfSqrt2, kHalfSqrt2, 0, 0));  // z first turns to -y, then to x
+    EXPECT_TRUE(near(body.getInverseInertiaTensorWorld(), diag(0.125, 0.25, 0.25)));
+}
+
 TEST(RigidBodyInertia, WorldTensorAtFortyFiveDegrees) {
     RigidBody body;
     body.setOrientation(std::cos(kPi / 8), 0, 0, std::sin(kPi / 8));  // 45 deg about z

@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "solver_schedule.h"
 #include "support.h"
 #include "support_lanes.h"
 #include "task_pool.h"
@@ -170,6 +171,42 @@ TEST(SupportLanes, RunsGoToTheirBodysHalfLevelByLevel) {
     detail::buildSupportLanes(runs, manifolds, nullptr, 7, lanes);
     EXPECT_EQ(lanes.lane[0], (std::vector<int>{0, 1, 2, 3, 4, 5}));
     EXPECT_TRUE(lanes.lane[1].empty());
+}
+
+// Groups by hand: a manifold joins a group only past manifolds it shares no moving body
+// with. The schedule of the same manifolds between the same bodies is kept; another body
+// makes it anew.
+TEST(SolverSchedule, GroupsAreKeptOnlyWhileTheManifoldsAndBodiesAreTheSame) {
+    const auto between = [](int a, int b) {
+        detail::SolverManifold m;
+        m.a = a;
+        m.b = b;
+        return m;
+    };
+    std::vector<detail::SolverManifold> manifolds = {between(1, 2), between(2, 3), between(4, 5), between(1, 6)};
+    const std::vector<int> order = {0, 1, 2, 3};
+    std::vector<detail::SolverGroup> groups;
+    detail::ScheduleScratch scratch;
+    const auto members = [&] {
+        std::vector<std::vector<int>> out;
+        for (const detail::SolverGroup &g : groups) out.emplace_back(g.manifold, g.manifold + g.size);
+        return out;
+    };
+    // 1 shares body 2 with 0; 2 shares none; 3 shares body 1 with 0: {0, 2}. Then 1, and 3
+    // past nothing of 1's: {1, 3}.
+    detail::buildSchedule(manifolds, order, groups, scratch);
+    const std::vector<std::vector<int>> first = {{0, 2}, {1, 3}};
+    EXPECT_EQ(members(), first);
+    detail::buildSchedule(manifolds, order, groups, scratch);
+    EXPECT_EQ(members(), first);
+    // Manifold 2 now touches body 2: it cannot pass 0 or 1, and 3 still passes 1.
+    manifolds[2] = between(2, 5);
+    detail::buildSchedule(manifolds, order, groups, scratch);
+    EXPECT_EQ(members(), (std::vector<std::vector<int>>{{0}, {1, 3}, {2}}));
+    // The static world (body 0) blocks no one.
+    manifolds = {between(0, 1), between(0, 2)};
+    detail::buildSchedule(manifolds, {0, 1}, groups, scratch);
+    EXPECT_EQ(members(), (std::vector<std::vector<int>>{{0, 1}}));
 }
 
 // The pool itself: every task of a job runs exactly once, whatever the count, and jobs
