@@ -4,6 +4,8 @@
 // reaches the later rows through the manifold's couplings.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
 #include <vector>
 
 #include "contact_solver.h"
@@ -95,15 +97,45 @@ TEST(ContactSolverPass, ReversePassMirrorsTheOrder) {
     cube.expect(0.48, 0.4, -0.12, 0.24, 1e-12);
 }
 
-// Renumbering the points (as World does when a kept manifold's points come in another
-// order) carries their rows and couplings along: a forward pass over the renumbered
-// manifold is the reverse pass over the original one.
-TEST(ContactSolverPass, RenumberedPointsKeepTheirRowsAndCouplings) {
-    FallingCube cube;
-    const int from[2] = {1, 0};
-    detail::renumberPointRows(cube.manifolds[0], from);
-    cube.pass(false);
-    cube.expect(0.4, 0.48, -0.12, 0.24, 1e-12);  // point 0 was point 1
+// The solve order (as World sets it when a kept manifold's points come in another order)
+// takes each point with its row and couplings: a forward pass in the order {1, 0} is the
+// reverse pass in the stored order, its impulses landing on the same points; so is the
+// scalar pass (solveUnsupported), and with the order {1, 0} the reverse pass is the
+// forward one.
+TEST(ContactSolverPass, SolveOrderTakesThePointsWithTheirRowsAndCouplings) {
+    for (const bool wide : {true, false}) {
+        for (const bool reverse : {false, true}) {
+            FallingCube cube;
+            cube.manifolds[0].order[0] = 1;
+            cube.manifolds[0].order[1] = 0;
+            if (wide) cube.pass(reverse);
+            else detail::solveUnsupported(cube.bodies, cube.manifolds, {0}, reverse);
+            SCOPED_TRACE(std::string(wide ? "wide" : "scalar") + (reverse ? ", reverse" : ""));
+            if (reverse) cube.expect(0.4, 0.48, -0.12, -0.24, 1e-12);
+            else cube.expect(0.48, 0.4, -0.12, 0.24, 1e-12);
+        }
+    }
+}
+
+// The couplings in a solve order are P C P^T: entry k, lane l is the coupling of the k-th
+// point's row with the l-th point's (here c[i][j] = 10 i + j, friction rows 100 r + j).
+TEST(ContactSolverPass, CouplingsFollowTheSolveOrder) {
+    SolverManifold m;
+    detail::RowCouplings c;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) c.normal[i][j] = 10 * i + j;
+    for (int r = 0; r < 3; ++r)
+        for (int j = 0; j < 4; ++j) c.friction[r][j] = 100 * r + j;
+    detail::RowCouplings out;
+    EXPECT_EQ(&detail::couplingsInOrder(m, c, out), &c);  // stored order: no copy
+    const signed char order[4] = {2, 0, 3, 1};
+    std::copy(order, order + 4, m.order);
+    const detail::RowCouplings &p = detail::couplingsInOrder(m, c, out);
+    ASSERT_EQ(&p, &out);
+    for (int k = 0; k < 4; ++k)
+        for (int l = 0; l < 4; ++l) EXPECT_EQ(p.normal[k][l], 10 * order[k] + order[l]) << k << ", " << l;
+    for (int r = 0; r < 3; ++r)
+        for (int l = 0; l < 4; ++l) EXPECT_EQ(p.friction[r][l], 100 * r + order[l]) << r << ", " << l;
 }
 
 // Loaded with the warm start, a group gives its bodies its accumulated impulses, as

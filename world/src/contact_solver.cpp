@@ -184,7 +184,7 @@ struct ManifoldSweep {
         const bool turns = m.twistRadius > 0;
         const real *k = kMoving == kBoth ? m.frictionInverse : m.supportedFrictionInverse;
         real load = 0;
-        for (int i = 0; i < kCount; ++i) load += m.points[i].normal.impulse;
+        for (int k = 0; k < kCount; ++k) load += m.points[m.order[k]].normal.impulse;
         const real limit = m.friction * load;
         const real v0 = vel.along(m.direction[1], row0);
         const real v1 = vel.along(m.direction[2], row1);
@@ -232,8 +232,9 @@ struct ManifoldSweep {
         setNormal(i, std::max(impulse - massOf<kMoving>(m.points[i].normal) * (vn[i] - target), real(0)), impulse);
     }
 
-    // Point i towards its velocity bias.
-    CYCLONE_INLINE void normal(int i) {
+    // The k-th point in solve order towards its velocity bias.
+    CYCLONE_INLINE void normal(int k) {
+        const int i = m.order[k];
         SolverPoint &p = m.points[i];
         normal(i, p.velocityBias, p.normal.impulse);
     }
@@ -242,7 +243,8 @@ struct ManifoldSweep {
     CYCLONE_INLINE void finish() {
         real total = 0;
         Lanes angularA = frictionA, angularB = frictionB;
-        for (int i = 0; i < kCount; ++i) {
+        for (int k = 0; k < kCount; ++k) {
+            const int i = m.order[k];
             const SolverRow &row = m.points[i].normal;
             total += normalChange[i];
             if (kMoving != kOnlyB) angularA += normalChange[i] * row.angA;
@@ -286,7 +288,8 @@ CYCLONE_INLINE void solvePseudoManifold(std::vector<SolverBody> &bodies, SolverM
     PairVelocities vel(bodies[m.a], bodies[m.b], true);
     withCount(m.count, [&](auto count) __attribute__((always_inline)) {
         ManifoldSweep<kMoving, count()> sweep(vel, m);
-        for (int i = 0; i < count(); ++i) {
+        for (int k = 0; k < count(); ++k) {
+            const int i = m.order[k];
             SolverPoint &p = m.points[i];
             if (p.pseudoTarget <= 0 && p.pseudoImpulse == 0) continue;
             sweep.normal(i, p.pseudoTarget, p.pseudoImpulse);
@@ -378,38 +381,11 @@ void fillCouplings(const SolverManifold &m, Moving moving, real invMasses, RowCo
     }
 }
 
-// The couplings of a manifold whose point i was point from[i] (of `count`): P C P^T for
-// the normal block, the rows picked whole and the columns through a transpose; the
-// friction rows' lanes the same way. Entries past the count are zero and stay so.
-CYCLONE_INLINE void renumberCouplings(RowCouplings &c, const int *from, int count) {
-    int f[kMaxManifoldPoints];
-    for (int i = 0; i < kMaxManifoldPoints; ++i) f[i] = i < count ? from[i] : i;
-    const Lanes zero{};
-    Lanes columns[kWideLanes], picked[kWideLanes];
-    transpose(c.normal[f[0]], c.normal[f[1]], c.normal[f[2]], c.normal[f[3]], columns);
-    for (int j = 0; j < kWideLanes; ++j) picked[j] = columns[f[j]];
-    transpose(picked[0], picked[1], picked[2], picked[3], c.normal);
-    transpose(c.friction[0], c.friction[1], c.friction[2], zero, columns);
-    for (int j = 0; j < kWideLanes; ++j) picked[j] = columns[f[j]];
-    Lanes rows[kWideLanes];
-    transpose(picked[0], picked[1], picked[2], picked[3], rows);
-    for (int r = 0; r < 3; ++r) c.friction[r] = rows[r];
-}
-
 }  // namespace
 
 void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &m) {
     fillCouplings(m, kBoth, a.invMass + b.invMass, m.couplings);
     m.supportedCouplings = m.couplings;
-}
-
-CYCLONE_SIMD_CLONES
-void renumberPointRows(SolverManifold &m, const int *from) {
-    SolverRow before[kMaxManifoldPoints];
-    for (int i = 0; i < m.count; ++i) before[i] = m.points[i].normal;
-    for (int i = 0; i < m.count; ++i) m.points[i].normal = before[from[i]];
-    renumberCouplings(m.couplings, from, m.count);
-    renumberCouplings(m.supportedCouplings, from, m.count);
 }
 
 CYCLONE_SIMD_CLONES
@@ -437,7 +413,10 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
     for (int index : order) {
         const SolverManifold &m = manifolds[index];
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
-        for (int i = 0; i < m.count; ++i) vel.apply(m.direction[0], m.points[i].normal, m.points[i].normal.impulse);
+        for (int k = 0; k < m.count; ++k) {
+            const SolverRow &row = m.points[m.order[k]].normal;
+            vel.apply(m.direction[0], row, row.impulse);
+        }
         vel.apply(m.direction[1], m.frictionRow[0], m.frictionRow[0].impulse);
         vel.apply(m.direction[2], m.frictionRow[1], m.frictionRow[1].impulse);
         vel.applyTurning(m.twist, m.twist.impulse);
@@ -490,7 +469,8 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
         const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
         withCount(m.count, [&](auto count) __attribute__((always_inline)) {
             ManifoldSweep<kBoth, count()> normals(vel, m);
-            for (int i = 0; i < count(); ++i) {
+            for (int k = 0; k < count(); ++k) {
+                const int i = m.order[k];
                 SolverPoint &p = m.points[i];
                 const real separation = -p.depth;
                 real bias = 0;
@@ -525,8 +505,8 @@ void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifol
         SolverManifold &m = manifolds[index];
         if (m.restitution == 0) continue;
         PairVelocities vel(bodies[m.a], bodies[m.b], false);
-        for (int i = 0; i < m.count; ++i) {
-            SolverPoint &p = m.points[i];
+        for (int k = 0; k < m.count; ++k) {
+            SolverPoint &p = m.points[m.order[k]];
             if (p.approachSpeed > -threshold || p.maxNormalImpulse == 0) continue;
             const real vn = vel.along(m.direction[0], p.normal);
             const real old = p.normal.impulse;

@@ -128,8 +128,31 @@ struct SolverManifold {
     /// does. See assignSupport().
     int support = 0;
     int count = 0;
+    /// The order the passes solve the points in: the k-th is points[order[k]] (k past
+    /// count: k itself). A point's row stays where its Jacobians were made; when a kept
+    /// manifold's points come in another order (World::Impl::addSolverManifold), this
+    /// changes, not where the rows are.
+    signed char order[kMaxManifoldPoints] = {0, 1, 2, 3};
     SolverPoint points[kMaxManifoldPoints];
 };
+
+/// The couplings `c` of manifold `m` (its own or its supported ones) in m's solve order:
+/// entry k is the k-th point's, lane l the l-th point's. `c` itself when the points are
+/// solved in the order they are stored, else the copy made in `out`. The lanes are picked
+/// as pairs of 32-bit words, one instruction per entry where the CPU has AVX2 (vpermd).
+CYCLONE_INLINE const RowCouplings &couplingsInOrder(const SolverManifold &m, const RowCouplings &c,
+                                                    RowCouplings &out) {
+    using Words = int __attribute__((vector_size(8 * sizeof(int))));
+    const signed char *o = m.order;
+    if (o[0] == 0 && o[1] == 1 && o[2] == 2 && o[3] == 3) return c;
+    const Words pick = {2 * o[0], 2 * o[0] + 1, 2 * o[1], 2 * o[1] + 1,
+                        2 * o[2], 2 * o[2] + 1, 2 * o[3], 2 * o[3] + 1};
+    for (int k = 0; k < kMaxManifoldPoints; ++k)
+        out.normal[k] = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(c.normal[o[k]]), pick));
+    for (int r = 0; r < 3; ++r)
+        out.friction[r] = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(c.friction[r]), pick));
+    return out;
+}
 
 inline constexpr int kNoSupport = 0;
 inline constexpr int kASupportsB = 1;
@@ -231,10 +254,6 @@ void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3
 /// Fills the manifold's couplings from its rows (after prepareRows and
 /// prepareFrictionRows), and its supported couplings with the same.
 void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &m);
-
-/// Gives each point i of a manifold the normal row and couplings that point from[i] had
-/// (the points themselves are the caller's).
-void renumberPointRows(SolverManifold &m, const int *from);
 
 /// Fills supportedMass and the supported couplings of a manifold that has a supporting
 /// side (after assignSupport).

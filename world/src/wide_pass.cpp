@@ -167,28 +167,30 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
         w.invMassB = Lanes{bodies[w.b[0]].invMass, bodies[w.b[1]].invMass, bodies[w.b[2]].invMass, bodies[w.b[3]].invMass};
         for (int d = 0; d < 3; ++d)
             vectors([d](const SolverManifold &x) -> const Lanes & { return x.direction[d]; }, d == 0 ? w.normal : w.tangent[d - 1]);
+        // Lane point i is the i-th in the manifold's solve order.
+        RowCouplings permuted[kWideLanes];
+        const RowCouplings *c[kWideLanes];
+        for (int k = 0; k < kWideLanes; ++k) c[k] = &couplingsInOrder(*m[k], m[k]->couplings, permuted[k]);
         for (int i = 0; i < kMaxManifoldPoints; ++i) {
             const auto row = [i](const SolverManifold &x) -> const SolverRow & {
-                return i < x.count ? x.points[i].normal : zeroRow;
+                return i < x.count ? x.points[x.order[i]].normal : zeroRow;
             };
             const auto point = [i](const SolverManifold &x, real SolverPoint::*field) {
-                return i < x.count ? x.points[i].*field : real(0);
+                return i < x.count ? x.points[x.order[i]].*field : real(0);
             };
             loadRow(row(*m[0]), row(*m[1]), row(*m[2]), row(*m[3]), w.points[i].row);
             w.points[i].mass = Lanes{row(*m[0]).mass, row(*m[1]).mass, row(*m[2]).mass, row(*m[3]).mass};
             w.points[i].impulse = Lanes{row(*m[0]).impulse, row(*m[1]).impulse, row(*m[2]).impulse, row(*m[3]).impulse};
             w.points[i].bias = Lanes{point(*m[0], &SolverPoint::velocityBias), point(*m[1], &SolverPoint::velocityBias),
                                      point(*m[2], &SolverPoint::velocityBias), point(*m[3], &SolverPoint::velocityBias)};
-            transpose(m[0]->couplings.normal[i], m[1]->couplings.normal[i], m[2]->couplings.normal[i],
-                      m[3]->couplings.normal[i], w.normalCoupling[i]);
+            transpose(c[0]->normal[i], c[1]->normal[i], c[2]->normal[i], c[3]->normal[i], w.normalCoupling[i]);
         }
         for (int r = 0; r < 2; ++r) {
             loadRow(m[0]->frictionRow[r], m[1]->frictionRow[r], m[2]->frictionRow[r], m[3]->frictionRow[r], w.friction[r]);
             lanes([r](const SolverManifold &x) { return x.frictionRow[r].impulse; }, w.frictionImpulse[r]);
         }
         for (int r = 0; r < 3; ++r)
-            transpose(m[0]->couplings.friction[r], m[1]->couplings.friction[r], m[2]->couplings.friction[r],
-                      m[3]->couplings.friction[r], w.frictionCoupling[r]);
+            transpose(c[0]->friction[r], c[1]->friction[r], c[2]->friction[r], c[3]->friction[r], w.frictionCoupling[r]);
         vectors([](const SolverManifold &x) -> const Lanes & { return x.twist.angA; }, w.twistA);
         vectors([](const SolverManifold &x) -> const Lanes & { return x.twist.angB; }, w.twistB);
         lanes([](const SolverManifold &x) { return x.twist.impulse; }, w.twistImpulse);
@@ -221,7 +223,7 @@ void storeWide(const std::vector<WideManifold> &wide, const std::vector<SolverGr
         const WideManifold &w = wide[g];
         for (int k = 0; k < w.size; ++k) {
             SolverManifold &m = manifolds[groups[g].manifold[k]];
-            for (int i = 0; i < m.count; ++i) m.points[i].normal.impulse = w.points[i].impulse[k];
+            for (int i = 0; i < m.count; ++i) m.points[m.order[i]].normal.impulse = w.points[i].impulse[k];
             m.frictionRow[0].impulse = w.frictionImpulse[0][k];
             m.frictionRow[1].impulse = w.frictionImpulse[1][k];
             m.twist.impulse = w.twistImpulse[k];

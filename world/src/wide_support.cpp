@@ -71,14 +71,20 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
     };
     for (int d = 0; d < 3; ++d)
         vectors([&](int k) -> const Lanes & { return m[k]->direction[d]; }, d == 0 ? c.normal : c.tangent[d - 1]);
+    // Lane point i is the i-th in the manifold's solve order.
+    RowCouplings permuted[kWideLanes];
+    const RowCouplings *coupling[kWideLanes];
+    for (int k = 0; k < kWideLanes; ++k) coupling[k] = &couplingsInOrder(*m[k], m[k]->supportedCouplings, permuted[k]);
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
-        const auto row = [&](int k) -> const SolverRow & { return i < m[k]->count ? m[k]->points[i].normal : zeroRow; };
+        const auto row = [&](int k) -> const SolverRow & {
+            return i < m[k]->count ? m[k]->points[m[k]->order[i]].normal : zeroRow;
+        };
         loadRow(row, 0, c.points[i], c.carrier[i]);
         lanesOf([&](int k) { return row(k).supportedMass; }, c.mass[i]);
         lanesOf([&](int k) { return row(k).impulse; }, c.impulse[i]);
-        lanesOf([&](int k) { return i < m[k]->count ? m[k]->points[i].velocityBias : real(0); }, c.bias[i]);
-        transpose(m[0]->supportedCouplings.normal[i], m[1]->supportedCouplings.normal[i],
-                  m[2]->supportedCouplings.normal[i], m[3]->supportedCouplings.normal[i], c.normalCoupling[i]);
+        lanesOf([&](int k) { return i < m[k]->count ? m[k]->points[m[k]->order[i]].velocityBias : real(0); }, c.bias[i]);
+        transpose(coupling[0]->normal[i], coupling[1]->normal[i], coupling[2]->normal[i], coupling[3]->normal[i],
+                  c.normalCoupling[i]);
     }
     for (int r = 0; r < 2; ++r) {
         const auto row = [&](int k) -> const SolverRow & { return m[k]->frictionRow[r]; };
@@ -90,8 +96,8 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
     lanesOf([&](int k) { return -sign[k] * dot3(m[k]->direction[0], carrier[k]->w); }, c.frictionCarrier[2]);
     lanesOf([&](int k) { return m[k]->twist.impulse; }, c.twistImpulse);
     for (int r = 0; r < 3; ++r)
-        transpose(m[0]->supportedCouplings.friction[r], m[1]->supportedCouplings.friction[r],
-                  m[2]->supportedCouplings.friction[r], m[3]->supportedCouplings.friction[r], c.frictionCoupling[r]);
+        transpose(coupling[0]->friction[r], coupling[1]->friction[r], coupling[2]->friction[r], coupling[3]->friction[r],
+                  c.frictionCoupling[r]);
     for (int e = 0; e < 6; ++e) lanesOf([&](int k) { return m[k]->supportedFrictionInverse[e]; }, c.frictionInverse[e]);
     lanesOf([&](int k) { return m[k]->friction; }, c.coefficient);
     lanesOf([&](int k) { return m[k]->twistRadius; }, c.twistRadius);
@@ -105,7 +111,7 @@ void storeContact(const SupportRuns &runs, const RunLanes &lanes, int slot, cons
         if (slot >= lanes.size[k]) continue;
         SolverManifold &m = manifolds[runs.manifolds[lanes.first[k] + slot]];
         if (m.a != 0 && m.b != 0) continue;
-        for (int i = 0; i < m.count; ++i) m.points[i].normal.impulse = c.impulse[i][k];
+        for (int i = 0; i < m.count; ++i) m.points[m.order[i]].normal.impulse = c.impulse[i][k];
         m.frictionRow[0].impulse = c.frictionImpulse[0][k];
         m.frictionRow[1].impulse = c.frictionImpulse[1][k];
         m.twist.impulse = c.twistImpulse[k];

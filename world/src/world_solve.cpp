@@ -394,7 +394,7 @@ void World::Impl::storeImpulses() {
         const std::size_t k = solverSource[s] & 3;
         if (!pair.alive || k >= pair.manifolds.size()) return;  // a body was quarantined
         detail::ManifoldState &state = pair.manifolds[k];
-        for (int i = 0; i < m.count; ++i) state.points[i].normalImpulse = m.points[i].normal.impulse;
+        for (int i = 0; i < m.count; ++i) state.points[i].normalImpulse = m.points[m.order[i]].normal.impulse;
         state.frictionImpulse = m.frictionRow[0].impulse * m.tangent[0] + m.frictionRow[1].impulse * m.tangent[1];
         state.twistImpulse = m.twist.impulse;
     });

@@ -372,14 +372,8 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     stamp.kept = jacobiansHold(stamp, pair, m);
     if (stamp.kept) {
         // The manifold's points come in the order of their depths (refreshFromAnchors):
-        // their rows follow them.
-        int from[detail::kMaxManifoldPoints];
-        bool moved = false;
-        for (int i = 0; i < m.count; ++i) {
-            from[i] = stamp.rowOf[m.points[i].id];
-            moved = moved || from[i] != i;
-        }
-        if (moved) detail::renumberPointRows(sm, from);
+        // the solve order follows them, and the rows stay where they were made.
+        for (int i = 0; i < m.count; ++i) sm.order[i] = stamp.rowOf[m.points[i].id];
     } else {
         // The normal and tangents stay those the Jacobians were made with.
         sm.normal = m.normal;
@@ -388,8 +382,12 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
         stampBody(stamp.body[0], pair.a);
         stampBody(stamp.body[1], pair.b);
         stamp.support = detail::kSupportNotMade;
+        for (int i = 0; i < m.count; ++i) {
+            sm.order[i] = static_cast<signed char>(i);
+            stamp.rowOf[m.points[i].id] = static_cast<signed char>(i);
+        }
     }
-    for (int i = 0; i < m.count; ++i) stamp.rowOf[m.points[i].id] = static_cast<signed char>(i);
+    for (int i = m.count; i < detail::kMaxManifoldPoints; ++i) sm.order[i] = static_cast<signed char>(i);
     m.solverSlot = static_cast<std::uint32_t>(slot);
     m.solverStep = stepCount;
     sm.a = a.simulated ? a.solverIndex : 0;
@@ -405,7 +403,7 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
     sm.twist.impulse = warm ? m.twistImpulse : 0;
     for (int i = 0; i < m.count; ++i) {
         const detail::PersistentPoint &src = m.points[i];
-        detail::SolverPoint &dst = sm.points[i];
+        detail::SolverPoint &dst = sm.points[sm.order[i]];
         dst.localA = src.localA;
         dst.localB = src.localB;
         dst.normal.impulse = warm ? src.normalImpulse : 0;
