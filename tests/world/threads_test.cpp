@@ -174,9 +174,9 @@ TEST(SupportLanes, RunsGoToTheirBodysHalfLevelByLevel) {
 }
 
 // Groups by hand: a manifold joins a group only past manifolds it shares no moving body
-// with. The schedule of the same manifolds between the same bodies is kept; another body
-// makes it anew.
-TEST(SolverSchedule, GroupsAreKeptOnlyWhileTheManifoldsAndBodiesAreTheSame) {
+// with, and the static world (body 0) blocks no one. Scheduled again with other bodies,
+// the same scratch gives the new groups.
+TEST(SolverSchedule, ManifoldsJoinPastThoseSharingNoMovingBody) {
     const auto between = [](int a, int b) {
         detail::SolverManifold m;
         m.a = a;

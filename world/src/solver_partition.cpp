@@ -48,7 +48,7 @@ void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std:
             order[std::max(part, 0)].push_back(i);
         }
     }
-    for (int part = 0; part < 3; ++part) buildSchedule(manifolds, order[part], partition.groups[part], scratch.schedule[part]);
+    for (int part = 0; part < 3; ++part) buildSchedule(manifolds, order[part], partition.groups[part], scratch.schedule);
 }
 
 }  // namespace cyclone::detail

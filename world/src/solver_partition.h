@@ -33,7 +33,7 @@ struct SolverPartition {
 struct PartitionScratch {
     std::vector<real> places;
     std::vector<signed char> side;
-    ScheduleScratch schedule[3];  ///< One per part: each keeps its last schedule.
+    ScheduleScratch schedule;
 };
 
 /// Splits the manifolds listed in `order` by `positions` of the solver bodies (entry 0,

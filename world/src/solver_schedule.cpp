@@ -6,19 +6,6 @@ namespace cyclone::detail {
 
 void buildSchedule(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
                    std::vector<SolverGroup> &groups, ScheduleScratch &scratch) {
-    // The same manifolds, between the same bodies, in the same order as the last call
-    // make the same groups (a resting scene's, step after step).
-    std::vector<int> &input = scratch.input;
-    bool same = input.size() == 3 * order.size();
-    input.resize(3 * order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) {
-        const int entry[3] = {order[k], manifolds[order[k]].a, manifolds[order[k]].b};
-        for (int e = 0; e < 3; ++e) {
-            same = same && input[3 * k + e] == entry[e];
-            input[3 * k + e] = entry[e];
-        }
-    }
-    if (same) return;
     const int n = static_cast<int>(order.size());
     groups.clear();
     std::vector<char> &taken = scratch.taken;

@@ -33,13 +33,10 @@ inline constexpr int kScheduleWindow = 16;
 struct ScheduleScratch {
     std::vector<char> taken;     ///< Per entry of `order`: already in a group.
     std::vector<int> blockedFor;  ///< Per body: the group start it is blocked for.
-    /// The last call's manifolds and their bodies (index, a, b each): when they come
-    /// again, `groups` still holds their schedule.
-    std::vector<int> input;
 };
 
 /// Groups the manifolds listed in `order` (indices into `manifolds`), keeping that
-/// order's results. `groups` must be what the last call with `scratch` left in it.
+/// order's results.
 void buildSchedule(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
                    std::vector<SolverGroup> &groups, ScheduleScratch &scratch);
 
