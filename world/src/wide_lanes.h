@@ -18,18 +18,21 @@ struct WideVector {
 /// Lanes where a comparison held: all bits set.
 using LaneMask = LaneIndices;
 
-/// Lanes r0..r3 as their columns: out[j] holds lane j of each.
+/// Lanes r0..r3 as their columns: out[j] holds lane j of each. The first shuffles pair
+/// lanes within each 128-bit half (vunpcklpd, vunpckhpd), the last swap halves
+/// (vperm2f128): eight instructions with AVX. Pairing lanes across the halves first
+/// took twice as many, and the passes make several transposes per group.
 CYCLONE_INLINE void transpose(const Lanes &r0, const Lanes &r1, const Lanes &r2, const Lanes &r3,
                               Lanes out[kWideLanes]) {
-    const LaneIndices low = {0, 4, 1, 5}, high = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
-    const Lanes xy01 = __builtin_shuffle(r0, r1, low);  // x0 x1 y0 y1
-    const Lanes xy23 = __builtin_shuffle(r2, r3, low);
-    const Lanes zw01 = __builtin_shuffle(r0, r1, high);  // z0 z1 w0 w1
-    const Lanes zw23 = __builtin_shuffle(r2, r3, high);
-    out[0] = __builtin_shuffle(xy01, xy23, first);
-    out[1] = __builtin_shuffle(xy01, xy23, second);
-    out[2] = __builtin_shuffle(zw01, zw23, first);
-    out[3] = __builtin_shuffle(zw01, zw23, second);
+    const LaneIndices even = {0, 4, 2, 6}, odd = {1, 5, 3, 7}, low = {0, 1, 4, 5}, high = {2, 3, 6, 7};
+    const Lanes xz01 = __builtin_shuffle(r0, r1, even);  // x0 x1 z0 z1
+    const Lanes yw01 = __builtin_shuffle(r0, r1, odd);   // y0 y1 w0 w1
+    const Lanes xz23 = __builtin_shuffle(r2, r3, even);
+    const Lanes yw23 = __builtin_shuffle(r2, r3, odd);
+    out[0] = __builtin_shuffle(xz01, xz23, low);
+    out[1] = __builtin_shuffle(yw01, yw23, low);
+    out[2] = __builtin_shuffle(xz01, xz23, high);
+    out[3] = __builtin_shuffle(yw01, yw23, high);
 }
 
 /// The 3-vectors of four bodies or manifolds (x, y, z, 0 each) as x, y and z of four lanes.

@@ -146,7 +146,7 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
               const std::vector<SolverGroup> &groups, bool warmStart, std::vector<WideManifold> &wide) {
     // Lanes past a group's size, and points past a manifold's count, read zeros.
     static const SolverManifold empty{};
-    static const SolverRow zeroRow{};
+    static const SolverPoint zeroPoint{};
     wide.resize(groups.size());
     for (std::size_t g = 0; g < groups.size(); ++g) {
         WideManifold &w = wide[g];
@@ -172,17 +172,12 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
         const RowCouplings *c[kWideLanes];
         for (int k = 0; k < kWideLanes; ++k) c[k] = &couplingsInOrder(*m[k], m[k]->couplings, permuted[k]);
         for (int i = 0; i < kMaxManifoldPoints; ++i) {
-            const auto row = [i](const SolverManifold &x) -> const SolverRow & {
-                return i < x.count ? x.points[x.order[i]].normal : zeroRow;
-            };
-            const auto point = [i](const SolverManifold &x, real SolverPoint::*field) {
-                return i < x.count ? x.points[x.order[i]].*field : real(0);
-            };
-            loadRow(row(*m[0]), row(*m[1]), row(*m[2]), row(*m[3]), w.points[i].row);
-            w.points[i].mass = Lanes{row(*m[0]).mass, row(*m[1]).mass, row(*m[2]).mass, row(*m[3]).mass};
-            w.points[i].impulse = Lanes{row(*m[0]).impulse, row(*m[1]).impulse, row(*m[2]).impulse, row(*m[3]).impulse};
-            w.points[i].bias = Lanes{point(*m[0], &SolverPoint::velocityBias), point(*m[1], &SolverPoint::velocityBias),
-                                     point(*m[2], &SolverPoint::velocityBias), point(*m[3], &SolverPoint::velocityBias)};
+            const SolverPoint *p[kWideLanes];
+            for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
+            loadRow(p[0]->normal, p[1]->normal, p[2]->normal, p[3]->normal, w.points[i].row);
+            w.points[i].mass = Lanes{p[0]->normal.mass, p[1]->normal.mass, p[2]->normal.mass, p[3]->normal.mass};
+            w.points[i].impulse = Lanes{p[0]->normal.impulse, p[1]->normal.impulse, p[2]->normal.impulse, p[3]->normal.impulse};
+            w.points[i].bias = Lanes{p[0]->velocityBias, p[1]->velocityBias, p[2]->velocityBias, p[3]->velocityBias};
             transpose(c[0]->normal[i], c[1]->normal[i], c[2]->normal[i], c[3]->normal[i], w.normalCoupling[i]);
         }
         for (int r = 0; r < 2; ++r) {

@@ -36,7 +36,7 @@ RunLanes laneRuns(const std::vector<SolverManifold> &manifolds, const SupportRun
 CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
                                 const SupportRuns &runs, const RunLanes &lanes, int slot, WideCarriedContact &c) {
     static const SolverManifold none{};
-    static const SolverRow zeroRow{};
+    static const SolverPoint zeroPoint{};
     const SolverManifold *m[kWideLanes];
     const SolverBody *carrier[kWideLanes];
     Lanes sign;  // +1 where the carried body is B, -1 where it is A
@@ -76,13 +76,13 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
     const RowCouplings *coupling[kWideLanes];
     for (int k = 0; k < kWideLanes; ++k) coupling[k] = &couplingsInOrder(*m[k], m[k]->supportedCouplings, permuted[k]);
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
-        const auto row = [&](int k) -> const SolverRow & {
-            return i < m[k]->count ? m[k]->points[m[k]->order[i]].normal : zeroRow;
-        };
+        const SolverPoint *p[kWideLanes];
+        for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
+        const auto row = [&](int k) -> const SolverRow & { return p[k]->normal; };
         loadRow(row, 0, c.points[i], c.carrier[i]);
         lanesOf([&](int k) { return row(k).supportedMass; }, c.mass[i]);
         lanesOf([&](int k) { return row(k).impulse; }, c.impulse[i]);
-        lanesOf([&](int k) { return i < m[k]->count ? m[k]->points[m[k]->order[i]].velocityBias : real(0); }, c.bias[i]);
+        lanesOf([&](int k) { return p[k]->velocityBias; }, c.bias[i]);
         transpose(coupling[0]->normal[i], coupling[1]->normal[i], coupling[2]->normal[i], coupling[3]->normal[i],
                   c.normalCoupling[i]);
     }
