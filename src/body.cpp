@@ -145,7 +145,15 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
     }
 }
 
-const RigidBody::StepFactors &RigidBody::stepFactors(real duration) {
+void RigidBody::getDampingFactors(real duration, real *linear, real *angular) const {
+    if (!std::isfinite(duration) || duration < 0)
+        refuse("getDampingFactors", "duration must be finite and >= 0, got " + str(duration));
+    const StepFactors &factors = stepFactors(duration);
+    *linear = factors.linear;
+    *angular = factors.angular;
+}
+
+const RigidBody::StepFactors &RigidBody::stepFactors(real duration) const {
     StepFactors &f = lastStepFactors;
     if (f.duration != duration || f.linearDamping != linearDamping || f.angularDamping != angularDamping) {
         f.duration = duration;

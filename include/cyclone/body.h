@@ -166,6 +166,11 @@ public:
     void setAngularDamping(const real angularDamping);
     /// The fraction of angular velocity kept after one second.
     real getAngularDamping() const;
+    /// The fractions of linear and angular velocity that damping keeps over `duration`
+    /// seconds (finite, >= 0): linearDamping^duration and angularDamping^duration, the
+    /// factors integrate(duration) applies. Kept from one call (or integrate) to the next
+    /// while the duration and the damping stay the same.
+    void getDampingFactors(real duration, real *linear, real *angular) const;
 
     // --- Position and orientation -------------------------------------------------------
 
@@ -327,10 +332,10 @@ private:
         real angular = 1;          ///< angularDamping^duration.
         real motionBias = 1;       ///< 0.5^duration: weight of the old motion average.
     };
-    StepFactors lastStepFactors;
+    mutable StepFactors lastStepFactors;  ///< A cache: not part of the body's state.
 
     /// The factors for `duration` and the current damping (recomputed when they changed).
-    const StepFactors &stepFactors(real duration);
+    const StepFactors &stepFactors(real duration) const;
 };
 
 // Defined here, inline: a World's step reads them for every contact point.

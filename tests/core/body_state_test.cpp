@@ -174,6 +174,23 @@ TEST(RigidBodyInertia, WorldTensorOfAQuarterTurnSwapsXAndY) {
     EXPECT_TRUE(near(body.getInertiaTensor(), diag(2, 4, 8)));
 }
 
+// Damping over a duration: linearDamping^duration and angularDamping^duration, by hand
+// 0.25^0.5 = 0.5 and 0.81^0.5 = 0.9; a damping set between calls is taken.
+TEST(RigidBodyDamping, FactorsOverADurationArePowersOfTheDamping) {
+    RigidBody body;
+    body.setDamping(0.25, 0.81);
+    real linear = 0, angular = 0;
+    body.getDampingFactors(0.5, &linear, &angular);
+    EXPECT_NEAR(linear, 0.5, 1e-15);
+    EXPECT_NEAR(angular, 0.9, 1e-15);
+    body.getDampingFactors(2, &linear, &angular);
+    EXPECT_NEAR(linear, 0.0625, 1e-15);
+    body.setLinearDamping(1);
+    body.getDampingFactors(2, &linear, &angular);
+    EXPECT_EQ(linear, 1);
+    EXPECT_NEAR(angular, 0.6561, 1e-15);
+}
+
 // A cube's (or sphere's) inertia c I looks the same from any orientation: R (c I) R^T = c I
 // exactly, with none of the rounding the two products would leave off the diagonal.
 TEST(RigidBodyInertia, IsotropicWorldTensorIsExactAtAnyOrientation) {

@@ -225,6 +225,14 @@ std::vector<Refusal> refusals() {
     add("IntegrateNoSleepNegative", [](RigidBody &b) { b.integrate(-1, false); }, "integrate", "duration", "-1");
     add("IntegrateNoSleepNaN", [](RigidBody &b) { b.integrate(nan, false); }, "integrate", "duration", "nan");
     add("IntegrateNoSleepInfinite", [](RigidBody &b) { b.integrate(inf, false); }, "integrate", "duration", "inf");
+    const auto dampingFactors = [](real duration) {
+        return [duration](RigidBody &b) {
+            real linear = 0, angular = 0;
+            b.getDampingFactors(duration, &linear, &angular);
+        };
+    };
+    add("DampingFactorsNegative", dampingFactors(-0.125), "getDampingFactors", "duration", "-0.125");
+    add("DampingFactorsNaN", dampingFactors(nan), "getDampingFactors", "duration", "nan");
     return all;
 }
 

@@ -15,13 +15,6 @@ struct RelativePose {
     Quaternion orientation = Quaternion::Identity();
 };
 
-/// B's pose seen from A, given A's rotation matrix and both bodies' positions and
-/// orientations (the rotation's transpose is its inverse).
-inline RelativePose relativePose(const Matrix3 &rotationA, const Vector3 &positionA, const Quaternion &orientationA,
-                                 const Vector3 &positionB, const Quaternion &orientationB) {
-    return {rotationA.transpose() * (positionB - positionA), orientationA.conjugate() * orientationB};
-}
-
 /// Whether a pose moved less than `tolerance`: shift + |angle| radius < tolerance, with
 /// the angle Eigen's AngleAxis gives for `turn`, 2 atan2(|v|, |w|) of its vector and
 /// scalar parts. As atan x <= x, that angle is at most 2 |v|_1 / |w| (the factor

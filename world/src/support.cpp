@@ -36,7 +36,7 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
     for (int l = 0; l < levels; ++l) levelStart[l + 1] += levelStart[l];
     std::vector<int> &bodies = scratch.bodies;
     bodies.resize(met.size());
-    std::vector<int> &cursor = scratch.first;  // per level, then per body
+    std::vector<int> &cursor = scratch.cursor;  // per level, then per body
     cursor.assign(levelStart.begin(), levelStart.end() - 1);
     for (int body : met) bodies[cursor[levelOf(body)]++] = body;
     // Each body's run: its manifolds in order.

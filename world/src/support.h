@@ -16,7 +16,7 @@ struct SupportScratch {
     std::vector<int> count;   ///< Per solver body: its manifolds with a carrier.
     std::vector<int> met;     ///< Carried bodies in the order of their first manifolds.
     std::vector<int> bodies;  ///< The same, by level.
-    std::vector<int> first;   ///< Cursors: per level, then per solver body.
+    std::vector<int> cursor;  ///< Per level, then per solver body: the next entry to write.
 };
 
 /// Sets `support` of every manifold. A static or sleeping side (solver body 0) always

@@ -9,7 +9,6 @@
 #pragma once
 
 #include <Eigen/LU>
-#include <cmath>
 #include <fcl/fcl.h>
 
 #include <memory>
@@ -55,19 +54,6 @@ struct BodyRecord {
     int awakeSlot = -1;         ///< Index in World::Impl::awake (-1: not in it).
     std::uint64_t rank = 0;     ///< When it was added: orders World::Impl::awake as `order` is.
     real boundingRadius = 0;    ///< Farthest point of the shape from its origin, m.
-    /// damping^h for the solver's prediction, kept while the damping and h stay the same
-    /// (std::pow was 1 % of a resting pyramid's step).
-    struct DampingFactor {
-        real damping = -1;
-        real h = -1;
-        real factor = 1;
-
-        real of(real newDamping, real newH) {
-            if (newDamping != damping || newH != h) *this = {newDamping, newH, std::pow(newDamping, newH)};
-            return factor;
-        }
-    };
-    DampingFactor linearDamping, angularDamping;
 };
 
 struct SpringRecord {

@@ -71,16 +71,14 @@ void World::Impl::prepareSolver(real h) {
     angularFactor.resize(n);
     solverPositions.resize(n + 1);
     forEachBody([&](std::size_t k) {
-        BodyRecord &r = bodies[simulatedBodies[k]];
-        const RigidBody &body = r.body;
+        const RigidBody &body = bodies[simulatedBodies[k]].body;
         detail::SolverBody &sb = solverBodies[k + 1];
         sb = detail::SolverBody();
         detail::setLanes(sb.v, body.getVelocity());
         detail::setLanes(sb.w, body.getRotation());
         sb.invMass = body.getInverseMass();
         sb.invInertia = body.getInverseInertiaTensorWorld();
-        linearFactor[k] = r.linearDamping.of(body.getLinearDamping(), h);
-        angularFactor[k] = r.angularDamping.of(body.getAngularDamping(), h);
+        body.getDampingFactors(h, &linearFactor[k], &angularFactor[k]);
         solverPositions[k + 1] = body.getPosition();
     });
     if (settings.contactSolver == ContactSolverType::SoftStep) {

@@ -33,10 +33,11 @@ private:
 // longer reports the pair before the contact is dropped, m.
 constexpr real kContactKeepDistance = 0.002;
 
-// B's pose seen from A (the manifold-reuse test compares it with the last narrowphase's).
+// B's pose seen from A (the manifold-reuse test compares it with the last narrowphase's):
+// A's rotation transposed is its inverse.
 detail::RelativePose relativePose(const RigidBody &a, const RigidBody &b) {
-    return detail::relativePose(a.getTransform().linear(), a.getPosition(), a.getOrientation(), b.getPosition(),
-                                b.getOrientation());
+    return {a.getTransform().linear().transpose() * (b.getPosition() - a.getPosition()),
+            a.getOrientation().conjugate() * b.getOrientation()};
 }
 
 int findRoot(std::vector<int> &parent, int i) {
