@@ -23,17 +23,31 @@ void World::Impl::closeStepEvents() { eventSink = &pendingEvents; }
 
 void World::Impl::detectContactEvents() {
     if (contactTracks.size() < pairs.slots()) contactTracks.resize(pairs.slots());
-    // Only slots the narrowphase saw or that were removed can have changed; in slot order,
-    // so that events come in the same order whichever way they were found.
-    std::sort(eventSlots.begin(), eventSlots.end());
-    eventSlots.erase(std::unique(eventSlots.begin(), eventSlots.end()), eventSlots.end());
-    for (std::uint32_t p : eventSlots) {
-        ContactTrack &track = contactTracks[p];
-        const bool inCache = p < pairs.slots();
-        const detail::PairState *pair = inCache ? &pairs[p] : nullptr;
+    // Only slots the narrowphase saw or that were removed can have changed. Those whose
+    // state did change (few: a resting scene has none) are taken in slot order, so that
+    // events come in the same order whichever way they were found.
+    const auto stateOf = [&](std::uint32_t p) {
+        const detail::PairState *pair = p < pairs.slots() ? &pairs[p] : nullptr;
         const bool touching = pair && pair->alive && pair->touching();
-        const BodyId a = touching ? idOf(pair->a) : BodyId();
-        const BodyId b = touching ? idOf(pair->b) : BodyId();
+        return ContactTrack{touching ? idOf(pair->a) : BodyId(), touching ? idOf(pair->b) : BodyId(), touching};
+    };
+    changedSlots.clear();
+    for (std::uint32_t p : eventSlots) {
+        const ContactTrack &track = contactTracks[p];
+        const ContactTrack now = stateOf(p);
+        if (track.touching != now.touching || (now.touching && (track.a != now.a || track.b != now.b)))
+            changedSlots.push_back(p);
+    }
+    eventSlots.clear();
+    std::sort(changedSlots.begin(), changedSlots.end());
+    changedSlots.erase(std::unique(changedSlots.begin(), changedSlots.end()), changedSlots.end());
+    for (std::uint32_t p : changedSlots) {
+        ContactTrack &track = contactTracks[p];
+        const ContactTrack now = stateOf(p);
+        const bool touching = now.touching;
+        const BodyId a = now.a;
+        const BodyId b = now.b;
+        const detail::PairState *pair = touching ? &pairs[p] : nullptr;
         if (track.touching && (!touching || track.a != a || track.b != b)) {
             events.contactEnds.push_back({track.a, track.b});
             track.touching = false;
@@ -65,7 +79,6 @@ void World::Impl::detectContactEvents() {
         begin.approachSpeed = (va - vb).dot(begin.normal);
         events.contactBegins.push_back(begin);
     }
-    eventSlots.clear();
 }
 
 const WorldEvents &World::events() const { return impl_->events; }

@@ -125,8 +125,10 @@ Vector3 polygonNormal(const SupportFeature &f) {
 
 // The choice behind reduce() and contactOrder(): at most `most` (<= 4) of `count`
 // points, given their B-side positions and depths, in the order reduce() lists them.
-template <class PointB, class Depth>
-int spreadOrder(int count, int most, const Vector3 &n, const PointB &pointB, const Depth &depth, int chosen[4]) {
+// Count is an int, or std::integral_constant for a count known when compiling (its
+// loops then unroll).
+template <class Count, class PointB, class Depth>
+int spreadOrder(Count count, int most, const Vector3 &n, const PointB &pointB, const Depth &depth, int chosen[4]) {
     if (count <= 0 || most <= 0) return 0;
     chosen[0] = 0;
     chosen[1] = chosen[2] = chosen[3] = -1;
@@ -772,8 +774,11 @@ void contactOrder(const Vector3 *pointB, const real *depth, int count, const Vec
     // is the only one left, and unchosen points follow the chosen ones): choosing one
     // point fewer gives the same order and skips the costliest search.
     int chosen[4];
-    const int found = spreadOrder(
-        count, count - 1, normal, [&](int i) -> const Vector3 & { return pointB[i]; }, [&](int i) { return depth[i]; }, chosen);
+    const auto pointOf = [&](int i) -> const Vector3 & { return pointB[i]; };
+    const auto depthOf = [&](int i) { return depth[i]; };
+    // A face's four corners, the common case, with the loops unrolled.
+    const int found = count == 4 ? spreadOrder(std::integral_constant<int, 4>(), 3, normal, pointOf, depthOf, chosen)
+                                 : spreadOrder(count, count - 1, normal, pointOf, depthOf, chosen);
     unsigned taken = 0;
     for (int k = 0; k < found; ++k) taken |= 1u << chosen[k];
     int next = 0;  // the first point not chosen and not yet listed

@@ -20,6 +20,7 @@
 #include "collision_shape.h"
 #include "contact_solver.h"
 #include "jacobian_stamp.h"
+#include "manifold_order.h"
 #include "solver_partition.h"
 #include "wide_pass.h"
 #include "solver_schedule.h"
@@ -78,13 +79,6 @@ struct ImplicitSpring {
     Eigen::PartialPivLU<Matrix3> system;  ///< 1 + h (h K + C) W.
 };
 
-/// A manifold on its way to the solver: its solve-order key and where it comes from.
-struct ManifoldKey {
-    real height = 0;          ///< Contact height, m along -gravity: lower contacts are solved first.
-    std::uint32_t listed = 0; ///< Position in the pair walk: equal heights keep this order.
-    std::uint32_t source = 0; ///< Pair index << 2 | manifold, as in World::Impl::solverSource.
-};
-
 /// A pair slot's touching state at the end of the last step, for contact events.
 struct ContactTrack {
     BodyId a;
@@ -134,6 +128,7 @@ struct World::Impl {
     };
     std::vector<SlotBodies> solverRecords;
     std::vector<ManifoldKey> manifoldKeys;    ///< The solver manifolds to build, in solve order.
+    std::vector<ManifoldKey> manifoldKeysScratch;  ///< Scratch of orderManifolds.
     /// Solver slot of each entry of manifoldKeys: the solve order (Gauss-Seidel's) of the
     /// solver manifolds, which keep their slots from step to step (assignSlots).
     std::vector<int> solveOrder;
@@ -166,6 +161,7 @@ struct World::Impl {
     /// Pair slots whose touching state may have changed since the last contact events:
     /// seen by the narrowphase or removed (detectContactEvents looks at these only).
     std::vector<std::uint32_t> eventSlots;
+    std::vector<std::uint32_t> changedSlots;  ///< Scratch of detectContactEvents.
 
     /// The step's other threads (settings.threads > 1), started by the first step that
     /// needs them.

@@ -477,12 +477,11 @@ void World::Impl::assignSlots() {
 
 void World::Impl::orderManifolds() {
     // Gauss-Seidel carries a stack's weight down in one pass when the contacts nearest
-    // the ground come first; the order must not depend on the broadphase's.
-    // Equal heights keep their order (what std::stable_sort gives, without the buffer it
-    // allocates on every call).
-    std::sort(manifoldKeys.begin(), manifoldKeys.end(), [](const ManifoldKey &x, const ManifoldKey &y) {
-        return x.height < y.height || (x.height == y.height && x.listed < y.listed);
-    });
+    // the ground come first; the order must not depend on the broadphase's. Equal heights
+    // keep their order: the keys are listed in order (ManifoldKey::listed), and a radix
+    // sort is stable. A comparison sort mispredicted most of its branches here: a layer's
+    // heights are equal but for rounding, so their order changes from step to step.
+    detail::sortByHeight(manifoldKeys, manifoldKeysScratch);
 }
 
 // --- islands ------------------------------------------------------------------------------
