@@ -239,15 +239,20 @@ void World::Impl::solve(real h, bool firstSubstep) {
         }
     }
 
-    // Current separations from the anchors (positions move only between sub-steps).
+    // Current separations from the anchors (positions move only between sub-steps). In the
+    // first sub-step the bodies are where the narrowphase found them, and its depths
+    // (addSolverManifold) are current: along the normal it last found, which differs from
+    // a kept manifold's (jacobian_stamp.h) by less than the reuse tolerance's turn.
     const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
     forEachManifold([&](std::size_t s) {
         detail::SolverManifold &m = solverManifolds[s];
-        const ManifoldDepths depths(bodies[solverRecords[s].a].body, bodies[solverRecords[s].b].body, m.normal);
+        if (!firstSubstep) {
+            const ManifoldDepths depths(bodies[solverRecords[s].a].body, bodies[solverRecords[s].b].body, m.normal);
+            for (int i = 0; i < m.count; ++i) m.points[i].depth = depths.of(m.points[i]);
+        }
+        if (!split) return;
         for (int i = 0; i < m.count; ++i) {
             detail::SolverPoint &p = m.points[i];
-            p.depth = depths.of(p);
-            if (!split) continue;
             p.velocityBias = 0;
             if (p.depth < 0) {
                 p.velocityBias = p.depth / h;  // apart: may close the gap during this sub-step, no more
