@@ -97,6 +97,26 @@ TEST(Events, RemovingABodyEndsItsContacts) {
     EXPECT_FALSE(f.world.contains(ends[0].b));  // the handle of the removed body
 }
 
+// A box removed and another added in its place between two steps: the new pair takes the
+// freed pair slot, touching as the old one was. The old contact ends and the new one
+// begins, though the slot's touching state is the same before and after.
+TEST(Events, ABodyReplacedInPlaceEndsOneContactAndBeginsAnother) {
+    WorldFixture f;
+    const BodyId ground = f.ground();
+    const BodyId first = f.box(Vector3(0, 0.5, 0));
+    f.simulate(0.5);
+    f.world.removeBody(first);
+    const BodyId second = f.box(Vector3(0, 0.5, 0));
+    f.world.step(kDt);
+    const WorldEvents &events = f.world.events();
+    ASSERT_EQ(events.contactEnds.size(), 1u);
+    EXPECT_EQ(events.contactEnds[0].a, ground);
+    EXPECT_EQ(events.contactEnds[0].b, first);
+    ASSERT_EQ(events.contactBegins.size(), 1u);
+    EXPECT_EQ(events.contactBegins[0].a, ground);
+    EXPECT_EQ(events.contactBegins[0].b, second);
+}
+
 // A body at rest falls asleep about one second after it stops (sleep_test.cpp); the
 // event comes once, in the step that put it to sleep.
 TEST(Events, FallingAsleepIsReportedOnce) {
