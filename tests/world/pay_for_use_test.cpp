@@ -3,6 +3,7 @@
 // asks for it, and sleeping bodies cost no per-step work.
 #include <gtest/gtest.h>
 
+#include "contact_solver.h"
 #include "world_fixture.h"
 
 namespace cyclone::test {
@@ -56,6 +57,7 @@ TEST(PayForUse, SolvePartsAreZeroForWhatDidNotRun) {
     f.simulate(1);
     const StageTimes &ms = f.world.stats().ms;
     EXPECT_EQ(ms.solveParts.support, 0.0);
+    EXPECT_EQ(f.world.stats().supportSweeps, 0);
     EXPECT_GT(ms.solveParts.velocity, 0.0);
     // Each part is timed within the stage's own intervals; the 1e-9 covers the rounding
     // of summing the same intervals in another order.
@@ -67,6 +69,11 @@ TEST(PayForUse, SolvePartsAreZeroForWhatDidNotRun) {
     withSupport.simulate(1);
     const SolveTimes &parts = withSupport.world.stats().ms.solveParts;
     EXPECT_GT(parts.support, 0.0);
+    // Three carried bodies (the lowest on the ground), one run each per sub-step, of one
+    // to kSupportSweeps sweeps.
+    const int runs = 3 * WorldSettings().substeps;
+    EXPECT_GE(withSupport.world.stats().supportSweeps, runs);
+    EXPECT_LE(withSupport.world.stats().supportSweeps, runs * detail::kSupportSweeps);
     EXPECT_LE(parts.setup + parts.velocity + parts.support + parts.position,
               withSupport.world.stats().ms.solve * (1 + 1e-9));
 

@@ -155,5 +155,51 @@ TEST(SupportPass, EachRunOfAGroupIsSolvedAsIfAlone) {
     }
 }
 
+// A 1 kg body (inertia 1/6 kg m^2 about each axis) lies across two immovable carriers,
+// four corners on each (x from -1 to -0.2 m and from 0.2 to 1 m, z = +-0.5 m, its centre
+// 0.5 m above them), friction 0.5, falling at 0.1 m/s. One corner asks to separate at
+// 1 cm/s: no velocity meets all eight corners and the friction at once, and sweeps that
+// alternate their direction end in a cycle of two states, each sweep moving the body by
+// the same amount. The run stops once states two sweeps apart agree, before the cap,
+// after a sweep in the direction a full run ends with (the first, forward, is sweep 0 of
+// an even count). Without that test it would sweep to the cap.
+TEST(SupportPass, StopsOnceAlternateSweepsRepeat) {
+    std::vector<SolverBody> bodies(1);
+    const int body = addBody(bodies, Vector3(0, -0.1, 0));
+    std::vector<SolverManifold> manifolds;
+    const Vector3 centre(0, 0.5, 0);
+    for (const real x : {-0.6, 0.6}) {
+        SolverManifold m;
+        m.a = 0;
+        m.b = body;
+        m.support = detail::kASupportsB;
+        m.count = 4;
+        m.normal = Vector3::UnitY();
+        detail::tangentBasis(m.normal, m.tangent[0], m.tangent[1]);
+        detail::prepareDirections(m);
+        const Vector3 points[4] = {Vector3(x + 0.4, 0, 0.5), Vector3(x - 0.4, 0, 0.5), Vector3(x - 0.4, 0, -0.5),
+                                   Vector3(x + 0.4, 0, -0.5)};
+        for (int i = 0; i < 4; ++i)
+            detail::prepareRows(bodies[0], bodies[body], points[i], points[i] - centre, m, m.points[i]);
+        detail::prepareFrictionRows(bodies[0], bodies[body], points, Vector3::Zero(), centre, m);
+        detail::prepareCouplings(bodies[0], bodies[body], m);
+        m.friction = 0.5;
+        detail::prepareSupportedMasses(bodies, m);
+        manifolds.push_back(m);
+    }
+    manifolds[1].points[0].velocityBias = 0.01;
+    detail::SupportRuns runs;
+    runs.start = {0, 2};
+    runs.manifolds = {0, 1};
+    runs.levelStart = {0, 1};
+    detail::WideSupportScratch scratch;
+    const int run = 0;
+    detail::solveCarriedRuns(bodies, manifolds, runs, &run, 1, false, scratch);
+    EXPECT_LT(scratch.sweeps, detail::kSupportSweeps);
+    EXPECT_EQ(scratch.sweeps % 2, detail::kSupportSweeps % 2);
+    // It was stopped: it no longer falls at 0.1 m/s, within the cycle's 1 cm/s.
+    EXPECT_GT(detail::toVector3(bodies[body].v).y(), -0.01);
+}
+
 }  // namespace
 }  // namespace cyclone::test

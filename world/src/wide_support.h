@@ -62,9 +62,11 @@ struct WideCarriedContact {
     Lanes twistRadius{};  ///< m (0: no twist row).
 };
 
-/// One thread's copy of a group's contacts, kept so that a step allocates nothing.
+/// One thread's copy of a group's contacts, kept so that a step allocates nothing, and
+/// its count of the sweeps it gave runs.
 struct WideSupportScratch {
     std::vector<WideCarriedContact> contacts;
+    long sweeps = 0;  ///< Sweeps of single runs, summed (a group's sweep counts once per run still going).
 };
 
 /// Solves runs run[0 .. count) (count <= kWideLanes, all of one level, their carriers'

@@ -193,9 +193,11 @@ void World::Impl::storeCoupledPasses() {
 void World::Impl::solveSupportPass(bool reverse) {
     detail::solveUnsupported(solverBodies, solverManifolds, solveOrder, reverse);
     detail::beginSupportPass(supportLanes);
+    for (detail::WideSupportScratch &s : supportLanes.scratch) s.sweeps = 0;
     forEachTask(supportLanes.lane[1].empty() ? 1 : 2, [&](int lane) {
         detail::solveSupportLane(solverBodies, solverManifolds, supportRuns, supportLanes, lane, reverse);
     });
+    for (const detail::WideSupportScratch &s : supportLanes.scratch) stats.supportSweeps += static_cast<int>(s.sweeps);
 }
 
 void World::Impl::solve(real h, bool firstSubstep) {

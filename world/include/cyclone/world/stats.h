@@ -48,6 +48,7 @@ struct StepStats {
     int islands = 0;            ///< Islands of awake dynamic bodies.
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
     int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
+    int supportSweeps = 0;      ///< Sweeps the support pass gave bodies resting on others, one body's sweep each (summed over sub-steps; 0 without shock propagation).
     int springs = 0;            ///< Springs evaluated (once per step, whatever the sub-steps).
     int gyroscopicBodies = 0;   ///< Bodies given the implicit gyroscopic step (anisotropic inertia only).
     int ccdSweeps = 0;          ///< ccd bodies that moved far enough this step to be swept.
