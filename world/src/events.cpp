@@ -31,17 +31,19 @@ void World::Impl::detectContactEvents() {
         const bool touching = pair && pair->alive && pair->touching();
         return ContactTrack{touching ? idOf(pair->a) : BodyId(), touching ? idOf(pair->b) : BodyId(), touching};
     };
-    changedSlots.clear();
+    // The changed slots are moved to the front of eventSlots, in place: a list of their
+    // own would allocate the first time a late step changes more than it ever held.
+    std::size_t changed = 0;
     for (std::uint32_t p : eventSlots) {
         const ContactTrack &track = contactTracks[p];
         const ContactTrack now = stateOf(p);
         if (track.touching != now.touching || (now.touching && (track.a != now.a || track.b != now.b)))
-            changedSlots.push_back(p);
+            eventSlots[changed++] = p;
     }
-    eventSlots.clear();
-    std::sort(changedSlots.begin(), changedSlots.end());
-    changedSlots.erase(std::unique(changedSlots.begin(), changedSlots.end()), changedSlots.end());
-    for (std::uint32_t p : changedSlots) {
+    eventSlots.resize(changed);
+    std::sort(eventSlots.begin(), eventSlots.end());
+    eventSlots.erase(std::unique(eventSlots.begin(), eventSlots.end()), eventSlots.end());
+    for (std::uint32_t p : eventSlots) {
         ContactTrack &track = contactTracks[p];
         const ContactTrack now = stateOf(p);
         const bool touching = now.touching;
@@ -79,6 +81,7 @@ void World::Impl::detectContactEvents() {
         begin.approachSpeed = (va - vb).dot(begin.normal);
         events.contactBegins.push_back(begin);
     }
+    eventSlots.clear();
 }
 
 const WorldEvents &World::events() const { return impl_->events; }

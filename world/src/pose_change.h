@@ -24,7 +24,8 @@ struct RelativePose {
 inline bool movedLess(real shift, const Quaternion &turn, real radius, real tolerance) {
     if (!(shift < tolerance)) return false;
     const real w = std::abs(turn.w());
-    if (w > 0 && shift + 2 * turn.vec().lpNorm<1>() / w * (1 + 1e-9) * radius < tolerance) return true;
+    // The bound times |w| (> 0), so that no division waits on the quaternion product.
+    if (w > 0 && 2 * turn.vec().lpNorm<1>() * (1 + 1e-9) * radius < (tolerance - shift) * w) return true;
     return shift + std::abs(Eigen::AngleAxis<real>(turn).angle()) * radius < tolerance;
 }
 

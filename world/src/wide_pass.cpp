@@ -147,6 +147,11 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
     // Lanes past a group's size, and points past a manifold's count, read zeros.
     static const SolverManifold empty{};
     static const SolverPoint zeroPoint{};
+    // The number of groups moves a little from step to step (the order of a layer's
+    // contacts, equal in height but for rounding, changes how they group): room for half
+    // as many more, so that a steady scene does not allocate when it rises past what an
+    // earlier step needed (std::vector's first resize takes exactly the size asked).
+    if (wide.capacity() < groups.size()) wide.reserve(groups.size() + groups.size() / 2 + 4);
     wide.resize(groups.size());
     for (std::size_t g = 0; g < groups.size(); ++g) {
         WideManifold &w = wide[g];

@@ -219,7 +219,11 @@ CYCLONE_SIMD_CLONES
 void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                       const SupportRuns &runs, const int *run, int count, bool reverse, WideSupportScratch &scratch) {
     const RunLanes lanes = laneRuns(manifolds, runs, run, count);
-    if (scratch.contacts.size() < static_cast<std::size_t>(lanes.slots)) scratch.contacts.resize(lanes.slots);
+    // Room for four carriers at least (a box on a 2 x 2 grid), so that a run with more
+    // carriers than any before it rarely allocates in a later step.
+    constexpr int kCarriersMade = 4;
+    if (scratch.contacts.size() < static_cast<std::size_t>(lanes.slots))
+        scratch.contacts.resize(std::max(lanes.slots, kCarriersMade));
     WideCarriedContact *contacts = scratch.contacts.data();
     for (int slot = 0; slot < lanes.slots; ++slot) loadContact(bodies, manifolds, runs, lanes, slot, contacts[slot]);
 

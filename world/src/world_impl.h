@@ -161,7 +161,6 @@ struct World::Impl {
     /// Pair slots whose touching state may have changed since the last contact events:
     /// seen by the narrowphase or removed (detectContactEvents looks at these only).
     std::vector<std::uint32_t> eventSlots;
-    std::vector<std::uint32_t> changedSlots;  ///< Scratch of detectContactEvents.
 
     /// The step's other threads (settings.threads > 1), started by the first step that
     /// needs them.

@@ -246,6 +246,7 @@ void World::Impl::solve(real h, bool firstSubstep) {
     // (addSolverManifold) are current: along the normal it last found, which differs from
     // a kept manifold's (jacobian_stamp.h) by less than the reuse tolerance's turn.
     const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
+    const real inverseH = 1 / h;
     forEachManifold([&](std::size_t s) {
         detail::SolverManifold &m = solverManifolds[s];
         if (!firstSubstep) {
@@ -257,7 +258,7 @@ void World::Impl::solve(real h, bool firstSubstep) {
             detail::SolverPoint &p = m.points[i];
             p.velocityBias = 0;
             if (p.depth < 0) {
-                p.velocityBias = p.depth / h;  // apart: may close the gap during this sub-step, no more
+                p.velocityBias = p.depth * inverseH;  // apart: may close the gap during this sub-step, no more
             } else if (firstSubstep && m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold) {
                 p.velocityBias = -m.restitution * p.approachSpeed;
             }
@@ -329,6 +330,7 @@ void World::Impl::recoverPenetration(real h) {
     // Split impulse: pseudo-velocities push penetration beyond the slop out by a fraction
     // per sub-step; they move positions only and are forgotten, so they add no energy.
     std::atomic<bool> needed{false};
+    const real recoveryRate = settings.penetrationRecovery / h;  // of the depth beyond the slop, per second
     forEachManifold([&](std::size_t s) {
         detail::SolverManifold &m = solverManifolds[s];
         const ManifoldDepths depths(bodies[solverRecords[s].a].body, bodies[solverRecords[s].b].body, m.normal);
@@ -345,7 +347,7 @@ void World::Impl::recoverPenetration(real h) {
         for (int i = 0; i < m.count; ++i) {
             detail::SolverPoint &p = m.points[i];
             p.pseudoImpulse = 0;
-            p.pseudoTarget = settings.penetrationRecovery * std::max(p.depth - allowed, real(0)) / h;
+            p.pseudoTarget = recoveryRate * std::max(p.depth - allowed, real(0));
             if (p.pseudoTarget > 0) needed.store(true, std::memory_order_relaxed);
         }
     });
