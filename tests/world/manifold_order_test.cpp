@@ -13,16 +13,17 @@
 namespace cyclone::test {
 namespace {
 
+// Keys listed in the order of `heights`, each with its place in that list as its source.
 std::vector<ManifoldKey> listed(const std::vector<real> &heights) {
     std::vector<ManifoldKey> keys;
-    for (std::size_t k = 0; k < heights.size(); ++k)
-        keys.push_back({heights[k], static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(100 + k)});
+    for (std::size_t k = 0; k < heights.size(); ++k) keys.push_back({heights[k], static_cast<std::uint32_t>(k)});
     return keys;
 }
 
+// The places in the list the keys came from, in their order now.
 std::vector<std::uint32_t> listedOrder(const std::vector<ManifoldKey> &keys) {
     std::vector<std::uint32_t> order;
-    for (const ManifoldKey &k : keys) order.push_back(k.listed);
+    for (const ManifoldKey &k : keys) order.push_back(k.source);
     return order;
 }
 
@@ -34,8 +35,9 @@ TEST(ManifoldOrder, LowestFirstAndEqualHeightsAsListed) {
     std::vector<ManifoldKey> scratch;
     detail::sortByHeight(keys, scratch);
     EXPECT_EQ(listedOrder(keys), (std::vector<std::uint32_t>{5, 1, 7, 2, 3, 6, 8, 0, 4}));
-    // Each key moved whole.
-    for (const ManifoldKey &k : keys) EXPECT_EQ(k.source, 100 + k.listed);
+    // Each key moved whole: its height went with its source.
+    const std::vector<real> heights = {1.0, -2.0, 0.0, -0.0, 1.0, -inf, 3e-300, -3e-300, 0.5};
+    for (const ManifoldKey &k : keys) EXPECT_EQ(k.height, heights[k.source]);
 }
 
 TEST(ManifoldOrder, HeightsApartByOneUlpKeepTheirOrder) {

@@ -46,25 +46,22 @@ void World::Impl::detectContactEvents() {
     for (std::uint32_t p : eventSlots) {
         ContactTrack &track = contactTracks[p];
         const ContactTrack now = stateOf(p);
-        const bool touching = now.touching;
-        const BodyId a = now.a;
-        const BodyId b = now.b;
-        const detail::PairState *pair = touching ? &pairs[p] : nullptr;
-        if (track.touching && (!touching || track.a != a || track.b != b)) {
+        if (track.touching && (!now.touching || track.a != now.a || track.b != now.b)) {
             events.contactEnds.push_back({track.a, track.b});
             track.touching = false;
         }
-        if (!touching || track.touching) continue;
-        track = {a, b, true};
+        if (!now.touching || track.touching) continue;
+        track = now;
 
         // The deepest point stands for the contact.
+        const detail::PairState *pair = &pairs[p];
         const BodyRecord &ra = bodies[pair->a];
         const BodyRecord &rb = bodies[pair->b];
         const Matrix4 poseA = ra.body.getTransform();
         const Matrix4 poseB = rb.body.getTransform();
         ContactBegin begin;
-        begin.a = a;
-        begin.b = b;
+        begin.a = now.a;
+        begin.b = now.b;
         bool first = true;
         for (const detail::ManifoldState &m : pair->manifolds) {
             for (int i = 0; i < m.count; ++i) {

@@ -329,8 +329,7 @@ void World::Impl::buildManifolds(real) {
         const real height = contactHeight(a, b, up);
         for (std::size_t k = 0; k < pair.manifolds.size(); ++k) {
             if (pair.manifolds[k].count == 0) continue;
-            const auto listed = static_cast<std::uint32_t>(manifoldKeys.size());
-            manifoldKeys.push_back({height, listed, (p << 2) | static_cast<std::uint32_t>(k)});
+            manifoldKeys.push_back({height, (p << 2) | static_cast<std::uint32_t>(k)});
         }
     }
     orderManifolds();
@@ -478,8 +477,8 @@ void World::Impl::assignSlots() {
 void World::Impl::orderManifolds() {
     // Gauss-Seidel carries a stack's weight down in one pass when the contacts nearest
     // the ground come first; the order must not depend on the broadphase's. Equal heights
-    // keep their order: the keys are listed in order (ManifoldKey::listed), and a radix
-    // sort is stable. A comparison sort mispredicted most of its branches here: a layer's
+    // keep the order of the pair walk: the radix sort is stable. A comparison sort on
+    // (height, place in the walk) mispredicted most of its branches here: a layer's
     // heights are equal but for rounding, so their order changes from step to step.
     detail::sortByHeight(manifoldKeys, manifoldKeysScratch);
 }
