@@ -25,7 +25,9 @@ inline constexpr int kMinSplitManifolds = 128;
 struct SolverPartition {
     static constexpr int kSeam = 2;
     std::vector<int> order[3];          ///< Manifold indices of each part, in solve order.
-    std::vector<SolverGroup> groups[3];  ///< The same, grouped (solver_schedule.h).
+    /// The same, grouped (solver_schedule.h). For one thread, groups[0] holds both
+    /// halves' groups, in one list (they fill more lanes), and groups[1] is empty.
+    std::vector<SolverGroup> groups[3];
     bool split = false;
 };
 
@@ -33,12 +35,16 @@ struct SolverPartition {
 struct PartitionScratch {
     std::vector<real> places;
     std::vector<signed char> side;
+    std::vector<int> halves;  ///< Both halves' manifolds, in one list.
     ScheduleScratch schedule;
 };
 
-/// Splits the manifolds listed in `order` by `positions` of the solver bodies (entry 0,
-/// the immovable world, is ignored) and schedules each part in that order.
-void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
-                        const std::vector<Vector3> &positions, PartitionScratch &scratch, SolverPartition &partition);
+/// Splits the manifolds listed in `order` (lowest contact first, at `heights`) by
+/// `positions` of the solver bodies (entry 0, the immovable world, is ignored) and
+/// schedules each part (buildLevelSchedule), each half's groups apart only for
+/// `twoThreads`. The orders, and so the numbers, do not depend on it.
+void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<real> &heights,
+                        const std::vector<int> &order, const std::vector<Vector3> &positions, bool twoThreads,
+                        PartitionScratch &scratch, SolverPartition &partition);
 
 }  // namespace cyclone::detail

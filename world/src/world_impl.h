@@ -134,6 +134,7 @@ struct World::Impl {
     std::vector<int> solveOrder;
     std::vector<char> slotTaken;              ///< Scratch of assignSlots.
     std::vector<std::uint32_t> keyOfSlot;     ///< Entry of manifoldKeys each slot holds.
+    std::vector<real> solverHeights;          ///< Each slot's contact height (ManifoldKey::height), m.
     std::vector<detail::JacobianStamp> jacobianStamps;  ///< What each solver slot's Jacobians were made from.
     detail::SolverPartition partition;  ///< Coupled passes' order (solver_partition.h).
     detail::PartitionScratch partitionScratch;

@@ -96,7 +96,8 @@ void World::Impl::prepareSolver(real h) {
     const bool support = settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse;
     forEachTask(support ? 2 : 1, [&](int task) {
         if (task == 0) {
-            detail::partitionManifolds(solverManifolds, solveOrder, solverPositions, partitionScratch, partition);
+            detail::partitionManifolds(solverManifolds, solverHeights, solveOrder, solverPositions, pool != nullptr,
+                                          partitionScratch, partition);
         } else {
             detail::assignSupport(static_cast<int>(solverBodies.size()), -settings.gravity, solverManifolds,
                                   solveOrder, supportScratch, supportRuns);

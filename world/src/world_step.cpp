@@ -471,7 +471,11 @@ void World::Impl::assignSlots() {
         slotTaken[free] = 1;
     }
     keyOfSlot.resize(n);
-    for (std::size_t k = 0; k < n; ++k) keyOfSlot[solveOrder[k]] = static_cast<std::uint32_t>(k);
+    solverHeights.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        keyOfSlot[solveOrder[k]] = static_cast<std::uint32_t>(k);
+        solverHeights[solveOrder[k]] = manifoldKeys[k].height;
+    }
 }
 
 void World::Impl::orderManifolds() {
