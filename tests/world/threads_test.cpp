@@ -173,45 +173,49 @@ TEST(SupportLanes, RunsGoToTheirBodysHalfLevelByLevel) {
     EXPECT_TRUE(lanes.lane[1].empty());
 }
 
+// A manifold between solver bodies a and b, for the schedule tests.
+detail::SolverManifold between(int a, int b) {
+    detail::SolverManifold m;
+    m.a = a;
+    m.b = b;
+    return m;
+}
+
+// The manifolds of each group, in order.
+std::vector<std::vector<int>> members(const std::vector<detail::SolverGroup> &groups) {
+    std::vector<std::vector<int>> out;
+    for (const detail::SolverGroup &g : groups) out.emplace_back(g.manifold, g.manifold + g.size);
+    return out;
+}
+
 // Groups by hand: a manifold joins a group only past manifolds it shares no moving body
 // with, and the static world (body 0) blocks no one. Scheduled again with other bodies,
 // the same scratch gives the new groups. The order comes back as the groups list it.
 TEST(SolverSchedule, ManifoldsJoinPastThoseSharingNoMovingBody) {
-    const auto between = [](int a, int b) {
-        detail::SolverManifold m;
-        m.a = a;
-        m.b = b;
-        return m;
-    };
     std::vector<detail::SolverManifold> manifolds = {between(1, 2), between(2, 3), between(4, 5), between(1, 6)};
     std::vector<int> order = {0, 1, 2, 3};
     std::vector<detail::SolverGroup> groups;
     detail::ScheduleScratch scratch;
-    const auto members = [&] {
-        std::vector<std::vector<int>> out;
-        for (const detail::SolverGroup &g : groups) out.emplace_back(g.manifold, g.manifold + g.size);
-        return out;
-    };
     // 1 shares body 2 with 0; 2 shares none; 3 shares body 1 with 0: {0, 2}. Then 1, and 3
     // past nothing of 1's: {1, 3}.
     detail::buildSchedule(manifolds, order, groups, scratch);
     const std::vector<std::vector<int>> first = {{0, 2}, {1, 3}};
-    EXPECT_EQ(members(), first);
+    EXPECT_EQ(members(groups), first);
     EXPECT_EQ(order, (std::vector<int>{0, 2, 1, 3}));
     order = {0, 1, 2, 3};
     detail::buildSchedule(manifolds, order, groups, scratch);
-    EXPECT_EQ(members(), first);
+    EXPECT_EQ(members(groups), first);
     // Manifold 2 now touches body 2: it cannot pass 0 or 1, and 3 still passes 1.
     manifolds[2] = between(2, 5);
     order = {0, 1, 2, 3};
     detail::buildSchedule(manifolds, order, groups, scratch);
-    EXPECT_EQ(members(), (std::vector<std::vector<int>>{{0}, {1, 3}, {2}}));
+    EXPECT_EQ(members(groups), (std::vector<std::vector<int>>{{0}, {1, 3}, {2}}));
     EXPECT_EQ(order, (std::vector<int>{0, 1, 3, 2}));
     // The static world (body 0) blocks no one.
     manifolds = {between(0, 1), between(0, 2)};
     order = {0, 1};
     detail::buildSchedule(manifolds, order, groups, scratch);
-    EXPECT_EQ(members(), (std::vector<std::vector<int>>{{0, 1}}));
+    EXPECT_EQ(members(groups), (std::vector<std::vector<int>>{{0, 1}}));
 }
 
 // The level rule by hand. 0 moves bodies 1, 2 and 1 moves 2, 3 (1 m up); 2 moves 3, 4;
@@ -220,37 +224,26 @@ TEST(SolverSchedule, ManifoldsJoinPastThoseSharingNoMovingBody) {
 // schedule never lets it. 3 shares nothing and joins. The order comes back as the groups
 // list it.
 TEST(SolverSchedule, AManifoldPassesAWaitingOneItSharesABodyWithOnlyWhenLevel) {
-    const auto between = [](int a, int b) {
-        detail::SolverManifold m;
-        m.a = a;
-        m.b = b;
-        return m;
-    };
     const std::vector<detail::SolverManifold> manifolds = {between(1, 2), between(2, 3), between(3, 4), between(5, 6)};
     std::vector<int> order;
     std::vector<detail::SolverGroup> groups;
     detail::ScheduleScratch scratch;
-    const auto members = [&] {
-        std::vector<std::vector<int>> out;
-        for (const detail::SolverGroup &g : groups) out.emplace_back(g.manifold, g.manifold + g.size);
-        return out;
-    };
     const auto schedule = [&](real rise) {
         const std::vector<real> heights = {1, 1, 1 + rise, 2};
         order = {0, 1, 2, 3};
         detail::buildLevelSchedule(manifolds, heights, order, groups, scratch);
     };
     schedule(0.5 * detail::kLevelBand);
-    EXPECT_EQ(members(), (std::vector<std::vector<int>>{{0, 2, 3}, {1}}));
+    EXPECT_EQ(members(groups), (std::vector<std::vector<int>>{{0, 2, 3}, {1}}));
     EXPECT_EQ(order, (std::vector<int>{0, 2, 3, 1}));
     // 2 mm above 1: it waits, and then shares body 3 with member 1.
     schedule(2 * detail::kLevelBand);
     const std::vector<std::vector<int>> plain = {{0, 3}, {1}, {2}};
-    EXPECT_EQ(members(), plain);
+    EXPECT_EQ(members(groups), plain);
     EXPECT_EQ(order, (std::vector<int>{0, 3, 1, 2}));
     order = {0, 1, 2, 3};
     detail::buildSchedule(manifolds, order, groups, scratch);
-    EXPECT_EQ(members(), plain);
+    EXPECT_EQ(members(groups), plain);
 }
 
 // The pool itself: every task of a job runs exactly once, whatever the count, and jobs
