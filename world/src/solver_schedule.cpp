@@ -44,7 +44,7 @@ void schedule(const std::vector<SolverManifold> &manifolds, std::vector<int> &or
                 firstWaiting[body] = index;
             }
         };
-        const auto free = [&](int body, int index) {
+        const auto unblocked = [&](int body, int index) {
             if (body == 0) return true;  // the static world: never moved
             if (joinedFor[body] == i) return false;
             return waitingFor[body] != i || passes(firstWaiting[body], index);
@@ -54,7 +54,7 @@ void schedule(const std::vector<SolverManifold> &manifolds, std::vector<int> &or
         for (int j = i + 1; j < end && group.size < kGroupSize; ++j) {
             if (taken[j]) continue;  // in an earlier group: solved before all of these
             const SolverManifold &m = manifolds[order[j]];
-            if (free(m.a, order[j]) && free(m.b, order[j])) {
+            if (unblocked(m.a, order[j]) && unblocked(m.b, order[j])) {
                 taken[j] = 1;
                 group.manifold[group.size++] = order[j];
                 join(m);

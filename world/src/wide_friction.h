@@ -41,7 +41,7 @@ CYCLONE_INLINE void solveWideFriction(const Lanes &v0, const Lanes &v1, const La
     const LaneMask outside = magnitude2 > limit * limit;
     // Resting contacts stick: their lanes are all inside the cone, and the root and the
     // division (some 40 cycles on the chain to the normal rows) are skipped.
-    if ((outside[0] | outside[1] | outside[2] | outside[3]) != 0) {
+    if (anyLane(outside)) {
         const Lanes rooted = outside ? magnitude2 : one;  // lanes inside the cone take no root (theirs may be 0)
         Lanes length;
         sqrtLanes(rooted, length);

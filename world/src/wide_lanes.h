@@ -18,6 +18,9 @@ struct WideVector {
 /// Lanes where a comparison held: all bits set.
 using LaneMask = LaneIndices;
 
+/// Whether the comparison held in any lane.
+CYCLONE_INLINE bool anyLane(const LaneMask &mask) { return (mask[0] | mask[1] | mask[2] | mask[3]) != 0; }
+
 /// Lanes r0..r3 as their columns: out[j] holds lane j of each. The first shuffles pair
 /// lanes within each 128-bit half (vunpcklpd, vunpckhpd), the last swap halves
 /// (vperm2f128): eight instructions with AVX. Pairing lanes across the halves first

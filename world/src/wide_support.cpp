@@ -198,8 +198,6 @@ struct CarriedSweep {
     CYCLONE_INLINE void solve(bool backwards) { sweepRows(*this, kMaxManifoldPoints, backwards); }
 };
 
-CYCLONE_INLINE bool any(const LaneMask &mask) { return (mask[0] | mask[1] | mask[2] | mask[3]) != 0; }
-
 // How far the carried bodies' velocities moved from `from` to `to` at their contacts,
 // m/s: |dv| + |dw| times the lever arm.
 CYCLONE_INLINE void movedBetween(const CarriedBodies &from, const CarriedBodies &to, const Lanes &lever, Lanes &out) {
@@ -243,7 +241,7 @@ void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     for (int k = 0; k < count; ++k) active[k] = -1;
 
     CarriedBodies twoBefore = body;  // as two sweeps back
-    for (int sweep = 0; sweep < kSupportSweeps && any(active); ++sweep) {
+    for (int sweep = 0; sweep < kSupportSweeps && anyLane(active); ++sweep) {
         const bool backwards = reverse != ((sweep & 1) != 0);
         for (int k = 0; k < count; ++k) scratch.sweeps += active[k] != 0;
         const CarriedBodies before = body;
