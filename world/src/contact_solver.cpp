@@ -79,28 +79,20 @@ CYCLONE_INLINE void fillTwistRow(const LaneMatrix &inertiaA, const LaneMatrix &i
 // Which bodies a pass moves: both, or only the one a supporting body carries.
 enum Moving { kBoth, kOnlyA, kOnlyB };
 
-// The velocities one manifold works on, held in registers while its rows are solved:
-// (v, w) of A and B, or their pseudo-velocities.
+// The velocities (v, w) of A and B that one manifold works on, held in registers while
+// its rows are solved.
 struct PairVelocities {
     Lanes va, wa, vb, wb;
     real invMassA, invMassB;
 
-    CYCLONE_INLINE PairVelocities(const SolverBody &a, const SolverBody &b, bool pseudo)
-        : va(pseudo ? a.pv : a.v), wa(pseudo ? a.pw : a.w), vb(pseudo ? b.pv : b.v), wb(pseudo ? b.pw : b.w),
-          invMassA(a.invMass), invMassB(b.invMass) {}
+    CYCLONE_INLINE PairVelocities(const SolverBody &a, const SolverBody &b)
+        : va(a.v), wa(a.w), vb(b.v), wb(b.w), invMassA(a.invMass), invMassB(b.invMass) {}
 
-    // Writes the moving bodies back. Never the immovable world (entry 0), which it would
-    // leave unchanged: two threads may hold it at once (solver_partition.h).
-    template <Moving kMoving>
-    CYCLONE_INLINE void store(std::vector<SolverBody> &bodies, const SolverManifold &m, bool pseudo) const {
-        if (kMoving != kOnlyB && m.a != 0) {
-            SolverBody &a = bodies[m.a];
-            (pseudo ? a.pv : a.v) = va, (pseudo ? a.pw : a.w) = wa;
-        }
-        if (kMoving != kOnlyA && m.b != 0) {
-            SolverBody &b = bodies[m.b];
-            (pseudo ? b.pv : b.v) = vb, (pseudo ? b.pw : b.w) = wb;
-        }
+    // Writes the bodies back. Never the immovable world (entry 0), which it would leave
+    // unchanged: two threads may hold it at once (solver_partition.h).
+    CYCLONE_INLINE void store(std::vector<SolverBody> &bodies, const SolverManifold &m) const {
+        if (m.a != 0) bodies[m.a].v = va, bodies[m.a].w = wa;
+        if (m.b != 0) bodies[m.b].v = vb, bodies[m.b].w = wb;
     }
 
     // Relative velocity of B with respect to A along direction d of a row.
@@ -112,31 +104,19 @@ struct PairVelocities {
     CYCLONE_INLINE real turning(const SolverRow &row) const { return sum3(row.rBxd * wb - row.rAxd * wa); }
 
     // Applies an angular impulse along an angular-only row (on B; its opposite on A).
-    template <Moving kMoving = kBoth>
     CYCLONE_INLINE void applyTurning(const SolverRow &row, real impulse) {
-        if (kMoving != kOnlyB) wa -= impulse * row.angA;
-        if (kMoving != kOnlyA) wb += impulse * row.angB;
+        wa -= impulse * row.angA;
+        wb += impulse * row.angB;
     }
 
     // Applies impulse * d (on B; its opposite on A) through a row's angular terms.
-    template <Moving kMoving = kBoth>
     CYCLONE_INLINE void apply(const Lanes &d, const SolverRow &row, real impulse) {
-        if (kMoving != kOnlyB) {
-            va -= (invMassA * impulse) * d;
-            wa -= impulse * row.angA;
-        }
-        if (kMoving != kOnlyA) {
-            vb += (invMassB * impulse) * d;
-            wb += impulse * row.angB;
-        }
+        va -= (invMassA * impulse) * d;
+        wa -= impulse * row.angA;
+        vb += (invMassB * impulse) * d;
+        wb += impulse * row.angB;
     }
 };
-
-// The effective mass a pass uses: the pair's, or with the supporting body immovable.
-template <Moving kMoving>
-CYCLONE_INLINE real massOf(const SolverRow &row) {
-    return kMoving == kBoth ? row.mass : row.supportedMass;
-}
 
 // One pass over one manifold's rows: friction, then the normal rows (the ones that must
 // hold have the last word), each solved against the velocities the rows before it left,
@@ -148,7 +128,7 @@ CYCLONE_INLINE real massOf(const SolverRow &row) {
 // bodies' velocities to be updated and dotted again.
 //
 // kCount is the manifold's count: its loops unroll and the velocities stay in registers.
-template <Moving kMoving, int kCount>
+template <int kCount>
 struct ManifoldSweep {
     PairVelocities &vel;
     SolverManifold &m;
@@ -159,7 +139,7 @@ struct ManifoldSweep {
     Lanes frictionLinear{};          // and their linear impulse
 
     CYCLONE_INLINE ManifoldSweep(PairVelocities &v, SolverManifold &manifold)
-        : vel(v), m(manifold), couplings(kMoving == kBoth ? manifold.couplings : manifold.supportedCouplings) {
+        : vel(v), m(manifold), couplings(manifold.couplings) {
         const real linear = dot3(m.direction[0], vel.vb - vel.va);
         for (int i = 0; i < kCount; ++i) {
             const SolverRow &row = m.points[i].normal;
@@ -182,7 +162,7 @@ struct ManifoldSweep {
         SolverRow &row1 = m.frictionRow[1];
         SolverRow &twist = m.twist;
         const bool turns = m.twistRadius > 0;
-        const real *k = kMoving == kBoth ? m.frictionInverse : m.supportedFrictionInverse;
+        const real *k = m.frictionInverse;
         real load = 0;
         for (int k = 0; k < kCount; ++k) load += m.points[m.order[k]].normal.impulse;
         const real limit = m.friction * load;
@@ -215,8 +195,8 @@ struct ManifoldSweep {
         couple(couplings.friction[1], change1);
         couple(couplings.friction[2], change2);
         frictionLinear = change0 * m.direction[1] + change1 * m.direction[2];
-        if (kMoving != kOnlyB) frictionA = change0 * row0.angA + change1 * row1.angA + change2 * twist.angA;
-        if (kMoving != kOnlyA) frictionB = change0 * row0.angB + change1 * row1.angB + change2 * twist.angB;
+        frictionA = change0 * row0.angA + change1 * row1.angA + change2 * twist.angA;
+        frictionB = change0 * row0.angB + change1 * row1.angB + change2 * twist.angB;
     }
 
     // Sets point i's accumulated impulse `impulse` to `updated`.
@@ -229,7 +209,7 @@ struct ManifoldSweep {
     // Point i's normal row towards `target` normal velocity, on its accumulated impulse
     // `impulse`.
     CYCLONE_INLINE void normal(int i, real target, real &impulse) {
-        setNormal(i, std::max(impulse - massOf<kMoving>(m.points[i].normal) * (vn[i] - target), real(0)), impulse);
+        setNormal(i, std::max(impulse - m.points[i].normal.mass * (vn[i] - target), real(0)), impulse);
     }
 
     // The k-th point in solve order towards its velocity bias.
@@ -247,18 +227,14 @@ struct ManifoldSweep {
             const int i = m.order[k];
             const SolverRow &row = m.points[i].normal;
             total += normalChange[i];
-            if (kMoving != kOnlyB) angularA += normalChange[i] * row.angA;
-            if (kMoving != kOnlyA) angularB += normalChange[i] * row.angB;
+            angularA += normalChange[i] * row.angA;
+            angularB += normalChange[i] * row.angB;
         }
         const Lanes linear = total * m.direction[0] + frictionLinear;
-        if (kMoving != kOnlyB) {
-            vel.va -= vel.invMassA * linear;
-            vel.wa -= angularA;
-        }
-        if (kMoving != kOnlyA) {
-            vel.vb += vel.invMassB * linear;
-            vel.wb += angularB;
-        }
+        vel.va -= vel.invMassA * linear;
+        vel.wa -= angularA;
+        vel.vb += vel.invMassB * linear;
+        vel.wb += angularB;
     }
 
     // The whole pass (sweepRows).
@@ -278,25 +254,8 @@ CYCLONE_INLINE void withCount(int count, F &&f) {
     }
 }
 
-template <Moving kMoving>
 CYCLONE_INLINE void solveManifold(PairVelocities &vel, SolverManifold &m, bool reverse) {
-    withCount(m.count, [&](auto count) __attribute__((always_inline)) { ManifoldSweep<kMoving, count()>(vel, m).solve(reverse); });
-}
-
-template <Moving kMoving>
-CYCLONE_INLINE void solvePseudoManifold(std::vector<SolverBody> &bodies, SolverManifold &m) {
-    PairVelocities vel(bodies[m.a], bodies[m.b], true);
-    withCount(m.count, [&](auto count) __attribute__((always_inline)) {
-        ManifoldSweep<kMoving, count()> sweep(vel, m);
-        for (int k = 0; k < count(); ++k) {
-            const int i = m.order[k];
-            SolverPoint &p = m.points[i];
-            if (p.pseudoTarget <= 0 && p.pseudoImpulse == 0) continue;
-            sweep.normal(i, p.pseudoTarget, p.pseudoImpulse);
-        }
-        sweep.finish();
-    });
-    vel.store<kMoving>(bodies, m, true);
+    withCount(m.count, [&](auto count) __attribute__((always_inline)) { ManifoldSweep<count()>(vel, m).solve(reverse); });
 }
 
 }  // namespace
@@ -317,7 +276,7 @@ void prepareDirections(SolverManifold &m) {
 }
 
 real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifold &m, const SolverPoint &p) {
-    return PairVelocities(a, b, false).along(m.direction[0], p.normal);
+    return PairVelocities(a, b).along(m.direction[0], p.normal);
 }
 
 CYCLONE_SIMD_CLONES
@@ -412,7 +371,7 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
                const std::vector<int> &order) {
     for (int index : order) {
         const SolverManifold &m = manifolds[index];
-        PairVelocities vel(bodies[m.a], bodies[m.b], false);
+        PairVelocities vel(bodies[m.a], bodies[m.b]);
         for (int k = 0; k < m.count; ++k) {
             const SolverRow &row = m.points[m.order[k]].normal;
             vel.apply(m.direction[0], row, row.impulse);
@@ -420,7 +379,7 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
         vel.apply(m.direction[1], m.frictionRow[0], m.frictionRow[0].impulse);
         vel.apply(m.direction[2], m.frictionRow[1], m.frictionRow[1].impulse);
         vel.applyTurning(m.twist, m.twist.impulse);
-        vel.store<kBoth>(bodies, m, false);
+        vel.store(bodies, m);
     }
 }
 
@@ -444,9 +403,9 @@ void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     for (int index : order) {
         SolverManifold &m = manifolds[index];
         if (m.support != kNoSupport) continue;
-        PairVelocities vel(bodies[m.a], bodies[m.b], false);
-        solveManifold<kBoth>(vel, m, reverse);
-        vel.store<kBoth>(bodies, m, false);
+        PairVelocities vel(bodies[m.a], bodies[m.b]);
+        solveManifold(vel, m, reverse);
+        vel.store(bodies, m);
     }
 }
 
@@ -465,10 +424,10 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
     const real inverseH = 1 / h;
     for (int index : order) {
         SolverManifold &m = manifolds[index];
-        PairVelocities vel(bodies[m.a], bodies[m.b], false);
+        PairVelocities vel(bodies[m.a], bodies[m.b]);
         const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
         withCount(m.count, [&](auto count) __attribute__((always_inline)) {
-            ManifoldSweep<kBoth, count()> normals(vel, m);
+            ManifoldSweep<count()> normals(vel, m);
             for (int k = 0; k < count(); ++k) {
                 const int i = m.order[k];
                 SolverPoint &p = m.points[i];
@@ -491,11 +450,11 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
             }
             normals.finish();
             // Friction after the normal rows, on the velocities they left.
-            ManifoldSweep<kBoth, count()> rub(vel, m);
+            ManifoldSweep<count()> rub(vel, m);
             rub.friction();
             rub.finish();
         });
-        vel.store<kBoth>(bodies, m, false);
+        vel.store(bodies, m);
     }
 }
 
@@ -504,7 +463,7 @@ void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     for (int index : order) {
         SolverManifold &m = manifolds[index];
         if (m.restitution == 0) continue;
-        PairVelocities vel(bodies[m.a], bodies[m.b], false);
+        PairVelocities vel(bodies[m.a], bodies[m.b]);
         for (int k = 0; k < m.count; ++k) {
             SolverPoint &p = m.points[m.order[k]];
             if (p.approachSpeed > -threshold || p.maxNormalImpulse == 0) continue;
@@ -514,30 +473,7 @@ void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifol
             p.normal.impulse = updated;
             vel.apply(m.direction[0], p.normal, updated - old);
         }
-        vel.store<kBoth>(bodies, m, false);
-    }
-}
-
-CYCLONE_SIMD_CLONES
-void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                           const std::vector<int> &order, bool support) {
-    // One sweep: more did not change how a stack settles (measured on 1:1000:1 and the
-    // 20-level pyramid).
-    // With `support`, a manifold with a carrier moves only the carried body. Against a
-    // static or sleeping body that is the true problem and its impulses are kept;
-    // against a moving carrier they are put back afterwards, as in solveSupport.
-    for (int index : order) {
-        SolverManifold &m = manifolds[index];
-        if (!support || m.support == kNoSupport) {
-            solvePseudoManifold<kBoth>(bodies, m);
-            continue;
-        }
-        const bool carrierMoves = m.a != 0 && m.b != 0;
-        SavedImpulses saved{};
-        if (carrierMoves) saved.save(m);
-        if (m.support == kASupportsB) solvePseudoManifold<kOnlyB>(bodies, m);
-        else solvePseudoManifold<kOnlyA>(bodies, m);
-        if (carrierMoves) saved.restore(m);
+        vel.store(bodies, m);
     }
 }
 

@@ -43,16 +43,15 @@ struct SolverRow {
     real impulse = 0;  ///< Accumulated impulse, N s.
 };
 
-/// The fields that the depth loops read and write (World::Impl::solve and
-/// recoverPenetration) come first, in the point's first two cache lines, and the row
-/// last, where its lanes need no padding: 256 bytes in all.
+/// The fields that the depth loop (World::Impl::solve) and loadWide read and write come
+/// first, in the point's first cache lines, and the row last, where its lanes need no
+/// padding: 256 bytes in all. loadPseudo (wide_pseudo.h) reads localA, localB and depth
+/// as one run of reals.
 struct SolverPoint {
     Vector3 localA;          ///< Anchor on A, A's body space, m.
     Vector3 localB;          ///< Anchor on B, B's body space, m.
     real depth = 0;          ///< Penetration at the start of the step, m (< 0: apart).
     real velocityBias = 0;   ///< Target normal velocity (restitution or speculative), m/s.
-    real pseudoTarget = 0;   ///< Target pseudo normal velocity, m/s.
-    real pseudoImpulse = 0;  ///< Accumulated pseudo impulse, N s.
     real approachSpeed = 0;  ///< Normal relative velocity when the step began, m/s.
     real maxNormalImpulse = 0;  ///< Largest normal impulse of the step, N s.
     SolverRow normal;
@@ -158,36 +157,6 @@ inline constexpr int kNoSupport = 0;
 inline constexpr int kASupportsB = 1;
 inline constexpr int kBSupportsA = 2;
 
-/// The accumulated impulses of a manifold, saved so that the last penetration pass, which
-/// moves only a carried body, leaves those of a moving carrier's manifold as it found
-/// them (solvePseudoVelocities). The velocity support pass keeps its own copy instead
-/// (wide_support.h).
-struct SavedImpulses {
-    real normal[kMaxManifoldPoints];
-    real pseudo[kMaxManifoldPoints];
-    real friction[2];
-    real twist;
-
-    void save(const SolverManifold &m) {
-        for (int i = 0; i < m.count; ++i) {
-            normal[i] = m.points[i].normal.impulse;
-            pseudo[i] = m.points[i].pseudoImpulse;
-        }
-        friction[0] = m.frictionRow[0].impulse;
-        friction[1] = m.frictionRow[1].impulse;
-        twist = m.twist.impulse;
-    }
-    void restore(SolverManifold &m) const {
-        for (int i = 0; i < m.count; ++i) {
-            m.points[i].normal.impulse = normal[i];
-            m.points[i].pseudoImpulse = pseudo[i];
-        }
-        m.frictionRow[0].impulse = friction[0];
-        m.frictionRow[1].impulse = friction[1];
-        m.twist.impulse = twist;
-    }
-};
-
 /// The support pass's order (assignSupport): the carried bodies bottom up; run r is one
 /// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]). A level holds
 /// the bodies equally far from the ground (in contacts); no body carries another of its
@@ -275,9 +244,5 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
 /// solved at the same time.
 void solveUnsupported(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                       const std::vector<int> &order, bool reverse);
-/// One pass of penetration recovery on the pseudo-velocities of the manifolds listed in
-/// `order` (`support` as above).
-void solvePseudoVelocities(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                           const std::vector<int> &order, bool support);
 
 }  // namespace cyclone::detail

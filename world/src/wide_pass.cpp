@@ -1,6 +1,8 @@
 #include "wide_pass.h"
 
 #include "wide_friction.h"
+#include "wide_pseudo.h"
+#include "wide_velocities.h"
 
 namespace cyclone::detail {
 
@@ -26,43 +28,9 @@ CYCLONE_INLINE void relative(const WideVector &d, const WideVector &va, const Wi
     out = x + y + z;
 }
 
-// The velocities of a wide manifold's bodies, held in registers over its rows.
-struct WideVelocities {
-    WideVector va, wa, vb, wb;
-
-    CYCLONE_INLINE WideVelocities(const std::vector<SolverBody> &bodies, const WideManifold &m) {
-        const SolverBody &a0 = bodies[m.a[0]], &a1 = bodies[m.a[1]], &a2 = bodies[m.a[2]], &a3 = bodies[m.a[3]];
-        const SolverBody &b0 = bodies[m.b[0]], &b1 = bodies[m.b[1]], &b2 = bodies[m.b[2]], &b3 = bodies[m.b[3]];
-        transposeIn(a0.v, a1.v, a2.v, a3.v, va);
-        transposeIn(a0.w, a1.w, a2.w, a3.w, wa);
-        transposeIn(b0.v, b1.v, b2.v, b3.v, vb);
-        transposeIn(b0.w, b1.w, b2.w, b3.w, wb);
-    }
-
-    // Writes the lanes in use back. Never the immovable world (entry 0), which they leave
-    // unchanged: two threads may hold it at once (solver_partition.h).
-    CYCLONE_INLINE void store(std::vector<SolverBody> &bodies, const WideManifold &m) const {
-        storeSide(bodies, m.a, m.size, va, wa);
-        storeSide(bodies, m.b, m.size, vb, wb);
-    }
-
-    // One side's bodies (A's or B's) of the first `size` lanes.
-    static CYCLONE_INLINE void storeSide(std::vector<SolverBody> &bodies, const int *index, int size,
-                                         const WideVector &linear, const WideVector &angular) {
-        Lanes v[kWideLanes], w[kWideLanes];
-        transposeOut(linear, v);
-        transposeOut(angular, w);
-        for (int k = 0; k < size; ++k) {
-            if (index[k] == 0) continue;
-            bodies[index[k]].v = v[k];
-            bodies[index[k]].w = w[k];
-        }
-    }
-};
-
 // Gives the bodies of a wide manifold impulses along its rows: normal[i] along point i's
 // normal row, tangent0 and tangent1 along the friction rows, twist about the normal.
-CYCLONE_INLINE void giveImpulses(WideVelocities &vel, const WideManifold &m, const Lanes normal[kMaxManifoldPoints],
+CYCLONE_INLINE void giveImpulses(WideVelocities<> &vel, const WideManifold &m, const Lanes normal[kMaxManifoldPoints],
                                  const Lanes &tangent0, const Lanes &tangent1, const Lanes &twist) {
     const Lanes total = (normal[0] + normal[1]) + (normal[2] + normal[3]);
     const WideVector linear = {total * m.normal.x + tangent0 * m.tangent[0].x + tangent1 * m.tangent[1].x,
@@ -87,14 +55,14 @@ CYCLONE_INLINE void giveImpulses(WideVelocities &vel, const WideManifold &m, con
 // bodies at the start, each impulse then reaches the points after it through the
 // couplings, and all impulses reach the bodies together at the end.
 struct WideSweep {
-    WideVelocities &vel;
+    WideVelocities<> &vel;
     WideManifold &m;
     Lanes vn[kMaxManifoldPoints];  // relative normal velocity at each point, m/s
     Lanes v0, v1, v2;              // along tangent 0 and 1, m/s, and about the normal, rad/s
     Lanes change[kMaxManifoldPoints];
     Lanes change0, change1, change2;  // the friction rows'
 
-    CYCLONE_INLINE WideSweep(WideVelocities &v, WideManifold &manifold) : vel(v), m(manifold) {
+    CYCLONE_INLINE WideSweep(WideVelocities<> &v, WideManifold &manifold) : vel(v), m(manifold) {
         const WideVector dv = {vel.vb.x - vel.va.x, vel.vb.y - vel.va.y, vel.vb.z - vel.va.z};
         const WideVector dw = {vel.wb.x - vel.wa.x, vel.wb.y - vel.wa.y, vel.wb.z - vel.wa.z};
         const Lanes linear = m.normal.x * dv.x + m.normal.y * dv.y + m.normal.z * dv.z;
@@ -143,7 +111,8 @@ struct WideSweep {
 
 CYCLONE_SIMD_CLONES
 void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
-              const std::vector<SolverGroup> &groups, bool warmStart, std::vector<WideManifold> &wide) {
+              const std::vector<SolverGroup> &groups, bool warmStart, std::vector<WideManifold> &wide,
+              const WidePseudoLoad &pseudo) {
     // Lanes past a group's size, and points past a manifold's count, read zeros.
     static const SolverManifold empty{};
     static const SolverPoint zeroPoint{};
@@ -153,6 +122,10 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
     // earlier step needed (std::vector's first resize takes exactly the size asked).
     if (wide.capacity() < groups.size()) wide.reserve(groups.size() + groups.size() / 2 + 4);
     wide.resize(groups.size());
+    if (pseudo.pseudo) {
+        if (pseudo.pseudo->capacity() < groups.size()) pseudo.pseudo->reserve(wide.capacity());
+        pseudo.pseudo->resize(groups.size());
+    }
     for (std::size_t g = 0; g < groups.size(); ++g) {
         WideManifold &w = wide[g];
         const SolverManifold *m[kWideLanes];
@@ -197,9 +170,10 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
         for (int e = 0; e < 6; ++e) lanes([e](const SolverManifold &x) { return x.frictionInverse[e]; }, w.frictionInverse[e]);
         lanes([](const SolverManifold &x) { return x.friction; }, w.coefficient);
         lanes([](const SolverManifold &x) { return x.twistRadius; }, w.twistRadius);
+        if (pseudo.pseudo) loadPseudo(m, pseudo.support, (*pseudo.pseudo)[g]);
         // The warm start, while the group's rows are still in the cache.
         if (!warmStart) continue;
-        WideVelocities vel(bodies, w);
+        WideVelocities<> vel(bodies, w);
         const Lanes normal[kMaxManifoldPoints] = {w.points[0].impulse, w.points[1].impulse, w.points[2].impulse,
                                                   w.points[3].impulse};
         giveImpulses(vel, w, normal, w.frictionImpulse[0], w.frictionImpulse[1], w.twistImpulse);
@@ -210,7 +184,7 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
 CYCLONE_SIMD_CLONES
 void solveWide(std::vector<SolverBody> &bodies, std::vector<WideManifold> &wide, bool reverse) {
     for (WideManifold &m : wide) {
-        WideVelocities vel(bodies, m);
+        WideVelocities<> vel(bodies, m);
         WideSweep sweep(vel, m);
         sweepRows(sweep, kMaxManifoldPoints, reverse);
         vel.store(bodies, m);

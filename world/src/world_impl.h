@@ -23,6 +23,7 @@
 #include "manifold_order.h"
 #include "solver_partition.h"
 #include "wide_pass.h"
+#include "wide_pseudo.h"
 #include "solver_schedule.h"
 #include "task_pool.h"
 #include "cyclone/world/world.h"
@@ -139,7 +140,9 @@ struct World::Impl {
     detail::SolverPartition partition;  ///< Coupled passes' order (solver_partition.h).
     detail::PartitionScratch partitionScratch;
     std::vector<detail::WideManifold> wideManifolds[3];  ///< Each part's groups' rows during a sub-step's coupled passes (wide_pass.h).
+    std::vector<detail::WidePseudo> widePseudo[3];  ///< And what its penetration passes need of them (wide_pseudo.h).
     std::vector<Vector3> solverPositions;  ///< Position of each solver body (entry 0 unused).
+    std::vector<detail::DepthFrame> depthFrames;  ///< Each slot's, for penetration recovery.
     std::vector<char> bodyFlags;           ///< Per simulated body, for a stage's own use.
     std::vector<int> islandParent;
     std::vector<int> islandStart;

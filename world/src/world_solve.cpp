@@ -6,7 +6,6 @@
 // corrects them, the correction reaches the body through addVelocity / addRotation,
 // and RigidBody::integrate(h) moves it. Penetration is then recovered without adding
 // energy: pseudo-velocities (SplitImpulse) or a rigid relax pass (SoftStep).
-#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -36,23 +35,12 @@ private:
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-// The depths of one manifold's points along its normal n at the bodies' current poses:
-// (xA + RA a - xB - RB b) . n for anchors a on A and b on B, worked out as
-// a . (RA^T n) - b . (RB^T n) + (xA - xB) . n, so that each point costs two dot products
-// instead of two rotations.
-class ManifoldDepths {
-public:
-    ManifoldDepths(const RigidBody &a, const RigidBody &b, const Vector3 &normal)
-        : normalA_(a.getTransform().linear().transpose() * normal),
-          normalB_(b.getTransform().linear().transpose() * normal),
-          offset_((a.getPosition() - b.getPosition()).dot(normal)) {}
-
-    real of(const detail::SolverPoint &p) const { return p.localA.dot(normalA_) - p.localB.dot(normalB_) + offset_; }
-
-private:
-    Vector3 normalA_, normalB_;
-    real offset_;
-};
+// The frame that gives a manifold's depths along `normal` at the bodies' current poses
+// (detail::DepthFrame): a rotation transposed is its inverse.
+detail::DepthFrame depthFrame(const RigidBody &a, const RigidBody &b, const Vector3 &normal) {
+    return {a.getTransform().linear().transpose() * normal, b.getTransform().linear().transpose() * normal,
+            (a.getPosition() - b.getPosition()).dot(normal)};
+}
 
 }  // namespace
 
@@ -172,11 +160,15 @@ void World::Impl::warmStart() {
 // last, as in a pass: its warm start moves bodies of both halves.
 void World::Impl::loadCoupledPasses() {
     const bool warm = settings.warmStarting;
+    const bool recovers = settings.positionIterations > 0;
+    const auto pseudo = [&](int part) {
+        return detail::WidePseudoLoad{recovers ? &widePseudo[part] : nullptr, settings.shockPropagation};
+    };
     forEachTask(2, [&](int half) {
-        detail::loadWide(solverBodies, solverManifolds, partition.groups[half], warm, wideManifolds[half]);
+        detail::loadWide(solverBodies, solverManifolds, partition.groups[half], warm, wideManifolds[half], pseudo(half));
     });
     const int seam = detail::SolverPartition::kSeam;
-    detail::loadWide(solverBodies, solverManifolds, partition.groups[seam], warm, wideManifolds[seam]);
+    detail::loadWide(solverBodies, solverManifolds, partition.groups[seam], warm, wideManifolds[seam], pseudo(seam));
 }
 
 void World::Impl::solveCoupledPass(bool reverse) {
@@ -251,8 +243,9 @@ void World::Impl::solve(real h, bool firstSubstep) {
     forEachManifold([&](std::size_t s) {
         detail::SolverManifold &m = solverManifolds[s];
         if (!firstSubstep) {
-            const ManifoldDepths depths(bodies[solverRecords[s].a].body, bodies[solverRecords[s].b].body, m.normal);
-            for (int i = 0; i < m.count; ++i) m.points[i].depth = depths.of(m.points[i]);
+            const detail::DepthFrame frame =
+                depthFrame(bodies[solverRecords[s].a].body, bodies[solverRecords[s].b].body, m.normal);
+            for (int i = 0; i < m.count; ++i) m.points[i].depth = frame.of(m.points[i]);
         }
         if (!split) return;
         for (int i = 0; i < m.count; ++i) {
@@ -330,37 +323,28 @@ void World::Impl::recoverPenetration(real h) {
 
     // Split impulse: pseudo-velocities push penetration beyond the slop out by a fraction
     // per sub-step; they move positions only and are forgotten, so they add no energy.
-    std::atomic<bool> needed{false};
-    const real recoveryRate = settings.penetrationRecovery / h;  // of the depth beyond the slop, per second
+    // The passes run on the coupled passes' groups and rows (wide_pseudo.h); the first
+    // sets each group's targets from its depths at the poses integration left.
+    depthFrames.resize(solverManifolds.size());
     forEachManifold([&](std::size_t s) {
-        detail::SolverManifold &m = solverManifolds[s];
-        const ManifoldDepths depths(bodies[solverRecords[s].a].body, bodies[solverRecords[s].b].body, m.normal);
-        // The slop is left alone only where the whole manifold is that deep: a tilt
-        // (one side deeper than the other) is corrected even when it is below the slop,
-        // or it would never be, and a stack would lean on it.
-        real shallowest = settings.penetrationSlop;
-        for (int i = 0; i < m.count; ++i) {
-            detail::SolverPoint &p = m.points[i];
-            p.depth = depths.of(p);
-            shallowest = std::min(shallowest, p.depth);
-        }
-        const real allowed = std::max(shallowest, real(0));
-        for (int i = 0; i < m.count; ++i) {
-            detail::SolverPoint &p = m.points[i];
-            p.pseudoImpulse = 0;
-            p.pseudoTarget = recoveryRate * std::max(p.depth - allowed, real(0));
-            if (p.pseudoTarget > 0) needed.store(true, std::memory_order_relaxed);
-        }
+        depthFrames[s] = depthFrame(bodies[solverRecords[s].a].body, bodies[solverRecords[s].b].body,
+                                    solverManifolds[s].normal);
     });
-    if (!needed) return;
+    const detail::PseudoTargets targets{depthFrames.data(), settings.penetrationSlop,
+                                        settings.penetrationRecovery / h};
+    const int seam = detail::SolverPartition::kSeam;
     const int last = settings.positionIterations - 1;
     for (int it = 0; it <= last; ++it) {
         const bool support = it == last && settings.shockPropagation;
-        forEachTask(partition.split ? 2 : 1, [&](int half) {
-            detail::solvePseudoVelocities(solverBodies, solverManifolds, partition.order[half], support);
-        });
-        detail::solvePseudoVelocities(solverBodies, solverManifolds, partition.order[detail::SolverPartition::kSeam],
-                                      support);
+        const detail::PseudoTargets *set = it == 0 ? &targets : nullptr;
+        const auto pass = [&](int part) {
+            return detail::solveWidePseudo(solverBodies, wideManifolds[part], widePseudo[part], partition.groups[part],
+                                           support, set);
+        };
+        bool pushed[3] = {};
+        forEachTask(partition.split ? 2 : 1, [&](int half) { pushed[half] = pass(half); });
+        pushed[seam] = pass(seam);
+        if (it == 0 && !pushed[0] && !pushed[1] && !pushed[seam]) return;  // nothing penetrates beyond what is allowed
     }
     stats.positionIterations += settings.positionIterations;
     forEachBody([&](std::size_t k) {

@@ -409,8 +409,6 @@ void World::Impl::addSolverManifold(const ManifoldKey &key, std::size_t slot) {
         dst.normal.impulse = warm ? src.normalImpulse : 0;
         dst.velocityBias = 0;
         dst.depth = src.depth;
-        dst.pseudoImpulse = 0;
-        dst.pseudoTarget = 0;
         dst.approachSpeed = 0;
         dst.maxNormalImpulse = 0;
     }
