@@ -62,6 +62,7 @@ struct Options {
     int repeats = 1;
     int substeps = kDefaultSubsteps;
     int threads = 1;
+    int seed = 0;
     std::string csv;
     bool inProcess = false;
 };
@@ -383,7 +384,7 @@ void writeCsv(std::ofstream &out, const std::vector<Row> &rows) {
 
 void printUsage(std::ostream &out) {
     out << "usage: cyclone-bench [--scene NAME]... [--steps N] [--repeat R] [--substeps S] [--threads T]\n"
-           "                     [--engine cyclone|bullet|both] [--csv FILE] [--in-process] [--list]\n"
+           "                     [--seed N] [--engine cyclone|bullet|both] [--csv FILE] [--in-process] [--list]\n"
            "  --scene NAME   run only this scene (repeatable, or comma-separated); default: all\n"
            "  --steps N      steps of 1/60 s per run, N >= 1; default 600 (10 s)\n"
            "  --repeat R     run each scene and engine R times and keep each step's fastest time\n"
@@ -393,6 +394,8 @@ void printUsage(std::ostream &out) {
         << kDefaultSubsteps << "\n"
         << "  --threads T    threads of cyclone's step, 1 to 64 (WorldSettings::threads; Bullet\n"
            "                 always uses one); default 1\n"
+           "  --seed N       mixed1000's shapes, sizes and orientations from seed N, to see how far\n"
+           "                 its results spread (the pile is chaotic); default 0, the tables' scene\n"
            "  --engine E     cyclone, bullet or both; default: every engine built in\n"
            "  --csv FILE     also write the results as CSV to FILE\n"
            "  --in-process   run everything in this process (for profilers; peak RSS then\n"
@@ -465,6 +468,8 @@ bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
             options.substeps = static_cast<int>(substeps);
         } else if (arg == "--threads") {
             if (!intValue("--threads", 1, 64, options.threads)) return false;
+        } else if (arg == "--seed") {
+            if (!intValue("--seed", 0, 1000000000, options.seed)) return false;
         } else if (arg == "--engine") {
             const char *v = value("--engine");
             if (!v) return false;
@@ -541,6 +546,7 @@ int run(int argc, char **argv) {
               << kVelocityPassesPerFrame / options.substeps << " velocity iterations, "
               << WorldSettings().positionIterations << " position iterations per sub-step, " << options.threads
               << " thread(s)\n";
+    if (options.seed != 0) std::cout << "- mixed1000 from seed " << options.seed << " (--seed), not the tables' scene\n";
 #ifdef CYCLONE_BENCH_HAVE_BULLET
     if (std::find(options.engines.begin(), options.engines.end(), "bullet") != options.engines.end())
         std::cout << bulletSettingsNote();
@@ -551,7 +557,7 @@ int run(int argc, char **argv) {
 
     std::vector<Row> rows;
     for (const std::string &sceneName : options.scenes) {
-        Scene scene = makeScene(sceneName);
+        Scene scene = makeScene(sceneName, static_cast<std::uint64_t>(options.seed));
         splitSubsteps(scene, options.substeps);
         scene.world.threads = options.threads;
         const std::vector<RunResult> results = measure(scene, options.engines, options);

@@ -111,7 +111,7 @@ Scene pyramid(int base) {
 
 // 1000 bodies, one in five of each kind, dropped from a 10 x 10 x 10 grid with random
 // orientations into a 10 m x 10 m box with 6 m walls.
-Scene mixed() {
+Scene mixed(std::uint64_t seed) {
     Scene scene;
     scene.name = "mixed1000";
     scene.world = worldSettings(true);
@@ -129,7 +129,7 @@ Scene mixed() {
     scene.bodies.push_back(staticBody("wall_z+", Shape::box(Vector3(inner, height, thickness)),
                                       Vector3(0, height, inner + thickness)));
 
-    Random random(0x5EEDC1C10E5ull);
+    Random random(0x5EEDC1C10E5ull ^ seed);
     std::vector<std::vector<Vector3>> rocks;
     for (int i = 0; i < 5; ++i) rocks.push_back(rockPoints(random, 0.3));
     int index = 0;
@@ -209,11 +209,11 @@ std::vector<std::string> sceneNames() {
     return {"pyramid10", "pyramid20", "pyramid40", "mixed1000", "sleeping1000", "sphere_alone"};
 }
 
-Scene makeScene(const std::string &name) {
+Scene makeScene(const std::string &name, std::uint64_t seed) {
     if (name == "pyramid10") return pyramid(10);
     if (name == "pyramid20") return pyramid(20);
     if (name == "pyramid40") return pyramid(40);
-    if (name == "mixed1000") return mixed();
+    if (name == "mixed1000") return mixed(seed);
     if (name == "sleeping1000") return sleeping();
     if (name == "sphere_alone") return sphereAlone();
     throw std::invalid_argument("makeScene: name \"" + name + "\" is not a scene (see --list)");

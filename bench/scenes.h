@@ -2,6 +2,7 @@
 // every engine of the benchmark builds its own world from this description.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,8 +36,10 @@ std::vector<std::string> sceneNames();
 /// The names in a comma-separated list ("pyramid10,pyramid20"), empty entries skipped.
 std::vector<std::string> splitSceneList(const std::string &list);
 
-/// The scene called `name`; throws std::invalid_argument for an unknown name.
-Scene makeScene(const std::string &name);
+/// The scene called `name`; throws std::invalid_argument for an unknown name. `seed`
+/// picks mixed1000's shapes, sizes and orientations (0: the scene the tables show); the
+/// other scenes have no randomness.
+Scene makeScene(const std::string &name, std::uint64_t seed = 0);
 
 /// Splits the scene's velocity passes per frame over `substeps` sub-steps of cyclone's
 /// World (Bullet still takes one step with all of them). Throws std::invalid_argument

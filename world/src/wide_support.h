@@ -70,8 +70,8 @@ struct WideSupportScratch {
 };
 
 /// Solves runs run[0 .. count) (count <= kWideLanes, all of one level, their carriers'
-/// runs finished) side by side, from the last point of each contact with `reverse` in
-/// the first sweep and alternating after.
+/// runs finished) side by side, every sweep from the last point of each contact with
+/// `reverse`.
 void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                       const SupportRuns &runs, const int *run, int count, bool reverse, WideSupportScratch &scratch);
 

@@ -272,7 +272,9 @@ void World::Impl::solve(real h, bool firstSubstep) {
         // it would let no body push the bodies carrying it.
         if (split && settings.shockPropagation) {
             const AddTime timed(stats.ms.solveParts.support);
-            solveSupportPass((settings.velocityIterations & 1) != 0);
+            // A run sweeps its points in one direction: the other one next step, so that
+            // no point of a face takes the larger share step after step (wide_support.h).
+            solveSupportPass(((settings.velocityIterations & 1) != 0) != ((stepCount & 1) != 0));
         }
     }
 
