@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "contact_solver.h"
+#include "cube_contact.h"
 #include "solver_schedule.h"
 #include "wide_pass.h"
 
@@ -18,29 +19,10 @@ namespace {
 using detail::SolverBody;
 using detail::SolverManifold;
 
-// A 1 kg unit cube (inertia 1/6 kg m^2 about each axis) falling at `speed` m/s onto the
-// immovable world, frictionless, touching it at two points of its lower face's edges:
-// rB = (+0.5, -0.5, 0) and (-0.5, -0.5, 0), normal +y from the world (A) to the cube (B).
-// Adds the cube's body and manifold.
+// A cube falling at `speed` m/s onto the immovable world (cube_contact.h). Adds the cube's
+// body and manifold.
 void addFallingCube(real speed, std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
-    SolverBody cube;
-    detail::setLanes(cube.v, Vector3(0, -speed, 0));
-    cube.invMass = 1;
-    cube.invInertia = Matrix3::Identity() * 6;
-    SolverManifold m;
-    m.a = 0;
-    m.b = static_cast<int>(bodies.size());
-    m.count = 2;
-    m.normal = Vector3::UnitY();
-    detail::tangentBasis(m.normal, m.tangent[0], m.tangent[1]);
-    detail::prepareDirections(m);
-    const Vector3 points[2] = {Vector3(0.5, 0, 0), Vector3(-0.5, 0, 0)};
-    const Vector3 centre(0, 0.5, 0);
-    for (int i = 0; i < 2; ++i) detail::prepareRows(bodies[0], cube, points[i], points[i] - centre, m, m.points[i]);
-    detail::prepareFrictionRows(bodies[0], cube, points, Vector3::Zero(), centre, m);
-    detail::prepareCouplings(bodies[0], cube, m);
-    bodies.push_back(cube);
-    manifolds.push_back(m);
+    manifolds.push_back(addCubeOn(0, Vector3(0, -speed, 0), bodies));
 }
 
 // One such cube at 1 m/s, solved alone.
