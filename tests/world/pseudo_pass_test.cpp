@@ -49,7 +49,7 @@ struct Scene {
     }
     // One penetration pass, the first of a sub-step. Returns whether a point had a target.
     bool pass(bool support) {
-        detail::loadWide(bodies, manifolds, groups, false, wide, {&pseudo, support});
+        detail::loadWide(bodies, manifolds, groups, false, wide, &pseudo);
         const detail::PseudoTargets targets{frames.data(), kSlop, kRate};
         return detail::solveWidePseudo(bodies, wide, pseudo, groups, support, &targets);
     }

@@ -112,7 +112,7 @@ struct WideSweep {
 CYCLONE_SIMD_CLONES
 void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
               const std::vector<SolverGroup> &groups, bool warmStart, std::vector<WideManifold> &wide,
-              const WidePseudoLoad &pseudo) {
+              std::vector<WidePseudo> *pseudo) {
     // Lanes past a group's size, and points past a manifold's count, read zeros.
     static const SolverManifold empty{};
     static const SolverPoint zeroPoint{};
@@ -122,9 +122,9 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
     // earlier step needed (std::vector's first resize takes exactly the size asked).
     if (wide.capacity() < groups.size()) wide.reserve(groups.size() + groups.size() / 2 + 4);
     wide.resize(groups.size());
-    if (pseudo.pseudo) {
-        if (pseudo.pseudo->capacity() < groups.size()) pseudo.pseudo->reserve(wide.capacity());
-        pseudo.pseudo->resize(groups.size());
+    if (pseudo) {
+        if (pseudo->capacity() < groups.size()) pseudo->reserve(wide.capacity());
+        pseudo->resize(groups.size());
     }
     for (std::size_t g = 0; g < groups.size(); ++g) {
         WideManifold &w = wide[g];
@@ -170,7 +170,7 @@ void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold>
         for (int e = 0; e < 6; ++e) lanes([e](const SolverManifold &x) { return x.frictionInverse[e]; }, w.frictionInverse[e]);
         lanes([](const SolverManifold &x) { return x.friction; }, w.coefficient);
         lanes([](const SolverManifold &x) { return x.twistRadius; }, w.twistRadius);
-        if (pseudo.pseudo) loadPseudo(m, pseudo.support, (*pseudo.pseudo)[g]);
+        if (pseudo) loadPseudo(m, (*pseudo)[g]);
         // The warm start, while the group's rows are still in the cache.
         if (!warmStart) continue;
         WideVelocities<> vel(bodies, w);

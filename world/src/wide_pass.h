@@ -65,18 +65,12 @@ struct WideManifold {
 
 struct WidePseudo;
 
-/// What loadWide copies for the penetration pass (wide_pseudo.h), when there is one.
-struct WidePseudoLoad {
-    std::vector<WidePseudo> *pseudo = nullptr;  ///< One per group, as `wide`.
-    bool support = false;                       ///< Its last pass propagates shocks.
-};
-
 /// Copies the rows of the manifolds of `groups` into `wide`, one per group, and with
 /// `warmStart` gives the bodies each group's accumulated impulses once it is copied, as
-/// warmStart (contact_solver.h) does for its manifolds. With `pseudo.pseudo`, copies
-/// what the penetration pass needs too (loadPseudo).
+/// warmStart (contact_solver.h) does for its manifolds. With `pseudo`, also copies what
+/// the penetration pass needs into it, one per group (loadPseudo).
 void loadWide(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds, const std::vector<SolverGroup> &groups,
-              bool warmStart, std::vector<WideManifold> &wide, const WidePseudoLoad &pseudo = {});
+              bool warmStart, std::vector<WideManifold> &wide, std::vector<WidePseudo> *pseudo = nullptr);
 /// One coupled pass over the wide manifolds, in order: in each, friction and then the
 /// points' normal rows, from the last point with `reverse` (alternating passes keep the
 /// first point from taking the largest share of a new contact's load, which would tilt

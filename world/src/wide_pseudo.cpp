@@ -171,7 +171,7 @@ CYCLONE_INLINE bool pushes(const WidePseudo &p) {
 }  // namespace
 
 CYCLONE_SIMD_CLONES
-void loadPseudo(const SolverManifold *const m[kWideLanes], bool support, WidePseudo &out) {
+void loadPseudo(const SolverManifold *const m[kWideLanes], WidePseudo &out) {
     static const SolverPoint zeroPoint{};
     gather(m, [](const SolverManifold &x) { return real(x.count); }, out.count);
     // A point's localA and localB are six reals in a row, and a real follows them: two
@@ -192,7 +192,6 @@ void loadPseudo(const SolverManifold *const m[kWideLanes], bool support, WidePse
         gatherFour(second, columns);
         out.localB[i] = {columns[0], columns[1], columns[2]};
     }
-    if (!support) return;
     // Per lane: the carried side alone, or both.
     gather(m, [](const SolverManifold &x) { return real(x.support == kASupportsB ? 0 : 1); }, out.moveA);
     gather(m, [](const SolverManifold &x) { return real(x.support == kBSupportsA ? 0 : 1); }, out.moveB);

@@ -39,17 +39,17 @@ struct WidePseudo {
     WideVector localB[kMaxManifoldPoints];  ///< Anchors on B, B's body space, m.
     Lanes count{};                          ///< Points of each lane's manifold.
     /// The pass with shock propagation (the last of a sub-step): where a lane has a
-    /// carrier (SolverManifold::support), only the carried body moves. 1 where that side
-    /// moves, else 0.
+    /// carrier (SolverManifold::support, kNoSupport without shock propagation), only the
+    /// carried body moves. 1 where that side moves, else 0.
     Lanes moveA{}, moveB{};
     Lanes target[kMaxManifoldPoints]{};   ///< Pseudo normal velocity aimed at, m/s.
     Lanes impulse[kMaxManifoldPoints]{};  ///< Accumulated pseudo impulse, N s.
 };
 
 /// Copies into `out` what the penetration pass needs of the four manifolds `m` (those of
-/// one group, padded with empty ones), which bodies a pass with `support` moves too.
-/// Called by loadWide while the manifolds are in the cache.
-void loadPseudo(const SolverManifold *const m[kWideLanes], bool support, WidePseudo &out);
+/// one group, padded with empty ones). Called by loadWide while the manifolds are in the
+/// cache.
+void loadPseudo(const SolverManifold *const m[kWideLanes], WidePseudo &out);
 
 /// One penetration pass over a part's wide manifolds, in order (pseudo[g] goes with
 /// wide[g]). With `support` (shock propagation), lanes with a carrier move only the

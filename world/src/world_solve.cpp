@@ -161,9 +161,7 @@ void World::Impl::warmStart() {
 void World::Impl::loadCoupledPasses() {
     const bool warm = settings.warmStarting;
     const bool recovers = settings.positionIterations > 0;
-    const auto pseudo = [&](int part) {
-        return detail::WidePseudoLoad{recovers ? &widePseudo[part] : nullptr, settings.shockPropagation};
-    };
+    const auto pseudo = [&](int part) { return recovers ? &widePseudo[part] : nullptr; };
     forEachTask(2, [&](int half) {
         detail::loadWide(solverBodies, solverManifolds, partition.groups[half], warm, wideManifolds[half], pseudo(half));
     });
