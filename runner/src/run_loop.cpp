@@ -177,10 +177,10 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
             }
             if (!world.isStatic(id) && body.getAwake()) anyAwake = true;
         }
-        if (!result.nonFinite && world.stats().nonFiniteBodies > 0) {
+        if (!result.nonFinite && world.stats().isolatedBodies > 0) {
             result.nonFinite = true;
             result.nonFiniteWhat = "the world found a non-finite state (" +
-                                   std::to_string(world.stats().nonFiniteBodies) + " of its bodies) in step " +
+                                   std::to_string(world.stats().isolatedBodies) + " of its bodies) in step " +
                                    std::to_string(step);
         }
         if (!stepFailure.empty() && !result.nonFinite) {

@@ -8,8 +8,8 @@
 #include <functional>
 #include <vector>
 
-#include "collision_shape.h"
-#include "narrowphase.h"
+#include "collision/collision_shape.h"
+#include "collision/narrowphase.h"
 
 namespace cyclone::test {
 

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "collision_test_support.h"
-#include "convex_hull.h"
+#include "collision/convex_hull.h"
 
 namespace cyclone::test {
 namespace {

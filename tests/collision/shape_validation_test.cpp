@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "collision_shape.h"
+#include "collision/collision_shape.h"
 #include "cyclone/world/error.h"
 
 namespace cyclone::test {

@@ -152,9 +152,9 @@ TEST(Api, NonFiniteBodyIsIsolated) {
         f.world.addForce(victim, Vector3(1e300, 0, 0));
         f.world.addForce(victim, Vector3(1e300, 0, 0));
         f.world.step(kDt);
-        EXPECT_EQ(f.world.stats().nonFiniteBodies, 1);
+        EXPECT_EQ(f.world.stats().isolatedBodies, 1);
         f.simulate(0.5);
-        EXPECT_EQ(f.world.stats().nonFiniteBodies, 1);
+        EXPECT_EQ(f.world.stats().isolatedBodies, 1);
         for (BodyId id : {below, above, ball}) {
             const RigidBody &n = f.world.body(id);
             EXPECT_TRUE(n.getPosition().allFinite()) << static_cast<int>(integrator);

@@ -3,7 +3,7 @@
 // asks for it, and sleeping bodies cost no per-step work.
 #include <gtest/gtest.h>
 
-#include "contact_solver.h"
+#include "solver/contact_solver.h"
 #include "world_fixture.h"
 
 namespace cyclone::test {
@@ -56,8 +56,8 @@ TEST(PayForUse, SolvePartsAreZeroForWhatDidNotRun) {
     for (int level = 0; level < 3; ++level) f.box(Vector3(0, 0.5 + level, 0), Vector3(0.5, 0.5, 0.5));
     f.simulate(1);
     const StageTimes &ms = f.world.stats().ms;
-    EXPECT_EQ(ms.solveParts.support, 0.0);
-    EXPECT_EQ(f.world.stats().supportSweeps, 0);
+    EXPECT_EQ(ms.solveParts.carrier, 0.0);
+    EXPECT_EQ(f.world.stats().carrierSweeps, 0);
     EXPECT_GT(ms.solveParts.velocity, 0.0);
     // Each part is timed within the stage's own intervals; the 1e-9 covers the rounding
     // of summing the same intervals in another order.
@@ -68,20 +68,20 @@ TEST(PayForUse, SolvePartsAreZeroForWhatDidNotRun) {
     for (int level = 0; level < 3; ++level) withSupport.box(Vector3(0, 0.5 + level, 0), Vector3(0.5, 0.5, 0.5));
     withSupport.simulate(1);
     const SolveTimes &parts = withSupport.world.stats().ms.solveParts;
-    EXPECT_GT(parts.support, 0.0);
+    EXPECT_GT(parts.carrier, 0.0);
     // Three carried bodies (the lowest on the ground), one run each per sub-step, of one
-    // to kSupportSweeps sweeps.
+    // to kCarrierSweeps sweeps.
     const int runs = 3 * WorldSettings().substeps;
-    EXPECT_GE(withSupport.world.stats().supportSweeps, runs);
-    EXPECT_LE(withSupport.world.stats().supportSweeps, runs * detail::kSupportSweeps);
-    EXPECT_LE(parts.setup + parts.velocity + parts.support + parts.position,
+    EXPECT_GE(withSupport.world.stats().carrierSweeps, runs);
+    EXPECT_LE(withSupport.world.stats().carrierSweeps, runs * detail::kCarrierSweeps);
+    EXPECT_LE(parts.setup + parts.velocity + parts.carrier + parts.position,
               withSupport.world.stats().ms.solve * (1 + 1e-9));
 
     // A body alone in the air: no contacts, so no pass runs at all.
     WorldFixture alone(noSleep());
     alone.sphere(Vector3(0, 5, 0));
     alone.world.step(1.0 / 60);
-    EXPECT_EQ(alone.world.stats().ms.solveParts.support, 0.0);
+    EXPECT_EQ(alone.world.stats().ms.solveParts.carrier, 0.0);
     EXPECT_EQ(alone.world.stats().ms.solveParts.position, 0.0);
 }
 

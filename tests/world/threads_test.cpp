@@ -8,10 +8,10 @@
 #include <thread>
 #include <vector>
 
-#include "solver_schedule.h"
-#include "support.h"
-#include "support_lanes.h"
-#include "task_pool.h"
+#include "solver/schedule.h"
+#include "solver/carriers.h"
+#include "solver/threads/carrier_threads.h"
+#include "world/task_pool.h"
 #include "world_fixture.h"
 
 namespace cyclone::test {
@@ -129,7 +129,7 @@ TEST(Threads, CountsOutsideOneTo64AreRefused) {
 // The support pass's lanes: two columns on the floor, one per half, a bridge on both
 // columns and a box on the bridge. Each run goes to its carried body's half, level by
 // level, and the bridge's run (half 1) must wait for a carrier of half 0.
-TEST(SupportLanes, RunsGoToTheirBodysHalfLevelByLevel) {
+TEST(CarrierThreads, RunsGoToTheirBodysHalfLevelByLevel) {
     // Solver bodies: 0 the world; 1, 3 the left column; 2, 4 the right; 5 the bridge
     // on 3 and 4; 6 on 5.
     const int pairs[][2] = {{0, 1}, {0, 2}, {1, 3}, {2, 4}, {3, 5}, {4, 5}, {5, 6}};
@@ -144,13 +144,13 @@ TEST(SupportLanes, RunsGoToTheirBodysHalfLevelByLevel) {
         for (detail::SolverPoint &p : m.points) p.localA = p.localB = Vector3::Zero();
         manifolds.push_back(m);
     }
-    detail::SupportScratch scratch;
-    detail::SupportRuns runs;
+    detail::CarrierScratch scratch;
+    detail::CarrierRuns runs;
     const std::vector<int> order = {0, 1, 2, 3, 4, 5, 6};
-    detail::assignSupport(7, Vector3::UnitY(), manifolds, order, scratch, runs);
+    detail::assignCarriers(7, Vector3::UnitY(), manifolds, order, scratch, runs);
     const std::vector<signed char> side = {-1, 0, 1, 0, 1, 1, 0};
-    detail::SupportLanes lanes;
-    detail::buildSupportLanes(runs, manifolds, &side, 7, lanes);
+    detail::CarrierThreads lanes;
+    detail::buildCarrierThreads(runs, manifolds, &side, 7, lanes);
     // Runs by level: {1, 2}, {3, 4}, {5}, {6}, each body its own run in that order.
     const std::vector<int> expectedRunOf = {-1, 0, 1, 2, 3, 4, 5};
     EXPECT_EQ(lanes.runOf, expectedRunOf);
@@ -162,13 +162,13 @@ TEST(SupportLanes, RunsGoToTheirBodysHalfLevelByLevel) {
     std::vector<detail::SolverBody> bodies(7);
     detail::TaskPool pool(2);
     for (int pass = 0; pass < 100; ++pass) {
-        detail::beginSupportPass(lanes);
-        pool.run(2, [&](int lane) { detail::solveSupportLane(bodies, manifolds, runs, lanes, lane, false); });
+        detail::beginCarrierPass(lanes);
+        pool.run(2, [&](int lane) { detail::solveCarrierShare(bodies, manifolds, runs, lanes, lane, false); });
         for (int r = 0; r < 6; ++r) ASSERT_EQ(lanes.finished[r].load(), lanes.pass) << "run " << r << ", pass " << pass;
     }
 
     // Without halves every run is on lane 0, in order.
-    detail::buildSupportLanes(runs, manifolds, nullptr, 7, lanes);
+    detail::buildCarrierThreads(runs, manifolds, nullptr, 7, lanes);
     EXPECT_EQ(lanes.lane[0], (std::vector<int>{0, 1, 2, 3, 4, 5}));
     EXPECT_TRUE(lanes.lane[1].empty());
 }

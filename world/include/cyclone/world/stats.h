@@ -11,8 +11,8 @@ namespace cyclone {
 /// what a solver setting costs.
 struct SolveTimes {
     double setup = 0;     ///< Jacobians, effective masses, the passes' order (once per step).
-    double velocity = 0;  ///< Predicted velocities, warm start and the coupled velocity passes.
-    double support = 0;   ///< The support pass (WorldSettings::shockPropagation; 0 when off or without contacts).
+    double velocity = 0;  ///< Predicted velocities, warm start and the velocity passes.
+    double carrier = 0;   ///< The carrier pass: shock propagation (WorldSettings::shockPropagation; 0 when off or without contacts).
     double position = 0;  ///< Penetration recovery (positionIterations; 0 when 0 or without contacts).
 };
 
@@ -48,12 +48,12 @@ struct StepStats {
     int islands = 0;            ///< Islands of awake dynamic bodies.
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
     int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
-    int supportSweeps = 0;      ///< Sweeps the support pass gave bodies resting on others, one body's sweep each (summed over sub-steps; 0 without shock propagation).
+    int carrierSweeps = 0;      ///< Sweeps the carrier pass gave bodies resting on others, one body's sweep each (summed over sub-steps; 0 without shock propagation).
     int springs = 0;            ///< Springs evaluated (once per step, whatever the sub-steps).
     int gyroscopicBodies = 0;   ///< Bodies given the implicit gyroscopic step (anisotropic inertia only).
     int ccdSweeps = 0;          ///< ccd bodies that moved far enough this step to be swept.
     int ccdHits = 0;            ///< ccd bodies moved back to their time of impact.
-    int nonFiniteBodies = 0;    ///< Bodies isolated because their state became non-finite (or beyond 1e30 m).
+    int isolatedBodies = 0;     ///< Bodies isolated because their state became non-finite (or beyond 1e30 m).
     real maxPenetration = 0;    ///< Deepest contact of the step, m.
     StageTimes ms;              ///< Time per stage, ms.
 };

@@ -1,0 +1,182 @@
+// The contact solver's pass over one manifold (world/src/contact_solver.cpp): its rows are
+// solved one after another, each against the velocities the rows before it left, as
+// Gauss-Seidel does, although the bodies' velocities are read once and each impulse
+// reaches the later rows through the manifold's couplings.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "solver/contact_solver.h"
+#include "cube_contact.h"
+#include "solver/schedule.h"
+#include "solver/velocity_pass.h"
+
+namespace cyclone::test {
+namespace {
+
+using detail::SolverBody;
+using detail::SolverManifold;
+
+// A cube falling at `speed` m/s onto the immovable world (cube_contact.h). Adds the cube's
+// body and manifold.
+void addFallingCube(real speed, std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
+    manifolds.push_back(addCubeOn(0, Vector3(0, -speed, 0), bodies));
+}
+
+// One such cube at 1 m/s, solved alone.
+struct FallingCube {
+    std::vector<SolverBody> bodies{1};
+    std::vector<SolverManifold> manifolds;
+    std::vector<detail::SolverGroup> groups{1};
+    std::vector<detail::ManifoldBatch> wide;
+
+    FallingCube() {
+        addFallingCube(1, bodies, manifolds);
+        groups[0].manifold[0] = 0;
+        groups[0].size = 1;
+    }
+
+    void pass(bool reverse) {
+        detail::loadBatches(bodies, manifolds, groups, false, wide);
+        detail::solveVelocityBatches(bodies, wide, reverse);
+        detail::storeBatches(wide, groups, manifolds);
+    }
+    Vector3 v() const { return detail::toVector3(bodies[1].v); }
+    Vector3 w() const { return detail::toVector3(bodies[1].w); }
+    real impulse(int i) const { return manifolds[0].points[i].normal.impulse; }
+
+    // The impulses of points 0 and 1 and the cube's v_y and w_z; nothing else moves.
+    void expect(real impulse0, real impulse1, real vy, real wz, real tolerance) const {
+        EXPECT_NEAR(impulse(0), impulse0, tolerance);
+        EXPECT_NEAR(impulse(1), impulse1, tolerance);
+        EXPECT_NEAR(v().y(), vy, tolerance);
+        EXPECT_NEAR(w().z(), wz, tolerance);
+        EXPECT_NEAR(v().x(), 0, tolerance);
+        EXPECT_NEAR(w().x(), 0, tolerance);
+    }
+};
+
+// By hand. Each row's angular term is rB x n = (0, 0, +-0.5), so its effective mass is
+// 1 / (1 + 0.5 * 6 * 0.5) = 0.4 kg, and an impulse on one point changes the other's normal
+// velocity by 1 - 0.5 * 6 * 0.5 = -0.5 m/s per N s.
+// The first point stops its -1 m/s: 0.4 N s. That leaves v_y = -0.6, w_z = +1.2 and the
+// second point at -1 + (-0.5)(0.4) = -1.2 m/s, which takes 0.4 * 1.2 = 0.48 N s. Then
+// v_y = -0.12 m/s and w_z = 1.2 - 6 * 0.5 * 0.48 = -0.24 rad/s: the second point is at
+// rest and the first sinks at -0.12 - 0.24 * 0.5 = -0.24 m/s, as row-by-row Gauss-Seidel
+// leaves them.
+TEST(ContactSolverPass, EachRowSeesTheRowsBeforeIt) {
+    FallingCube cube;
+    cube.pass(false);
+    cube.expect(0.4, 0.48, -0.12, -0.24, 1e-12);
+}
+
+// Backwards the same numbers fall to the other point, and the cube turns the other way.
+TEST(ContactSolverPass, ReversePassMirrorsTheOrder) {
+    FallingCube cube;
+    cube.pass(true);
+    cube.expect(0.48, 0.4, -0.12, 0.24, 1e-12);
+}
+
+// The solve order (as World sets it when a kept manifold's points come in another order)
+// takes each point with its row and couplings: a forward pass in the order {1, 0} is the
+// reverse pass in the stored order, its impulses landing on the same points; so is the
+// scalar pass (solveUncarried), and with the order {1, 0} the reverse pass is the
+// forward one.
+TEST(ContactSolverPass, SolveOrderTakesThePointsWithTheirRowsAndCouplings) {
+    for (const bool wide : {true, false}) {
+        for (const bool reverse : {false, true}) {
+            FallingCube cube;
+            cube.manifolds[0].order[0] = 1;
+            cube.manifolds[0].order[1] = 0;
+            if (wide) cube.pass(reverse);
+            else detail::solveUncarried(cube.bodies, cube.manifolds, {0}, reverse);
+            SCOPED_TRACE(std::string(wide ? "wide" : "scalar") + (reverse ? ", reverse" : ""));
+            if (reverse) cube.expect(0.4, 0.48, -0.12, -0.24, 1e-12);
+            else cube.expect(0.48, 0.4, -0.12, 0.24, 1e-12);
+        }
+    }
+}
+
+// The couplings in a solve order are P C P^T: entry k, lane l is the coupling of the k-th
+// point's row with the l-th point's (here c[i][j] = 10 i + j, friction rows 100 r + j).
+TEST(ContactSolverPass, CouplingsFollowTheSolveOrder) {
+    SolverManifold m;
+    detail::RowCouplings c;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) c.normal[i][j] = 10 * i + j;
+    for (int r = 0; r < 3; ++r)
+        for (int j = 0; j < 4; ++j) c.friction[r][j] = 100 * r + j;
+    detail::RowCouplings out;
+    EXPECT_EQ(&detail::couplingsInOrder(m, c, out), &c);  // stored order: no copy
+    const signed char order[4] = {2, 0, 3, 1};
+    std::copy(order, order + 4, m.order);
+    const detail::RowCouplings &p = detail::couplingsInOrder(m, c, out);
+    ASSERT_EQ(&p, &out);
+    for (int k = 0; k < 4; ++k)
+        for (int l = 0; l < 4; ++l) EXPECT_EQ(p.normal[k][l], 10 * order[k] + order[l]) << k << ", " << l;
+    for (int r = 0; r < 3; ++r)
+        for (int l = 0; l < 4; ++l) EXPECT_EQ(p.friction[r][l], 100 * r + order[l]) << r << ", " << l;
+}
+
+// Loaded with the warm start, a group gives its bodies its accumulated impulses, as
+// warmStart does: by hand, 0.3 and 0.2 N s on the two points lift the 1 kg cube by
+// 0.5 m/s (-1 -> -0.5) and turn it by 6 * (0.5 * 0.3 - 0.5 * 0.2) = 0.3 rad/s about z
+// (rB x n is (0, 0, +0.5) at the first point and (0, 0, -0.5) at the second). Loaded
+// without it, the cube keeps its velocity. The world is never written.
+TEST(ContactSolverPass, LoadingWithTheWarmStartGivesTheBodiesTheImpulses) {
+    for (const bool warm : {true, false}) {
+        FallingCube cube;
+        cube.manifolds[0].points[0].normal.impulse = 0.3;
+        cube.manifolds[0].points[1].normal.impulse = 0.2;
+        detail::loadBatches(cube.bodies, cube.manifolds, cube.groups, warm, cube.wide);
+        EXPECT_NEAR(cube.v().y(), warm ? -0.5 : -1, 1e-12) << warm;
+        EXPECT_NEAR(cube.w().z(), warm ? 0.3 : 0, 1e-12) << warm;
+        EXPECT_NEAR(cube.v().x(), 0, 1e-12) << warm;
+        EXPECT_NEAR(cube.w().x(), 0, 1e-12) << warm;
+        EXPECT_TRUE(detail::toVector3(cube.bodies[0].v).isZero(0)) << warm;
+        EXPECT_TRUE(detail::toVector3(cube.bodies[0].w).isZero(0)) << warm;
+        // The copy holds the impulses the passes start from.
+        EXPECT_EQ(cube.wide[0].points[0].impulse[0], 0.3) << warm;
+        EXPECT_EQ(cube.wide[0].points[1].impulse[0], 0.2) << warm;
+    }
+}
+
+// Over many passes the two points share the cube's momentum equally and both come to
+// rest: 0.5 N s each, v = 0, w = 0.
+TEST(ContactSolverPass, PassesConvergeToTheRestingSolution) {
+    FallingCube cube;
+    for (int pass = 0; pass < 60; ++pass) cube.pass((pass & 1) != 0);
+    cube.expect(0.5, 0.5, 0, 0, 1e-9);
+}
+
+// Four cubes in one group, one per lane, falling at 1, 2, 0.5 and 3 m/s. The pass is
+// linear in the speed while no impulse is clamped, so each cube gets the one-cube numbers
+// above times its speed: a lane that read or wrote another's rows or bodies would not.
+TEST(ContactSolverPass, EachLaneOfAGroupIsSolvedOnItsOwn) {
+    const real speeds[4] = {1, 2, 0.5, 3};
+    std::vector<SolverBody> bodies(1);
+    std::vector<SolverManifold> manifolds;
+    std::vector<detail::SolverGroup> groups(1);
+    for (int k = 0; k < 4; ++k) {
+        addFallingCube(speeds[k], bodies, manifolds);
+        groups[0].manifold[k] = 3 - k;  // lanes in another order than the manifolds
+    }
+    groups[0].size = 4;
+    std::vector<detail::ManifoldBatch> wide;
+    detail::loadBatches(bodies, manifolds, groups, false, wide);
+    detail::solveVelocityBatches(bodies, wide, false);
+    detail::storeBatches(wide, groups, manifolds);
+    for (int k = 0; k < 4; ++k) {
+        const real s = speeds[k];
+        EXPECT_NEAR(manifolds[k].points[0].normal.impulse, 0.4 * s, 1e-12) << "cube " << k;
+        EXPECT_NEAR(manifolds[k].points[1].normal.impulse, 0.48 * s, 1e-12) << "cube " << k;
+        EXPECT_NEAR(detail::toVector3(bodies[k + 1].v).y(), -0.12 * s, 1e-12) << "cube " << k;
+        EXPECT_NEAR(detail::toVector3(bodies[k + 1].w).z(), -0.24 * s, 1e-12) << "cube " << k;
+    }
+    EXPECT_EQ(detail::toVector3(bodies[0].v), Vector3::Zero());  // the world is never written
+}
+
+}  // namespace
+}  // namespace cyclone::test

@@ -1,0 +1,105 @@
+#include "collision/broadphase.h"
+
+namespace cyclone::detail {
+namespace {
+
+// FCL calls this for every overlapping pair; recording them keeps the narrowphase (and
+// its timing) a stage of its own.
+bool recordPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
+    auto *out = static_cast<std::vector<CandidatePair> *>(data);
+    out->push_back({bodyIndexOf(o1), bodyIndexOf(o2)});
+    return false;
+}
+
+// An object that is only a box: what the trees test against in overlapping().
+class BoxProbe : public fcl::CollisionObjectd {
+public:
+    BoxProbe() : fcl::CollisionObjectd(std::make_shared<fcl::Boxd>(1, 1, 1)) {}
+    void setBox(const fcl::AABBd &box) { aabb = box; }
+};
+
+struct ProbeQuery {
+    const fcl::CollisionObjectd *probe;
+    std::vector<std::uint32_t> *out;
+};
+
+bool recordOther(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
+    auto *query = static_cast<ProbeQuery *>(data);
+    query->out->push_back(bodyIndexOf(o1 == query->probe ? o2 : o1));
+    return false;
+}
+
+}  // namespace
+
+Broadphase::Broadphase() : probe_(std::make_unique<BoxProbe>()) {}
+
+fcl::DynamicAABBTreeCollisionManagerd *Broadphase::manager(Tree tree) {
+    switch (tree) {
+        case Tree::Awake: return &awake_;
+        case Tree::Asleep: return &asleep_;
+        case Tree::Static: return &static_;
+        case Tree::None: break;
+    }
+    return nullptr;
+}
+
+void Broadphase::place(fcl::CollisionObjectd *object, Tree from, Tree to) {
+    if (from == to) return;
+    changed_ = true;
+    if (auto *source = manager(from)) source->unregisterObject(object);
+    if (auto *target = manager(to)) {
+        target->registerObject(object);
+        target->update(object);
+    }
+}
+
+void Broadphase::refitAwake(const std::vector<fcl::CollisionObjectd *> &moved) {
+    if (moved.empty()) return;
+    awake_.update(moved);
+    changed_ = true;
+}
+
+void Broadphase::refit(fcl::CollisionObjectd *object, Tree tree) {
+    if (auto *m = manager(tree)) {
+        m->update(object);
+        changed_ = true;
+    }
+}
+
+const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
+    switch (tree) {
+        case Tree::Awake: return awake_.getTree().getRoot();
+        case Tree::Asleep: return asleep_.getTree().getRoot();
+        case Tree::Static: return static_.getTree().getRoot();
+        case Tree::None: break;
+    }
+    return nullptr;
+}
+
+void Broadphase::findPairs(std::vector<CandidatePair> &out) {
+    // Resting bodies stay inside their fat boxes: most steps of a settled scene change no
+    // tree, and the walk would find the same pairs in the same order.
+    if (changed_) {
+        pairs_.clear();
+        if (!awake_.empty()) {
+            awake_.collide(&pairs_, recordPair);
+            if (!asleep_.empty()) awake_.collide(&asleep_, &pairs_, recordPair);
+            if (!static_.empty()) awake_.collide(&static_, &pairs_, recordPair);
+        }
+        changed_ = false;
+    }
+    out.insert(out.end(), pairs_.begin(), pairs_.end());
+}
+
+}  // namespace cyclone::detail
+
+namespace cyclone::detail {
+
+void Broadphase::overlapping(const fcl::AABBd &box, std::vector<std::uint32_t> &out) {
+    static_cast<BoxProbe *>(probe_.get())->setBox(box);
+    ProbeQuery query{probe_.get(), &out};
+    for (fcl::DynamicAABBTreeCollisionManagerd *tree : {&awake_, &asleep_, &static_})
+        if (!tree->empty()) tree->collide(probe_.get(), &query, recordOther);
+}
+
+}  // namespace cyclone::detail

@@ -1,0 +1,398 @@
+// Validation and compilation of shapes, their unit inertia and supporting features.
+//
+// Supporting features follow Jolt's GetSupportingFace: flat-faced shapes always give the
+// face most aligned with the direction, and the narrowphase keeps only the clipped points
+// that are within the speculative distance. Curved shapes give a polygon or a segment
+// only when the direction is close to where the shape is flat (a cylinder's cap or side,
+// a capsule's side) and one point otherwise.
+#include "collision/collision_shape.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <string>
+
+#include "collision/convex_hull.h"
+#include "cyclone/world/error.h"
+
+namespace cyclone::detail {
+namespace {
+
+constexpr real kPi = 3.14159265358979323846;
+// A capsule's or cylinder's side is a segment when the axis is within 5 degrees of
+// perpendicular to the direction: sin(5 deg).
+constexpr real kSideSine = 0.08715574274765817;
+// A cylinder's cap is a polygon when the axis is within 15 degrees of the direction:
+// cos(15 deg). Rim points beyond the speculative distance are dropped by clipping.
+constexpr real kCapCosine = 0.9659258262890683;
+// Beyond 1 degree of tilt the exact deepest rim point is added to the cap polygon; below
+// it, the direction of tilt is noise and the fixed vertices alone keep contacts steady.
+constexpr real kRimPointSine = 0.01745240643728351;
+constexpr int kCapVertices = 16;
+
+// The cap polygon's vertex directions, computed once.
+struct CapCircle {
+    real cosine[kCapVertices];
+    real sine[kCapVertices];
+    CapCircle() {
+        for (int i = 0; i < kCapVertices; ++i) {
+            cosine[i] = std::cos(2 * kPi * i / kCapVertices);
+            sine[i] = std::sin(2 * kPi * i / kCapVertices);
+        }
+    }
+};
+
+// Half size of the square a plane gives as its feature, m. The narrowphase treats a
+// plane as unbounded and never clips against these corners.
+constexpr real kPlaneFeatureHalfSize = 1000;
+
+std::string str(real value) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
+std::string index(const char *field, size_t i) { return std::string(field) + "[" + std::to_string(i) + "]"; }
+
+[[noreturn]] void refuse(const std::string &field, const std::string &problem) {
+    throw InvalidArgument("", field, problem);
+}
+
+void requirePositive(const std::string &field, real value) {
+    if (!(std::isfinite(value) && value > 0)) refuse(field, "must be finite and > 0, got " + str(value));
+}
+
+void requireFinite(const std::string &field, real value) {
+    if (!std::isfinite(value)) refuse(field, "must be finite, got " + str(value));
+}
+
+void requireFinite(const std::string &field, const Vector3 &value) {
+    for (int k = 0; k < 3; ++k) requireFinite(index(field.c_str(), static_cast<size_t>(k)), value[k]);
+}
+
+Matrix3 boxInertia(const Vector3 &h) {
+    // (1/12)(b^2 + c^2) with full sizes b = 2 h_y, c = 2 h_z: (h_y^2 + h_z^2) / 3.
+    return Vector3(h.y() * h.y() + h.z() * h.z(), h.x() * h.x() + h.z() * h.z(), h.x() * h.x() + h.y() * h.y())
+               .asDiagonal() *
+           (real(1) / 3);
+}
+
+Matrix3 cylinderInertia(real r, real length) {
+    const real side = (3 * r * r + length * length) / 12;
+    return Vector3(side, side, r * r / 2).asDiagonal();
+}
+
+Matrix3 capsuleInertia(real r, real length) {
+    // Mass splits by volume between the cylinder (length L) and the two hemispheres
+    // (together one sphere). A hemisphere of mass m has 2/5 m r^2 about any diameter of
+    // its flat face; its centre of mass is 3r/8 from that face, which is L/2 from the
+    // capsule's centre, so across the axis it contributes
+    // m (2/5 r^2 - (3r/8)^2 + (L/2 + 3r/8)^2) = m (2/5 r^2 + L^2/4 + 3 L r / 8).
+    const real cylinderVolume = kPi * r * r * length;
+    const real sphereVolume = 4 * kPi * r * r * r / 3;
+    const real total = cylinderVolume + sphereVolume;
+    const real mc = cylinderVolume / total;
+    const real ms = sphereVolume / total;
+    const real side = mc * (3 * r * r + length * length) / 12 +
+                      ms * (real(2) / 5 * r * r + length * length / 4 + 3 * length * r / 8);
+    const real axial = mc * r * r / 2 + ms * real(2) / 5 * r * r;
+    return Vector3(side, side, axial).asDiagonal();
+}
+
+void compileConvex(const Shape &shape, std::vector<Vector3> &vertices, std::vector<std::vector<int>> &faces,
+                   std::vector<Vector3> &normals, Matrix3 &inertia,
+                   std::shared_ptr<fcl::CollisionGeometryd> &geometry) {
+    for (size_t i = 0; i < shape.vertices.size(); ++i) requireFinite(index("shape.vertices", i), shape.vertices[i]);
+    if (shape.vertices.size() < 4)
+        refuse("shape.vertices", "needs at least 4 points, got " + std::to_string(shape.vertices.size()));
+    ConvexHull hull;
+    if (!computeConvexHull(shape.vertices, hull))
+        refuse("shape.vertices", "are all coplanar (or coincident): their hull has no volume");
+    real volume = 0;
+    polyhedronMassProperties(hull.vertices, hull.faces, volume, inertia);
+    if (!(volume > 0)) refuse("shape.vertices", "span no volume");
+
+    auto fclVertices = std::make_shared<std::vector<fcl::Vector3d>>(hull.vertices.begin(), hull.vertices.end());
+    auto fclFaces = std::make_shared<std::vector<int>>();
+    for (const std::vector<int> &face : hull.faces) {
+        fclFaces->push_back(static_cast<int>(face.size()));
+        fclFaces->insert(fclFaces->end(), face.begin(), face.end());
+    }
+    geometry = std::make_shared<fcl::Convexd>(fclVertices, static_cast<int>(hull.faces.size()), fclFaces);
+    vertices = std::move(hull.vertices);
+    faces = std::move(hull.faces);
+    normals = std::move(hull.normals);
+}
+
+void compileMesh(const Shape &shape, std::vector<Vector3> &vertices, std::vector<std::vector<int>> &faces,
+                 std::vector<Vector3> &normals, std::shared_ptr<fcl::CollisionGeometryd> &geometry) {
+    for (size_t i = 0; i < shape.vertices.size(); ++i) requireFinite(index("shape.vertices", i), shape.vertices[i]);
+    if (shape.triangles.empty()) refuse("shape.triangles", "must not be empty");
+    const int count = static_cast<int>(shape.vertices.size());
+    for (size_t t = 0; t < shape.triangles.size(); ++t) {
+        const std::array<int, 3> &triangle = shape.triangles[t];
+        const std::string field = index("shape.triangles", t);
+        for (size_t k = 0; k < 3; ++k) {
+            if (triangle[k] < 0 || triangle[k] >= count)
+                refuse(index(field.c_str(), k), "must be a vertex index in [0, " + std::to_string(count) + "), got " +
+                                                    std::to_string(triangle[k]));
+            for (size_t j = 0; j < k; ++j)
+                if (triangle[j] == triangle[k])
+                    refuse(index(field.c_str(), k), "repeats vertex " + std::to_string(triangle[k]) + " of its triangle");
+        }
+        const Vector3 &p0 = shape.vertices[triangle[0]];
+        const Vector3 e1 = shape.vertices[triangle[1]] - p0;
+        const Vector3 e2 = shape.vertices[triangle[2]] - p0;
+        const Vector3 cross = e1.cross(e2);
+        const real scale = std::max(e1.squaredNorm(), e2.squaredNorm());
+        if (!(cross.norm() > 1e-12 * scale)) refuse(field, "has zero area (its vertices are collinear)");
+        faces.push_back({triangle[0], triangle[1], triangle[2]});
+        normals.push_back(cross.normalized());
+    }
+    vertices = shape.vertices;
+
+    auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+    std::vector<fcl::Vector3d> points(vertices.begin(), vertices.end());
+    std::vector<fcl::Triangle> triangles;
+    triangles.reserve(shape.triangles.size());
+    for (const std::array<int, 3> &t : shape.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+    model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
+    model->addSubModel(points, triangles);
+    model->endModel();
+    geometry = model;
+}
+
+}  // namespace
+
+std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
+    auto compiled = std::make_shared<CollisionShape>();
+    CollisionShape &c = *compiled;
+    switch (shape.type) {
+        case ShapeType::Box:
+            for (size_t k = 0; k < 3; ++k) requirePositive(index("shape.half_extents", k), shape.halfExtents[k]);
+            c.geometry_ = std::make_shared<fcl::Boxd>(2 * shape.halfExtents);
+            c.unitInertia_ = boxInertia(shape.halfExtents);
+            break;
+        case ShapeType::Sphere:
+            requirePositive("shape.radius", shape.radius);
+            c.geometry_ = std::make_shared<fcl::Sphered>(shape.radius);
+            c.unitInertia_ = Matrix3::Identity() * (real(2) / 5 * shape.radius * shape.radius);
+            break;
+        case ShapeType::Capsule:
+            requirePositive("shape.radius", shape.radius);
+            if (!(std::isfinite(shape.length) && shape.length >= 0))
+                refuse("shape.length", "must be finite and >= 0, got " + str(shape.length));
+            c.geometry_ = std::make_shared<fcl::Capsuled>(shape.radius, shape.length);
+            c.unitInertia_ = capsuleInertia(shape.radius, shape.length);
+            break;
+        case ShapeType::Cylinder:
+            requirePositive("shape.radius", shape.radius);
+            requirePositive("shape.length", shape.length);
+            c.geometry_ = std::make_shared<fcl::Cylinderd>(shape.radius, shape.length);
+            c.unitInertia_ = cylinderInertia(shape.radius, shape.length);
+            break;
+        case ShapeType::Convex:
+            compileConvex(shape, c.vertices_, c.faces_, c.faceNormals_, c.unitInertia_, c.geometry_);
+            break;
+        case ShapeType::Plane: {
+            requireFinite("shape.normal", shape.normal);
+            requireFinite("shape.offset", shape.offset);
+            const real length = shape.normal.stableNorm();
+            if (!(length > 0)) refuse("shape.normal", "must have non-zero length");
+            // The solid is normal.x <= offset; dividing both sides by |normal| keeps it.
+            c.planeNormal_ = shape.normal / length;
+            c.planeOffset_ = shape.offset / length;
+            c.geometry_ = std::make_shared<fcl::Halfspaced>(c.planeNormal_, c.planeOffset_);
+            break;
+        }
+        case ShapeType::Mesh:
+            compileMesh(shape, c.vertices_, c.faces_, c.faceNormals_, c.geometry_);
+            break;
+        default:
+            refuse("shape.type", "is not a known shape type");
+    }
+    c.geometry_->computeLocalAABB();
+    c.shape_ = shape;
+    return compiled;
+}
+
+void CollisionShape::supportingFeature(const Matrix4 &pose, const Vector3 &direction, int triangle,
+                                       SupportFeature &out) const {
+    const Matrix3 rotation = pose.linear();
+    const Vector3 origin = pose.translation();
+    out.count = 0;
+    switch (shape_.type) {
+        case ShapeType::Box: {
+            const Vector3 local = rotation.transpose() * direction;
+            int axis = 0;
+            local.cwiseAbs().maxCoeff(&axis);
+            const int j = (axis + 1) % 3;
+            const int k = (axis + 2) % 3;
+            const real sign = local[axis] >= 0 ? 1 : -1;
+            // Counter-clockwise about +e_axis is (-,-) (+,-) (+,+) (-,+) in (e_j, e_k);
+            // about -e_axis the same loop runs backwards.
+            static constexpr real corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+            const Vector3 &h = shape_.halfExtents;
+            for (int n = 0; n < 4; ++n) {
+                const real *corner = corners[sign > 0 ? n : 3 - n];
+                Vector3 p;
+                p[axis] = sign * h[axis];
+                p[j] = corner[0] * h[j];
+                p[k] = corner[1] * h[k];
+                out.points[n] = rotation * p + origin;
+            }
+            out.count = 4;
+            break;
+        }
+        case ShapeType::Sphere:
+            out.points[0] = origin + shape_.radius * direction;
+            out.count = 1;
+            break;
+        case ShapeType::Capsule: {
+            const Vector3 axis = rotation.col(2);
+            const real along = axis.dot(direction);
+            const Vector3 half = axis * (shape_.length / 2);
+            const Vector3 offset = shape_.radius * direction;
+            if (shape_.length > 0 && std::abs(along) < kSideSine) {
+                // Each end sphere's own support point: exact for either end.
+                out.points[0] = origin - half + offset;
+                out.points[1] = origin + half + offset;
+                out.count = 2;
+            } else {
+                out.points[0] = origin + (along >= 0 ? half : Vector3(-half)) + offset;
+                out.count = 1;
+            }
+            break;
+        }
+        case ShapeType::Cylinder: {
+            const Vector3 axis = rotation.col(2);
+            const real along = axis.dot(direction);
+            const real sign = along >= 0 ? 1 : -1;
+            const Vector3 perpendicular = direction - along * axis;
+            const real tilt = perpendicular.norm();
+            const Vector3 capCentre = origin + axis * (sign * shape_.length / 2);
+            const real r = shape_.radius;
+            if (std::abs(along) >= kCapCosine) {
+                const Vector3 u = rotation.col(0);
+                const Vector3 v = rotation.col(1);
+                const real step = 2 * kPi / kCapVertices;
+                real rimAngle = -1;
+                if (tilt > kRimPointSine) {
+                    rimAngle = std::atan2(perpendicular.dot(v), perpendicular.dot(u));
+                    if (rimAngle < 0) rimAngle += 2 * kPi;
+                }
+                static const CapCircle circle;
+                int n = 0;
+                for (int i = 0; i < kCapVertices; ++i) {
+                    const real angle = i * step;
+                    out.points[n++] = capCentre + r * (circle.cosine[i] * u + circle.sine[i] * v);
+                    if (rimAngle > angle + 1e-6 && rimAngle < angle + step - 1e-6)
+                        out.points[n++] = capCentre + r * (perpendicular / tilt);
+                }
+                out.count = n;
+                // The loop runs counter-clockwise about +axis; the bottom cap faces -axis.
+                if (sign < 0) std::reverse(out.points, out.points + n);
+            } else if (std::abs(along) < kSideSine) {
+                const Vector3 offset = r * (perpendicular / tilt);
+                const Vector3 half = axis * (shape_.length / 2);
+                out.points[0] = origin - half + offset;
+                out.points[1] = origin + half + offset;
+                out.count = 2;
+            } else {
+                out.points[0] = capCentre + r * (perpendicular / tilt);
+                out.count = 1;
+            }
+            break;
+        }
+        case ShapeType::Convex: {
+            const Vector3 local = rotation.transpose() * direction;
+            size_t best = 0;
+            real bestDot = -2;
+            for (size_t f = 0; f < faceNormals_.size(); ++f) {
+                const real d = faceNormals_[f].dot(local);
+                if (d > bestDot) bestDot = d, best = f;
+            }
+            const std::vector<int> &face = faces_[best];
+            const int size = static_cast<int>(face.size());
+            // A face with more corners than a feature holds keeps an evenly spaced subset,
+            // which is still a convex loop in the same order.
+            const int n = std::min(size, SupportFeature::kMaxPoints);
+            for (int i = 0; i < n; ++i) out.points[i] = rotation * vertices_[face[i * size / n]] + origin;
+            out.count = n;
+            break;
+        }
+        case ShapeType::Plane: {
+            const Vector3 normal = rotation * planeNormal_;
+            const Vector3 centre = origin + planeOffset_ * normal;
+            const Vector3 u = normal.unitOrthogonal() * kPlaneFeatureHalfSize;
+            const Vector3 v = normal.cross(u);
+            out.points[0] = centre - u - v;
+            out.points[1] = centre + u - v;
+            out.points[2] = centre + u + v;
+            out.points[3] = centre - u + v;
+            out.count = 4;
+            break;
+        }
+        case ShapeType::Mesh: {
+            if (triangle < 0 || triangle >= static_cast<int>(faces_.size())) break;
+            const std::vector<int> &t = faces_[triangle];
+            const bool facing = (rotation * faceNormals_[triangle]).dot(direction) >= 0;
+            for (int i = 0; i < 3; ++i) out.points[i] = rotation * vertices_[t[facing ? i : 2 - i]] + origin;
+            out.count = 3;
+            break;
+        }
+    }
+}
+
+Vector3 CollisionShape::supportPoint(const Matrix4 &pose, const Vector3 &direction, int triangle) const {
+    const Matrix3 rotation = pose.linear();
+    const Vector3 origin = pose.translation();
+    switch (shape_.type) {
+        case ShapeType::Box: {
+            const Vector3 local = rotation.transpose() * direction;
+            Vector3 corner;
+            for (int k = 0; k < 3; ++k) corner[k] = local[k] >= 0 ? shape_.halfExtents[k] : -shape_.halfExtents[k];
+            return rotation * corner + origin;
+        }
+        case ShapeType::Sphere:
+            return origin + shape_.radius * direction;
+        case ShapeType::Capsule: {
+            const Vector3 axis = rotation.col(2);
+            const real end = axis.dot(direction) >= 0 ? shape_.length / 2 : -shape_.length / 2;
+            return origin + end * axis + shape_.radius * direction;
+        }
+        case ShapeType::Cylinder: {
+            const Vector3 axis = rotation.col(2);
+            const real along = axis.dot(direction);
+            const Vector3 perpendicular = direction - along * axis;
+            const real tilt = perpendicular.norm();
+            Vector3 p = origin + axis * (along >= 0 ? shape_.length / 2 : -shape_.length / 2);
+            if (tilt > 1e-12) p += shape_.radius / tilt * perpendicular;
+            return p;
+        }
+        case ShapeType::Convex: {
+            const Vector3 local = rotation.transpose() * direction;
+            size_t best = 0;
+            real bestDot = vertices_[0].dot(local);
+            for (size_t i = 1; i < vertices_.size(); ++i) {
+                const real d = vertices_[i].dot(local);
+                if (d > bestDot) bestDot = d, best = i;
+            }
+            return rotation * vertices_[best] + origin;
+        }
+        case ShapeType::Plane:
+            return origin + planeOffset_ * (rotation * planeNormal_);
+        case ShapeType::Mesh: {
+            if (triangle < 0 || triangle >= static_cast<int>(faces_.size())) return origin;
+            const Vector3 local = rotation.transpose() * direction;
+            const std::vector<int> &t = faces_[triangle];
+            int best = t[0];
+            for (int i = 1; i < 3; ++i)
+                if (vertices_[t[i]].dot(local) > vertices_[best].dot(local)) best = t[i];
+            return rotation * vertices_[best] + origin;
+        }
+    }
+    return origin;
+}
+
+}  // namespace cyclone::detail

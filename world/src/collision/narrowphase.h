@@ -1,0 +1,57 @@
+// Narrowphase: FCL contact detection between two placed shapes, turned into contact
+// manifolds of up to four well-spread points.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "collision/collision_shape.h"
+
+namespace cyclone::detail {
+
+/// One contact point of a manifold, world space.
+struct ContactPoint {
+    Vector3 pointA = Vector3::Zero();  ///< On A's surface: A's deepest point into B, m.
+    Vector3 pointB = Vector3::Zero();  ///< On B's surface, m.
+    real depth = 0;                    ///< (pointA - pointB).normal: > 0 penetrating, < 0 apart, m.
+};
+
+/// Contact between two shapes along one normal.
+struct Manifold {
+    static constexpr int kMaxPoints = 4;
+    Vector3 normal = Vector3::UnitY();  ///< Unit, world space, pointing from A to B.
+    int count = 0;
+    std::array<ContactPoint, kMaxPoints> points;
+};
+
+struct NarrowphaseSettings {
+    /// Clipped points up to this far apart are kept (speculative contact), m, >= 0.
+    real speculativeDistance = 0.02;
+    /// Test every pair with FCL, even the pairs that have a test of their own (box-box,
+    /// sphere-sphere, sphere-box, a plane against any solid shape); for comparing the two.
+    bool forceFcl = false;
+};
+
+/// Tests shapes `a` at `poseA` and `b` at `poseB` and appends one manifold per contact
+/// normal to `out` (none when apart; a mesh may give several). Returns the number
+/// appended. Box-box (separating axes), sphere-sphere, sphere-box and a plane against any
+/// solid shape have tests of their own; every other pair goes through FCL's contact test
+/// (GST_LIBCCD, through collideShapes), and so does every pair with `settings.forceFcl`.
+/// Normals point from A to B whatever order FCL used internally; near-zero normals are
+/// dropped. Mesh triangles are one-sided: a shape is pushed out to the side their
+/// counter-clockwise winding faces. Allocates nothing once `out` has grown, except inside
+/// FCL for box-box pairs forced through it and for meshes.
+int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+            const NarrowphaseSettings &settings, std::vector<Manifold> &out);
+
+/// The order in which collide() lists the points of a manifold, applied to `count`
+/// (<= Manifold::kMaxPoints) existing points with B-side positions `pointB` and depths
+/// `depth` along `normal`: the deepest (of equally deep ones, the farthest from their
+/// centre), the farthest from it, the one spanning the largest triangle with those two,
+/// then the one adding the most area. Writes a permutation of 0..count-1 into `order`
+/// (points that add nothing come last). The contact solver visits points in this order,
+/// and Gauss-Seidel favours the first: a manifold reused without the narrowphase is put
+/// in this order again so that, like a fresh one, it starts from its deepest point.
+void contactOrder(const Vector3 *pointB, const real *depth, int count, const Vector3 &normal, int *order);
+
+}  // namespace cyclone::detail

@@ -1,0 +1,97 @@
+#include "dynamics/integration.h"
+
+#include <cmath>
+
+#include "world/validation.h"
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+namespace {
+
+// Finite, and within the coordinates FCL can place: otherwise the body is isolated.
+bool stateFinite(const RigidBody &body) {
+    return body.getPosition().allFinite() && body.getPosition().cwiseAbs().maxCoeff() <= kMaxCoordinate && body.getOrientation().coeffs().allFinite() &&
+           body.getVelocity().allFinite() && body.getRotation().allFinite() &&
+           std::isfinite(body.getVelocity().squaredNorm() + body.getRotation().squaredNorm());
+}
+
+}  // namespace
+
+void Integration::beginStep(WorldState &world, real dt) {
+    BodyStore &bodies = world.bodies;
+    bodies.sortAwake();
+    // `simulated` of the bodies simulated last step; the others are already false.
+    for (std::uint32_t index : bodies.simulated) bodies[index].simulated = false;
+    bodies.simulated.clear();
+    for (std::size_t k = 0; k < bodies.awake.size(); ++k) {
+        const std::uint32_t index = bodies.awake[k];
+        BodyRecord &r = bodies[index];
+        r.simulated = true;
+        // A force whose velocity overflows within the step (1e300 N on 1 kg) would reach
+        // other bodies through springs before the solver's check: isolate the body now.
+        const RigidBody &body = r.body;
+        const Vector3 v = body.getVelocity() +
+                          dt * (body.getAcceleration() + body.getInverseMass() * body.getAccumulatedForce());
+        const Vector3 w = body.getRotation() + dt * (body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque());
+        if (!std::isfinite(v.squaredNorm() + w.squaredNorm())) {
+            world.isolate(index);  // takes it out of `awake`: slot k now holds another body
+            --k;
+            continue;
+        }
+        r.solverIndex = static_cast<int>(bodies.simulated.size()) + 1;
+        bodies.simulated.push_back(index);
+    }
+    for (SpringRecord &s : world.springs) {
+        if (!s.alive) continue;
+        BodyRecord &a = bodies[s.settings.a.index];
+        BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
+        if (!a.simulated && !(b && b->simulated)) continue;
+        // An isolated (non-finite) end would carry its state to the other: the spring is off.
+        if (a.isolated || (b && b->isolated)) continue;
+        // A spring joins its bodies: one awake end wakes the other.
+        if (!a.simulated) world.wake(s.settings.a.index);
+        if (b && !b->simulated) world.wake(s.settings.b->index);
+        ++world.stats.springs;
+    }
+    if (world.settings.substeps > 1) {
+        savedForces_.resize(bodies.simulated.size());
+        savedTorques_.resize(bodies.simulated.size());
+        for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+            savedForces_[k] = bodies[bodies.simulated[k]].body.getAccumulatedForce();
+            savedTorques_[k] = bodies[bodies.simulated[k]].body.getAccumulatedTorque();
+        }
+    }
+}
+
+// Held for a whole step, an explicit spring force would gain energy at any stiffness once
+// there are sub-steps (the positions would move under a force that lags them): springs
+// act at each sub-step's start.
+void Integration::addSubstepForces(WorldState &world, real h, bool firstSubstep) {
+    BodyStore &bodies = world.bodies;
+    if (!firstSubstep) {
+        for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+            BodyRecord &r = bodies[bodies.simulated[k]];
+            if (r.isolated) continue;
+            r.body.addForce(savedForces_[k]);
+            r.body.addTorque(savedTorques_[k]);
+        }
+    }
+    if (world.stats.springs == 0) return;
+    if (world.settings.integrator == Integrator::NewtonEulerImplicit) world.springs.addImplicitForces(bodies, h);
+    else world.springs.addExplicitForces(bodies);
+}
+
+void Integration::integrate(WorldState &world, real h) {
+    BodyStore &bodies = world.bodies;
+    nonFinite_.assign(bodies.simulated.size(), 0);
+    world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
+        RigidBody &body = bodies[bodies.simulated[k]].body;
+        if (bodies[bodies.simulated[k]].isolated) return;
+        body.integrate(h, false);
+        nonFinite_[k] = !stateFinite(body);
+    });
+    for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
+        if (nonFinite_[k]) world.isolate(bodies.simulated[k]);
+}
+
+}  // namespace cyclone::detail

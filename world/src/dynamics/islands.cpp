@@ -1,0 +1,80 @@
+#include "dynamics/islands.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+namespace {
+
+int findRoot(std::vector<int> &parent, int i) {
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    return i;
+}
+
+}  // namespace
+
+void Islands::build(WorldState &world) {
+    BodyStore &bodies = world.bodies;
+    const int n = static_cast<int>(bodies.simulated.size());
+    parent_.resize(n);
+    std::iota(parent_.begin(), parent_.end(), 0);
+    auto unite = [&](int x, int y) {
+        x = findRoot(parent_, x);
+        y = findRoot(parent_, y);
+        if (x != y) parent_[std::max(x, y)] = std::min(x, y);
+    };
+    for (const SolverManifold &m : world.solver.manifolds())
+        if (m.a > 0 && m.b > 0) unite(m.a - 1, m.b - 1);
+    for (const SpringRecord &s : world.springs) {
+        if (!s.alive || !s.settings.b) continue;
+        const BodyRecord &a = bodies[s.settings.a.index];
+        const BodyRecord &b = bodies[s.settings.b->index];
+        if (a.simulated && b.simulated) unite(a.solverIndex - 1, b.solverIndex - 1);
+    }
+    // Islands are numbered in the order of their first members. A parent never comes
+    // after its child (unite keeps the smaller root), so in one walk each entry's parent
+    // already holds its island, stored as ~island to tell it from a parent's index.
+    int islands = 0;
+    for (int k = 0; k < n; ++k) {
+        const int up = parent_[k];
+        parent_[k] = up == k ? ~islands++ : parent_[up];
+    }
+    // Lay the members out island by island. start_ is the cursor, which leaves each
+    // island's entry at the next island's start: shifted back at the end.
+    start_.assign(islands + 1, 0);
+    for (int k = 0; k < n; ++k) {
+        const int island = ~parent_[k];
+        bodies[bodies.simulated[k]].island = island;
+        ++start_[island + 1];
+    }
+    for (int i = 0; i < islands; ++i) start_[i + 1] += start_[i];
+    members_.resize(n);
+    for (int k = 0; k < n; ++k) members_[start_[~parent_[k]]++] = bodies.simulated[k];
+    for (int i = islands - 1; i > 0; --i) start_[i] = start_[i - 1];
+    start_[0] = 0;
+    world.stats.islands = islands;
+}
+
+void Islands::updateSleep(WorldState &world) {
+    if (!world.settings.sleep) return;
+    const BodyStore &bodies = world.bodies;
+    const int islands = static_cast<int>(start_.size()) - 1;
+    for (int i = 0; i < islands; ++i) {
+        const int start = start_[i];
+        const int end = start_[i + 1];
+        bool still = true;
+        for (int k = start; k < end && still; ++k) {
+            const BodyRecord &r = bodies[members_[k]];
+            still = !r.isolated && r.body.getAwake() && r.body.getCanSleep() &&
+                    r.body.getMotion() < r.body.getSleepEpsilon();
+        }
+        if (still) world.sleepIsland(members_.data() + start, end - start);
+    }
+}
+
+}  // namespace cyclone::detail

@@ -1,0 +1,35 @@
+// Islands: the groups of simulated bodies joined by contacts or springs this step, and
+// the islands asleep. An island sleeps as a whole once every body in it is still.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cyclone/world/world.h"
+
+namespace cyclone::detail {
+
+struct WorldState;
+
+class Islands {
+public:
+    /// Sleeping islands' members, by BodyRecord::sleepingIsland (cleared when woken).
+    std::vector<std::vector<std::uint32_t>> sleeping;
+    std::vector<int> freeSleeping;  ///< Entries of `sleeping` free for reuse.
+
+    /// The islands stage: joins the simulated bodies by the step's contacts and springs.
+    void build(WorldState &world);
+    /// Puts to sleep every island whose bodies are all still (RigidBody's motion average
+    /// below its sleep epsilon).
+    void updateSleep(WorldState &world);
+    /// The bodies of this step's island `island` (BodyRecord::island).
+    const std::uint32_t *members(int island) const { return members_.data() + start_[island]; }
+    int size(int island) const { return start_[island + 1] - start_[island]; }
+
+private:
+    std::vector<int> parent_;  ///< Union-find over the simulated bodies, by solver index - 1.
+    std::vector<int> start_;   ///< Island i's members are members_[start_[i], start_[i + 1]).
+    std::vector<std::uint32_t> members_;
+};
+
+}  // namespace cyclone::detail

@@ -1,0 +1,161 @@
+// Spring forces, at the start of every sub-step of h seconds: explicit (the seed's) or
+// backward Euler.
+//
+// Design note. An explicit spring force makes each sub-step a symplectic Euler step of
+// the oscillator: stable only while omega h < 2, and beyond that the energy grows every
+// step. The implicit force is the one the spring will exert at the end of
+// the sub-step: F = F(x + h u') - c u', where u' is the relative velocity of the two
+// attachment points after the sub-step. Linearising the spring about the current
+// attachment points (stiffness K = k d d^T along the spring plus k (1 - L/l) across it
+// when stretched) and writing u' = u + h W F, with u the velocity the points reach
+// without this spring and W the inverse mass matrix of the two points, gives the 3x3
+// system (1 + h (h K + C) W) F = F0 - (h K + C) u. For a body held at its centre of mass
+// this is exactly backward Euler along the spring, whose energy shrinks by
+// 1 / (1 + (omega h)^2) per sub-step whatever omega h is. An attachment off the centre of
+// mass moves on a circle, not along its velocity, so a fast-turning body may gain a
+// little in one step (k |stretch| (h w)^2 r at most), never beyond its starting energy in
+// tests/world/integrator_test.cpp. Springs sharing a body are coupled: each is solved
+// with the others' current forces, in kImplicitSpringPasses passes warm-started with the
+// last sub-step's forces (block Gauss-Seidel). At rest the warm start is the solution, so
+// a chain hangs exactly where its springs carry the weight below them.
+#include "dynamics/springs.h"
+
+#include <algorithm>
+
+namespace cyclone::detail {
+namespace {
+
+Matrix3 skew(const Vector3 &v) {
+    Matrix3 m;
+    m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return m;
+}
+
+// The velocity change at a point `r` from the centre of mass per unit impulse there:
+// 1/m - [r]x I^-1 [r]x (world space).
+Matrix3 pointInverseMass(const RigidBody &body, const Vector3 &r) {
+    const Matrix3 rx = skew(r);
+    return body.getInverseMass() * Matrix3::Identity() - rx * body.getInverseInertiaTensorWorld() * rx;
+}
+
+// The velocity of the point `r` from the centre of mass after h seconds of the forces
+// accumulated so far (gravity, user forces, springs already solved).
+Vector3 freePointVelocity(const RigidBody &body, const Vector3 &r, real h) {
+    const Vector3 v = body.getVelocity() +
+                      h * (body.getAcceleration() + body.getInverseMass() * body.getAccumulatedForce());
+    const Vector3 w = body.getRotation() + h * (body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque());
+    return v + w.cross(r);
+}
+
+}  // namespace
+
+void SpringSet::addExplicitForces(BodyStore &bodies) {
+    for (SpringRecord &s : records) {
+        if (!s.alive) continue;
+        BodyRecord &a = bodies[s.settings.a.index];
+        BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
+        const bool bSimulated = b && b->simulated;
+        if (!a.simulated && !bSimulated) continue;
+        if (a.isolated || (b && b->isolated)) continue;
+        const Vector3 pa = a.body.getPointInWorldSpace(s.settings.aPoint);
+        const Vector3 pb = b ? b->body.getPointInWorldSpace(s.settings.bPoint) : s.settings.bPoint;
+        const Vector3 d = pa - pb;
+        const real length = d.norm();
+        if (!(length > 1e-12)) continue;
+        const Vector3 dir = d / length;
+        const Vector3 va = a.body.getVelocity() + a.body.getRotation().cross(pa - a.body.getPosition());
+        const Vector3 vb = b ? Vector3(b->body.getVelocity() + b->body.getRotation().cross(pb - b->body.getPosition()))
+                             : Vector3::Zero();
+        const Vector3 force = -(s.settings.stiffness * (length - s.settings.restLength) +
+                                s.settings.damping * (va - vb).dot(dir)) * dir;
+        if (!force.allFinite()) continue;
+        if (a.simulated) a.body.addForceAtPoint(force, pa);
+        if (bSimulated) b->body.addForceAtPoint(-force, pb);
+    }
+}
+
+void SpringSet::addImplicitForces(BodyStore &bodies, real h) {
+    // What stays fixed through the passes of this sub-step: the attachment points, the
+    // spring's force there and the 3x3 system of each active spring.
+    implicit.clear();
+    for (std::uint32_t index = 0; index < records.size(); ++index) {
+        SpringRecord &s = records[index];
+        if (!s.alive) continue;
+        const SpringSettings &spring = s.settings;
+        BodyRecord &a = bodies[spring.a.index];
+        BodyRecord *b = spring.b ? &bodies[spring.b->index] : nullptr;
+        const bool bSimulated = b && b->simulated;
+        if ((!a.simulated && !bSimulated) || a.isolated || (b && b->isolated)) {
+            s.implicitForce.setZero();
+            continue;
+        }
+        ImplicitSpring is;
+        is.spring = index;
+        is.aMoves = a.simulated;
+        is.bMoves = bSimulated;
+        is.pa = a.body.getPointInWorldSpace(spring.aPoint);
+        is.pb = b ? b->body.getPointInWorldSpace(spring.bPoint) : spring.bPoint;
+        // An end that does not move this step (static, or woken during it) is at rest.
+        Matrix3 inverseMass = Matrix3::Zero();
+        if (is.aMoves) inverseMass += pointInverseMass(a.body, is.pa - a.body.getPosition());
+        if (is.bMoves) inverseMass += pointInverseMass(b->body, is.pb - b->body.getPosition());
+
+        const Vector3 delta = is.pa - is.pb;
+        const real length = delta.norm();
+        const real k = spring.stiffness;
+        Matrix3 stiffness;
+        Matrix3 damping = Matrix3::Zero();
+        if (length > 1e-12) {
+            const Vector3 d = delta / length;
+            const Matrix3 along = d * d.transpose();
+            is.force0 = -k * (length - spring.restLength) * d;
+            // Across the spring the stiffness is k (1 - L/l); a compressed spring's is
+            // negative (it buckles) and is left explicit.
+            const real across = std::max(real(0), 1 - spring.restLength / length);
+            stiffness = k * along + k * across * (Matrix3::Identity() - along);
+            damping = spring.damping * along;
+        } else if (spring.restLength == 0) {
+            // A zero-length spring at zero length: no direction, but k x is linear.
+            is.force0 = -k * delta;
+            stiffness = k * Matrix3::Identity();
+        } else {
+            s.implicitForce.setZero();
+            continue;  // no direction to push along
+        }
+        is.response = h * stiffness + damping;
+        is.system.compute(Matrix3::Identity() + h * is.response * inverseMass);
+        implicit.push_back(is);
+    }
+    if (implicit.empty()) return;
+
+    const auto apply = [&](const ImplicitSpring &is, const Vector3 &force) {
+        const SpringSettings &spring = records[is.spring].settings;
+        if (is.aMoves) bodies[spring.a.index].body.addForceAtPoint(force, is.pa);
+        if (is.bMoves) bodies[spring.b->index].body.addForceAtPoint(-force, is.pb);
+    };
+    // Warm start: the forces of the last sub-step, which at rest are already the answer.
+    for (const ImplicitSpring &is : implicit) apply(is, records[is.spring].implicitForce);
+    // Each pass solves every spring for the velocity its points reach with the others'
+    // current forces (block Gauss-Seidel); one pass is exact for a spring alone.
+    for (int pass = 0; pass < kImplicitSpringPasses; ++pass) {
+        for (const ImplicitSpring &is : implicit) {
+            SpringRecord &s = records[is.spring];
+            apply(is, -s.implicitForce);
+            const SpringSettings &spring = s.settings;
+            Vector3 u = Vector3::Zero();
+            if (is.aMoves) {
+                const RigidBody &a = bodies[spring.a.index].body;
+                u += freePointVelocity(a, is.pa - a.getPosition(), h);
+            }
+            if (is.bMoves) {
+                const RigidBody &b = bodies[spring.b->index].body;
+                u -= freePointVelocity(b, is.pb - b.getPosition(), h);
+            }
+            const Vector3 force = is.system.solve(is.force0 - is.response * u);
+            s.implicitForce = force.allFinite() ? force : Vector3::Zero();
+            apply(is, s.implicitForce);
+        }
+    }
+}
+
+}  // namespace cyclone::detail

@@ -1,0 +1,185 @@
+// Debug drawing: the World's bodies, boxes and contacts as lines through the game's
+// DebugDraw. Curved shapes are outlined by circles in their frames and the lines that
+// join them; hulls and meshes by their edges.
+#include <cmath>
+#include <string>
+
+#include "world/validation.h"
+#include "world/world_impl.h"
+
+namespace cyclone {
+
+using detail::BodyRecord;
+namespace {
+
+constexpr real kPi = 3.14159265358979323846;
+
+// The points of an arc of `radius` around `centre`, from angle `from` to `to` (rad) in
+// the plane spanned by the unit vectors u and v, as `segments` lines.
+void arc(DebugDraw &draw, const Vector3 &centre, const Vector3 &u, const Vector3 &v, real radius, real from, real to,
+         int segments, const DebugColor &color) {
+    Vector3 previous = centre + radius * (std::cos(from) * u + std::sin(from) * v);
+    for (int i = 1; i <= segments; ++i) {
+        const real angle = from + (to - from) * i / segments;
+        const Vector3 next = centre + radius * (std::cos(angle) * u + std::sin(angle) * v);
+        draw.line(previous, next, color);
+        previous = next;
+    }
+}
+
+void drawShape(DebugDraw &draw, const detail::CollisionShape &shape, const Matrix4 &pose,
+               const DebugDrawOptions &options, const DebugColor &color) {
+    const Shape &s = shape.shape();
+    const Matrix3 rotation = pose.linear();
+    const Vector3 origin = pose.translation();
+    const Vector3 x = rotation.col(0);
+    const Vector3 y = rotation.col(1);
+    const Vector3 z = rotation.col(2);
+    const int segments = options.circleSegments;
+    switch (s.type) {
+        case ShapeType::Box: draw.box(pose, s.halfExtents, color); break;
+        case ShapeType::Sphere:
+            draw.circle(origin, x, s.radius, segments, color);
+            draw.circle(origin, y, s.radius, segments, color);
+            draw.circle(origin, z, s.radius, segments, color);
+            break;
+        case ShapeType::Capsule: {
+            const Vector3 top = origin + z * (s.length / 2);
+            const Vector3 bottom = origin - z * (s.length / 2);
+            draw.circle(top, z, s.radius, segments, color);
+            draw.circle(bottom, z, s.radius, segments, color);
+            for (const Vector3 &side : {x, y}) {
+                draw.line(top + s.radius * side, bottom + s.radius * side, color);
+                draw.line(top - s.radius * side, bottom - s.radius * side, color);
+                // The end caps: half circles over the ends, in the planes of x and y.
+                arc(draw, top, side, z, s.radius, 0, kPi, segments / 2, color);
+                arc(draw, bottom, side, z, s.radius, kPi, 2 * kPi, segments / 2, color);
+            }
+            break;
+        }
+        case ShapeType::Cylinder: {
+            const Vector3 top = origin + z * (s.length / 2);
+            const Vector3 bottom = origin - z * (s.length / 2);
+            draw.circle(top, z, s.radius, segments, color);
+            draw.circle(bottom, z, s.radius, segments, color);
+            for (const Vector3 &side : {x, y, Vector3(-x), Vector3(-y)})
+                draw.line(top + s.radius * side, bottom + s.radius * side, color);
+            break;
+        }
+        case ShapeType::Convex: {
+            // Hull faces run counter-clockwise, so each edge appears once in each
+            // direction: drawing it from its smaller vertex draws it once.
+            const std::vector<Vector3> &v = shape.vertices();
+            for (const std::vector<int> &face : shape.faces())
+                for (std::size_t i = 0; i < face.size(); ++i) {
+                    const int from = face[i];
+                    const int to = face[(i + 1) % face.size()];
+                    if (from < to) draw.line(pose * v[from], pose * v[to], color);
+                }
+            break;
+        }
+        case ShapeType::Mesh: {
+            const std::vector<Vector3> &v = shape.vertices();
+            for (const std::vector<int> &t : shape.faces())
+                for (int i = 0; i < 3; ++i) draw.line(pose * v[t[i]], pose * v[t[(i + 1) % 3]], color);
+            break;
+        }
+        case ShapeType::Plane: {
+            // A square around the plane's point nearest the world origin, and its normal.
+            const Vector3 normal = rotation * shape.planeNormal();
+            const Vector3 onPlane = origin + shape.planeOffset() * normal;
+            const Vector3 centre = onPlane - normal.dot(onPlane) * normal;
+            const Vector3 u = normal.unitOrthogonal() * options.planeHalfSize;
+            const Vector3 w = normal.cross(u);
+            const Vector3 corners[4] = {centre - u - w, centre + u - w, centre + u + w, centre - u + w};
+            for (int i = 0; i < 4; ++i) draw.line(corners[i], corners[(i + 1) % 4], color);
+            draw.line(corners[0], corners[2], color);
+            draw.line(corners[1], corners[3], color);
+            draw.line(centre, centre + options.normalLength * normal, color);
+            break;
+        }
+    }
+}
+
+void validate(const DebugDrawOptions &o) {
+    static const char *function = "World::debugDraw";
+    detail::requirePositive(function, "options.normalLength", o.normalLength);
+    detail::requirePositive(function, "options.planeHalfSize", o.planeHalfSize);
+    if (o.circleSegments < 4 || o.circleSegments > 256)
+        detail::refuse(function, "options.circleSegments",
+                       "must be in [4, 256], got " + std::to_string(o.circleSegments));
+    const std::pair<const char *, const DebugColor *> colors[] = {
+        {"options.awake", &o.awake},           {"options.asleep", &o.asleep},
+        {"options.staticBody", &o.staticBody}, {"options.isolated", &o.isolated},
+        {"options.boundingBox", &o.boundingBox}, {"options.contactPoint", &o.contactPoint},
+        {"options.contactNormal", &o.contactNormal}};
+    for (const auto &[field, c] : colors)
+        for (float channel : {c->r, c->g, c->b, c->a})
+            if (!(channel >= 0 && channel <= 1))
+                detail::refuse(function, field, "components must be in [0, 1], got " + detail::show(channel));
+}
+
+}  // namespace
+
+void DebugDraw::box(const Matrix4 &pose, const Vector3 &h, const DebugColor &color) {
+    Vector3 corner[8];
+    for (int i = 0; i < 8; ++i)
+        corner[i] = pose * Vector3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
+    // Corners i and j share an edge when their indices differ in exactly one bit.
+    for (int i = 0; i < 8; ++i)
+        for (int bit = 1; bit < 8; bit <<= 1)
+            if (!(i & bit)) line(corner[i], corner[i | bit], color);
+}
+
+void DebugDraw::circle(const Vector3 &centre, const Vector3 &normal, real radius, int segments,
+                       const DebugColor &color) {
+    const Vector3 u = normal.unitOrthogonal();
+    arc(*this, centre, u, normal.cross(u), radius, 0, 2 * kPi, segments, color);
+}
+
+void DebugDraw::contact(const Vector3 &point, const Vector3 &normal, real, real normalLength,
+                        const DebugColor &pointColor, const DebugColor &normalColor) {
+    const real arm = normalLength / 20;
+    for (int k = 0; k < 3; ++k) {
+        const Vector3 offset = Vector3::Unit(k) * arm;
+        line(point - offset, point + offset, pointColor);
+    }
+    line(point, point + normalLength * normal, normalColor);
+}
+
+void World::debugDraw(DebugDraw &draw, const DebugDrawOptions &options) const {
+    validate(options);
+    const Impl &w = *impl_;
+    for (std::uint32_t index : w.bodies.order) {
+        const BodyRecord &r = w.bodies[index];
+        const DebugColor &color = r.isStatic      ? options.staticBody
+                                  : r.isolated ? options.isolated
+                                  : r.body.getAwake() ? options.awake
+                                                      : options.asleep;
+        const Matrix4 pose = r.body.getTransform();
+        if (!pose.matrix().allFinite()) continue;  // an isolated body that flew off: nothing to draw
+        if (options.shapes && (!r.isStatic || options.staticBodies)) drawShape(draw, *r.shape, pose, options, color);
+        if (options.boundingBoxes && r.object && r.tree != detail::Tree::None) {
+            const fcl::AABBd &box = r.object->getAABB();
+            Matrix4 pose = Matrix4::Identity();
+            pose.translation() = box.center();
+            draw.box(pose, 0.5 * (box.max_ - box.min_), options.boundingBox);
+        }
+    }
+    if (!options.contacts) return;
+    for (std::uint32_t p = 0; p < w.contacts.pairs.slots(); ++p) {
+        const detail::PairState &pair = w.contacts.pairs[p];
+        if (!pair.alive || !pair.touching()) continue;
+        const Matrix4 poseA = w.bodies[pair.a].body.getTransform();
+        const Matrix4 poseB = w.bodies[pair.b].body.getTransform();
+        for (const detail::ManifoldState &m : pair.manifolds)
+            for (int i = 0; i < m.count; ++i) {
+                const detail::PersistentPoint &point = m.points[i];
+                const Vector3 at = 0.5 * (poseA * point.localA + poseB * point.localB);
+                draw.contact(at, m.normal, point.depth, options.normalLength, options.contactPoint,
+                             options.contactNormal);
+            }
+    }
+}
+
+}  // namespace cyclone

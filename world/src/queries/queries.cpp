@@ -1,0 +1,176 @@
+// Queries: a ray's closest hit and a shape's overlaps, through the broadphase trees.
+//
+// Both walk the three FCL trees themselves rather than through the managers' callbacks:
+// the ray prunes every box it enters beyond the closest hit so far, visiting the nearer
+// child first, and the overlap prunes by the query's box. Planes are not in the trees
+// and are tested one by one. The exact tests are ray_cast.cpp's and fcl::collide.
+// Nothing here changes the World, so queries may run concurrently with each other.
+#include <algorithm>
+#include <cmath>
+
+#include "collision/ray_cast.h"
+#include "world/validation.h"
+#include "world/world_impl.h"
+
+namespace cyclone {
+
+using detail::BodyRecord;
+namespace {
+
+using Node = fcl::detail::NodeBase<fcl::AABBd>;
+
+std::uint32_t leafBody(const Node *node) {
+    return detail::bodyIndexOf(static_cast<const fcl::CollisionObjectd *>(node->data));
+}
+
+template <class Accepts>
+struct RayWalk {
+    const detail::BodyStore &bodies;
+    const Accepts &accepts;
+    detail::Ray ray;
+    bool found = false;
+    std::uint32_t body = 0;
+    detail::RaySurfaceHit hit;
+
+    void test(std::uint32_t index) {
+        if (!accepts(index)) return;
+        const BodyRecord &r = bodies[index];
+        detail::RaySurfaceHit candidate;
+        if (!detail::rayShape(ray, *r.shape, r.body.getTransform(), candidate)) return;
+        // Equally close hits go to the smaller index, whatever order the trees give.
+        if (found && (candidate.distance > hit.distance || (candidate.distance == hit.distance && index > body)))
+            return;
+        found = true;
+        body = index;
+        hit = candidate;
+        ray.maxDistance = candidate.distance;
+    }
+
+    void visit(const Node *node) {
+        if (node->isLeaf()) {
+            test(leafBody(node));
+            return;
+        }
+        const Node *children[2] = {node->children[0], node->children[1]};
+        real enter[2] = {0, 0};
+        bool reached[2];
+        for (int k = 0; k < 2; ++k)
+            reached[k] = detail::rayBox(ray.origin, ray.direction, children[k]->bv.min_, children[k]->bv.max_,
+                                        ray.maxDistance, enter[k]);
+        detail::visitNearestFirst(children, reached, enter, ray.maxDistance, [this](const Node *child) { visit(child); });
+    }
+
+    void walk(const Node *root) {
+        real enter;
+        if (root && detail::rayBox(ray.origin, ray.direction, root->bv.min_, root->bv.max_, ray.maxDistance, enter))
+            visit(root);
+    }
+};
+
+template <class Test>
+struct OverlapWalk {
+    const fcl::AABBd &box;
+    const Test &test;
+
+    void visit(const Node *node) {
+        if (!node || !node->bv.overlap(box)) return;
+        if (node->isLeaf()) {
+            test(leafBody(node));
+            return;
+        }
+        visit(node->children[0]);
+        visit(node->children[1]);
+    }
+};
+
+Quaternion unitOrIdentity(const Quaternion &q) {
+    const real length = q.norm();
+    return length > 0 ? Quaternion(q.coeffs() / length) : Quaternion::Identity();
+}
+
+}  // namespace
+
+bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter) const {
+    const BodyRecord &r = bodies[index];
+    if (!r.alive || r.isolated) return false;
+    if (r.isStatic ? !filter.staticBodies : !filter.dynamicBodies) return false;
+    const BodyId id = bodies.idOf(index);
+    if (filter.ignore && *filter.ignore == id) return false;
+    return !filter.accept || filter.accept(id);
+}
+
+std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direction, real maxDistance,
+                                     const QueryFilter &filter) const {
+    static const char *function = "World::rayCast";
+    const Impl &w = *impl_;
+    detail::requirePlace(function, "origin", origin);
+    detail::requireFinite(function, "direction", direction);
+    const real length = direction.stableNorm();
+    if (!(length > 0)) detail::refuse(function, "direction", "must not be zero, got " + detail::show(direction));
+    if (!(maxDistance > 0))
+        detail::refuse(function, "maxDistance", "must be > 0 (infinity allowed), got " + detail::show(maxDistance));
+
+    const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
+    RayWalk<decltype(accepts)> walk{w.bodies, accepts, {origin, direction / length, maxDistance}, false, 0, {}};
+    if (filter.dynamicBodies) {
+        walk.walk(w.broadphase.root(detail::Tree::Awake));
+        walk.walk(w.broadphase.root(detail::Tree::Asleep));
+    }
+    if (filter.staticBodies) {
+        walk.walk(w.broadphase.root(detail::Tree::Static));
+        for (std::uint32_t plane : w.bodies.planes) walk.test(plane);
+    }
+    if (!walk.found) return std::nullopt;
+    RayHit hit;
+    hit.body = w.bodies.idOf(walk.body);
+    hit.distance = walk.hit.distance;
+    hit.point = walk.ray.origin + walk.hit.distance * walk.ray.direction;
+    hit.normal = walk.hit.normal;
+    return hit;
+}
+
+std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Quaternion &orientation,
+                           std::vector<BodyId> &out, const QueryFilter &filter) const {
+    static const char *function = "World::overlap";
+    const Impl &w = *impl_;
+    detail::requirePlace(function, "position", position);
+    if (!orientation.coeffs().allFinite()) detail::refuse(function, "orientation", "must be finite");
+    if (shape.type == ShapeType::Plane)
+        detail::refuse(function, "shape.type", "\"plane\" is unbounded and cannot be a query shape");
+    std::shared_ptr<const detail::CollisionShape> compiled;
+    try {
+        compiled = detail::compileShape(shape);
+    } catch (const InvalidArgument &e) {
+        throw InvalidArgument(function, e.field(), e.problem());
+    }
+    out.clear();
+
+    Matrix4 pose = Matrix4::Identity();
+    pose.linear() = unitOrIdentity(orientation).toRotationMatrix();
+    pose.translation() = position;
+    const fcl::CollisionObjectd query(compiled->geometry(), pose);
+    fcl::CollisionRequestd request(1, false);
+    request.gjk_solver_type = fcl::GST_LIBCCD;
+    fcl::CollisionResultd result;
+    const auto test = [&](std::uint32_t index) {
+        if (!w.accepts(index, filter)) return;
+        const BodyRecord &r = w.bodies[index];
+        result.clear();
+        fcl::collide(compiled->geometry().get(), pose, r.shape->geometry().get(), r.body.getTransform(), request,
+                     result);
+        if (result.isCollision()) out.push_back(w.bodies.idOf(index));
+    };
+    OverlapWalk<decltype(test)> walk{query.getAABB(), test};
+    if (filter.dynamicBodies) {
+        walk.visit(w.broadphase.root(detail::Tree::Awake));
+        walk.visit(w.broadphase.root(detail::Tree::Asleep));
+    }
+    if (filter.staticBodies) {
+        walk.visit(w.broadphase.root(detail::Tree::Static));
+        for (std::uint32_t plane : w.bodies.planes) test(plane);
+    }
+    std::sort(out.begin(), out.end(), [](const BodyId &x, const BodyId &y) { return x.index < y.index; });
+    return out.size();
+}
+
+}  // namespace cyclone

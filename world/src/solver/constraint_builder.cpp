@@ -1,0 +1,285 @@
+// Building the step's constraints: the touching pairs' manifolds ordered lowest first,
+// each in a solver slot (kept from step to step so that its Jacobians can be), then the
+// Jacobians and effective masses of every slot whose Jacobians do not still hold
+// (jacobian_stamp.h).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "contacts/pose_change.h"
+#include "solver/constraint_solver.h"
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+namespace {
+
+// Solve-order height of a contact between a and b: the lower body's, m along `up`.
+real contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) {
+    const real lowest = -std::numeric_limits<real>::infinity();
+    const real ha = a.isStatic ? lowest : a.body.getPosition().dot(up);
+    const real hb = b.isStatic ? lowest : b.body.getPosition().dot(up);
+    return std::min(ha, hb);
+}
+
+// Whether a body is still in its stamped role, within `tolerance` of its stamped pose.
+bool stillStamped(const StampedBody &stamped, const BodyRecord &r, real tolerance) {
+    if (stamped.movable != r.simulated) return false;
+    if (r.isPlane) return true;  // a plane cannot be moved (World::setPosition refuses it)
+    const real shift = (r.body.getPosition() - stamped.position).norm();
+    return movedLess(shift, r.body.getOrientation() * stamped.orientation.conjugate(), r.boundingRadius, tolerance);
+}
+
+void stampBody(StampedBody &stamped, const BodyRecord &r) {
+    stamped.movable = r.simulated;
+    stamped.position = r.body.getPosition();
+    stamped.orientation = r.body.getOrientation();
+}
+
+}  // namespace
+
+void ConstraintSolver::build(WorldState &world) {
+    const BodyStore &bodies = world.bodies;
+    const ContactManager &contacts = world.contacts;
+    // The solve order is settled on small keys first and the solver manifolds are then
+    // built in that order: sorting the built manifolds (~2 KB each) meant copying all of
+    // them every step.
+    keys_.clear();
+    const Vector3 up = -world.settings.gravity;
+    for (std::uint32_t p : contacts.touchingPairs) {
+        const PairState &pair = contacts.pairs[p];
+        const BodyRecord &a = bodies[pair.a];
+        const BodyRecord &b = bodies[pair.b];
+        if (!a.simulated && !b.simulated) continue;
+        const real height = contactHeight(a, b, up);
+        for (std::size_t k = 0; k < pair.manifolds.size(); ++k) {
+            if (pair.manifolds[k].count == 0) continue;
+            keys_.push_back({height, {p, static_cast<std::uint32_t>(k)}});
+        }
+    }
+    // Gauss-Seidel carries a stack's weight down in one pass when the contacts nearest
+    // the ground come first; the order must not depend on the broadphase's. Equal heights
+    // keep the order of the pair walk: the radix sort is stable. A comparison sort on
+    // (height, place in the walk) mispredicted most of its branches here: a layer's
+    // heights are equal but for rounding, so their order changes from step to step.
+    sortByHeight(keys_, keysScratch_);
+    assignSlots(world);
+    // Last step's manifolds are overwritten in place (see addSolverManifold); only new
+    // slots are value-initialised.
+    manifolds_.resize(keys_.size());
+    sources_.resize(keys_.size());
+    slotBodies_.resize(keys_.size());
+    stamps_.resize(keys_.size());
+    // Slot by slot: the slots are written in memory order.
+    world.workers.forEach(keys_.size(), [&](std::size_t s) { addSolverManifold(world, keys_[keyOfSlot_[s]], s); });
+    for (const SolverManifold &m : manifolds_) {
+        ++world.stats.manifolds;
+        world.stats.contacts += m.count;
+        for (int i = 0; i < m.count; ++i) world.stats.maxPenetration = std::max(world.stats.maxPenetration, m.points[i].depth);
+    }
+}
+
+// addSolverManifold writes every field of a solver manifold and of its first `count`
+// points but the Jacobians (SolverManifold::direction, SolverRow's lanes and masses, the
+// couplings) and the twist radius, which prepareSolver makes for every manifold whose
+// Jacobians do not still hold (then the normal and tangents are also kept,
+// jacobian_stamp.h); points past `count` keep whatever they held, as nothing reads them.
+// A field added to either struct must be reset there too.
+static_assert(sizeof(SolverPoint) == 256 && sizeof(SolverManifold) == 2304,
+              "a solver manifold or point field was added or removed: reset it in addSolverManifold");
+
+void ConstraintSolver::addSolverManifold(WorldState &world, const ManifoldKey &key, std::size_t slot) {
+    const BodyStore &bodies = world.bodies;
+    const PairState &pair = world.contacts.pairs[key.manifold.pair];
+    ManifoldState &m = world.contacts.manifold(key.manifold);
+    const BodyRecord &a = bodies[pair.a];
+    const BodyRecord &b = bodies[pair.b];
+    const real friction = std::sqrt(a.material.friction * b.material.friction);
+    // The slot holds an earlier step's manifold (or a value-initialised one). Resetting
+    // all ~2.3 KB of it every step cost more than the rest of this function, and most of
+    // it is the Jacobians, which prepareSolver writes anyway unless they still hold.
+    SolverManifold &sm = manifolds_[slot];
+    JacobianStamp &stamp = stamps_[slot];
+    stamp.kept = jacobiansHold(world, stamp, pair, m);
+    if (stamp.kept) {
+        // The manifold's points come in the order of their depths (refreshFromAnchors):
+        // the solve order follows them, and the rows stay where they were made.
+        for (int i = 0; i < m.count; ++i) sm.order[i] = stamp.rowOf[m.points[i].id];
+    } else {
+        // The normal and tangents stay those the Jacobians were made with.
+        sm.normal = m.normal;
+        tangentBasis(sm.normal, sm.tangent[0], sm.tangent[1]);
+        stamp.anchorsId = m.anchorsId;
+        stampBody(stamp.body[0], bodies[pair.a]);
+        stampBody(stamp.body[1], bodies[pair.b]);
+        stamp.support = kSupportNotMade;
+        for (int i = 0; i < m.count; ++i) {
+            sm.order[i] = static_cast<signed char>(i);
+            stamp.rowOf[m.points[i].id] = static_cast<signed char>(i);
+        }
+    }
+    for (int i = m.count; i < kMaxManifoldPoints; ++i) sm.order[i] = static_cast<signed char>(i);
+    m.solverSlot = static_cast<std::uint32_t>(slot);
+    m.solverStep = world.stepCount;
+    sm.a = a.simulated ? a.solverIndex : 0;
+    sm.b = b.simulated ? b.solverIndex : 0;
+    sm.friction = friction;
+    sm.restitution = 0;
+    sm.touchesStatic = false;
+    sm.support = kNoSupport;
+    sm.count = m.count;
+    const bool warm = world.settings.warmStarting;
+    sm.frictionRow[0].impulse = warm ? m.frictionImpulse.dot(sm.tangent[0]) : 0;
+    sm.frictionRow[1].impulse = warm ? m.frictionImpulse.dot(sm.tangent[1]) : 0;
+    sm.twist.impulse = warm ? m.twistImpulse : 0;
+    for (int i = 0; i < m.count; ++i) {
+        const PersistentPoint &src = m.points[i];
+        SolverPoint &dst = sm.points[sm.order[i]];
+        dst.localA = src.localA;
+        dst.localB = src.localB;
+        dst.normal.impulse = warm ? src.normalImpulse : 0;
+        dst.velocityBias = 0;
+        dst.depth = src.depth;
+        dst.approachSpeed = 0;
+        dst.maxNormalImpulse = 0;
+    }
+    sources_[slot] = key.manifold;
+    slotBodies_[slot] = {pair.a, pair.b};
+}
+
+// Whether the Jacobians in a slot, made at an earlier step (jacobian_stamp.h), hold for
+// manifold `m` of `pair`: the same anchors (in any order, and so the same bodies), the
+// bodies in the same roles, neither moved more than the manifold-reuse tolerance since.
+bool ConstraintSolver::jacobiansHold(const WorldState &world, const JacobianStamp &stamp, const PairState &pair,
+                                     const ManifoldState &m) const {
+    const real tolerance = world.settings.manifoldReuseTolerance;
+    return tolerance > 0 && m.anchorsId != 0 && stamp.anchorsId == m.anchorsId &&
+           stillStamped(stamp.body[0], world.bodies[pair.a], tolerance) &&
+           stillStamped(stamp.body[1], world.bodies[pair.b], tolerance);
+}
+
+// Each manifold goes back to the slot it had last step when it can, so that the slot's
+// Jacobians may be kept (jacobian_stamp.h); the others take the free slots in solve
+// order. solveOrder_ lists the slots in solve order.
+void ConstraintSolver::assignSlots(WorldState &world) {
+    const std::size_t n = keys_.size();
+    solveOrder_.assign(n, -1);
+    slotTaken_.assign(n, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+        const ManifoldState &m = world.contacts.manifold(keys_[k].manifold);
+        if (m.solverStep + 1 != world.stepCount || m.solverSlot >= n || slotTaken_[m.solverSlot]) continue;
+        solveOrder_[k] = static_cast<int>(m.solverSlot);
+        slotTaken_[m.solverSlot] = 1;
+    }
+    std::size_t free = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (solveOrder_[k] >= 0) continue;
+        while (slotTaken_[free]) ++free;
+        solveOrder_[k] = static_cast<int>(free);
+        slotTaken_[free] = 1;
+    }
+    keyOfSlot_.resize(n);
+    heights_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        keyOfSlot_[solveOrder_[k]] = static_cast<std::uint32_t>(k);
+        heights_[solveOrder_[k]] = keys_[k].height;
+    }
+}
+
+void ConstraintSolver::prepare(WorldState &world, real h) {
+    const BodyStore &bodies = world.bodies;
+    const WorldSettings &settings = world.settings;
+    const std::size_t n = bodies.simulated.size();
+    bodies_.resize(n + 1);
+    bodies_[0] = SolverBody();
+    predictedV_.resize(n);
+    predictedW_.resize(n);
+    linearFactor_.resize(n);
+    angularFactor_.resize(n);
+    positions_.resize(n + 1);
+    world.workers.forEach(n, [&](std::size_t k) {
+        const RigidBody &body = bodies[bodies.simulated[k]].body;
+        SolverBody &sb = bodies_[k + 1];
+        sb = SolverBody();
+        setLanes(sb.v, body.getVelocity());
+        setLanes(sb.w, body.getRotation());
+        sb.invMass = body.getInverseMass();
+        sb.invInertia = body.getInverseInertiaTensorWorld();
+        body.getDampingFactors(h, &linearFactor_[k], &angularFactor_[k]);
+        positions_[k + 1] = body.getPosition();
+    });
+    if (settings.contactSolver == ContactSolverType::SoftStep) {
+        // A contact spring faster than a quarter of the sub-step rate is not resolved.
+        soft_.dynamicSoftness = makeSoftness(std::min(settings.contactHertz, 0.25 / h),
+                                                    settings.contactDampingRatio, h);
+        soft_.staticSoftness = makeSoftness(std::min(2 * settings.contactHertz, 0.25 / h),
+                                                   settings.contactDampingRatio, h);
+        soft_.slop = settings.penetrationSlop;
+        soft_.maxPushVelocity = settings.maxPushVelocity;
+    }
+    if (manifolds_.empty()) return;  // nothing below is read without contacts
+    // The split reads the manifolds' bodies, the support their normals, and writes only
+    // `support`: the two run at once.
+    const bool support = settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse;
+    world.workers.forEachTask(support ? 2 : 1, [&](int task) {
+        if (task == 0) {
+            partitionManifolds(manifolds_, heights_, solveOrder_, positions_, world.workers.parallel(),
+                                          partitionScratch_, partition_);
+        } else {
+            assignCarriers(static_cast<int>(bodies_.size()), -settings.gravity, manifolds_,
+                                  solveOrder_, carrierScratch_, carrierRuns_);
+        }
+    });
+    if (support) {
+        const bool shared = world.workers.parallel() && partition_.split;
+        buildCarrierThreads(carrierRuns_, manifolds_, shared ? &partitionScratch_.side : nullptr,
+                                  static_cast<int>(bodies_.size()), carrierThreads_);
+    }
+    // Jacobians and effective masses are made once per step, at the step's poses, unless
+    // the slot's still hold (jacobian_stamp.h).
+    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
+        prepareManifold(bodies, s);
+        JacobianStamp &stamp = stamps_[s];
+        if (support && stamp.support != manifolds_[s].support) {
+            prepareCarriedMasses(bodies_, manifolds_[s]);
+            stamp.support = manifolds_[s].support;
+        }
+    });
+    for (std::size_t s = 0; s < manifolds_.size(); ++s) {
+        const SolverManifold &m = manifolds_[s];
+        if (!stamps_[s].kept) ++world.stats.jacobiansMade;
+        if (m.friction > 0) world.stats.frictionRows += m.twistRadius > 0 ? 3 : 2;  // the patch: two tangents, a twist
+        if (m.restitution == 0) continue;
+        for (int i = 0; i < m.count; ++i)
+            if (m.points[i].approachSpeed < -settings.restitutionThreshold) ++world.stats.restitutionContacts;
+    }
+}
+
+void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s) {
+    SolverManifold &m = manifolds_[s];
+    const SlotBodies records = slotBodies_[s];
+    const RigidBody &a = bodies[records.a].body;
+    const RigidBody &b = bodies[records.b].body;
+    m.restitution = std::max(bodies[records.a].material.restitution, bodies[records.b].material.restitution);
+    m.touchesStatic = m.a == 0 || m.b == 0;
+    const SolverBody &sa = bodies_[m.a];
+    const SolverBody &sb = bodies_[m.b];
+    if (!stamps_[s].kept) {
+        prepareDirections(m);
+        Vector3 points[kMaxManifoldPoints];
+        for (int i = 0; i < m.count; ++i) {
+            const SolverPoint &p = m.points[i];
+            points[i] = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
+            prepareRows(sa, sb, points[i] - a.getPosition(), points[i] - b.getPosition(), m, m.points[i]);
+        }
+        prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m);
+        prepareCouplings(sa, sb, m);
+    }
+    for (int i = 0; i < m.count; ++i) {
+        SolverPoint &p = m.points[i];
+        p.maxNormalImpulse = 0;
+        // The normal velocity when the step began, measured only for restitution.
+        p.approachSpeed = m.restitution == 0 ? 0 : normalVelocity(sa, sb, m, p);
+    }
+}
+
+}  // namespace cyclone::detail

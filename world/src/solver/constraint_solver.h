@@ -1,0 +1,96 @@
+// The contact solver as the step uses it: it builds the step's constraints from the
+// touching pairs' manifolds (constraint_builder.cpp) and solves them, sub-step by
+// sub-step (solve.cpp). The passes themselves live beside it: velocity_pass,
+// carrier_pass, penetration_pass and contact_solver (the scalar rows and SoftStep).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "contacts/pair_cache.h"
+#include "cyclone/world/world.h"
+#include "solver/carriers.h"
+#include "solver/contact_solver.h"
+#include "solver/jacobian_stamp.h"
+#include "solver/manifold_order.h"
+#include "solver/penetration_pass.h"
+#include "solver/threads/carrier_threads.h"
+#include "solver/threads/partition.h"
+#include "solver/velocity_pass.h"
+#include "world/body_store.h"
+
+namespace cyclone::detail {
+
+struct WorldState;
+
+class ConstraintSolver {
+public:
+    /// The step's solver manifolds, in their slots (solve order: solveOrder_).
+    const std::vector<SolverManifold> &manifolds() const { return manifolds_; }
+
+    /// Orders the touching pairs' manifolds (lowest first), gives each a solver slot and
+    /// fills it from the manifold.
+    void build(WorldState &world);
+    /// Sets up the solver bodies and, for every slot whose Jacobians do not still hold,
+    /// the Jacobians and effective masses; orders the passes and the carrier pass.
+    void prepare(WorldState &world, real h);
+    /// One sub-step's velocities: predicted without contacts, then corrected by the
+    /// velocity passes and the carrier pass, and given to the bodies.
+    void solveVelocities(WorldState &world, real h, bool firstSubstep);
+    /// Pushes bodies out of penetration beyond the slop without adding energy.
+    void recoverPenetration(WorldState &world, real h);
+    /// SoftStep's restitution pass, once per step.
+    void applyRestitution(WorldState &world);
+    /// Hands the accumulated impulses back to the pairs' manifolds for warm starting.
+    void storeImpulses(WorldState &world);
+
+private:
+    // Building (constraint_builder.cpp).
+    void addSolverManifold(WorldState &world, const ManifoldKey &key, std::size_t slot);
+    void assignSlots(WorldState &world);
+    void prepareManifold(const BodyStore &bodies, std::size_t s);
+    bool jacobiansHold(const WorldState &world, const JacobianStamp &stamp, const PairState &pair,
+                       const ManifoldState &m) const;
+    // Solving (solve.cpp).
+    void warmStart(WorldState &world);
+    void loadVelocityPasses(WorldState &world);
+    void solveVelocityPass(WorldState &world, bool reverse);
+    void storeVelocityPasses(WorldState &world);
+    void solveCarrierPass(WorldState &world, bool reverse);
+
+    /// The body records of a slot's A and B: the passes over the slots read them here,
+    /// not from the pair, whose record is a cache miss away.
+    struct SlotBodies {
+        std::uint32_t a = 0, b = 0;
+    };
+
+    std::vector<SolverBody> bodies_;  ///< Entry 0 is immovable; simulated body k is k + 1.
+    std::vector<SolverManifold> manifolds_;
+    std::vector<ManifoldRef> sources_;  ///< The pair manifold each slot was made from.
+    std::vector<SlotBodies> slotBodies_;
+    std::vector<ManifoldKey> keys_;         ///< The manifolds to build, in solve order.
+    std::vector<ManifoldKey> keysScratch_;  ///< Scratch of sortByHeight.
+    /// Solver slot of each entry of keys_: the solve order (Gauss-Seidel's) of the slots,
+    /// which the manifolds keep from step to step (assignSlots).
+    std::vector<int> solveOrder_;
+    std::vector<char> slotTaken_;           ///< Scratch of assignSlots.
+    std::vector<std::uint32_t> keyOfSlot_;  ///< Entry of keys_ each slot holds.
+    std::vector<real> heights_;             ///< Each slot's contact height (ManifoldKey::height), m.
+    std::vector<JacobianStamp> stamps_;     ///< What each slot's Jacobians were made from.
+    SolverPartition partition_;             ///< The velocity passes' order on threads (threads/partition.h).
+    PartitionScratch partitionScratch_;
+    std::vector<ManifoldBatch> batches_[3];            ///< Each part's groups' rows during the velocity passes.
+    std::vector<PenetrationBatch> penetration_[3];     ///< And what its penetration passes need of them.
+    std::vector<Vector3> positions_;         ///< Position of each solver body (entry 0 unused).
+    std::vector<DepthFrame> depthFrames_;    ///< Each slot's, for penetration recovery.
+    CarrierScratch carrierScratch_;
+    CarrierRuns carrierRuns_;
+    CarrierThreads carrierThreads_;
+    SoftStepSettings soft_;
+    std::vector<Vector3> predictedV_;  ///< Velocity each simulated body reaches without contacts.
+    std::vector<Vector3> predictedW_;
+    std::vector<real> linearFactor_;   ///< damping^h of each simulated body.
+    std::vector<real> angularFactor_;
+};
+
+}  // namespace cyclone::detail

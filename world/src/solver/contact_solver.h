@@ -1,0 +1,248 @@
+// The contact solver: sequential impulses with accumulated-impulse clamping, warm
+// starting, Coulomb friction per contact patch (two tangents and a twist), restitution
+// above a threshold, and penetration recovery by pseudo-velocities (split impulse) that
+// never add energy.
+//
+// Design note. The solver works on its own contiguous arrays (SolverBody,
+// SolverManifold) rather than on RigidBody: those are what every iteration touches.
+// World copies the predicted velocities in, and hands the result back to each body
+// through RigidBody::addVelocity / addRotation before RigidBody::integrate. Entry 0 of
+// the body array is the immovable "world" (zero inverse mass and inertia), which every
+// static body maps to, so the iterations need no branches for static contacts.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cyclone/core.h"
+#include "solver/simd/vector4.h"
+
+namespace cyclone::detail {
+
+/// Velocity state of one awake dynamic body during the solve. The velocities are held in
+/// lanes (lanes.h): the passes read and write nothing else.
+struct SolverBody {
+    Lanes v{};   ///< Linear velocity, m/s.
+    Lanes w{};   ///< Angular velocity, rad/s.
+    Lanes pv{};  ///< Pseudo linear velocity (penetration recovery only), m/s.
+    Lanes pw{};  ///< Pseudo angular velocity, rad/s.
+    real invMass = 0;                      ///< 1/kg.
+    Matrix3 invInertia = Matrix3::Zero();  ///< World space, 1/(kg m^2).
+};
+
+/// One constraint direction at a point: Jacobian terms and the accumulated impulse.
+struct SolverRow {
+    Lanes rAxd{};      ///< rA x d.
+    Lanes rBxd{};      ///< rB x d.
+    Lanes angA{};      ///< IA^-1 (rA x d).
+    Lanes angB{};      ///< IB^-1 (rB x d).
+    /// Effective mass along d, kg. Normal rows only: the friction rows are solved as a
+    /// block through SolverManifold::frictionInverse and leave both masses unset.
+    real mass = 0;
+    real carriedMass = 0;  ///< Effective mass with the supporting body immovable (support pass), kg.
+    real impulse = 0;  ///< Accumulated impulse, N s.
+};
+
+/// The fields that the depth loop (World::Impl::solve) and loadBatches read and write come
+/// first, in the point's first cache lines, and the row last, where its lanes need no
+/// padding: 256 bytes in all. loadPseudo (wide_pseudo.h) reads localA, localB and depth
+/// as one run of reals.
+struct SolverPoint {
+    Vector3 localA;          ///< Anchor on A, A's body space, m.
+    Vector3 localB;          ///< Anchor on B, B's body space, m.
+    real depth = 0;          ///< Penetration at the start of the step, m (< 0: apart).
+    real velocityBias = 0;   ///< Target normal velocity (restitution or speculative), m/s.
+    real approachSpeed = 0;  ///< Normal relative velocity when the step began, m/s.
+    real maxNormalImpulse = 0;  ///< Largest normal impulse of the step, N s.
+    SolverRow normal;
+};
+
+inline constexpr int kMaxManifoldPoints = 4;
+
+/// The order of a pass over one manifold's rows (ManifoldSweep in contact_solver.cpp,
+/// WideSweep in wide_pass.cpp, CarriedSweep in wide_support.cpp): the patch's friction,
+/// then the `count` points' normal rows, from the last with `reverse` (alternate passes
+/// keep the first point from taking the largest share of a new load), then the impulses
+/// reach the bodies.
+template <class Sweep>
+CYCLONE_INLINE void sweepRows(Sweep &sweep, int count, bool reverse) {
+    sweep.friction();
+    if (reverse) {
+        for (int i = count - 1; i >= 0; --i) sweep.normal(i);
+    } else {
+        for (int i = 0; i < count; ++i) sweep.normal(i);
+    }
+    sweep.finish();
+}
+
+/// How an impulse on one row of a manifold changes the relative velocity along its
+/// points' normal rows, per N s: lane j of an entry is point j's. A pass solves the
+/// manifold's rows one after another, as Gauss-Seidel does, but reads the bodies'
+/// velocities once and tracks the normal velocities through these (ManifoldSweep in
+/// contact_solver.cpp; WideSweep in wide_pass.cpp, from loadBatches's copy).
+/// Lanes past the manifold's count, and point k's own lane of normal[k], are zero.
+struct RowCouplings {
+    Lanes normal[kMaxManifoldPoints];  ///< Per unit impulse on point k's normal row.
+    Lanes friction[3];                 ///< Per unit impulse on tangent 0, tangent 1, the twist.
+};
+
+/// Most Gauss-Seidel sweeps the support pass gives one body against a body that carries
+/// it: one sweep over a face's four corners leaves the body turning, and a stack leans.
+/// At 8, pyramid40's bodies stopped at the cap before the tolerance, and its 10 s drift
+/// spread from 0.2 to 2.8 cm over runs nanometres apart; at 12, 0.1 to 0.6 cm
+/// (docs/solver.md).
+inline constexpr int kCarrierSweeps = 12;
+/// The support pass stops sweeping a contact once no impulse changes a relative
+/// velocity by more than this, m/s (10 s of such an error would move a body 0.1 mm).
+inline constexpr real kCarrierTolerance = 1e-5;
+
+/// Friction acts on the manifold's contact patch as a whole, not point by point: two
+/// tangent rows at the centre of its points, limited together to the friction cone of the
+/// points' summed normal impulse, and a twist row about the normal, limited by the same
+/// sum times twistRadius (the points' mean distance from the centre: the torque that
+/// friction at the points could give at most). For a one-point contact that is the
+/// per-point model; a face's four corners need three friction rows instead of eight.
+struct SolverManifold {
+    int a = 0;  ///< Index into the SolverBody array (0 = static world).
+    int b = 0;
+    Vector3 normal;      ///< From A to B.
+    Vector3 tangent[2];
+    Lanes direction[3]{};  ///< normal, tangent[0], tangent[1] in lanes (prepareDirections).
+    SolverRow frictionRow[2];  ///< Along tangent[0], tangent[1], at the patch's centre.
+    SolverRow twist;           ///< About the normal (its rAxd and rBxd are the normal).
+    real twistRadius = 0;      ///< Mean distance of the points from the centre, m (0: no twist row).
+    /// The inverse of the friction rows' 3 x 3 effective-mass matrix (tangents, twist),
+    /// upper triangle row by row: the three rows are solved together, exactly, because
+    /// the centre's lever arm couples a tangent with the twist. Without a twist row it is
+    /// the tangents' 2 x 2 inverse (entries 2, 4, 5 zero).
+    real frictionInverse[6] = {};
+    real carriedFrictionInverse[6] = {};  ///< The same with the supporting body immovable.
+    RowCouplings couplings{};           ///< Through both bodies.
+    RowCouplings carriedCouplings{};  ///< Through the carried body alone (support pass).
+    real friction = 0;
+    real restitution = 0;
+    bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
+    /// Which body carries the other (the support pass treats it as immovable):
+    /// kNoSupport, kASupportsB or kBSupportsA. A static or sleeping side always
+    /// does. See assignCarriers().
+    int support = 0;
+    int count = 0;
+    /// The order the passes solve the points in: the k-th is points[order[k]] (k past
+    /// count: k itself). A point's row stays where its Jacobians were made; when a kept
+    /// manifold's points come in another order (World::Impl::addSolverManifold), this
+    /// changes, not where the rows are.
+    signed char order[kMaxManifoldPoints] = {0, 1, 2, 3};
+    SolverPoint points[kMaxManifoldPoints];
+};
+
+/// The couplings `c` of manifold `m` (its own or its supported ones) in m's solve order:
+/// entry k is the k-th point's, lane l the l-th point's. `c` itself when the points are
+/// solved in the order they are stored, else the copy made in `out`. The lanes are picked
+/// as pairs of 32-bit words, one instruction per entry where the CPU has AVX2 (vpermd).
+CYCLONE_INLINE const RowCouplings &couplingsInOrder(const SolverManifold &m, const RowCouplings &c,
+                                                    RowCouplings &out) {
+    using Words = int __attribute__((vector_size(8 * sizeof(int))));
+    const signed char *o = m.order;
+    if (o[0] == 0 && o[1] == 1 && o[2] == 2 && o[3] == 3) return c;
+    const Words pick = {2 * o[0], 2 * o[0] + 1, 2 * o[1], 2 * o[1] + 1,
+                        2 * o[2], 2 * o[2] + 1, 2 * o[3], 2 * o[3] + 1};
+    for (int k = 0; k < kMaxManifoldPoints; ++k)
+        out.normal[k] = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(c.normal[o[k]]), pick));
+    for (int r = 0; r < 3; ++r)
+        out.friction[r] = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(c.friction[r]), pick));
+    return out;
+}
+
+inline constexpr int kNoSupport = 0;
+inline constexpr int kASupportsB = 1;
+inline constexpr int kBSupportsA = 2;
+
+/// The support pass's order (assignCarriers): the carried bodies bottom up; run r is one
+/// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]). A level holds
+/// the bodies equally far from the ground (in contacts); no body carries another of its
+/// level.
+struct CarrierRuns {
+    std::vector<int> start;
+    std::vector<int> levelStart;  ///< Level l's runs are [levelStart[l], levelStart[l + 1]).
+    std::vector<int> manifolds;
+};
+
+struct SolverSettings {
+    real penetrationSlop = 0.005;
+    real penetrationRecovery = 0.2;
+    real restitutionThreshold = 1.0;
+};
+
+/// Soft contact coefficients for a sub-step (a damped spring of the given frequency
+/// expressed as an implicit-Euler velocity bias and impulse scaling).
+struct Softness {
+    real biasRate = 0;      ///< 1/s: velocity bias per metre of penetration.
+    real massScale = 1;     ///< Scales the effective mass.
+    real impulseScale = 0;  ///< Fraction of the accumulated impulse relaxed away.
+};
+
+/// Softness of a spring of `hertz` and damping ratio `zeta` stepped with `h` seconds.
+Softness makeSoftness(real hertz, real zeta, real h);
+
+struct SoftStepSettings {
+    Softness dynamicSoftness;  ///< For contacts between two dynamic bodies.
+    Softness staticSoftness;   ///< For contacts with an immovable body.
+    real slop = 0;             ///< Penetration left alone, m.
+    real maxPushVelocity = 3;  ///< Fastest penetration recovery, m/s.
+};
+
+/// One pass of the soft-step solver over the manifolds listed in `order`. With `useBias`
+/// penetration pushes bodies apart softly; without it (relax) the contacts are rigid and
+/// bias velocity is removed.
+void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
+               real h, bool useBias, const SoftStepSettings &settings);
+/// Applies restitution to points that approached faster than `threshold` and carried
+/// load this step (manifolds listed in `order`).
+void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                      const std::vector<int> &order, real threshold);
+
+/// Tangents of a normal: deterministic, so that the same normal gives the same basis
+/// every step and warm-started friction stays meaningful.
+void tangentBasis(const Vector3 &normal, Vector3 &t1, Vector3 &t2);
+
+/// Copies a manifold's normal and tangents into its lanes (before prepareRows).
+void prepareDirections(SolverManifold &m);
+
+/// Relative velocity of B with respect to A along a point's normal, m/s.
+real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifold &m, const SolverPoint &p);
+
+/// Fills the Jacobian terms and effective mass of one point's normal row.
+void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
+                 const SolverManifold &m, SolverPoint &p);
+/// Fills the manifold's patch friction from its contact points (world space, `count`
+/// of them) and the bodies' centres of mass: the twist radius, the friction rows at the
+/// points' centre, the twist row and frictionInverse.
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
+                         const Vector3 &positionB, SolverManifold &m);
+
+/// Fills the manifold's couplings from its rows (after prepareRows and
+/// prepareFrictionRows), and its supported couplings with the same.
+void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &m);
+
+/// Fills carriedMass and the supported couplings of a manifold that has a supporting
+/// side (after assignCarriers).
+void prepareCarriedMasses(const std::vector<SolverBody> &bodies, SolverManifold &m);
+
+/// Applies the accumulated impulses (warm start) of the manifolds listed in `order`.
+void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+               const std::vector<int> &order);
+/// The support pass (shock propagation), run after the coupled passes: first one plain
+/// pass over the manifolds where neither side carries the other, in `order`
+/// (solveUncarried), then,
+/// level by level bottom up (CarrierRuns::levelStart), each carried body against its
+/// carriers as immovable bodies with up to kCarrierSweeps sweeps (solveCarriedRuns in
+/// wide_support.h, four runs at a time; support_lanes.h on two threads). It leaves
+/// no body of a resting stack sinking into the one below or turning on it, whatever
+/// their mass ratio (plain Gauss-Seidel converges ever slower as a heavy body rests on a
+/// lighter one). Its impulses change velocities only: the accumulated impulses stay those
+/// of the coupled passes. The runs of one level are independent: any of them may be
+/// solved at the same time.
+void solveUncarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+                      const std::vector<int> &order, bool reverse);
+
+}  // namespace cyclone::detail

@@ -1,0 +1,49 @@
+// The support pass on two threads without a barrier per level.
+//
+// Design note. The support pass sets each carried body at rest on its carriers, bottom
+// up. A run (one carried body against its carriers, CarrierRuns) reads only its carriers,
+// which are one level lower or more, and writes only its own body: once every carrier's
+// run has finished, the run gives the same numbers whenever and on whichever thread it
+// runs. So each thread takes the runs of its half of the partition (solver_partition.h)
+// level by level, and before a run waits only for those of its carriers that the other
+// thread solves: they lie near the seam. Waiting level by level for both threads instead
+// cost a hand-over per level (20 on a 20-level pyramid) and left one thread idle on the
+// narrow top levels.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "solver/contact_solver.h"
+#include "solver/carrier_pass.h"
+
+namespace cyclone::detail {
+
+struct CarrierThreads {
+    /// Runs of each lane (thread), level by level; lane 1 is empty when not shared.
+    std::vector<int> lane[2];
+    std::vector<int> runOf;     ///< Per solver body: its run, or -1 (none: final before the pass).
+    std::vector<int> runLevel;  ///< Per run: its level.
+    /// Per run: the pass (`pass`) in which it last finished.
+    std::unique_ptr<std::atomic<std::uint32_t>[]> finished;
+    std::size_t capacity = 0;  ///< Length of `finished`.
+    std::uint32_t pass = 0;
+    CarrierPassScratch scratch[2];  ///< Per lane.
+};
+
+/// Lists the runs of each lane: with `side` (per solver body, 0 or 1; the partition's
+/// halves) a run goes to its carried body's side, without it every run goes to lane 0.
+void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifold> &manifolds,
+                       const std::vector<signed char> *side, int bodyCount, CarrierThreads &lanes);
+
+/// Opens a support pass: no run has finished in it yet.
+void beginCarrierPass(CarrierThreads &lanes);
+
+/// Solves the runs of `lane` in order, each once its carriers' runs have finished (a
+/// carrier on the other lane may still be running: this waits for it).
+void solveCarrierShare(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, CarrierRuns &runs,
+                      CarrierThreads &lanes, int lane, bool reverse);
+
+}  // namespace cyclone::detail

@@ -1,0 +1,83 @@
+// The coupled velocity pass, four manifolds at a time.
+//
+// Design note. A pass over one manifold is a chain: each row reads the velocities the row
+// before it wrote, and waits for them. Four manifolds that share no moving body commute
+// (solver_schedule.h groups them), so their rows can be solved by the same instructions,
+// one manifold per lane: ManifoldBatch holds a group's rows side by side, lane k of each
+// field being member k's, with the x, y and z of each vector in lanes of their own (no
+// sums across lanes). A row of four manifolds then costs what a row of one did. Within a
+// manifold the rows are solved as ManifoldSweep (contact_solver.cpp) solves them: one
+// after another, each impulse reaching the later rows through the couplings, so the
+// numbers are row-by-row Gauss-Seidel's.
+//
+// The rows are copied in at the start of each sub-step, each group giving the bodies its
+// warm-start impulses as it is copied (loadBatches), and the accumulated impulses go back
+// after the coupled passes (storeBatches): a pass reads only the
+// rows it solves, 4544 bytes per group of four (1136 per manifold; a SolverManifold is
+// 2304). A lane past a group's size, and a point past a member's count, hold zero rows,
+// which change nothing.
+#pragma once
+
+#include <vector>
+
+#include "solver/contact_solver.h"
+#include "solver/schedule.h"
+#include "solver/simd/batch4.h"
+
+namespace cyclone::detail {
+
+static_assert(kGroupSize == kWideLanes, "a group fills one wide manifold");
+
+/// One row's Jacobian terms for four manifolds (SolverRow).
+struct WideRow {
+    WideVector rAxd, rBxd;  ///< rA x d, rB x d.
+    WideVector angA, angB;  ///< IA^-1 (rA x d), IB^-1 (rB x d).
+};
+
+/// One point's normal row for four manifolds.
+struct WidePoint {
+    WideRow row;
+    Lanes mass{};     ///< Effective mass, kg.
+    Lanes impulse{};  ///< Accumulated impulse, N s.
+    Lanes bias{};     ///< Target normal velocity, m/s.
+};
+
+/// The rows of up to four manifolds that share no moving body (a SolverGroup).
+struct ManifoldBatch {
+    int a[kWideLanes] = {};  ///< Solver bodies of each lane (0 = the immovable world).
+    int b[kWideLanes] = {};
+    int size = 0;  ///< Lanes in use.
+    Lanes invMassA{}, invMassB{};
+    WideVector normal, tangent[2];
+    WidePoint points[kMaxManifoldPoints];
+    WideRow friction[2];            ///< Along tangent[0], tangent[1].
+    WideVector twistA, twistB;      ///< IA^-1 n, IB^-1 n (the twist row's rAxd and rBxd are n).
+    Lanes frictionImpulse[2]{};     ///< N s.
+    Lanes twistImpulse{};           ///< N m s.
+    Lanes frictionInverse[6]{};     ///< SolverManifold::frictionInverse.
+    /// RowCouplings in lanes: [k][j] is point j's normal velocity change per N s on point
+    /// k's normal row (0 for j = k), and per N s on tangent 0, tangent 1, the twist.
+    Lanes normalCoupling[kMaxManifoldPoints][kMaxManifoldPoints]{};
+    Lanes frictionCoupling[3][kMaxManifoldPoints]{};
+    Lanes coefficient{};            ///< Friction coefficient (0: no friction rows).
+    Lanes twistRadius{};            ///< m (0: no twist row).
+};
+
+struct PenetrationBatch;
+
+/// Copies the rows of the manifolds of `groups` into `wide`, one per group, and with
+/// `warmStart` gives the bodies each group's accumulated impulses once it is copied, as
+/// warmStart (contact_solver.h) does for its manifolds. With `pseudo`, also copies what
+/// the penetration pass needs into it, one per group (loadPseudo).
+void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds, const std::vector<SolverGroup> &groups,
+              bool warmStart, std::vector<ManifoldBatch> &wide, std::vector<PenetrationBatch> *pseudo = nullptr);
+/// One coupled pass over the wide manifolds, in order: in each, friction and then the
+/// points' normal rows, from the last point with `reverse` (alternating passes keep the
+/// first point from taking the largest share of a new contact's load, which would tilt
+/// the body).
+void solveVelocityBatches(std::vector<SolverBody> &bodies, std::vector<ManifoldBatch> &wide, bool reverse);
+/// Copies the accumulated impulses back to the manifolds of `groups`.
+void storeBatches(const std::vector<ManifoldBatch> &wide, const std::vector<SolverGroup> &groups,
+               std::vector<SolverManifold> &manifolds);
+
+}  // namespace cyclone::detail

@@ -1,0 +1,77 @@
+// The World's bodies: one record per body, indexed by BodyId::index. Removed slots are
+// reused, and the generation tells a stale handle from the body that took its slot.
+#pragma once
+
+#include <fcl/fcl.h>
+
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "collision/broadphase.h"
+#include "collision/collision_shape.h"
+#include "cyclone/world/world.h"
+
+namespace cyclone::detail {
+
+struct BodyRecord {
+    RigidBody body;
+    std::shared_ptr<const CollisionShape> shape;
+    std::unique_ptr<BodyObject> object;  ///< Null for planes.
+    std::string name;
+    Material material;
+    std::uint32_t generation = 0;
+    bool alive = false;
+    bool isStatic = false;
+    bool isPlane = false;
+    bool ccd = false;
+    std::shared_ptr<fcl::CollisionGeometryd> core;  ///< ccd bodies: the sphere swept when already touching.
+    bool isolated = false;      ///< State went non-finite: out of collision and solve.
+    bool simulated = false;     ///< Awake dynamic body at the start of this step.
+    Tree tree = Tree::None;
+    int sleepingIsland = -1;    ///< Index in Islands::sleeping while asleep.
+    int island = -1;            ///< Island of the last step (-1: none).
+    int solverIndex = 0;        ///< Index in the solver's body arrays (0: immovable).
+    std::vector<std::uint32_t> pairs;  ///< Pair slots this body is in (any order).
+    int awakeSlot = -1;         ///< Index in BodyStore::awake (-1: not in it).
+    std::uint64_t rank = 0;     ///< When it was added: orders BodyStore::awake as `order` is.
+    real boundingRadius = 0;    ///< Farthest point of the shape from its origin, m.
+};
+
+struct BodyStore {
+    std::vector<BodyRecord> records;
+    std::vector<std::uint32_t> free;   ///< Slots of removed bodies, reused first.
+    std::vector<std::uint32_t> order;  ///< Live bodies in the order they were added.
+    /// Awake dynamic bodies not isolated: what a step visits, so that sleeping and static
+    /// bodies cost nothing per step. Sorted by rank when `awakeSorted`.
+    std::vector<std::uint32_t> awake;
+    bool awakeSorted = true;
+    std::uint64_t nextRank = 0;
+    /// The bodies the step moves (awake when it began), in rank order; solver index k + 1.
+    std::vector<std::uint32_t> simulated;
+    int isolatedCount = 0;  ///< Live bodies isolated for a non-finite state.
+    std::vector<std::uint32_t> planes;
+    std::unordered_map<std::string, std::uint32_t> names;
+
+    BodyRecord &operator[](std::uint32_t index) { return records[index]; }
+    const BodyRecord &operator[](std::uint32_t index) const { return records[index]; }
+    std::size_t size() const { return records.size(); }
+
+    bool contains(BodyId id) const {
+        return id.index < records.size() && records[id.index].alive && records[id.index].generation == id.generation;
+    }
+    BodyId idOf(std::uint32_t index) const { return {index, records[index].generation}; }
+    /// The body `id` names; refused with `function`'s name when it names none.
+    BodyRecord &record(BodyId id, const char *function);
+    const BodyRecord &record(BodyId id, const char *function) const;
+    /// The same, and refused when the body is static.
+    BodyRecord &dynamicRecord(BodyId id, const char *function);
+    /// Puts the body into `awake` or takes it out, as its state now says.
+    void updateAwakeList(std::uint32_t index);
+    /// Sorts `awake` by rank if a wake put it out of order: bodies are simulated in the
+    /// order they were added, whatever the order they woke in.
+    void sortAwake();
+};
+
+}  // namespace cyclone::detail

@@ -1,0 +1,59 @@
+// World::step: forces -> broadphase -> narrowphase -> contact events -> constraints ->
+// islands -> per sub-step (forces, solve, integrate, penetration) -> continuous
+// collision -> sleep. Each stage adds its time to stats().ms.
+#include "world/stage_timer.h"
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+
+void WorldState::step(real dt) {
+    stats = StepStats();
+    ++stepCount;
+    events.openStep();
+    StageTimes &ms = stats.ms;
+
+    { const StageTimer t(ms.forces); integration.beginStep(*this, dt); }
+    { const StageTimer t(ms.broadphase); contacts.findCandidates(*this); }
+    { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this); }
+    { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
+    { const StageTimer t(ms.manifolds); solver.build(*this); }
+    { const StageTimer t(ms.islands); islands.build(*this); }
+
+    const real h = dt / settings.substeps;
+    {
+        const StageTimer t(ms.solveParts.setup);
+        workers.match(settings.threads);
+        solver.prepare(*this, h);
+    }
+    ms.solve += ms.solveParts.setup;
+    for (int substep = 0; substep < settings.substeps; ++substep) {
+        const bool first = substep == 0;
+        { const StageTimer t(ms.forces); integration.addSubstepForces(*this, h, first); }
+        {
+            // The velocity part is the solve less the carrier pass, which times itself.
+            const double carrierBefore = ms.solveParts.carrier;
+            const StageTimer t(ms.solve);
+            solver.solveVelocities(*this, h, first);
+            ms.solveParts.velocity += t.elapsed() - (ms.solveParts.carrier - carrierBefore);
+        }
+        { const StageTimer t(ms.integrate); integration.integrate(*this, h); }
+        { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position
+    }
+    {
+        const StageTimer t(ms.solve);
+        solver.applyRestitution(*this);
+        solver.storeImpulses(*this);
+    }
+    { const StageTimer t(ms.ccd); ccd.sweep(*this); }
+    { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
+    events.closeStep();
+
+    stats.integratedBodies = static_cast<int>(bodies.simulated.size());
+    stats.bodies = static_cast<int>(bodies.order.size());
+    stats.awakeBodies = static_cast<int>(bodies.awake.size());
+    stats.isolatedBodies = bodies.isolatedCount;
+    ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.manifolds + ms.islands + ms.solve +
+               ms.integrate + ms.ccd + ms.sleep;
+}
+
+}  // namespace cyclone::detail

@@ -1,0 +1,46 @@
+// How a step shares its independent work between threads: a TaskPool when
+// WorldSettings::threads > 1, the stepping thread alone otherwise.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+
+#include "world/task_pool.h"
+
+namespace cyclone::detail {
+
+class Workers {
+public:
+    /// Starts or stops threads to match `threads` (WorldSettings::threads).
+    void match(int threads) {
+        if (threads <= 1) pool_.reset();
+        else if (!pool_ || pool_->threads() != threads) pool_ = std::make_unique<TaskPool>(threads);
+    }
+    bool parallel() const { return pool_ != nullptr; }
+
+    /// Runs task(i) for i in [0, count), on the pool's threads when there is one; the
+    /// tasks must be independent.
+    template <class Task>
+    void forEachTask(int count, const Task &task) {
+        if (pool_) pool_->run(count, task);
+        else for (int i = 0; i < count; ++i) task(i);
+    }
+
+    /// Items handed to a thread at once: enough to outweigh the handing (a microsecond).
+    static constexpr std::size_t kChunk = 64;
+
+    /// Runs task(i) for every i in [0, count), in chunks of kChunk.
+    template <class Task>
+    void forEach(std::size_t count, const Task &task) {
+        forEachTask(static_cast<int>((count + kChunk - 1) / kChunk), [&](int chunk) {
+            const std::size_t end = std::min(count, std::size_t(chunk + 1) * kChunk);
+            for (std::size_t i = std::size_t(chunk) * kChunk; i < end; ++i) task(i);
+        });
+    }
+
+private:
+    std::unique_ptr<TaskPool> pool_;
+};
+
+}  // namespace cyclone::detail

@@ -1,0 +1,464 @@
+// The World's public calls: validation, bodies and springs, stepping, events.
+#include <cmath>
+#include <sstream>
+
+#include "collision/time_of_impact.h"
+#include "world/validation.h"
+#include "world/world_impl.h"
+
+namespace cyclone {
+
+using detail::Tree;
+
+namespace {
+
+real boundingRadius(const Shape &shape, const detail::CollisionShape &compiled) {
+    switch (shape.type) {
+        case ShapeType::Box: return shape.halfExtents.norm();
+        case ShapeType::Sphere: return shape.radius;
+        case ShapeType::Capsule: return shape.radius + shape.length / 2;
+        case ShapeType::Cylinder: return std::hypot(shape.radius, shape.length / 2);
+        case ShapeType::Convex:
+        case ShapeType::Mesh: {
+            real r = 0;
+            for (const Vector3 &v : compiled.vertices()) r = std::max(r, v.norm());
+            return r;
+        }
+        case ShapeType::Plane: break;
+    }
+    return 0;
+}
+
+void validateSettings(const char *function, const WorldSettings &s) {
+    using namespace detail;
+    requireFinite(function, "gravity", s.gravity);
+    if (s.velocityIterations < 1 || s.velocityIterations > 10000)
+        refuse(function, "velocityIterations", "must be in [1, 10000], got " + std::to_string(s.velocityIterations));
+    if (s.positionIterations < 0 || s.positionIterations > 10000)
+        refuse(function, "positionIterations", "must be in [0, 10000], got " + std::to_string(s.positionIterations));
+    if (s.substeps < 1 || s.substeps > 1000)
+        refuse(function, "substeps", "must be in [1, 1000], got " + std::to_string(s.substeps));
+    requirePositive(function, "sleepEpsilon", s.sleepEpsilon);
+    requireNonNegative(function, "penetrationSlop", s.penetrationSlop);
+    if (!(s.penetrationRecovery > 0 && s.penetrationRecovery <= 1))
+        refuse(function, "penetrationRecovery", "must be in (0, 1], got " + show(s.penetrationRecovery));
+    requireNonNegative(function, "restitutionThreshold", s.restitutionThreshold);
+    requireNonNegative(function, "contactHertz", s.contactHertz);
+    requireNonNegative(function, "contactDampingRatio", s.contactDampingRatio);
+    requirePositive(function, "maxPushVelocity", s.maxPushVelocity);
+    requireNonNegative(function, "speculativeDistance", s.speculativeDistance);
+    requireNonNegative(function, "manifoldReuseTolerance", s.manifoldReuseTolerance);
+    if (s.threads < 1 || s.threads > 64)
+        refuse(function, "threads", "must be in [1, 64], got " + std::to_string(s.threads));
+}
+
+// Builds the RigidBody of a settings struct; throws (nothing else changed) on bad input.
+RigidBody makeBody(const char *function, const BodySettings &s, const detail::CollisionShape &shape,
+                   const WorldSettings &world) {
+    using namespace detail;
+    requirePlace(function, "position", s.position);
+    requireFinite(function, "velocity", s.velocity);
+    requireFinite(function, "rotation", s.rotation);
+    if (!s.orientation.coeffs().allFinite()) refuse(function, "orientation", "must be finite");
+    requireUnit(function, "linearDamping", s.linearDamping);
+    requireUnit(function, "angularDamping", s.angularDamping);
+    requireNonNegative(function, "material.friction", s.material.friction);
+    requireUnit(function, "material.restitution", s.material.restitution);
+
+    RigidBody body;
+    body.setSleepEpsilon(world.sleepEpsilon);
+    body.setPosition(s.position);
+    body.setOrientation(s.orientation);
+    body.setDamping(s.linearDamping, s.angularDamping);
+    if (s.isStatic) {
+        body.setInverseMass(0);
+        body.setAwake(false);
+        return body;
+    }
+    requirePositive(function, "mass", s.mass);
+    const Matrix3 inertia = s.inertia ? *s.inertia : Matrix3(shape.unitInertia() * s.mass);
+    try {
+        body.setInertiaTensor(inertia);
+    } catch (const std::invalid_argument &) {
+        std::ostringstream shown;
+        shown << "[" << inertia.row(0) << "; " << inertia.row(1) << "; " << inertia.row(2) << "]";
+        refuse(function, "inertia", "must be finite, symmetric and positive definite, got " + shown.str());
+    }
+    body.setMass(s.mass);
+    body.setVelocity(s.velocity);
+    body.setRotation(s.rotation);
+    body.setAcceleration(world.gravity);
+    body.setCanSleep(s.canSleep);
+    if (!s.awake) body.setAwake(false);
+    return body;
+}
+
+}  // namespace
+
+// --- Construction ---------------------------------------------------------------------
+
+World::World(const WorldSettings &settings) {
+    validateSettings("World::World", settings);
+    impl_ = std::make_unique<Impl>(settings);
+}
+
+World::~World() = default;
+World::World(World &&) noexcept = default;
+World &World::operator=(World &&) noexcept = default;
+
+const WorldSettings &World::settings() const { return impl_->settings; }
+
+void World::setSettings(const WorldSettings &settings) {
+    validateSettings("World::setSettings", settings);
+    impl_->settings = settings;
+    for (std::uint32_t index : impl_->bodies.order) {
+        detail::BodyRecord &r = impl_->bodies[index];
+        r.body.setSleepEpsilon(settings.sleepEpsilon);
+        if (r.isStatic) continue;
+        r.body.setAcceleration(settings.gravity);
+        impl_->wake(index);
+    }
+}
+
+// --- Bodies ---------------------------------------------------------------------------
+
+BodyId World::addBody(const BodySettings &settings) {
+    static const char *function = "World::addBody";
+    Impl &w = *impl_;
+    if (!settings.name.empty() && w.bodies.names.count(settings.name))
+        detail::refuse(function, "name", "must be unique, \"" + settings.name + "\" is already taken");
+    const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh;
+    if (staticOnly && !settings.isStatic)
+        detail::refuse(function, "shape.type",
+                       std::string("\"") + shapeTypeName(settings.shape.type) + "\" is for static bodies only");
+    std::shared_ptr<const detail::CollisionShape> shape;
+    try {
+        shape = detail::compileShape(settings.shape);
+    } catch (const InvalidArgument &e) {
+        throw InvalidArgument(function, e.field(), e.problem());
+    }
+    if (!(boundingRadius(settings.shape, *shape) <= detail::kMaxCoordinate))
+        detail::refuse(function, "shape", "must fit within 1e30 m of its origin");
+    RigidBody body = makeBody(function, settings, *shape, w.settings);
+
+    // Nothing below throws on user input: the world changes only from here on.
+    std::uint32_t index;
+    if (!w.bodies.free.empty()) {
+        index = w.bodies.free.back();
+        w.bodies.free.pop_back();
+    } else {
+        index = static_cast<std::uint32_t>(w.bodies.size());
+        w.bodies.records.emplace_back();
+    }
+    detail::BodyRecord &r = w.bodies[index];
+    r.body = body;
+    r.shape = shape;
+    r.name = settings.name;
+    r.material = settings.material;
+    r.alive = true;
+    r.isStatic = settings.isStatic;
+    r.isPlane = settings.shape.type == ShapeType::Plane;
+    r.ccd = settings.ccd;
+    r.core = settings.ccd && !settings.isStatic ? detail::makeCore(detail::sweptShape(*shape)) : nullptr;
+    r.isolated = false;
+    r.simulated = false;
+    r.tree = Tree::None;
+    r.sleepingIsland = -1;
+    r.island = -1;
+    r.solverIndex = 0;
+    r.awakeSlot = -1;
+    r.rank = w.bodies.nextRank++;
+    r.boundingRadius = boundingRadius(settings.shape, *shape);
+    w.bodies.order.push_back(index);
+    if (!r.name.empty()) w.bodies.names.emplace(r.name, index);
+
+    if (r.isPlane) {
+        w.bodies.planes.push_back(index);
+        r.object.reset();
+    } else {
+        r.object = std::make_unique<detail::BodyObject>(shape->geometry(), r.body.getTransform());
+        r.object->setUserData(reinterpret_cast<void *>(static_cast<std::uintptr_t>(index)));
+        r.object->place(r.body.getTransform(), detail::kBroadphaseMargin);
+        if (r.isStatic) {
+            w.setTree(index, Tree::Static);
+        } else if (r.body.getAwake()) {
+            w.setTree(index, Tree::Awake);
+            w.bodies.updateAwakeList(index);
+        } else {
+            const std::uint32_t self = index;
+            w.sleepIsland(&self, 1, false);
+        }
+    }
+    return w.bodies.idOf(index);
+}
+
+void World::removeBody(BodyId id) {
+    Impl &w = *impl_;
+    detail::BodyRecord &r = w.bodies.record(id, "World::removeBody");
+    const std::uint32_t index = id.index;
+    // Bodies touching the removed one lose their support: wake them (and their islands).
+    for (std::uint32_t p : r.pairs) {
+        const detail::PairState &pair = w.contacts.pairs[p];
+        const std::uint32_t other = pair.a == index ? pair.b : pair.a;
+        if (pair.touching() && !w.bodies[other].isStatic) w.wake(other);
+    }
+    w.contacts.removePairsOf(w.bodies, index);
+    for (detail::SpringRecord &s : w.springs) {
+        if (!s.alive) continue;
+        const bool onA = s.settings.a == id;
+        const bool onB = s.settings.b && *s.settings.b == id;
+        if (!onA && !onB) continue;
+        const BodyId other = onA ? s.settings.b.value_or(BodyId()) : s.settings.a;
+        if (contains(other) && !w.bodies[other.index].isStatic) w.wake(other.index);
+        s.alive = false;
+        ++s.generation;
+        w.springs.free.push_back(static_cast<std::uint32_t>(&s - w.springs.records.data()));
+    }
+    if (r.sleepingIsland >= 0) {
+        // The rest of its sleeping island wakes: it may have rested on this body.
+        const std::vector<std::uint32_t> members = w.islands.sleeping[r.sleepingIsland];
+        for (std::uint32_t m : members)
+            if (m != index) w.wake(m);
+    }
+    if (r.isPlane) w.bodies.planes.erase(std::find(w.bodies.planes.begin(), w.bodies.planes.end(), index));
+    w.setTree(index, Tree::None);
+    if (r.sleepingIsland >= 0) {
+        w.islands.freeSleeping.push_back(r.sleepingIsland);
+        w.islands.sleeping[r.sleepingIsland].clear();
+    }
+    if (!r.name.empty()) w.bodies.names.erase(r.name);
+    w.bodies.order.erase(std::find(w.bodies.order.begin(), w.bodies.order.end(), index));
+    r.object.reset();
+    r.shape.reset();
+    r.core.reset();
+    r.alive = false;
+    w.bodies.updateAwakeList(index);
+    if (r.isolated) --w.bodies.isolatedCount;
+    ++r.generation;
+    w.bodies.free.push_back(index);
+    for (std::uint32_t m : w.bodies.order) w.bodies[m].island = -1;
+}
+
+bool World::contains(BodyId id) const {
+    return impl_->bodies.contains(id);
+}
+
+std::vector<BodyId> World::bodies() const {
+    std::vector<BodyId> out;
+    out.reserve(impl_->bodies.order.size());
+    for (std::uint32_t index : impl_->bodies.order) out.push_back(impl_->bodies.idOf(index));
+    return out;
+}
+
+void World::bodies(std::vector<BodyId> &out) const {
+    out.clear();
+    for (std::uint32_t index : impl_->bodies.order) out.push_back(impl_->bodies.idOf(index));
+}
+
+std::size_t World::bodyCount() const { return impl_->bodies.order.size(); }
+
+std::optional<BodyId> World::findBody(const std::string &name) const {
+    const auto found = impl_->bodies.names.find(name);
+    if (found == impl_->bodies.names.end()) return std::nullopt;
+    return impl_->bodies.idOf(found->second);
+}
+
+const RigidBody &World::body(BodyId id) const { return impl_->bodies.record(id, "World::body").body; }
+const std::string &World::name(BodyId id) const { return impl_->bodies.record(id, "World::name").name; }
+const Shape &World::shape(BodyId id) const { return impl_->bodies.record(id, "World::shape").shape->shape(); }
+bool World::isStatic(BodyId id) const { return impl_->bodies.record(id, "World::isStatic").isStatic; }
+const Material &World::material(BodyId id) const { return impl_->bodies.record(id, "World::material").material; }
+
+// --- Changing bodies --------------------------------------------------------------------
+
+void World::setPosition(BodyId id, const Vector3 &position) {
+    static const char *function = "World::setPosition";
+    Impl &w = *impl_;
+    detail::BodyRecord &r = w.bodies.record(id, function);
+    detail::requirePlace(function, "position", position);
+    if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their offset");
+    r.body.setPosition(position);
+    w.refreshCollisionObject(id.index);
+}
+
+void World::setOrientation(BodyId id, const Quaternion &orientation) {
+    static const char *function = "World::setOrientation";
+    Impl &w = *impl_;
+    detail::BodyRecord &r = w.bodies.record(id, function);
+    if (!orientation.coeffs().allFinite()) detail::refuse(function, "orientation", "must be finite");
+    if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their normal");
+    r.body.setOrientation(orientation);
+    w.refreshCollisionObject(id.index);
+}
+
+void World::setVelocity(BodyId id, const Vector3 &velocity) {
+    static const char *function = "World::setVelocity";
+    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::requireFinite(function, "velocity", velocity);
+    impl_->wake(id.index);
+    r.body.setVelocity(velocity);
+}
+
+void World::setRotation(BodyId id, const Vector3 &rotation) {
+    static const char *function = "World::setRotation";
+    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::requireFinite(function, "rotation", rotation);
+    impl_->wake(id.index);
+    r.body.setRotation(rotation);
+}
+
+void World::applyImpulse(BodyId id, const Vector3 &impulse) {
+    static const char *function = "World::applyImpulse";
+    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::requireFinite(function, "impulse", impulse);
+    impl_->wake(id.index);
+    r.body.addVelocity(impulse * r.body.getInverseMass());
+}
+
+void World::applyImpulse(BodyId id, const Vector3 &impulse, const Vector3 &point) {
+    static const char *function = "World::applyImpulse";
+    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::requireFinite(function, "impulse", impulse);
+    detail::requireFinite(function, "point", point);
+    const Vector3 dv = impulse * r.body.getInverseMass();
+    const Vector3 dw = r.body.getInverseInertiaTensorWorld() * (point - r.body.getPosition()).cross(impulse);
+    if (!dv.allFinite() || !dw.allFinite()) detail::refuse(function, "impulse", "gives a non-finite velocity");
+    impl_->wake(id.index);
+    r.body.addVelocity(dv);
+    r.body.addRotation(dw);
+}
+
+void World::addForce(BodyId id, const Vector3 &force) {
+    static const char *function = "World::addForce";
+    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::requireFinite(function, "force", force);
+    impl_->wake(id.index);
+    r.body.addForce(force);
+}
+
+void World::addForceAtPoint(BodyId id, const Vector3 &force, const Vector3 &point) {
+    static const char *function = "World::addForceAtPoint";
+    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::requireFinite(function, "force", force);
+    detail::requireFinite(function, "point", point);
+    impl_->wake(id.index);
+    r.body.addForceAtPoint(force, point);
+}
+
+void World::addTorque(BodyId id, const Vector3 &torque) {
+    static const char *function = "World::addTorque";
+    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::requireFinite(function, "torque", torque);
+    impl_->wake(id.index);
+    r.body.addTorque(torque);
+}
+
+void World::setAwake(BodyId id, bool awake) {
+    static const char *function = "World::setAwake";
+    Impl &w = *impl_;
+    detail::BodyRecord &r = w.bodies.dynamicRecord(id, function);
+    if (awake) {
+        w.wake(id.index);
+        return;
+    }
+    if (!r.body.getAwake()) return;
+    if (r.island >= 0) {
+        w.sleepIsland(w.islands.members(r.island), w.islands.size(r.island));
+    } else {
+        const std::uint32_t self = id.index;
+        w.sleepIsland(&self, 1);
+    }
+}
+
+void World::setCanSleep(BodyId id, bool canSleep) {
+    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, "World::setCanSleep");
+    if (!canSleep) impl_->wake(id.index);
+    r.body.setCanSleep(canSleep);
+}
+
+void World::setMaterial(BodyId id, const Material &material) {
+    static const char *function = "World::setMaterial";
+    detail::BodyRecord &r = impl_->bodies.record(id, function);
+    detail::requireNonNegative(function, "friction", material.friction);
+    detail::requireUnit(function, "restitution", material.restitution);
+    r.material = material;
+}
+
+// --- Springs ----------------------------------------------------------------------------
+
+SpringId World::addSpring(const SpringSettings &s) {
+    static const char *function = "World::addSpring";
+    Impl &w = *impl_;
+    w.bodies.record(s.a, function);
+    if (s.b) w.bodies.record(*s.b, function);
+    detail::requireFinite(function, "aPoint", s.aPoint);
+    detail::requireFinite(function, "bPoint", s.bPoint);
+    detail::requirePositive(function, "stiffness", s.stiffness);
+    detail::requireNonNegative(function, "damping", s.damping);
+    detail::requireNonNegative(function, "restLength", s.restLength);
+    if (s.b && *s.b == s.a) detail::refuse(function, "b", "must differ from a");
+    std::uint32_t index;
+    if (!w.springs.free.empty()) {
+        index = w.springs.free.back();
+        w.springs.free.pop_back();
+    } else {
+        index = static_cast<std::uint32_t>(w.springs.records.size());
+        w.springs.records.emplace_back();
+    }
+    detail::SpringRecord &r = w.springs.records[index];
+    r.settings = s;
+    r.alive = true;
+    r.implicitForce.setZero();
+    if (!w.bodies[s.a.index].isStatic) w.wake(s.a.index);
+    if (s.b && !w.bodies[s.b->index].isStatic) w.wake(s.b->index);
+    return {index, r.generation};
+}
+
+void World::removeSpring(SpringId id) {
+    Impl &w = *impl_;
+    if (id.index >= w.springs.records.size() || !w.springs.records[id.index].alive || w.springs.records[id.index].generation != id.generation)
+        detail::refuse("World::removeSpring", "id", "does not name a spring of this world");
+    detail::SpringRecord &r = w.springs.records[id.index];
+    const BodyId a = r.settings.a;
+    const std::optional<BodyId> b = r.settings.b;
+    r.alive = false;
+    ++r.generation;
+    w.springs.free.push_back(id.index);
+    if (contains(a) && !w.bodies[a.index].isStatic) w.wake(a.index);
+    if (b && contains(*b) && !w.bodies[b->index].isStatic) w.wake(b->index);
+}
+
+// --- Stepping ---------------------------------------------------------------------------
+
+void World::step(real dt) {
+    if (!std::isfinite(dt) || !(dt > 0)) detail::refuse("World::step", "dt", "must be finite and > 0, got " + detail::show(dt));
+    impl_->step(dt);
+}
+
+const StepStats &World::stats() const { return impl_->stats; }
+
+const WorldEvents &World::events() const { return impl_->events.events; }
+
+real World::kineticEnergy() const {
+    real energy = 0;
+    for (std::uint32_t index : impl_->bodies.order) {
+        const detail::BodyRecord &r = impl_->bodies[index];
+        if (r.isStatic) continue;
+        const Vector3 w = r.body.getRotation();
+        energy += 0.5 * r.body.getMass() * r.body.getVelocity().squaredNorm() +
+                  0.5 * w.dot(r.body.getInertiaTensorWorld() * w);
+    }
+    return energy;
+}
+
+// --- Impl: lookup, sleep and wake -------------------------------------------------------
+
+
+
+
+
+
+
+
+
+}  // namespace cyclone

@@ -1,0 +1,72 @@
+// The World's private state: the subsystems a step runs through, each owning its state
+// and scratch (kept between steps, so that a steady step allocates nothing).
+//
+// A step simulates the bodies awake when it starts ("simulated"): a body woken during the
+// step (touched by an awake body) acts as immovable for the rest of that step and moves
+// from the next one.
+#pragma once
+
+#include <cstdint>
+
+#include "collision/broadphase.h"
+#include "contacts/contact_manager.h"
+#include "cyclone/world/world.h"
+#include "dynamics/ccd.h"
+#include "dynamics/integration.h"
+#include "dynamics/islands.h"
+#include "dynamics/springs.h"
+#include "solver/constraint_solver.h"
+#include "world/body_store.h"
+#include "world/event_log.h"
+#include "world/workers.h"
+
+namespace cyclone {
+namespace detail {
+
+/// What every stage reads: the subsystems, the settings, the step's counters.
+struct WorldState {
+    WorldSettings settings;
+    BodyStore bodies;
+    SpringSet springs;
+    Broadphase broadphase;
+    ContactManager contacts;
+    ConstraintSolver solver;
+    Integration integration;
+    Islands islands;
+    ContinuousCollision ccd;
+    EventLog events;
+    Workers workers;
+    StepStats stats;
+    std::uint64_t stepCount = 0;
+
+    explicit WorldState(const WorldSettings &s) : settings(s) {}
+
+    /// One step of dt seconds, stage by stage (world/step.cpp).
+    void step(real dt);
+
+    // How a body moves between awake, asleep and isolated (world/wake_and_sleep.cpp).
+    /// Wakes the body and the rest of its sleeping island; static and isolated bodies
+    /// stay as they are.
+    void wake(std::uint32_t index);
+    /// Puts the listed bodies to sleep as one island; `report` false for a body added
+    /// asleep, which did not fall asleep.
+    void sleepIsland(const std::uint32_t *members, int count, bool report = true);
+    /// Takes a body whose state went non-finite out of collision and solve for good.
+    void isolate(std::uint32_t index);
+    /// Moves the body's collision object to another broadphase tree.
+    void setTree(std::uint32_t index, Tree tree);
+    /// After a teleport: refits the body's box and wakes what it or its contacts concern.
+    void refreshCollisionObject(std::uint32_t index);
+
+    /// Whether a query considers the body (queries/queries.cpp).
+    bool accepts(std::uint32_t index, const QueryFilter &filter) const;
+};
+
+}  // namespace detail
+
+/// The World's private state is its WorldState (the subsystems see that name).
+struct World::Impl : detail::WorldState {
+    using WorldState::WorldState;
+};
+
+}  // namespace cyclone
