@@ -126,7 +126,7 @@ TEST(Threads, CountsOutsideOneTo64AreRefused) {
     EXPECT_EQ(world.settings().threads, 1);
 }
 
-// The support pass's lanes: two columns on the floor, one per half, a bridge on both
+// The support pass's threads: two columns on the floor, one per half, a bridge on both
 // columns and a box on the bridge. Each run goes to its carried body's half, level by
 // level, and the bridge's run (half 1) must wait for a carrier of half 0.
 TEST(CarrierThreads, RunsGoToTheirBodysHalfLevelByLevel) {
@@ -149,28 +149,28 @@ TEST(CarrierThreads, RunsGoToTheirBodysHalfLevelByLevel) {
     const std::vector<int> order = {0, 1, 2, 3, 4, 5, 6};
     detail::assignCarriers(7, Vector3::UnitY(), manifolds, order, scratch, runs);
     const std::vector<signed char> side = {-1, 0, 1, 0, 1, 1, 0};
-    detail::CarrierThreads lanes;
-    detail::buildCarrierThreads(runs, manifolds, &side, 7, lanes);
+    detail::CarrierThreads threads;
+    detail::buildCarrierThreads(runs, manifolds, &side, 7, threads);
     // Runs by level: {1, 2}, {3, 4}, {5}, {6}, each body its own run in that order.
     const std::vector<int> expectedRunOf = {-1, 0, 1, 2, 3, 4, 5};
-    EXPECT_EQ(lanes.runOf, expectedRunOf);
-    EXPECT_EQ(lanes.runLevel, (std::vector<int>{0, 0, 1, 1, 2, 3}));
-    EXPECT_EQ(lanes.lane[0], (std::vector<int>{0, 2, 5}));  // bodies 1, 3, 6
-    EXPECT_EQ(lanes.lane[1], (std::vector<int>{1, 3, 4}));  // bodies 2, 4, 5
+    EXPECT_EQ(threads.runOf, expectedRunOf);
+    EXPECT_EQ(threads.runLevel, (std::vector<int>{0, 0, 1, 1, 2, 3}));
+    EXPECT_EQ(threads.share[0], (std::vector<int>{0, 2, 5}));  // bodies 1, 3, 6
+    EXPECT_EQ(threads.share[1], (std::vector<int>{1, 3, 4}));  // bodies 2, 4, 5
 
-    // Solved on two threads, both lanes finish (the waits resolve) in every pass.
+    // Solved on two threads, both threads finish (the waits resolve) in every pass.
     std::vector<detail::SolverBody> bodies(7);
     detail::TaskPool pool(2);
     for (int pass = 0; pass < 100; ++pass) {
-        detail::beginCarrierPass(lanes);
-        pool.run(2, [&](int lane) { detail::solveCarrierShare(bodies, manifolds, runs, lanes, lane, false); });
-        for (int r = 0; r < 6; ++r) ASSERT_EQ(lanes.finished[r].load(), lanes.pass) << "run " << r << ", pass " << pass;
+        detail::beginCarrierPass(threads);
+        pool.run(2, [&](int lane) { detail::solveCarrierShare(bodies, manifolds, runs, threads, lane, false); });
+        for (int r = 0; r < 6; ++r) ASSERT_EQ(threads.finished[r].load(), threads.pass) << "run " << r << ", pass " << pass;
     }
 
     // Without halves every run is on lane 0, in order.
-    detail::buildCarrierThreads(runs, manifolds, nullptr, 7, lanes);
-    EXPECT_EQ(lanes.lane[0], (std::vector<int>{0, 1, 2, 3, 4, 5}));
-    EXPECT_TRUE(lanes.lane[1].empty());
+    detail::buildCarrierThreads(runs, manifolds, nullptr, 7, threads);
+    EXPECT_EQ(threads.share[0], (std::vector<int>{0, 1, 2, 3, 4, 5}));
+    EXPECT_TRUE(threads.share[1].empty());
 }
 
 // A manifold between solver bodies a and b, for the schedule tests.

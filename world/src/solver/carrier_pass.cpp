@@ -16,7 +16,7 @@ struct RunLanes {
     int slots = 0;              ///< The longest run's size.
 };
 
-CYCLONE_INLINE bool carriesB(const SolverManifold &m) { return m.support == kASupportsB; }
+CYCLONE_INLINE bool carriesB(const SolverManifold &m) { return m.carrier == Carrier::A; }
 
 RunLanes laneRuns(const std::vector<SolverManifold> &manifolds, const CarrierRuns &runs, const int *run,
                   int count) {

@@ -12,7 +12,7 @@ namespace {
 // the order of their first manifolds, and a stable count by level keeps that order.
 void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
                const std::vector<int> *level, int bodyCount, CarrierScratch &scratch, CarrierRuns &runs) {
-    const auto carried = [](const SolverManifold &m) { return m.support == kASupportsB ? m.b : m.a; };
+    const auto carried = [](const SolverManifold &m) { return m.carrier == Carrier::A ? m.b : m.a; };
     const auto levelOf = [&](int body) { return level ? (*level)[body] : 0; };
     // The carried bodies by first manifold, and how many manifolds each has.
     std::vector<int> &count = scratch.count;
@@ -22,7 +22,7 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
     int levels = 0;
     for (int index : order) {
         const SolverManifold &m = manifolds[index];
-        if (m.support == kNoSupport) continue;
+        if (m.carrier == Carrier::None) continue;
         const int body = carried(m);
         if (count[body]++ == 0) {
             met.push_back(body);
@@ -52,7 +52,7 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
     runs.manifolds.resize(next);
     for (int index : order) {
         const SolverManifold &m = manifolds[index];
-        if (m.support != kNoSupport) runs.manifolds[cursor[carried(m)]++] = index;
+        if (m.carrier != Carrier::None) runs.manifolds[cursor[carried(m)]++] = index;
     }
     // Levels without a carried body have no runs: levelStart lists those that have.
     levelStart.erase(std::unique(levelStart.begin(), levelStart.end()), levelStart.end());
@@ -63,9 +63,9 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
 void assignCarriers(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
                    const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs) {
     for (SolverManifold &m : manifolds) {
-        m.support = kNoSupport;
-        if (m.a == 0) m.support = kASupportsB;  // static or asleep: immovable anyway
-        if (m.b == 0) m.support = kBSupportsA;
+        m.carrier = Carrier::None;
+        if (m.a == 0) m.carrier = Carrier::A;  // static or asleep: immovable anyway
+        if (m.b == 0) m.carrier = Carrier::B;
     }
     if (up.isZero(0) || manifolds.empty()) {
         buildRuns(manifolds, order, nullptr, bodyCount, scratch, runs);
@@ -115,8 +115,8 @@ void assignCarriers(int bodyCount, const Vector3 &up, std::vector<SolverManifold
         const int lb = level[m.b];
         if (la == lb || la == kUnreached || lb == kUnreached) continue;
         const real rise = m.normal.dot(u);  // > 0: B lies above A
-        if (la < lb && rise >= kRestingCosine) m.support = kASupportsB;
-        else if (lb < la && rise <= -kRestingCosine) m.support = kBSupportsA;
+        if (la < lb && rise >= kRestingCosine) m.carrier = Carrier::A;
+        else if (lb < la && rise <= -kRestingCosine) m.carrier = Carrier::B;
     }
     buildRuns(manifolds, order, &level, bodyCount, scratch, runs);
 }

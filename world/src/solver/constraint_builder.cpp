@@ -111,7 +111,7 @@ void ConstraintSolver::addSolverManifold(WorldState &world, const ManifoldKey &k
         stamp.anchorsId = m.anchorsId;
         stampBody(stamp.body[0], bodies[pair.a]);
         stampBody(stamp.body[1], bodies[pair.b]);
-        stamp.support = kSupportNotMade;
+        stamp.carrier.reset();
         for (int i = 0; i < m.count; ++i) {
             sm.order[i] = static_cast<signed char>(i);
             stamp.rowOf[m.points[i].id] = static_cast<signed char>(i);
@@ -125,7 +125,7 @@ void ConstraintSolver::addSolverManifold(WorldState &world, const ManifoldKey &k
     sm.friction = friction;
     sm.restitution = 0;
     sm.touchesStatic = false;
-    sm.support = kNoSupport;
+    sm.carrier = Carrier::None;
     sm.count = m.count;
     const bool warm = world.settings.warmStarting;
     sm.frictionRow[0].impulse = warm ? m.frictionImpulse.dot(sm.tangent[0]) : 0;
@@ -239,9 +239,9 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
         prepareManifold(bodies, s);
         JacobianStamp &stamp = stamps_[s];
-        if (support && stamp.support != manifolds_[s].support) {
+        if (support && stamp.carrier != manifolds_[s].carrier) {
             prepareCarriedMasses(bodies_, manifolds_[s]);
-            stamp.support = manifolds_[s].support;
+            stamp.carrier = manifolds_[s].carrier;
         }
     });
     for (std::size_t s = 0; s < manifolds_.size(); ++s) {

@@ -385,8 +385,8 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
 
 void prepareCarriedMasses(const std::vector<SolverBody> &bodies, SolverManifold &m) {
     // Against a static or sleeping body the pair's mass is already the carried body's.
-    if (m.support == kNoSupport || m.a == 0 || m.b == 0) return;
-    const bool bMoves = m.support == kASupportsB;
+    if (m.carrier == Carrier::None || m.a == 0 || m.b == 0) return;
+    const bool bMoves = m.carrier == Carrier::A;
     const real invMass = bodies[bMoves ? m.b : m.a].invMass;
     auto fill = [&](SolverRow &row, real linear) {
         const real k = linear + (bMoves ? dot3(row.rBxd, row.angB) : dot3(row.rAxd, row.angA));
@@ -402,7 +402,7 @@ void solveUncarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold>
                       const std::vector<int> &order, bool reverse) {
     for (int index : order) {
         SolverManifold &m = manifolds[index];
-        if (m.support != kNoSupport) continue;
+        if (m.carrier != Carrier::None) continue;
         PairVelocities vel(bodies[m.a], bodies[m.b]);
         solveManifold(vel, m, reverse);
         vel.store(bodies, m);

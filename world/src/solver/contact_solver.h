@@ -102,6 +102,13 @@ inline constexpr real kCarrierTolerance = 1e-5;
 /// sum times twistRadius (the points' mean distance from the centre: the torque that
 /// friction at the points could give at most). For a one-point contact that is the
 /// per-point model; a face's four corners need three friction rows instead of eight.
+/// Which body of a manifold carries the other in a resting stack.
+enum class Carrier : int {
+    None,  ///< Neither: the carrier pass leaves the manifold to the velocity passes.
+    A,     ///< A carries B.
+    B,     ///< B carries A.
+};
+
 struct SolverManifold {
     int a = 0;  ///< Index into the SolverBody array (0 = static world).
     int b = 0;
@@ -122,10 +129,9 @@ struct SolverManifold {
     real friction = 0;
     real restitution = 0;
     bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
-    /// Which body carries the other (the support pass treats it as immovable):
-    /// kNoSupport, kASupportsB or kBSupportsA. A static or sleeping side always
-    /// does. See assignCarriers().
-    int support = 0;
+    /// Which body carries the other (the carrier pass treats it as immovable). A static
+    /// or sleeping side always does. See assignCarriers().
+    Carrier carrier = Carrier::None;
     int count = 0;
     /// The order the passes solve the points in: the k-th is points[order[k]] (k past
     /// count: k itself). A point's row stays where its Jacobians were made; when a kept
@@ -152,10 +158,6 @@ CYCLONE_INLINE const RowCouplings &couplingsInOrder(const SolverManifold &m, con
         out.friction[r] = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(c.friction[r]), pick));
     return out;
 }
-
-inline constexpr int kNoSupport = 0;
-inline constexpr int kASupportsB = 1;
-inline constexpr int kBSupportsA = 2;
 
 /// The support pass's order (assignCarriers): the carried bodies bottom up; run r is one
 /// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]). A level holds

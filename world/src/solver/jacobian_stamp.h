@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "solver/contact_solver.h"
 #include "cyclone/core.h"
@@ -29,8 +30,6 @@ struct StampedBody {
     Quaternion orientation = Quaternion::Identity();
 };
 
-inline constexpr int kSupportNotMade = -1;
-
 /// Per solver slot (ConstraintSolver::stamps_).
 struct JacobianStamp {
     /// The anchors they were made for (ManifoldState::anchorsId; 0: none, no manifold has it).
@@ -38,9 +37,8 @@ struct JacobianStamp {
     /// Where each point's normal row is among the slot's points, by PersistentPoint::id.
     signed char rowOf[kMaxManifoldPoints] = {0, 1, 2, 3};
     StampedBody body[2];  ///< A and B.
-    /// The SolverManifold::support the supported masses were made for (kSupportNotMade:
-    /// not yet).
-    int support = kSupportNotMade;
+    /// The SolverManifold::carrier the carried masses were made for (none: not yet).
+    std::optional<Carrier> carrier;
     /// This step: the slot's Jacobians still hold, and prepareSolver keeps them.
     bool kept = false;
 };

@@ -193,8 +193,8 @@ void loadPseudo(const SolverManifold *const m[kWideLanes], PenetrationBatch &out
         out.localB[i] = {columns[0], columns[1], columns[2]};
     }
     // Per lane: the carried side alone, or both.
-    gather(m, [](const SolverManifold &x) { return real(x.support == kASupportsB ? 0 : 1); }, out.moveA);
-    gather(m, [](const SolverManifold &x) { return real(x.support == kBSupportsA ? 0 : 1); }, out.moveB);
+    gather(m, [](const SolverManifold &x) { return real(x.carrier == Carrier::A ? 0 : 1); }, out.moveA);
+    gather(m, [](const SolverManifold &x) { return real(x.carrier == Carrier::B ? 0 : 1); }, out.moveB);
 }
 
 CYCLONE_SIMD_CLONES

@@ -39,7 +39,7 @@ struct PenetrationBatch {
     WideVector localB[kMaxManifoldPoints];  ///< Anchors on B, B's body space, m.
     Lanes count{};                          ///< Points of each lane's manifold.
     /// The pass with shock propagation (the last of a sub-step): where a lane has a
-    /// carrier (SolverManifold::support, kNoSupport without shock propagation), only the
+    /// carrier (SolverManifold::carrier, Carrier::None without shock propagation), only the
     /// carried body moves. 1 where that side moves, else 0.
     Lanes moveA{}, moveB{};
     Lanes target[kMaxManifoldPoints]{};   ///< Pseudo normal velocity aimed at, m/s.

@@ -156,13 +156,13 @@ void ConstraintSolver::storeVelocityPasses(WorldState &world) {
     });
 }
 
-// The partition_'s halves at once, each run once its carriers are done (support_lanes.h).
+// The partition's halves at once, each run once its carriers are done (threads/carrier_threads.h).
 void ConstraintSolver::solveCarrierPass(WorldState &world, bool reverse) {
     solveUncarried(bodies_, manifolds_, solveOrder_, reverse);
     beginCarrierPass(carrierThreads_);
     for (CarrierPassScratch &s : carrierThreads_.scratch) s.sweeps = 0;
-    world.workers.forEachTask(carrierThreads_.lane[1].empty() ? 1 : 2, [&](int lane) {
-        solveCarrierShare(bodies_, manifolds_, carrierRuns_, carrierThreads_, lane, reverse);
+    world.workers.forEachTask(carrierThreads_.share[1].empty() ? 1 : 2, [&](int share) {
+        solveCarrierShare(bodies_, manifolds_, carrierRuns_, carrierThreads_, share, reverse);
     });
     for (const CarrierPassScratch &s : carrierThreads_.scratch) world.stats.carrierSweeps += static_cast<int>(s.sweeps);
 }

@@ -22,28 +22,28 @@
 namespace cyclone::detail {
 
 struct CarrierThreads {
-    /// Runs of each lane (thread), level by level; lane 1 is empty when not shared.
-    std::vector<int> lane[2];
+    /// Runs of each thread's share, level by level; share 1 is empty when not shared.
+    std::vector<int> share[2];
     std::vector<int> runOf;     ///< Per solver body: its run, or -1 (none: final before the pass).
     std::vector<int> runLevel;  ///< Per run: its level.
     /// Per run: the pass (`pass`) in which it last finished.
     std::unique_ptr<std::atomic<std::uint32_t>[]> finished;
     std::size_t capacity = 0;  ///< Length of `finished`.
     std::uint32_t pass = 0;
-    CarrierPassScratch scratch[2];  ///< Per lane.
+    CarrierPassScratch scratch[2];  ///< Per share.
 };
 
-/// Lists the runs of each lane: with `side` (per solver body, 0 or 1; the partition's
-/// halves) a run goes to its carried body's side, without it every run goes to lane 0.
+/// Lists the runs of each thread's share: with `side` (per solver body, 0 or 1; the partition's
+/// halves) a run goes to its carried body's side, without it every run goes to share 0.
 void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifold> &manifolds,
-                       const std::vector<signed char> *side, int bodyCount, CarrierThreads &lanes);
+                       const std::vector<signed char> *side, int bodyCount, CarrierThreads &threads);
 
 /// Opens a support pass: no run has finished in it yet.
-void beginCarrierPass(CarrierThreads &lanes);
+void beginCarrierPass(CarrierThreads &threads);
 
-/// Solves the runs of `lane` in order, each once its carriers' runs have finished (a
-/// carrier on the other lane may still be running: this waits for it).
+/// Solves the runs of share `share` in order, each once its carriers' runs have finished (a
+/// carrier in the other share may still be running: this waits for it).
 void solveCarrierShare(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, CarrierRuns &runs,
-                      CarrierThreads &lanes, int lane, bool reverse);
+                      CarrierThreads &threads, int share, bool reverse);
 
 }  // namespace cyclone::detail

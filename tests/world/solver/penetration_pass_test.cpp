@@ -40,7 +40,7 @@ struct Scene {
             m.points[i].localA = Vector3(0, depths[i], 0);
             m.points[i].localB = Vector3::Zero();
         }
-        if (carrier != 0) m.support = detail::kASupportsB;
+        if (carrier != 0) m.carrier = detail::Carrier::A;
         manifolds.push_back(m);
         frames.push_back({Vector3::UnitY(), Vector3::UnitY(), 0});
     }

@@ -23,7 +23,7 @@ int addResting(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
     SolverManifold m;
     m.a = cubeIsA ? cube : carrier;
     m.b = cubeIsA ? carrier : cube;
-    m.support = cubeIsA ? detail::kBSupportsA : detail::kASupportsB;
+    m.carrier = cubeIsA ? detail::Carrier::B : detail::Carrier::A;
     m.count = 2;
     m.normal = cubeIsA ? Vector3(0, -1, 0) : Vector3::UnitY();
     detail::tangentBasis(m.normal, m.tangent[0], m.tangent[1]);
@@ -172,7 +172,7 @@ TEST(SupportPass, SweepsInOneDirectionSettleWhereNoVelocityMeetsEveryCorner) {
         SolverManifold m;
         m.a = 0;
         m.b = body;
-        m.support = detail::kASupportsB;
+        m.carrier = detail::Carrier::A;
         m.count = 4;
         m.normal = Vector3::UnitY();
         detail::tangentBasis(m.normal, m.tangent[0], m.tangent[1]);
