@@ -34,7 +34,7 @@ const Column kColumns[] = {
     {"solve", [](const StageTimes &t) { return t.solve; }},
     {"solve: setup", [](const StageTimes &t) { return t.solveParts.setup; }},
     {"solve: velocity", [](const StageTimes &t) { return t.solveParts.velocity; }},
-    {"solve: support", [](const StageTimes &t) { return t.solveParts.carrier; }},
+    {"solve: carrier", [](const StageTimes &t) { return t.solveParts.carrier; }},
     {"solve: position", [](const StageTimes &t) { return t.solveParts.position; }},
     {"integrate", [](const StageTimes &t) { return t.integrate; }},
     {"ccd", [](const StageTimes &t) { return t.ccd; }},

@@ -112,7 +112,7 @@ int main(int argc, char **argv) {
         return 2;
     }
     std::printf("10 s at 60 Hz, %s solver, %d sub-steps x (%d velocity + %d position iterations), slop %g m, "
-                "support pass %s\n",
+                "carrier pass %s\n",
                 chosen.contactSolver == ContactSolverType::SoftStep ? "soft-step" : "split-impulse", chosen.substeps,
                 chosen.velocityIterations, chosen.positionIterations, chosen.penetrationSlop,
                 chosen.shockPropagation ? "on" : "off");

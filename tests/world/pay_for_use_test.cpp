@@ -46,7 +46,7 @@ TEST(PayForUse, FrictionlessStackHasNoFrictionRows) {
 }
 
 // The solve stage's parts (StageTimes::solveParts) show what a solver setting costs: no
-// support pass time with shock propagation off, neither support nor position time
+// carrier pass time with shock propagation off, neither support nor position time
 // without contacts, and the parts never add up to more than the stage.
 TEST(PayForUse, SolvePartsAreZeroForWhatDidNotRun) {
     WorldSettings settings = noSleep();

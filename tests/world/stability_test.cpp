@@ -101,8 +101,8 @@ double sum(const std::vector<double> &values) {
 
 // A heavy box between light ones: 1, 100, 1 kg and 1, 1000, 1 kg unit boxes. Plain
 // Gauss-Seidel converges ever slower as a heavy body rests on a light one (measured
-// before the support pass: 1:100:1 sank 13.6 mm, 1:1000:1 pushed the light box out);
-// the support pass (shock propagation, WorldSettings::shockPropagation) holds both
+// before the carrier pass: 1:100:1 sank 13.6 mm, 1:1000:1 pushed the light box out);
+// the carrier pass (shock propagation, WorldSettings::shockPropagation) holds both
 // within the bounds of a unit-mass stack.
 TEST(Stability, MassRatiosStacked) {
     for (double ratio : {100.0, 1000.0}) {
@@ -159,7 +159,7 @@ TEST(Stability, PyramidTenKilometresAway) {
 
 // --- Step sizes ---------------------------------------------------------------------------
 
-// Three unit boxes stacked, stepped at 1/1000 s to 1/15 s. Before the support pass the
+// Three unit boxes stacked, stepped at 1/1000 s to 1/15 s. Before the carrier pass the
 // stack crept sideways at 1/30 s and 1/15 s though nothing pushes it (1.8 mm and 7.5 mm in
 // 3 s): point by point, the normal and friction impulses left each box turning a little
 // each sub-step.

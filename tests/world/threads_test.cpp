@@ -1,6 +1,6 @@
 // Threads share a step's work and change nothing in its results: the same scene with 1,
 // 2 or 3 threads gives bit-identical states (docs/solver.md, "Threads"). The scene is
-// large enough for the solver to split its passes in two halves (solver_partition.h).
+// large enough for the solver to split its passes in two halves (threads/partition.h).
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -126,7 +126,7 @@ TEST(Threads, CountsOutsideOneTo64AreRefused) {
     EXPECT_EQ(world.settings().threads, 1);
 }
 
-// The support pass's threads: two columns on the floor, one per half, a bridge on both
+// The carrier pass's threads: two columns on the floor, one per half, a bridge on both
 // columns and a box on the bridge. Each run goes to its carried body's half, level by
 // level, and the bridge's run (half 1) must wait for a carrier of half 0.
 TEST(CarrierThreads, RunsGoToTheirBodysHalfLevelByLevel) {

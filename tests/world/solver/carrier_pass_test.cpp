@@ -1,4 +1,4 @@
-// The support pass's runs (world/src/wide_support.h): each carried body swept against its
+// The carrier pass's runs (world/src/carrier_pass.h): each carried body swept against its
 // carriers held immovable, four runs at a time, one per lane.
 #include <gtest/gtest.h>
 
@@ -93,7 +93,7 @@ TEST(SupportPass, StopsACubeOnTheWorldAndKeepsItsImpulses) {
 // On a carrier rising at 0.5 m/s, a cube at rest is brought to the carrier's velocity at
 // the contacts: 0.5 m/s up, not turning. The carrier is held immovable, so it keeps its
 // velocity; it moves, so the run's impulses are dropped and the manifold keeps those the
-// coupled passes left.
+// velocity passes left.
 TEST(SupportPass, CarriesACubeWithAMovingCarrierAndDropsItsImpulses) {
     for (bool cubeIsA : {false, true}) {
         std::vector<SolverBody> bodies(1);

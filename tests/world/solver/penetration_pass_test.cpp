@@ -1,4 +1,4 @@
-// The penetration pass (world/src/wide_pseudo.cpp): each point's target pseudo-velocity
+// The penetration pass (world/src/penetration_pass.cpp): each point's target pseudo-velocity
 // from its depth beyond what the manifold may keep, the rows solved one after another on
 // the pseudo-velocities four manifolds at a time, and with shock propagation only the
 // carried body moved.

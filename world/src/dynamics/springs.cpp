@@ -14,7 +14,7 @@
 // 1 / (1 + (omega h)^2) per sub-step whatever omega h is. An attachment off the centre of
 // mass moves on a circle, not along its velocity, so a fast-turning body may gain a
 // little in one step (k |stretch| (h w)^2 r at most), never beyond its starting energy in
-// tests/world/integrator_test.cpp. Springs sharing a body are coupled: each is solved
+// tests/world/dynamics/integrator_test.cpp. Springs sharing a body are coupled: each is solved
 // with the others' current forces, in kImplicitSpringPasses passes warm-started with the
 // last sub-step's forces (block Gauss-Seidel). At rest the warm start is the solution, so
 // a chain hangs exactly where its springs carry the weight below them.

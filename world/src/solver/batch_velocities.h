@@ -1,5 +1,5 @@
 // The bodies' velocities a wide manifold's passes work on, four lanes at a time: the
-// coupled velocity pass (wide_pass.h) and the penetration pass (wide_pseudo.h).
+// velocity pass (velocity_pass.h) and the penetration pass (penetration_pass.h).
 #pragma once
 
 #include <vector>
@@ -24,7 +24,7 @@ struct WideVelocities {
     }
 
     // Writes the lanes in use back. Never the immovable world (entry 0), which they leave
-    // unchanged: two threads may hold it at once (solver_partition.h).
+    // unchanged: two threads may hold it at once (threads/partition.h).
     CYCLONE_INLINE void store(std::vector<SolverBody> &bodies, const ManifoldBatch &m) const {
         storeSide(bodies, m.a, m.size, va, wa);
         storeSide(bodies, m.b, m.size, vb, wb);

@@ -157,7 +157,7 @@ struct CarriedSweep {
         for (int j = 0; j < kMaxManifoldPoints; ++j) vn[j] += impulse * coupling[j];
     }
 
-    // The patch's friction (wide_friction.h).
+    // The patch's friction (patch_friction.h).
     CYCLONE_INLINE void friction() {
         const Lanes zero{};
         const LaneMask rubs = (c.coefficient > zero) & active;

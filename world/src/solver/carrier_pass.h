@@ -1,12 +1,12 @@
-// The support pass's runs, four at a time.
+// The carrier pass's runs, four at a time.
 //
 // Design note. A run (CarrierRuns) sweeps one carried body against its carriers, which it
 // holds immovable, until a sweep changes the body's velocity by less than
 // kCarrierTolerance or for kCarrierSweeps sweeps. The runs of one level never carry one
 // another, so four of them are solved by the same instructions, one run per lane, as the
-// coupled passes solve four manifolds (wide_pass.h): slot k of a group holds each lane's
+// velocity passes solve four manifolds (velocity_pass.h): slot k of a group holds each lane's
 // k-th contact with a carrier. Because only the carried body moves, a run's rows cost
-// less than a coupled pass's:
+// less than a velocity pass's:
 // - each row is written as the carried body takes it: along the normal when it is B,
 //   along the negated normal (its lever terms negated too) when it is A, so one formula
 //   serves both sides;
@@ -14,13 +14,12 @@
 //   once when the group is loaded;
 // - the carried body's velocity stays in registers over all its contacts and sweeps.
 // Each lane stops by its own test and takes no impulse after that, so a run's numbers do
-// not depend on which runs share its group, nor on the thread count (support_lanes.h).
+// not depend on which runs share its group, nor on the thread count (threads/carrier_threads.h).
 //
 // A run sweeps its body against all its carriers at once. One carrier after the other
 // would leave the body as high as the highest contact point of any carrier pushed it (an
-// impulse that lifts it is never taken back), and a tall pyramid rose by millimetres in
-// its first step; swept together, a carrier's impulse falls again when another lifts the
-// body. Against a static or sleeping carrier a run's accumulated impulses are the true
+// impulse that lifts it is never taken back); swept together, a carrier's impulse falls
+// again when another lifts the body. Against a static or sleeping carrier a run's accumulated impulses are the true
 // problem's and are kept; against a moving one they are dropped: computed with the
 // carried body's mass alone, kept, they would swing the warm start of a heavy body on a
 // light one by the mass ratio times its error, and the stack diverges. So they live in

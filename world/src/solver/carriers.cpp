@@ -6,7 +6,7 @@
 namespace cyclone::detail {
 namespace {
 
-// The support pass's runs: each carried body's manifolds with its carriers, bodies by
+// The carrier pass's runs: each carried body's manifolds with its carriers, bodies by
 // level (bottom up; all level 0 without `level`), then by their first such manifold in
 // `order`, each body's manifolds in `order`. Bucketed, not sorted: the bodies are met in
 // the order of their first manifolds, and a stable count by level keeps that order.

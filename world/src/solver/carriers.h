@@ -1,4 +1,4 @@
-// Who carries whom in a resting stack, for the solver's support pass (shock propagation).
+// Who carries whom in a resting stack, for the solver's carrier pass (shock propagation).
 #pragma once
 
 #include <vector>
@@ -27,7 +27,7 @@ struct CarrierScratch {
 /// moving bodies, those at the same level, side contacts and worlds without gravity
 /// (`up` zero) get none.
 /// `bodyCount` counts the solver bodies, body 0 included.
-/// Also lists the support pass's runs (CarrierRuns) bottom up; within a level, the
+/// Also lists the carrier pass's runs (CarrierRuns) bottom up; within a level, the
 /// bodies and each body's manifolds in the solve order `order` (manifold indices).
 void assignCarriers(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
                    const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs);

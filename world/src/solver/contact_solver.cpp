@@ -89,7 +89,7 @@ struct PairVelocities {
         : va(a.v), wa(a.w), vb(b.v), wb(b.w), invMassA(a.invMass), invMassB(b.invMass) {}
 
     // Writes the bodies back. Never the immovable world (entry 0), which it would leave
-    // unchanged: two threads may hold it at once (solver_partition.h).
+    // unchanged: two threads may hold it at once (threads/partition.h).
     CYCLONE_INLINE void store(std::vector<SolverBody> &bodies, const SolverManifold &m) const {
         if (m.a != 0) bodies[m.a].v = va, bodies[m.a].w = wa;
         if (m.b != 0) bodies[m.b].v = vb, bodies[m.b].w = wb;

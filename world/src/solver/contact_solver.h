@@ -20,7 +20,7 @@
 namespace cyclone::detail {
 
 /// Velocity state of one awake dynamic body during the solve. The velocities are held in
-/// lanes (lanes.h): the passes read and write nothing else.
+/// lanes (simd/vector4.h): the passes read and write nothing else.
 struct SolverBody {
     Lanes v{};   ///< Linear velocity, m/s.
     Lanes w{};   ///< Angular velocity, rad/s.
@@ -39,13 +39,13 @@ struct SolverRow {
     /// Effective mass along d, kg. Normal rows only: the friction rows are solved as a
     /// block through SolverManifold::frictionInverse and leave both masses unset.
     real mass = 0;
-    real carriedMass = 0;  ///< Effective mass with the supporting body immovable (support pass), kg.
+    real carriedMass = 0;  ///< Effective mass with the carrier immovable (carrier pass), kg.
     real impulse = 0;  ///< Accumulated impulse, N s.
 };
 
 /// The fields that the depth loop (World::Impl::solve) and loadBatches read and write come
 /// first, in the point's first cache lines, and the row last, where its lanes need no
-/// padding: 256 bytes in all. loadPseudo (wide_pseudo.h) reads localA, localB and depth
+/// padding: 256 bytes in all. loadPseudo (penetration_pass.h) reads localA, localB and depth
 /// as one run of reals.
 struct SolverPoint {
     Vector3 localA;          ///< Anchor on A, A's body space, m.
@@ -60,7 +60,7 @@ struct SolverPoint {
 inline constexpr int kMaxManifoldPoints = 4;
 
 /// The order of a pass over one manifold's rows (ManifoldSweep in contact_solver.cpp,
-/// WideSweep in wide_pass.cpp, CarriedSweep in wide_support.cpp): the patch's friction,
+/// WideSweep in velocity_pass.cpp, CarriedSweep in carrier_pass.cpp): the patch's friction,
 /// then the `count` points' normal rows, from the last with `reverse` (alternate passes
 /// keep the first point from taking the largest share of a new load), then the impulses
 /// reach the bodies.
@@ -79,20 +79,18 @@ CYCLONE_INLINE void sweepRows(Sweep &sweep, int count, bool reverse) {
 /// points' normal rows, per N s: lane j of an entry is point j's. A pass solves the
 /// manifold's rows one after another, as Gauss-Seidel does, but reads the bodies'
 /// velocities once and tracks the normal velocities through these (ManifoldSweep in
-/// contact_solver.cpp; WideSweep in wide_pass.cpp, from loadBatches's copy).
+/// contact_solver.cpp; WideSweep in velocity_pass.cpp, from loadBatches's copy).
 /// Lanes past the manifold's count, and point k's own lane of normal[k], are zero.
 struct RowCouplings {
     Lanes normal[kMaxManifoldPoints];  ///< Per unit impulse on point k's normal row.
     Lanes friction[3];                 ///< Per unit impulse on tangent 0, tangent 1, the twist.
 };
 
-/// Most Gauss-Seidel sweeps the support pass gives one body against a body that carries
-/// it: one sweep over a face's four corners leaves the body turning, and a stack leans.
-/// At 8, pyramid40's bodies stopped at the cap before the tolerance, and its 10 s drift
-/// spread from 0.2 to 2.8 cm over runs nanometres apart; at 12, 0.1 to 0.6 cm
-/// (docs/solver.md).
+/// Most Gauss-Seidel sweeps the carrier pass gives one body against the bodies that
+/// carry it: one sweep over a face's four corners leaves the body turning, and a stack
+/// leans (the choice of 12: docs/solver.md, "The carrier pass").
 inline constexpr int kCarrierSweeps = 12;
-/// The support pass stops sweeping a contact once no impulse changes a relative
+/// The carrier pass stops sweeping a contact once no impulse changes a relative
 /// velocity by more than this, m/s (10 s of such an error would move a body 0.1 mm).
 inline constexpr real kCarrierTolerance = 1e-5;
 
@@ -125,7 +123,7 @@ struct SolverManifold {
     real frictionInverse[6] = {};
     real carriedFrictionInverse[6] = {};  ///< The same with the supporting body immovable.
     RowCouplings couplings{};           ///< Through both bodies.
-    RowCouplings carriedCouplings{};  ///< Through the carried body alone (support pass).
+    RowCouplings carriedCouplings{};  ///< Through the carried body alone (carrier pass).
     real friction = 0;
     real restitution = 0;
     bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
@@ -159,7 +157,7 @@ CYCLONE_INLINE const RowCouplings &couplingsInOrder(const SolverManifold &m, con
     return out;
 }
 
-/// The support pass's order (assignCarriers): the carried bodies bottom up; run r is one
+/// The carrier pass's order (assignCarriers): the carried bodies bottom up; run r is one
 /// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]). A level holds
 /// the bodies equally far from the ground (in contacts); no body carries another of its
 /// level.
@@ -233,16 +231,16 @@ void prepareCarriedMasses(const std::vector<SolverBody> &bodies, SolverManifold 
 /// Applies the accumulated impulses (warm start) of the manifolds listed in `order`.
 void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
                const std::vector<int> &order);
-/// The support pass (shock propagation), run after the coupled passes: first one plain
+/// The carrier pass (shock propagation), run after the velocity passes: first one plain
 /// pass over the manifolds where neither side carries the other, in `order`
 /// (solveUncarried), then,
 /// level by level bottom up (CarrierRuns::levelStart), each carried body against its
 /// carriers as immovable bodies with up to kCarrierSweeps sweeps (solveCarriedRuns in
-/// wide_support.h, four runs at a time; support_lanes.h on two threads). It leaves
+/// carrier_pass.h, four runs at a time; threads/carrier_threads.h on two threads). It leaves
 /// no body of a resting stack sinking into the one below or turning on it, whatever
 /// their mass ratio (plain Gauss-Seidel converges ever slower as a heavy body rests on a
 /// lighter one). Its impulses change velocities only: the accumulated impulses stay those
-/// of the coupled passes. The runs of one level are independent: any of them may be
+/// of the velocity passes. The runs of one level are independent: any of them may be
 /// solved at the same time.
 void solveUncarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                       const std::vector<int> &order, bool reverse);

@@ -1,9 +1,9 @@
-// A contact patch's friction for four manifolds in lanes (wide_lanes.h), as
+// A contact patch's friction for four manifolds in lanes (simd/batch4.h), as
 // ManifoldSweep::friction (contact_solver.cpp) solves it for one: the tangents and the
 // twist as a block through its inverse, the tangents then limited to the cone of the
 // points' summed normal impulse and the twist to the same sum times the twist radius.
-// Shared by the wide coupled pass (wide_pass.cpp) and the wide support pass
-// (wide_support.cpp).
+// Shared by the batched velocity pass (velocity_pass.cpp) and the batched carrier pass
+// (carrier_pass.cpp).
 #pragma once
 
 #include "solver/simd/batch4.h"

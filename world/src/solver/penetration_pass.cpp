@@ -8,7 +8,7 @@ namespace cyclone::detail {
 
 namespace {
 
-// Lanes are given back through a reference, as in lanes.h.
+// Lanes are given back through a reference, as in simd/vector4.h.
 
 // Lane k of `out` is field(*x[k]).
 template <class T, class Field>
@@ -83,7 +83,7 @@ CYCLONE_INLINE bool setTargets(const SolverGroup &group, const PseudoTargets &ta
 }
 
 // The normal rows' effective masses, and their couplings (as ManifoldBatch::
-// normalCoupling), through the bodies the support pass moves: the carried one where a
+// normalCoupling), through the bodies the carrier pass moves: the carried one where a
 // lane has a carrier, else both. Worked out from the rows (SolverRow::carriedMass and
 // RowCouplings of the supported side give the same but for rounding): the sweep's chain
 // does not wait on them, and loading them cost more.
@@ -108,7 +108,7 @@ CYCLONE_INLINE void supportedRows(const ManifoldBatch &m, const PenetrationBatch
 
 // One group's normal rows on the pseudo-velocities, in solve order, each towards its
 // target; a point with neither a target nor an impulse is left alone. As WideSweep
-// (wide_pass.cpp) does for the velocities: the normal velocities are read at the start
+// (velocity_pass.cpp) does for the velocities: the normal velocities are read at the start
 // and tracked through the couplings, and the impulses reach the bodies at the end.
 template <bool kSupport>
 CYCLONE_INLINE void solveGroup(std::vector<SolverBody> &bodies, const ManifoldBatch &m, PenetrationBatch &p) {

@@ -1,13 +1,13 @@
 // Penetration recovery (split impulse), four manifolds at a time.
 //
-// Design note. A pseudo-velocity pass is a coupled pass without friction, on the bodies'
+// Design note. A pseudo-velocity pass is a velocity pass without friction, on the bodies'
 // pseudo-velocities: each point's normal row pushes towards a target set from its depth.
 // Solved one manifold at a time, each manifold's rows wait on one another, as the
-// velocity passes' did before they went wide (wide_pass.h). This pass runs on the same
+// velocity passes' did before they went wide (velocity_pass.h). This pass runs on the same
 // groups and the same wide rows (ManifoldBatch, copied by loadBatches), plus what only it
 // needs (PenetrationBatch, copied with them): the anchors its depths come from and which
-// bodies the support pass moves. The groups keep the results of the plain order
-// (solver_schedule.h), so the numbers are those of solving manifold after manifold.
+// bodies the carrier pass moves. The groups keep the results of the plain order
+// (schedule.h), so the numbers are those of solving manifold after manifold.
 #pragma once
 
 #include <vector>

@@ -1,4 +1,4 @@
-// The order in which a coupled velocity pass visits the manifolds, in groups it can solve
+// The order in which a velocity pass visits the manifolds, in groups it can solve
 // side by side.
 //
 // Design note. Gauss-Seidel is a chain: each row reads the velocities the row before it
@@ -8,15 +8,14 @@
 // manifolds into groups of up to kGroupSize, keeping the result of the plain order: a
 // manifold is taken forward into an earlier group only past manifolds it shares no
 // moving body with. A pass solves a group's manifolds at once, one per SIMD lane
-// (wide_pass.h).
+// (velocity_pass.h).
 //
 // The plain order is by contact height, and a layer of a stack has its contacts at one
-// height but for rounding: their order within the layer is rounding's choice. A chain of
-// such contacts (a box on two, each of those on two more) shares a body link by link, and
-// in rounding's order few of them could pass the others: pyramid20's groups held 78 % of
-// four manifolds. The level schedule lets a manifold pass a level one too, which keeps
-// the order by height but picks the order within a level for the groups (93 %, the
-// two halves of the partition in one list: solver_partition.h).
+// height but for rounding: their order within the layer is rounding's choice, and in it
+// few contacts of a chain (a box on two, each of those on two more) could pass the
+// others. The level schedule lets a manifold pass a level one too, which keeps the order
+// by height but picks the order within a level for the groups (how full they are:
+// docs/solver.md, "How the passes are made fast").
 #pragma once
 
 #include <vector>
@@ -33,8 +32,8 @@ struct SolverGroup {
     int size = 0;
 };
 
-/// How far ahead (in manifolds) the schedule looks for a group's members: at 8, groups
-/// of four held 73 % of pyramid40's manifolds, at 16 90 %, at 32 92 %.
+/// How far ahead (in manifolds) the schedule looks for a group's members (the choice:
+/// docs/solver.md, "How the passes are made fast").
 inline constexpr int kScheduleWindow = 16;
 
 /// Contacts within this height of each other (m along -gravity) are taken as level: the

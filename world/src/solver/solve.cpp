@@ -99,12 +99,12 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         }
         if (split) storeVelocityPasses(world);
         stats.velocityIterations += settings.velocityIterations;
-        // The support pass comes after the coupled passes, never instead of one: alone,
+        // The carrier pass comes after the velocity passes, never instead of one: alone,
         // it would let no body push the bodies carrying it.
         if (split && settings.shockPropagation) {
             const StageTimer timed(stats.ms.solveParts.carrier);
             // A run sweeps its points in one direction: the other one next step, so that
-            // no point of a face takes the larger share step after step (wide_support.h).
+            // no point of a face takes the larger share step after step (carrier_pass.h).
             solveCarrierPass(world, ((settings.velocityIterations & 1) != 0) != ((world.stepCount & 1) != 0));
         }
     }
@@ -120,7 +120,7 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     }
 }
 
-// The warm start (without split impulse: loadCoupledPasses makes it) and each coupled
+// The warm start (without split impulse: loadVelocityPasses makes it) and each velocity
 // pass: the two halves of the partition_ at once, then the seam.
 void ConstraintSolver::warmStart(WorldState &world) {
     world.workers.forEachTask(partition_.split ? 2 : 1, [&](int half) {
@@ -129,7 +129,7 @@ void ConstraintSolver::warmStart(WorldState &world) {
     detail::warmStart(bodies_, manifolds_, partition_.order[SolverPartition::kSeam]);
 }
 
-// The coupled passes work on a copy of the rows they solve (wide_pass.h), taken at the
+// The velocity passes work on a copy of the rows they solve (velocity_pass.h), taken at the
 // warm start, which each group makes as it is copied, and handed back, with the
 // accumulated impulses, after the last pass. Every part is loaded, the empty ones too: an
 // unsplit step must not find the seam's rows of an earlier split one. The seam comes
@@ -194,7 +194,7 @@ void ConstraintSolver::recoverPenetration(WorldState &world, real h) {
 
     // Split impulse: pseudo-velocities push penetration beyond the slop out by a fraction
     // per sub-step; they move positions only and are forgotten, so they add no energy.
-    // The passes run on the coupled passes' groups and rows (wide_pseudo.h); the first
+    // The passes run on the velocity passes' groups and rows (penetration_pass.h); the first
     // sets each group's targets from its depths at the poses integration left.
     depthFrames_.resize(manifolds_.size());
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {

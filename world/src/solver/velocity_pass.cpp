@@ -6,7 +6,7 @@
 
 namespace cyclone::detail {
 
-static_assert(kWidePatchPoints == kMaxManifoldPoints, "wide_friction.h couples every point of a patch");
+static_assert(kWidePatchPoints == kMaxManifoldPoints, "patch_friction.h couples every point of a patch");
 
 namespace {
 
@@ -81,7 +81,7 @@ struct WideSweep {
         for (int j = 0; j < kMaxManifoldPoints; ++j) vn[j] += impulse * coupling[j];
     }
 
-    // The patch's friction (wide_friction.h).
+    // The patch's friction (patch_friction.h).
     CYCLONE_INLINE void friction() {
         const Lanes zero{};
         const LaneMask rubs = m.coefficient > zero;  // lanes with friction rows

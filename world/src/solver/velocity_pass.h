@@ -1,8 +1,8 @@
-// The coupled velocity pass, four manifolds at a time.
+// The velocity pass, four manifolds at a time.
 //
 // Design note. A pass over one manifold is a chain: each row reads the velocities the row
 // before it wrote, and waits for them. Four manifolds that share no moving body commute
-// (solver_schedule.h groups them), so their rows can be solved by the same instructions,
+// (schedule.h groups them), so their rows can be solved by the same instructions,
 // one manifold per lane: ManifoldBatch holds a group's rows side by side, lane k of each
 // field being member k's, with the x, y and z of each vector in lanes of their own (no
 // sums across lanes). A row of four manifolds then costs what a row of one did. Within a
@@ -12,7 +12,7 @@
 //
 // The rows are copied in at the start of each sub-step, each group giving the bodies its
 // warm-start impulses as it is copied (loadBatches), and the accumulated impulses go back
-// after the coupled passes (storeBatches): a pass reads only the
+// after the velocity passes (storeBatches): a pass reads only the
 // rows it solves, 4544 bytes per group of four (1136 per manifold; a SolverManifold is
 // 2304). A lane past a group's size, and a point past a member's count, hold zero rows,
 // which change nothing.
@@ -71,7 +71,7 @@ struct PenetrationBatch;
 /// the penetration pass needs into it, one per group (loadPseudo).
 void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds, const std::vector<SolverGroup> &groups,
               bool warmStart, std::vector<ManifoldBatch> &wide, std::vector<PenetrationBatch> *pseudo = nullptr);
-/// One coupled pass over the wide manifolds, in order: in each, friction and then the
+/// One velocity pass over the wide manifolds, in order: in each, friction and then the
 /// points' normal rows, from the last point with `reverse` (alternating passes keep the
 /// first point from taking the largest share of a new contact's load, which would tilt
 /// the body).

@@ -1,7 +1,7 @@
 // Worker threads that run a step's independent tasks together with the stepping thread.
 //
 // Design note. A step hands the pool a few dozen small jobs (a solver pass over half the
-// contacts, one level of the support pass), each a fraction of a millisecond. Waking a
+// contacts, one level of the carrier pass), each a fraction of a millisecond. Waking a
 // sleeping thread costs tens of microseconds, so between jobs the workers spin for a
 // while before they block. Tasks of a job must be independent (no task reads what
 // another writes): which thread runs which task then changes nothing in the results, and

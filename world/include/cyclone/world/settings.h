@@ -86,22 +86,17 @@ struct WorldSettings {
     /// Contact points up to this far apart are kept, so a tilting face keeps its
     /// support without a contact appearing suddenly, m, >= 0.
     real speculativeDistance = 0.02;
-    /// A touching pair whose relative pose moved less than this since its last
-    /// narrowphase keeps its manifold, depths refreshed from the points' anchors, instead
-    /// of being tested again (m: translation plus rotation times the larger bounding
-    /// radius), >= 0; pairs without contact are always tested; 0 tests every pair every
-    /// step. At the default 0.5 mm a resting 20-level pyramid reuses all of its 400
-    /// manifolds and stays within a tenth of a millimetre (see docs/solver.md).
-    /// The same tolerance lets a manifold keep its solver Jacobians from an earlier step
-    /// while its anchors are the same and neither body moved more than this (translation
-    /// plus rotation times its bounding radius) since they were made
-    /// (StepStats::jacobiansMade counts the others); 0 makes them every step.
+    /// A touching pair whose bodies moved less than this relative to each other since its
+    /// last narrowphase keeps its manifold (depths refreshed from the anchors), and a
+    /// manifold keeps its solver Jacobians while neither body moved more than this since
+    /// they were made; m (translation plus rotation times the bounding radius), >= 0;
+    /// 0 tests every pair and makes every Jacobian every step (docs/solver.md).
     real manifoldReuseTolerance = 0.0005;
     /// Whether impulses of the last step seed the solver (warm starting).
     bool warmStarting = true;
-    /// The support pass (SplitImpulse solver): after the velocity passes of each
+    /// The carrier pass (SplitImpulse solver): after the velocity passes of each
     /// sub-step, one more pass solves each body against the bodies that carry it as
-    /// immovable ones, with a few sweeps per contact, keeping the impulses of the coupled
+    /// immovable ones, with a few sweeps per contact, keeping the impulses of the velocity
     /// passes; the last penetration pass does the same. Carriers are static and sleeping
     /// bodies and, by shock propagation, a body lower in the contact graph (counted from
     /// static or sleeping bodies) that the other rests on within 60 degrees of gravity.

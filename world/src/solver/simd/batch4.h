@@ -1,7 +1,7 @@
 // Vectors of four manifolds or bodies side by side, one per lane, and the 4 x 4
 // transposes that move them between that layout and the one-vector-per-body layout of
-// lanes.h. Shared by the wide coupled pass (wide_pass.h) and the wide support pass
-// (wide_support.h).
+// simd/vector4.h. Shared by the batched velocity pass (velocity_pass.h) and the batched carrier pass
+// (carrier_pass.h).
 #pragma once
 
 #include "solver/simd/vector4.h"
@@ -66,7 +66,7 @@ CYCLONE_INLINE void subtractScaled(WideVector &out, const Lanes &s, const WideVe
     out.z -= s * v.z;
 }
 
-// Lanes are given back through a reference, as in lanes.h.
+// Lanes are given back through a reference, as in simd/vector4.h.
 
 /// Per lane: out = a . b, summed x + y + z.
 CYCLONE_INLINE void dotLanes(const WideVector &a, const WideVector &b, Lanes &out) {

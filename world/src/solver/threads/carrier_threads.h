@@ -1,14 +1,13 @@
-// The support pass on two threads without a barrier per level.
+// The carrier pass on two threads without a barrier per level.
 //
-// Design note. The support pass sets each carried body at rest on its carriers, bottom
+// Design note. The carrier pass sets each carried body at rest on its carriers, bottom
 // up. A run (one carried body against its carriers, CarrierRuns) reads only its carriers,
 // which are one level lower or more, and writes only its own body: once every carrier's
 // run has finished, the run gives the same numbers whenever and on whichever thread it
-// runs. So each thread takes the runs of its half of the partition (solver_partition.h)
+// runs. So each thread takes the runs of its half of the partition (threads/partition.h)
 // level by level, and before a run waits only for those of its carriers that the other
 // thread solves: they lie near the seam. Waiting level by level for both threads instead
-// cost a hand-over per level (20 on a 20-level pyramid) and left one thread idle on the
-// narrow top levels.
+// would cost a hand-over per level and leave one thread idle on a stack's narrow top.
 #pragma once
 
 #include <atomic>
@@ -38,7 +37,7 @@ struct CarrierThreads {
 void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifold> &manifolds,
                        const std::vector<signed char> *side, int bodyCount, CarrierThreads &threads);
 
-/// Opens a support pass: no run has finished in it yet.
+/// Opens a carrier pass: no run has finished in it yet.
 void beginCarrierPass(CarrierThreads &threads);
 
 /// Solves the runs of share `share` in order, each once its carriers' runs have finished (a

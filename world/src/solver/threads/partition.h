@@ -1,6 +1,6 @@
 // Which manifolds two threads may solve at once.
 //
-// Design note. A coupled pass is Gauss-Seidel: one manifold reads the velocities the one
+// Design note. A velocity pass is Gauss-Seidel: one manifold reads the velocities the one
 // before it wrote. Split the moving bodies in two halves by place (a plane through the
 // median body across the scene's widest extent): manifolds inside one half never touch a
 // body of the other, so the two halves' manifolds commute and can be solved by two
@@ -20,12 +20,12 @@ namespace cyclone::detail {
 /// Scenes with fewer manifolds than this keep one list (no split).
 inline constexpr int kMinSplitManifolds = 128;
 
-/// The coupled passes' order in three parts: the two halves (solvable at once), then the
+/// The velocity passes' order in three parts: the two halves (solvable at once), then the
 /// seam. Unsplit, part 0 holds every manifold in the solve order and the others are empty.
 struct SolverPartition {
     static constexpr int kSeam = 2;
     std::vector<int> order[3];          ///< Manifold indices of each part, in solve order.
-    /// The same, grouped (solver_schedule.h). For one thread, groups[0] holds both
+    /// The same, grouped (schedule.h). For one thread, groups[0] holds both
     /// halves' groups, in one list (they fill more lanes), and groups[1] is empty.
     std::vector<SolverGroup> groups[3];
     bool split = false;
