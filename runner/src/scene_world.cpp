@@ -154,6 +154,8 @@ SceneWorld buildWorld(const Scene &scene) {
                              return World(scene.world);
                          } catch (const InvalidArgument &error) {
                              throw refuse("settings", error);
+                         } catch (const std::exception &error) {
+                             throw SceneError("settings", error.what());
                          }
                      }(),
                      {}};

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "cli.h"
+#include "scene_loader.h"
 #include "runner_test_support.h"
 
 namespace {
@@ -76,7 +77,7 @@ TEST(SceneFile, DevZeroIsRefusedAtOnce) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(p.status, 2);
     EXPECT_EQ(lineCount(p.err), 1) << p.err;
-    EXPECT_EQ(p.err.rfind("/dev/zero: (top level): invalid JSON", 0), 0u) << p.err;
+    EXPECT_EQ(p.err, "/dev/zero: (top level): invalid JSON: a NUL byte at offset 0, which no JSON text holds\n");
     EXPECT_LT(seconds, 10.0);
     EXPECT_TRUE(dir.files().empty());
 }
@@ -85,6 +86,16 @@ TEST(SceneFile, ReadStopsAfterTheFirstNulByte) {
     TempDir dir;
     writeText(dir.file("nul.json"), std::string("{\"bodies\": []}\0garbage", 22));
     EXPECT_EQ(cyclone::scene::readSceneFile(dir.file("nul.json")), std::string("{\"bodies\": []}\0", 15));
+}
+
+TEST(SceneFile, ANulByteIsPlacedWhereItSits) {
+    try {
+        cyclone::scene::loadScene(std::string("{\"bodies\": [\0]}", 15), "x");
+        FAIL() << "accepted a NUL byte";
+    } catch (const cyclone::scene::SceneError &error) {
+        EXPECT_EQ(error.path(), "bodies[0]");
+        EXPECT_EQ(error.message(), "invalid JSON: a NUL byte at offset 12, which no JSON text holds");
+    }
 }
 
 void expectTooLarge(const std::string &path, std::uintmax_t limit) {
