@@ -16,9 +16,10 @@ namespace cyclone::scene {
 /// Most warnings the runner prints for one scene; the rest are counted in one more line.
 inline constexpr std::size_t kMaxWarningsShown = 50;
 
-/// One warning per field of `document` that the contract does not have at its place, in
-/// document order, with the nearest known name when one is close ("did you mean ...").
-/// `document` is a scene that loadSceneDocument accepted.
+/// One warning per field of `document` that the contract does not have at its place (top
+/// level, settings, bodies, springs, joints, events; within each object in key order),
+/// with the nearest known name when one is close ("did you mean ..."). `document` is a
+/// scene that loadSceneDocument accepted.
 std::vector<SceneWarning> unknownFields(const nlohmann::json &document);
 
 /// Edit distance between `a` and `b`: insertions, deletions, substitutions and swaps of
