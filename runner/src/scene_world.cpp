@@ -1,5 +1,6 @@
 #include "scene_world.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
