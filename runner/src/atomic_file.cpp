@@ -32,12 +32,20 @@ AtomicFile::~AtomicFile() {
     }
 }
 
+void AtomicFile::close() {
+    if (!closed_) {
+        closed_ = true;
+        errno = 0;
+        out_.flush();
+        const bool written = static_cast<bool>(out_);
+        out_.close();
+        if (!written || !out_) closeError_ = "cannot write " + path_ + ": " + reason();
+    }
+    if (!closeError_.empty()) throw std::runtime_error(closeError_);
+}
+
 void AtomicFile::commit() {
-    errno = 0;
-    out_.flush();
-    const bool written = static_cast<bool>(out_);
-    out_.close();
-    if (!written || !out_) throw std::runtime_error("cannot write " + path_ + ": " + reason());
+    close();
     if (direct_) {
         committed_ = true;
         return;

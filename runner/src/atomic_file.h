@@ -21,8 +21,11 @@ public:
 
     /// Where the content goes.
     std::ostream &stream() { return out_; }
-    /// Closes the temporary file and renames it to the path; throws std::runtime_error
-    /// (and removes it) on any write, close or rename error.
+    /// Flushes and closes the temporary file; throws std::runtime_error on any write or
+    /// close error. Lets several files be checked whole before any of them is renamed.
+    void close();
+    /// Closes the temporary file (unless close() did) and renames it to the path; throws
+    /// std::runtime_error (and removes it) on any write, close or rename error.
     void commit();
     /// The final path.
     const std::string &path() const { return path_; }
@@ -32,6 +35,8 @@ private:
     std::string temporary_;
     std::ofstream out_;
     bool direct_ = false;
+    bool closed_ = false;
+    std::string closeError_;
     bool committed_ = false;
 };
 

@@ -2,19 +2,24 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <new>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "atomic_file.h"
 #include "report.h"
 #include "run_loop.h"
+#include "scene_fields.h"
 #include "scene_loader.h"
 #include "scene_world.h"
 #include "summary.h"
@@ -24,6 +29,8 @@
 #endif
 
 namespace cyclone::scene {
+
+namespace fs = std::filesystem;
 
 const char *const kHelpText =
     "cyclone-world: run a cyclone scene file (JSON) and tell what happened.\n"
@@ -48,6 +55,9 @@ const char *const kHelpText =
     "  --every K           trace only every K-th step (steps K-1, 2K-1, ... counted from 0)\n"
     "                      and the last step; K >= 1, default 1\n"
     "  --quiet             no result line on stdout (run) and no progress on stderr\n"
+    "  --strict            refuse (exit 2) a scene with a field the format does not have,\n"
+    "                      instead of warning about it (one line each on stderr, e.g.\n"
+    "                      bodies[0].positon: unknown field; did you mean \"position\"?)\n"
     "\n"
     "A scene holds settings, bodies, springs and events: docs/scene-format.md is the\n"
     "contract. Events of step k act at the start of step k. Beyond the contract's checks,\n"
@@ -67,8 +77,6 @@ const char *const kHelpText =
 namespace {
 
 constexpr std::int64_t kMaxEvery = kMaxSteps;
-// A scene file larger than this is refused rather than read.
-constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{1} << 30;
 
 // Names from the command line or a file system go into one-line messages.
 std::string oneLine(std::string text) {
@@ -111,22 +119,6 @@ std::string sceneStem(const std::string &path) {
     return stem;
 }
 
-// Reads the whole scene file; throws std::runtime_error with the reason.
-std::string readFile(const std::string &path) {
-    struct stat info {};
-    if (::stat(path.c_str(), &info) != 0) throw std::runtime_error(std::string("cannot read: ") + std::strerror(errno));
-    if (S_ISDIR(info.st_mode)) throw std::runtime_error("cannot read: is a directory");
-    if (static_cast<std::uintmax_t>(info.st_size) > kMaxSceneBytes) {
-        throw std::runtime_error("cannot read: larger than 1 GiB");
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(std::string("cannot read: ") + std::strerror(errno));
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw std::runtime_error("cannot read: read error");
-    return text.str();
-}
-
 // Progress on one terminal line, at most a few times a second.
 class Progress {
 public:
@@ -154,6 +146,19 @@ int refuse(std::ostream &err, const std::string &file, const std::string &place,
     return kExitRefused;
 }
 
+// Whether two paths name one file: the same real path once symbolic links, "." and ".."
+// are resolved (weakly_canonical also resolves the existing part of a path to a file not
+// yet there), or two hard links to one existing file.
+bool sameFile(const std::string &a, const std::string &b) {
+    std::error_code error;
+    if (fs::equivalent(a, b, error) && !error) return true;
+    std::error_code errorA, errorB;
+    const fs::path realA = fs::weakly_canonical(fs::absolute(a, errorA), errorA);
+    const fs::path realB = fs::weakly_canonical(fs::absolute(b, errorB), errorB);
+    if (errorA || errorB) return a == b;
+    return realA == realB;
+}
+
 int runLoaded(const std::string &text, const Invocation &invocation, std::ostream &out, std::ostream &err,
               bool progress) {
     const std::string &file = invocation.scene;
@@ -161,6 +166,13 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
     std::unique_ptr<SceneWorld> built;
     try {
         scene = loadScene(text, sceneStem(file));
+        if (invocation.strict && !scene.warnings.empty()) {
+            const SceneWarning &first = scene.warnings.front();
+            const std::size_t more = scene.warnings.size() - 1;
+            return refuse(err, file, first.path,
+                          first.message + " (refused by --strict" +
+                              (more ? "; " + std::to_string(more) + " more unknown field" + (more > 1 ? "s" : "") : "") + ")");
+        }
         if (invocation.steps) scene.steps = *invocation.steps;
         if (invocation.dt) scene.dt = *invocation.dt;
         built = std::make_unique<SceneWorld>(buildWorld(scene));
@@ -180,6 +192,15 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
     } catch (const std::exception &error) {
         err << "cyclone-world: " << oneLine(error.what()) << "\n";
         return kExitRefused;
+    }
+
+    // Told once the scene is sure to run, so that a refusal stays one line.
+    for (std::size_t i = 0; i < scene.warnings.size() && i < kMaxWarningsShown; ++i) {
+        err << oneLine(file) << ": " << oneLine(scene.warnings[i].path) << ": " << oneLine(scene.warnings[i].message)
+            << "\n";
+    }
+    if (scene.warnings.size() > kMaxWarningsShown) {
+        err << oneLine(file) << ": " << scene.warnings.size() - kMaxWarningsShown << " more unknown fields\n";
     }
 
     RunOptions options;
@@ -206,10 +227,11 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
     meter.reset();
 
     try {
-        if (summaryFile) {
-            summaryFile->stream() << summaryText(summaryJson(scene, *built, result));
-            summaryFile->commit();
-        }
+        if (summaryFile) summaryFile->stream() << summaryText(summaryJson(scene, *built, result));
+        // Both closed whole before either is renamed: a failed write leaves neither.
+        if (summaryFile) summaryFile->close();
+        if (traceFile) traceFile->close();
+        if (summaryFile) summaryFile->commit();
         if (traceFile) traceFile->commit();
     } catch (const std::exception &error) {
         err << "cyclone-world: " << oneLine(error.what()) << "\n";
@@ -268,6 +290,10 @@ Invocation parseCommandLine(const std::vector<std::string> &args) {
             invocation.quiet = true;
             continue;
         }
+        if (arg == "--strict") {
+            invocation.strict = true;
+            continue;
+        }
         std::string value;
         const auto equals = arg.find('=');
         if (equals != std::string::npos) {
@@ -306,10 +332,57 @@ Invocation parseCommandLine(const std::vector<std::string> &args) {
     return invocation;
 }
 
+std::string readSceneFile(const std::string &path, std::uintmax_t maxBytes) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) throw std::runtime_error(std::string("cannot read: ") + std::strerror(errno));
+    if (S_ISDIR(info.st_mode)) throw std::runtime_error("cannot read: is a directory");
+    const std::string tooLarge = "cannot read: larger than " +
+                                 (maxBytes == kMaxSceneBytes ? std::string("1 GiB") : std::to_string(maxBytes) + " bytes");
+    if (S_ISREG(info.st_mode) && static_cast<std::uintmax_t>(info.st_size) > maxBytes) throw std::runtime_error(tooLarge);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(std::string("cannot read: ") + std::strerror(errno));
+    // The read itself is bounded: a device or a pipe (/dev/zero, /dev/stdin) has no size
+    // to check first. A NUL byte cannot be part of a JSON text, so reading stops after
+    // the first one and the parser names the place where it sits.
+    std::string text;
+    std::vector<char> chunk(std::size_t{1} << 16);
+    while (in) {
+        in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+        const auto got = static_cast<std::size_t>(in.gcount());
+        const auto nul = std::find(chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(got), '\0');
+        const auto kept = static_cast<std::size_t>(nul - chunk.begin()) + (nul != chunk.begin() + static_cast<std::ptrdiff_t>(got));
+        if (text.size() + kept > maxBytes) throw std::runtime_error(tooLarge);
+        text.append(chunk.data(), kept);
+        if (kept < got) break;
+    }
+    if (in.bad()) throw std::runtime_error("cannot read: read error");
+    return text;
+}
+
+void checkOutputPaths(const Invocation &invocation) {
+    const std::pair<const char *, const std::string *> outputs[] = {{"--summary", &invocation.summary},
+                                                                    {"--trace", &invocation.trace}};
+    for (const auto &[flag, path] : outputs) {
+        if (path->empty()) continue;
+        std::error_code error;
+        if (fs::is_directory(*path, error)) usage(std::string(flag) + " " + *path + " is a directory");
+        if (!invocation.scene.empty() && sameFile(*path, invocation.scene)) {
+            usage(std::string(flag) + " " + *path + " is the scene file " + invocation.scene + "; it would be overwritten");
+        }
+    }
+    if (!invocation.summary.empty() && !invocation.trace.empty() && sameFile(invocation.summary, invocation.trace)) {
+        usage("--summary " + invocation.summary + " and --trace " + invocation.trace + " name the same file");
+    }
+}
+
 int runSceneText(const std::string &text, const Invocation &invocation, std::ostream &out, std::ostream &err,
                  bool progress) {
     try {
+        checkOutputPaths(invocation);
         return runLoaded(text, invocation, out, err, progress);
+    } catch (const UsageError &error) {
+        err << error.what() << "\n";
+        return kExitRefused;
     } catch (const std::bad_alloc &) {
         return refuse(err, invocation.scene, "(top level)", "out of memory");
     } catch (const std::exception &error) {
@@ -335,7 +408,7 @@ int runCommandLine(const std::vector<std::string> &args, std::ostream &out, std:
     }
     std::string text;
     try {
-        text = readFile(invocation.scene);
+        text = readSceneFile(invocation.scene);
     } catch (const std::exception &error) {
         err << oneLine(invocation.scene) << ": " << oneLine(error.what()) << "\n";
         return kExitRefused;

@@ -18,6 +18,9 @@ inline constexpr int kExitRefused = 2;
 /// A state became non-finite during the run; the summary says so.
 inline constexpr int kExitNonFinite = 3;
 
+/// A scene file larger than this is refused rather than read, bytes.
+inline constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{1} << 30;
+
 /// The full --help text.
 extern const char *const kHelpText;
 
@@ -43,10 +46,21 @@ struct Invocation {
     std::int64_t every = 1;
     /// No result line on stdout, no progress on stderr.
     bool quiet = false;
+    /// Refuse a scene with unknown fields (exit 2) instead of warning about them.
+    bool strict = false;
 };
 
 /// Parses the arguments after the program name; throws UsageError.
 Invocation parseCommandLine(const std::vector<std::string> &args);
+
+/// Reads a scene file of at most `maxBytes` bytes, however it is given (a file, a device,
+/// a pipe), up to and including its first NUL byte; throws std::runtime_error ("cannot
+/// read: ...") with the reason.
+std::string readSceneFile(const std::string &path, std::uintmax_t maxBytes = kMaxSceneBytes);
+
+/// Refuses (UsageError) outputs that would destroy something: --summary and --trace naming
+/// one file (compared as real paths), either naming the scene file or a directory.
+void checkOutputPaths(const Invocation &invocation);
 
 /// Runs the command line; returns the exit status. `progress` allows progress lines on
 /// `err` (main passes whether stderr is a terminal).

@@ -35,7 +35,7 @@ std::string plainMessage(const char *what) {
 // container so that a failure can be placed.
 class PathTrackingBuilder {
 public:
-    explicit PathTrackingBuilder(json &root) : root_(root) {}
+    PathTrackingBuilder(json &root, const std::string &text) : root_(root), text_(text) {}
 
     bool null() { return put(nullptr) != nullptr; }
     bool boolean(bool value) { return put(value) != nullptr; }
@@ -61,8 +61,15 @@ public:
         return true;
     }
 
-    bool parse_error(std::size_t, const std::string &token, const nlohmann::detail::exception &error) {
+    bool parse_error(std::size_t position, const std::string &token, const nlohmann::detail::exception &error) {
         if (error.id == 406) throw SceneError(currentPath(), "must be a finite number, got " + token);
+        // The parser takes a NUL byte for the end of the text; say what it is.
+        for (std::size_t at : {position - 1, position}) {
+            if (position > 0 && at < text_.size() && text_[at] == '\0') {
+                throw SceneError(currentPath(),
+                                 "invalid JSON: a NUL byte at offset " + std::to_string(at) + ", which no JSON text holds");
+            }
+        }
         throw SceneError(currentPath(), "invalid JSON: " + plainMessage(error.what()));
     }
 
@@ -111,6 +118,7 @@ private:
     }
 
     json &root_;
+    const std::string &text_;
     std::vector<Frame> stack_;
 };
 
@@ -131,7 +139,7 @@ std::string jsonQuoted(const std::string &text) {
 
 json parseJsonDocument(const std::string &text) {
     json root;
-    PathTrackingBuilder builder(root);
+    PathTrackingBuilder builder(root, text);
     json::sax_parse(text, &builder, json::input_format_t::json, true, false);
     return root;
 }

@@ -135,6 +135,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
 
     const auto runStart = Clock::now();
     for (std::int64_t step = 0; step < options.steps; ++step) {
+        std::string eventsOfStep;  // for a failure of the step: what this step was given
         for (; nextEvent < eventOrder.size() && scene.events[eventOrder[nextEvent]].step <= step; ++nextEvent) {
             const SceneEvent &event = scene.events[eventOrder[nextEvent]];
             if (event.step < step) continue;
@@ -144,8 +145,12 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
                 const std::string field = sceneFieldPath(error.field());
                 throw SceneError(field.empty() ? event.path : event.path + "." + field,
                                  error.problem() + " (at step " + std::to_string(step) + ")");
+            } catch (const std::exception &error) {
+                throw SceneError(memberPath(event.path, eventKindName(event.kind)),
+                                 std::string(error.what()) + " (at step " + std::to_string(step) + ")");
             }
             if (event.kind == EventKind::Remove) present[event.body] = false;
+            eventsOfStep += (eventsOfStep.empty() ? "" : ", ") + event.path;
         }
 
         if (std::string what = leavesRange(scene, built, present, options.dt, step); !what.empty()) {
@@ -184,7 +189,10 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
                                    std::to_string(step);
         }
         if (!stepFailure.empty() && !result.nonFinite) {
-            throw std::runtime_error("step " + std::to_string(step) + " failed: " + stepFailure);
+            throw SceneError("step " + std::to_string(step),
+                             "the world could not take this step" +
+                                 (eventsOfStep.empty() ? std::string() : " (after " + eventsOfStep + ")") + ": " +
+                                 stepFailure);
         }
         if (!anyAwake && !result.nonFinite && !result.firstAllAsleepStep) result.firstAllAsleepStep = step;
 
@@ -202,6 +210,13 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
         if (result.nonFinite) break;
     }
     result.wallSeconds = secondsSince(runStart);
+    // The summary reports the energy as a number; one too large for a double is a state
+    // the run cannot report, so it is told as non-finite rather than written as null.
+    if (!result.nonFinite && !std::isfinite(world.kineticEnergy())) {
+        result.nonFinite = true;
+        result.nonFiniteWhat = "the kinetic energy exceeds the largest double (1.8e308 J) " +
+                               (result.steps ? "after step " + std::to_string(result.steps - 1) : std::string("at load"));
+    }
     return result;
 }
 

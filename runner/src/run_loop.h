@@ -77,7 +77,7 @@ struct RunResult {
 bool hasFiniteState(const RigidBody &body);
 
 /// Runs `world` (built from `scene`). Throws SceneError at an event's path if the World
-/// refuses an event, std::runtime_error if a step fails with the state still finite.
+/// refuses an event, and at "step N" if step N fails with the state still finite.
 RunResult runScene(const Scene &scene, SceneWorld &world, const RunOptions &options);
 
 }  // namespace cyclone::scene

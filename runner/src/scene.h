@@ -64,6 +64,14 @@ struct SceneEvent {
     bool awake = true;
 };
 
+/// Something about a scene that does not stop it from running, e.g. an unknown field.
+struct SceneWarning {
+    /// JSON path of the field, e.g. "bodies[0].positon".
+    std::string path;
+    /// What is wrong and what was probably meant.
+    std::string message;
+};
+
 /// A whole scene.
 struct Scene {
     /// The scene's name ("name" in the file; the file's stem when absent).
@@ -78,6 +86,8 @@ struct Scene {
     std::vector<SceneSpring> springs;
     /// Events in file order (a run applies those of one step in this order).
     std::vector<SceneEvent> events;
+    /// Fields the contract does not have, in file order; they change nothing.
+    std::vector<SceneWarning> warnings;
 };
 
 }  // namespace cyclone::scene

@@ -9,6 +9,8 @@
 #include <map>
 #include <unordered_map>
 
+#include "scene_fields.h"
+
 namespace cyclone::scene {
 
 using nlohmann::json;
@@ -515,6 +517,7 @@ Scene loadSceneDocument(const json &document, const std::string &fallbackName) {
         }
         checkRemovals(scene);
     }
+    scene.warnings = unknownFields(document);
     return scene;
 }
 

@@ -134,7 +134,7 @@ std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Qu
     static const char *function = "World::overlap";
     const Impl &w = *impl_;
     detail::requirePlace(function, "position", position);
-    if (!orientation.coeffs().allFinite()) detail::refuse(function, "orientation", "must be finite");
+    detail::requireFinite(function, "orientation", orientation);
     if (shape.type == ShapeType::Plane)
         detail::refuse(function, "shape.type", "\"plane\" is unbounded and cannot be a query shape");
     std::shared_ptr<const detail::CollisionShape> compiled;

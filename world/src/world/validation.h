@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 
@@ -10,14 +11,24 @@
 
 namespace cyclone::detail {
 
+/// The shortest text that reads back as the same double (1e+300, not 1.0000000000000001e+300).
 inline std::string show(real value) {
     std::ostringstream out;
-    out.precision(17);
-    out << value;
+    for (int precision = 1; precision <= 17; ++precision) {
+        out.str("");
+        out.precision(precision);
+        out << value;
+        if (!std::isfinite(value) || std::strtod(out.str().c_str(), nullptr) == value) break;
+    }
     return out.str();
 }
 
 inline std::string show(const Vector3 &v) { return "[" + show(v.x()) + ", " + show(v.y()) + ", " + show(v.z()) + "]"; }
+
+/// A quaternion as [w, x, y, z], the order of scene files.
+inline std::string show(const Quaternion &q) {
+    return "[" + show(q.w()) + ", " + show(q.x()) + ", " + show(q.y()) + ", " + show(q.z()) + "]";
+}
 
 /// Coordinates beyond this are refused (and a body that flies beyond it is isolated):
 /// FCL's AABB tree fails on such numbers, m.
@@ -29,6 +40,10 @@ inline constexpr real kMaxCoordinate = 1e30;
 
 inline void requireFinite(const char *function, const char *field, const Vector3 &v) {
     if (!v.allFinite()) refuse(function, field, "must be finite, got " + show(v));
+}
+
+inline void requireFinite(const char *function, const char *field, const Quaternion &q) {
+    if (!q.coeffs().allFinite()) refuse(function, field, "must be finite, got " + show(q));
 }
 
 inline void requirePlace(const char *function, const char *field, const Vector3 &v) {

@@ -1,5 +1,7 @@
 // The World's public calls: validation, bodies and springs, stepping, events.
+#include <Eigen/Cholesky>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "collision/time_of_impact.h"
@@ -29,6 +31,22 @@ real boundingRadius(const Shape &shape, const detail::CollisionShape &compiled) 
     return 0;
 }
 
+// m v.v + w.(I w), never negative, and infinite only when the energy is: m v.v as
+// (sqrt(m) |v|)^2, w.(I w) as |D^-1/2 L^-1 P w|^2 from the LDLT of the inverse inertia (the
+// tensor itself, inverted back, is lost for masses beyond about 1e100 kg).
+real twiceKineticEnergy(const RigidBody &body) {
+    const real linear = std::sqrt(body.getMass()) * body.getVelocity().stableNorm();
+    const Eigen::LDLT<Matrix3> ldlt(body.getInverseInertiaTensorWorld());
+    const Vector3 y = ldlt.matrixL().solve(ldlt.transpositionsP() * body.getRotation());
+    real twice = linear * linear;
+    for (int i = 0; i < 3; ++i) {
+        const real d = std::abs(ldlt.vectorD()[i]);
+        const real term = d > 0 ? y[i] / std::sqrt(d) : (y[i] == 0 ? 0 : std::numeric_limits<real>::infinity());
+        twice += term * term;
+    }
+    return twice;
+}
+
 void validateSettings(const char *function, const WorldSettings &s) {
     using namespace detail;
     requireFinite(function, "gravity", s.gravity);
@@ -48,6 +66,11 @@ void validateSettings(const char *function, const WorldSettings &s) {
     requirePositive(function, "maxPushVelocity", s.maxPushVelocity);
     requireNonNegative(function, "speculativeDistance", s.speculativeDistance);
     requireNonNegative(function, "manifoldReuseTolerance", s.manifoldReuseTolerance);
+    const int integrator = static_cast<int>(s.integrator), solver = static_cast<int>(s.contactSolver);
+    if (integrator < 0 || integrator > static_cast<int>(Integrator::NewtonEulerImplicit))
+        refuse(function, "integrator", "is not an Integrator, got " + std::to_string(integrator));
+    if (solver < 0 || solver > static_cast<int>(ContactSolverType::SplitImpulse))
+        refuse(function, "contactSolver", "is not a ContactSolverType, got " + std::to_string(solver));
     if (s.threads < 1 || s.threads > 64)
         refuse(function, "threads", "must be in [1, 64], got " + std::to_string(s.threads));
 }
@@ -59,7 +82,7 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
     requirePlace(function, "position", s.position);
     requireFinite(function, "velocity", s.velocity);
     requireFinite(function, "rotation", s.rotation);
-    if (!s.orientation.coeffs().allFinite()) refuse(function, "orientation", "must be finite");
+    requireFinite(function, "orientation", s.orientation);
     requireUnit(function, "linearDamping", s.linearDamping);
     requireUnit(function, "angularDamping", s.angularDamping);
     requireNonNegative(function, "material.friction", s.material.friction);
@@ -76,6 +99,7 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
         return body;
     }
     requirePositive(function, "mass", s.mass);
+    if (!std::isfinite(1 / s.mass)) refuse(function, "mass", "is too small to invert, got " + show(s.mass));
     const Matrix3 inertia = s.inertia ? *s.inertia : Matrix3(shape.unitInertia() * s.mass);
     try {
         body.setInertiaTensor(inertia);
@@ -285,7 +309,7 @@ void World::setOrientation(BodyId id, const Quaternion &orientation) {
     static const char *function = "World::setOrientation";
     Impl &w = *impl_;
     detail::BodyRecord &r = w.bodies.record(id, function);
-    if (!orientation.coeffs().allFinite()) detail::refuse(function, "orientation", "must be finite");
+    detail::requireFinite(function, "orientation", orientation);
     if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their normal");
     r.body.setOrientation(orientation);
     w.refreshCollisionObject(id.index);
@@ -311,8 +335,11 @@ void World::applyImpulse(BodyId id, const Vector3 &impulse) {
     static const char *function = "World::applyImpulse";
     detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
     detail::requireFinite(function, "impulse", impulse);
+    const Vector3 dv = impulse * r.body.getInverseMass();
+    if (!dv.allFinite() || !(r.body.getVelocity() + dv).allFinite())
+        detail::refuse(function, "impulse", "would make the velocity non-finite, got " + detail::show(impulse));
     impl_->wake(id.index);
-    r.body.addVelocity(impulse * r.body.getInverseMass());
+    r.body.addVelocity(dv);
 }
 
 void World::applyImpulse(BodyId id, const Vector3 &impulse, const Vector3 &point) {
@@ -322,7 +349,9 @@ void World::applyImpulse(BodyId id, const Vector3 &impulse, const Vector3 &point
     detail::requireFinite(function, "point", point);
     const Vector3 dv = impulse * r.body.getInverseMass();
     const Vector3 dw = r.body.getInverseInertiaTensorWorld() * (point - r.body.getPosition()).cross(impulse);
-    if (!dv.allFinite() || !dw.allFinite()) detail::refuse(function, "impulse", "gives a non-finite velocity");
+    if (!(r.body.getVelocity() + dv).allFinite() || !(r.body.getRotation() + dw).allFinite())
+        detail::refuse(function, "impulse", "would make the velocity non-finite, got " + detail::show(impulse) +
+                                                " at " + detail::show(point));
     impl_->wake(id.index);
     r.body.addVelocity(dv);
     r.body.addRotation(dw);
@@ -391,8 +420,8 @@ SpringId World::addSpring(const SpringSettings &s) {
     Impl &w = *impl_;
     w.bodies.record(s.a, function);
     if (s.b) w.bodies.record(*s.b, function);
-    detail::requireFinite(function, "aPoint", s.aPoint);
-    detail::requireFinite(function, "bPoint", s.bPoint);
+    detail::requirePlace(function, "aPoint", s.aPoint);
+    detail::requirePlace(function, "bPoint", s.bPoint);
     detail::requirePositive(function, "stiffness", s.stiffness);
     detail::requireNonNegative(function, "damping", s.damping);
     detail::requireNonNegative(function, "restLength", s.restLength);
@@ -440,25 +469,12 @@ const StepStats &World::stats() const { return impl_->stats; }
 const WorldEvents &World::events() const { return impl_->events.events; }
 
 real World::kineticEnergy() const {
-    real energy = 0;
+    real twice = 0;
     for (std::uint32_t index : impl_->bodies.order) {
         const detail::BodyRecord &r = impl_->bodies[index];
-        if (r.isStatic) continue;
-        const Vector3 w = r.body.getRotation();
-        energy += 0.5 * r.body.getMass() * r.body.getVelocity().squaredNorm() +
-                  0.5 * w.dot(r.body.getInertiaTensorWorld() * w);
+        if (!r.isStatic) twice += twiceKineticEnergy(r.body);
     }
-    return energy;
+    return twice / 2;
 }
-
-// --- Impl: lookup, sleep and wake -------------------------------------------------------
-
-
-
-
-
-
-
-
 
 }  // namespace cyclone

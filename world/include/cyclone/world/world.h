@@ -150,7 +150,8 @@ public:
     void step(real dt);
     /// Counters and per-stage timings of the last step.
     const StepStats &stats() const;
-    /// Total kinetic energy of the dynamic bodies, J.
+    /// Total kinetic energy of the dynamic bodies, J, >= 0; infinite only when it exceeds
+    /// the largest double (about 1.8e308 J).
     real kineticEnergy() const;
 
     // --- Events -------------------------------------------------------------------------
