@@ -23,6 +23,8 @@ constexpr double kHeadlessFrameSeconds = 1.0 / 60.0;
 // Radians of orbit per pixel dragged, and the zoom factor per wheel notch.
 constexpr float kOrbitPerPixel = 0.005f;
 constexpr float kZoomPerNotch = 0.88f;
+// Frames left out of --benchmark's mean: Mesa compiles shaders on their first draws.
+constexpr int kWarmUpFrames = 10;
 
 void reportGlfwError(int code, const char *message) { std::fprintf(stderr, "cyclone-viewer: GLFW error %d: %s\n", code, message); }
 
@@ -229,6 +231,7 @@ int App::run() {
     double lastFrameMs = 0;
     auto last = Clock::now();
     const auto start = last;
+    auto warm = last;
     int frame = 0;
     while (!glfwWindowShouldClose(window_) && (!options_.frames || frame < frames)) {
         glfwPollEvents();
@@ -263,17 +266,25 @@ int App::run() {
             writeScreenshot(options_.screenshot, width, height);
         }
         glfwSwapBuffers(window_);
+        if (frame == kWarmUpFrames) {
+            glFinish();
+            warm = Clock::now();
+        }
     }
-    if (options_.benchmark && frame > 0) {
+    if (options_.benchmark && frame > kWarmUpFrames) {
         glFinish();
-        const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-        const double meanMs = seconds * 1000 / frame;
+        const auto end = Clock::now();
+        const double warmUpMs = std::chrono::duration<double, std::milli>(warm - start).count() / kWarmUpFrames;
+        const double meanMs = std::chrono::duration<double, std::milli>(end - warm).count() / (frame - kWarmUpFrames);
         int width = 0, height = 0;
         glfwGetFramebufferSize(window_, &width, &height);
-        std::printf("cyclone-viewer: %s, %d frames at %dx%d in %.3f s: mean frame %.2f ms (%.1f fps); "
-                    "renderer %s\n",
-                    session_->scene().name.c_str(), frame, width, height, seconds, meanMs, 1000.0 / meanMs,
-                    reinterpret_cast<const char *>(glGetString(GL_RENDERER)));
+        std::printf("cyclone-viewer: %s at %dx%d, %d frames after %d of warm-up: mean frame %.2f ms (%.1f fps); "
+                    "warm-up frames %.2f ms; renderer %s\n",
+                    session_->scene().name.c_str(), width, height, frame - kWarmUpFrames, kWarmUpFrames, meanMs,
+                    1000.0 / meanMs, warmUpMs, reinterpret_cast<const char *>(glGetString(GL_RENDERER)));
+    } else if (options_.benchmark) {
+        std::printf("cyclone-viewer: --benchmark needs more than %d frames (the first ones compile shaders)\n",
+                    kWarmUpFrames);
     }
     return 0;
 }

@@ -3,7 +3,7 @@
 // scene puts them (their centres, projected with the viewer's own camera, show the awake
 // colour), sky above the apex and ground in front of it.
 //
-//   viewer_screenshot_test VIEWER SCENE.json OUT.png
+//   screenshot_check VIEWER SCENE.json OUT.png
 //
 // Exit status: 0 passed, 1 failed, 77 skipped (no xvfb-run: no display server to be had).
 #include <stb_image.h>
@@ -98,7 +98,7 @@ bool looksLikeGround(const Pixel &p) { return !isSky(p) && p.r >= p.b && p.r > 1
 
 int main(int argc, char **argv) {
     if (argc != 4) {
-        std::fprintf(stderr, "usage: viewer_screenshot_test VIEWER SCENE.json OUT.png\n");
+        std::fprintf(stderr, "usage: screenshot_check VIEWER SCENE.json OUT.png\n");
         return 2;
     }
     const std::string viewer = argv[1], scenePath = argv[2], out = argv[3];
