@@ -211,23 +211,6 @@ TriangleMesh planeMesh(const Shape &shape) {
     return mesh;
 }
 
-float boundingRadius(const Shape &shape) {
-    switch (shape.type) {
-    case ShapeType::Box: return static_cast<float>(shape.halfExtents.norm());
-    case ShapeType::Sphere: return static_cast<float>(shape.radius);
-    case ShapeType::Capsule: return static_cast<float>(shape.radius + shape.length / 2);
-    case ShapeType::Cylinder: return static_cast<float>(std::hypot(shape.radius, shape.length / 2));
-    case ShapeType::Convex:
-    case ShapeType::Mesh: {
-        real radius = 0;
-        for (const Vector3 &p : shape.vertices) radius = std::max(radius, p.norm());
-        return static_cast<float>(radius);
-    }
-    case ShapeType::Plane: return 0;
-    }
-    return 0;
-}
-
 }  // namespace
 
 TriangleMesh shapeMesh(const Shape &shape) {
@@ -274,27 +257,48 @@ std::vector<Eigen::Vector3f> planeGridLines(const Shape &shape) {
 
 Bounds bodyBounds(const World &world, BodyId id) {
     const Shape &shape = world.shape(id);
-    Bounds bounds;
-    if (shape.type == ShapeType::Plane) return bounds;
     const RigidBody &body = world.body(id);
-    if (shape.type == ShapeType::Mesh) {
-        for (const Vector3 &p : shape.vertices) bounds.add(toFloat(body.getPointInWorldSpace(p)));
-        return bounds;
-    }
     const Eigen::Vector3f centre = toFloat(body.getPosition());
-    const float radius = boundingRadius(shape);
-    bounds.add(centre - Eigen::Vector3f::Constant(radius));
-    bounds.add(centre + Eigen::Vector3f::Constant(radius));
+    const Eigen::Matrix3f rotation = body.getOrientation().toRotationMatrix().cast<float>();
+    Bounds bounds;
+    switch (shape.type) {
+    case ShapeType::Plane: break;
+    case ShapeType::Box: {
+        const Eigen::Vector3f reach = rotation.cwiseAbs() * toFloat(shape.halfExtents);
+        bounds.add(centre - reach);
+        bounds.add(centre + reach);
+        break;
+    }
+    case ShapeType::Convex:
+    case ShapeType::Mesh:
+        for (const Vector3 &p : shape.vertices) bounds.add(centre + rotation * toFloat(p));
+        break;
+    case ShapeType::Sphere:
+    case ShapeType::Capsule:
+    case ShapeType::Cylinder: {
+        // The axis's two ends, each grown by the radius in every direction.
+        const float half = shape.type == ShapeType::Sphere ? 0.0f : static_cast<float>(shape.length) / 2;
+        const Eigen::Vector3f axis = rotation.col(2) * half;
+        const Eigen::Vector3f r = Eigen::Vector3f::Constant(static_cast<float>(shape.radius));
+        for (const Eigen::Vector3f &end : {Eigen::Vector3f(centre - axis), Eigen::Vector3f(centre + axis)}) {
+            bounds.add(end - r);
+            bounds.add(end + r);
+        }
+        break;
+    }
+    }
     return bounds;
 }
 
 Bounds sceneBounds(const World &world) {
-    Bounds bounds;
+    Bounds moving, all;
     for (BodyId id : world.bodies()) {
         if (!world.body(id).getPosition().allFinite()) continue;
-        bounds.add(bodyBounds(world, id));
+        const Bounds bounds = bodyBounds(world, id);
+        all.add(bounds);
+        if (!world.isStatic(id)) moving.add(bounds);
     }
-    return bounds;
+    return moving.empty() ? all : moving;
 }
 
 }  // namespace cyclone::viewer

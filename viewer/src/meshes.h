@@ -43,7 +43,9 @@ std::vector<Eigen::Vector3f> planeGridLines(const Shape &shape);
 /// unbounded).
 Bounds bodyBounds(const World &world, BodyId id);
 
-/// Bounds of every body but the planes: what "frame the scene" shows.
+/// What "frame the scene" shows: the bounds of the dynamic bodies, or of every body but
+/// the planes when none is dynamic (the ground and walls of a scene can be much larger
+/// than what moves on them).
 Bounds sceneBounds(const World &world);
 
 }  // namespace cyclone::viewer
