@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include "camera.h"
+#include "meshes.h"
 #include "session.h"
 
 namespace cyclone::viewer {
@@ -104,6 +106,22 @@ TEST(ViewerSession, TheGrabSpringLiftsABodyAndLetsItFall) {
     EXPECT_FALSE(session.grabbed().has_value());
     runSteps(session, 120);
     EXPECT_NEAR(session.world().body(box).getPosition().y(), 0.5, 0.02) << "fell back to the ground";
+}
+
+TEST(ViewerSession, TheRayThroughABoxsPixelGrabsThatBox) {
+    // What a click does: the camera's ray through the pixel where a box appears holds it.
+    Session session(scenePath("pyramid-20"));
+    OrbitCamera camera;
+    camera.frame(sceneBounds(session.world()), 1280.0f / 720.0f);
+    for (const char *name : {"r19b0", "r0b0", "r7b3"}) {
+        const BodyId box = bodyNamed(session, name);
+        const std::optional<Eigen::Vector2f> pixel =
+            camera.project(session.world().body(box).getPosition().cast<float>(), 1280, 720);
+        ASSERT_TRUE(pixel.has_value());
+        const Ray ray = camera.ray(pixel->x(), pixel->y(), 1280, 720);
+        ASSERT_TRUE(session.grab(ray.origin.cast<real>(), ray.direction.cast<real>())) << name;
+        EXPECT_EQ(session.grabbed()->body, box) << name;
+    }
 }
 
 TEST(ViewerSession, ShootsABallAlongTheGivenDirection) {

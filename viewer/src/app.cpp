@@ -59,6 +59,10 @@ App::App(const Options &options) : options_(options) {
     // Interactive frames follow the display; headless ones run as fast as they can.
     glfwSwapInterval(options.frames ? 0 : 1);
 
+    // Installed before ImGui's backend, which calls it after its own.
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetKeyCallback(window_, onKey);
+
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;
@@ -176,16 +180,30 @@ void App::handleMouse() {
     }
 }
 
+void App::onKey(GLFWwindow *window, int key, int, int action, int) {
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    auto *app = static_cast<App *>(glfwGetWindowUserPointer(window));
+    // A held key repeats only the actions that make sense many times in a row.
+    if (action == GLFW_REPEAT && key != GLFW_KEY_N && key != GLFW_KEY_B) return;
+    app->pressedKeys_.push_back(key);
+}
+
 void App::handleKeys(UiRequests &requests) {
+    std::vector<int> keys;
+    keys.swap(pressedKeys_);
     if (ImGui::GetIO().WantCaptureKeyboard) return;
-    // Dear ImGui 1.86 indexes keys by the backend's key codes (GLFW's).
-    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) controls_.paused = !controls_.paused;
-    if (ImGui::IsKeyPressed(GLFW_KEY_N)) requests.singleStep = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) requests.restart = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) controls_.slowMotion = !controls_.slowMotion;
-    if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) requests.frameScene = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_B)) requests.shootBall = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+    for (int key : keys) {
+        switch (key) {
+        case GLFW_KEY_SPACE: controls_.paused = !controls_.paused; break;
+        case GLFW_KEY_N: requests.singleStep = true; break;
+        case GLFW_KEY_R: requests.restart = true; break;
+        case GLFW_KEY_S: controls_.slowMotion = !controls_.slowMotion; break;
+        case GLFW_KEY_F: requests.frameScene = true; break;
+        case GLFW_KEY_B: requests.shootBall = true; break;
+        case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;
+        default: break;
+        }
+    }
 }
 
 void App::carryOut(const UiRequests &requests) {

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "camera.h"
 #include "options.h"
@@ -32,6 +33,10 @@ public:
 private:
     enum class Drag { None, Orbit, Pan, Body };
 
+    /// GLFW's key callback (chained by ImGui's backend): queues presses, so that a key
+    /// pressed and released within one slow frame still counts.
+    static void onKey(GLFWwindow *window, int key, int scancode, int action, int mods);
+
     void handleMouse();
     void handleKeys(UiRequests &requests);
     void carryOut(const UiRequests &requests);
@@ -57,6 +62,8 @@ private:
     /// Distance along the view direction of the plane a held body is dragged in, m.
     float grabDepth_ = 0;
     std::string problem_;
+    /// Keys pressed (or repeated) since the last frame, GLFW key codes.
+    std::vector<int> pressedKeys_;
 };
 
 }  // namespace cyclone::viewer
