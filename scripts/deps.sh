@@ -16,6 +16,14 @@ packages=(
   libbenchmark-dev   # benchmarks
   gnuplot-nox        # examples: trajectory plots
   doxygen            # API documentation (docs/Doxyfile), checked by the test suite
+  libglfw3-dev       # viewer: window and input
+  libgl-dev          # viewer: OpenGL 3.3 core
+  libgl1-mesa-dri    # viewer: Mesa's drivers (llvmpipe renders without a GPU)
+  libimgui-dev       # viewer: Dear ImGui overlay (with its GLFW and OpenGL 3 backends)
+  libstb-dev         # viewer: PNG screenshots (stb_image_write); Dear ImGui needs it too
+  pkgconf            # viewer: finds Dear ImGui and stb (pkg-config files)
+  xvfb               # viewer: headless runs and its test (xvfb-run)
+  xauth              # viewer: xvfb-run needs it
 )
 
 missing=()

@@ -28,23 +28,6 @@ const char *nonFiniteQuantity(const RigidBody &body) {
     return nullptr;
 }
 
-void applyEvent(World &world, BodyId id, const SceneEvent &event) {
-    switch (event.kind) {
-    case EventKind::Remove: world.removeBody(id); break;
-    case EventKind::SetVelocity: world.setVelocity(id, event.value); break;
-    case EventKind::SetRotation: world.setRotation(id, event.value); break;
-    case EventKind::SetPosition: world.setPosition(id, event.value); break;
-    case EventKind::ApplyImpulse:
-        if (event.point) {
-            world.applyImpulse(id, event.value, *event.point);
-        } else {
-            world.applyImpulse(id, event.value);
-        }
-        break;
-    case EventKind::SetAwake: world.setAwake(id, event.awake); break;
-    }
-}
-
 // The largest acceleration the springs can give each body this step, from Hooke's law and
 // the damping bounded by the attachment points' speeds.
 std::vector<real> springAccelerations(const Scene &scene, const SceneWorld &built, const std::vector<bool> &present) {
@@ -120,6 +103,23 @@ StepTimes StepTimeStats::summary() const {
 }
 
 bool hasFiniteState(const RigidBody &body) { return nonFiniteQuantity(body) == nullptr; }
+
+void applyEvent(World &world, BodyId id, const SceneEvent &event) {
+    switch (event.kind) {
+    case EventKind::Remove: world.removeBody(id); break;
+    case EventKind::SetVelocity: world.setVelocity(id, event.value); break;
+    case EventKind::SetRotation: world.setRotation(id, event.value); break;
+    case EventKind::SetPosition: world.setPosition(id, event.value); break;
+    case EventKind::ApplyImpulse:
+        if (event.point) {
+            world.applyImpulse(id, event.value, *event.point);
+        } else {
+            world.applyImpulse(id, event.value);
+        }
+        break;
+    case EventKind::SetAwake: world.setAwake(id, event.awake); break;
+    }
+}
 
 RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &options) {
     World &world = built.world;

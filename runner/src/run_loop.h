@@ -76,6 +76,10 @@ struct RunResult {
 /// Whether position, orientation, velocity and rotation are all finite.
 bool hasFiniteState(const RigidBody &body);
 
+/// Applies one scripted event to the body `id` through the World API (the call the event
+/// names); the World's InvalidArgument passes through.
+void applyEvent(World &world, BodyId id, const SceneEvent &event);
+
 /// Runs `world` (built from `scene`). Throws SceneError at an event's path if the World
 /// refuses an event, and at "step N" if step N fails with the state still finite.
 RunResult runScene(const Scene &scene, SceneWorld &world, const RunOptions &options);

@@ -1,0 +1,172 @@
+// The viewer's Session without a window: scene events at their steps, restart, the mouse's
+// grab spring, the ball shot from the camera and the states that colour bodies.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "camera.h"
+#include "meshes.h"
+#include "session.h"
+
+namespace cyclone::viewer {
+namespace {
+
+std::string scenePath(const std::string &name) { return std::string(CYCLONE_SCENES_DIR) + "/" + name + ".json"; }
+
+// A scene file written for one test, removed after it.
+class SceneFile {
+public:
+    SceneFile(const std::string &name, const std::string &text) : path_(testing::TempDir() + name + ".json") {
+        std::ofstream(path_) << text;
+    }
+    ~SceneFile() { std::remove(path_.c_str()); }
+    const std::string &path() const { return path_; }
+
+private:
+    std::string path_;
+};
+
+// One unit box resting on the ground (its centre at y = 0.5 m), with the default 60 Hz step.
+const char *kBoxOnGround = R"({"bodies": [
+  {"name": "ground", "static": true, "shape": {"type": "plane", "normal": [0, 1, 0], "offset": 0}},
+  {"name": "box", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]}, "position": [0, 0.5, 0]}]})";
+
+BodyId bodyNamed(const Session &session, const std::string &name) {
+    const std::optional<BodyId> id = session.world().findBody(name);
+    EXPECT_TRUE(id.has_value()) << name;
+    return id.value_or(BodyId());
+}
+
+void runSteps(Session &session, int steps) {
+    for (int i = 0; i < steps; ++i) session.singleStep();
+}
+
+TEST(ViewerSession, AppliesTheScenesEventsAtTheirSteps) {
+    Session session(scenePath("sleep-wake"));
+    const BodyId ball = bodyNamed(session, "ball");
+    const BodyId stack2 = bodyNamed(session, "stack2");
+    runSteps(session, 240);  // steps 0..239: before the set_velocity of step 240
+    EXPECT_LT(session.world().body(ball).getVelocity().x(), 1.0);
+    runSteps(session, 1);
+    // 12 m/s set at the start of step 240; one step of sliding friction takes at most
+    // mu g dt = 0.6 * 9.81 / 60 = 0.1 m/s of it.
+    EXPECT_GT(session.world().body(ball).getVelocity().x(), 11.5);
+    EXPECT_TRUE(session.world().contains(stack2));
+    runSteps(session, 420 - 241 + 1);  // through step 420, which removes stack2
+    EXPECT_FALSE(session.world().contains(stack2));
+    EXPECT_EQ(session.lastProblem(), "");
+}
+
+TEST(ViewerSession, RestartRebuildsTheSceneAndKeepsTheSolverSettings) {
+    Session session(scenePath("pyramid-10"));
+    const std::size_t bodies = session.world().bodyCount();
+    WorldSettings settings = session.world().settings();
+    settings.velocityIterations = 17;
+    session.setSettings(settings);
+    session.shootBall(Vector3(0, 5, 20), Vector3(0, 0, -1));
+    runSteps(session, 10);
+    EXPECT_EQ(session.world().bodyCount(), bodies + 1);
+    session.restart();
+    EXPECT_EQ(session.world().bodyCount(), bodies);
+    EXPECT_EQ(session.stepper().totalSteps(), 0u);
+    EXPECT_EQ(session.world().settings().velocityIterations, 17);
+}
+
+TEST(ViewerSession, AdvanceRunsWholeStepsAndSingleStepExactlyOne) {
+    Session session(scenePath("springs"));
+    const real dt = session.stepSeconds();
+    EXPECT_EQ(session.advance(dt / 2), 0);
+    EXPECT_EQ(session.advance(dt / 2 + dt * real(1e-6)), 1);
+    EXPECT_EQ(session.advance(real(2.5) * dt), 2);
+    const std::uint64_t before = session.stepper().totalSteps();
+    session.singleStep();
+    EXPECT_EQ(session.stepper().totalSteps(), before + 1);
+}
+
+TEST(ViewerSession, TheGrabSpringLiftsABodyAndLetsItFall) {
+    const SceneFile file("grab", kBoxOnGround);
+    Session session(file.path());
+    const BodyId box = bodyNamed(session, "box");
+
+    EXPECT_FALSE(session.grab(Vector3(5, 5, 5), Vector3(0, 1, 0))) << "a ray that meets nothing holds nothing";
+    EXPECT_FALSE(session.grab(Vector3(5, 5, 5), Vector3(0, -1, 0))) << "the ground is static: not held";
+    ASSERT_TRUE(session.grab(Vector3(0, 5, 0), Vector3(0, -1, 0)));
+    EXPECT_EQ(session.grabbed()->body, box);
+    EXPECT_NEAR(session.grabbed()->target.y(), 1.0, 1e-9) << "held where the ray met the top face";
+
+    session.moveGrab(Vector3(0, 3, 0));
+    runSteps(session, 180);
+    // Hanging from its top face's centre on a spring of omega 12 rad/s: the spring
+    // stretches g / omega^2 = 0.07 m, so the centre settles near 3 - 0.07 - 0.5 = 2.43 m.
+    EXPECT_NEAR(session.world().body(box).getPosition().y(), 2.43, 0.1);
+
+    session.release();
+    EXPECT_FALSE(session.grabbed().has_value());
+    runSteps(session, 120);
+    EXPECT_NEAR(session.world().body(box).getPosition().y(), 0.5, 0.02) << "fell back to the ground";
+}
+
+TEST(ViewerSession, TheRayThroughABoxsPixelGrabsThatBox) {
+    // What a click does: the camera's ray through the pixel where a box appears holds it.
+    Session session(scenePath("pyramid-20"));
+    OrbitCamera camera;
+    camera.frame(sceneBounds(session.world()), 1280.0f / 720.0f);
+    for (const char *name : {"r19b0", "r0b0", "r7b3"}) {
+        const BodyId box = bodyNamed(session, name);
+        const std::optional<Eigen::Vector2f> pixel =
+            camera.project(session.world().body(box).getPosition().cast<float>(), 1280, 720);
+        ASSERT_TRUE(pixel.has_value());
+        const Ray ray = camera.ray(pixel->x(), pixel->y(), 1280, 720);
+        ASSERT_TRUE(session.grab(ray.origin.cast<real>(), ray.direction.cast<real>())) << name;
+        EXPECT_EQ(session.grabbed()->body, box) << name;
+    }
+}
+
+TEST(ViewerSession, ShootsABallAlongTheGivenDirection) {
+    const SceneFile file("shoot", kBoxOnGround);
+    Session session(file.path());
+    const std::size_t bodies = session.world().bodyCount();
+    BallSettings ball;
+    session.shootBall(Vector3(0, 2, 10), Vector3(0, 0, -2), ball);
+    ASSERT_EQ(session.world().bodyCount(), bodies + 1);
+    const BodyId shot = session.world().bodies().back();
+    EXPECT_EQ(session.world().shape(shot).type, ShapeType::Sphere);
+    EXPECT_NEAR(session.world().body(shot).getVelocity().z(), -ball.speed, 1e-9);
+    EXPECT_NEAR(session.world().body(shot).getMass(), ball.mass, 1e-9);
+}
+
+TEST(ViewerSession, ColoursFollowTheBodysState) {
+    const SceneFile file("states", kBoxOnGround);
+    Session session(file.path());
+    const BodyId ground = bodyNamed(session, "ground");
+    const BodyId box = bodyNamed(session, "box");
+    EXPECT_EQ(session.state(ground), BodyState::Static);
+    EXPECT_EQ(session.state(box), BodyState::Awake);
+    session.world().setAwake(box, false);
+    EXPECT_EQ(session.state(box), BodyState::Asleep);
+}
+
+TEST(ViewerSession, SpringLinesJoinTheSpringsEnds) {
+    Session session(scenePath("springs"));
+    const std::vector<Vector3> lines = session.springLines();
+    ASSERT_EQ(lines.size(), 4u);  // two springs
+    // The first is anchored at the world point (0, 6, 0), from the top of "upper" (0, 4.25, 0).
+    EXPECT_TRUE(lines[0].isApprox(Vector3(0, 4.25, 0)));
+    EXPECT_TRUE(lines[1].isApprox(Vector3(0, 6, 0)));
+}
+
+TEST(ViewerSession, ABadSceneFileIsRefusedWithItsName) {
+    const SceneFile file("bad", R"({"bodies": [{"name": "b", "shape": {"type": "box", "half_extents": [1, 1, 1]}, "mass": -1}]})");
+    try {
+        Session session(file.path());
+        FAIL() << "a negative mass was accepted";
+    } catch (const scene::SceneError &error) {
+        EXPECT_NE(std::string(error.what()).find(file.path()), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("bodies[0].mass"), std::string::npos) << error.what();
+    }
+}
+
+}  // namespace
+}  // namespace cyclone::viewer

@@ -1,0 +1,71 @@
+// Drawing with OpenGL 3.3 core: lit solid meshes (one draw per body) and coloured lines
+// (debug drawing, grids, springs) batched into one draw per frame. Needs a current GL
+// context from construction to destruction.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "gl.h"
+#include "meshes.h"
+#include "palette.h"
+
+namespace cyclone::viewer {
+
+/// A TriangleMesh in GL buffers. Move-only.
+class GpuMesh {
+public:
+    GpuMesh() = default;
+    explicit GpuMesh(const TriangleMesh &mesh);
+    ~GpuMesh();
+    GpuMesh(const GpuMesh &) = delete;
+    GpuMesh &operator=(const GpuMesh &) = delete;
+    GpuMesh(GpuMesh &&other) noexcept;
+    GpuMesh &operator=(GpuMesh &&other) noexcept;
+
+    GLuint vertexArray() const { return vertexArray_; }
+    GLsizei indexCount() const { return indexCount_; }
+
+private:
+    void release();
+    GLuint vertexArray_ = 0;
+    GLuint buffers_[2] = {0, 0};
+    GLsizei indexCount_ = 0;
+};
+
+/// A vertex of a line: world position (m) and colour.
+struct LineVertex {
+    float position[3];
+    float color[3];
+};
+
+/// The GL programs and per-frame state.
+class Renderer {
+public:
+    /// Compiles the shaders; throws std::runtime_error with GL's log if they do not build.
+    Renderer();
+    ~Renderer();
+    Renderer(const Renderer &) = delete;
+    Renderer &operator=(const Renderer &) = delete;
+
+    /// Clears a width x height picture to the sky colour and sets the camera for the
+    /// draws that follow.
+    void beginFrame(int width, int height, const Eigen::Matrix4f &viewProjection, const Eigen::Vector3f &eye);
+    /// Draws `mesh` placed by `model` (column-major 4x4, body to world) in `color`, lit.
+    void drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &color);
+    /// Draws line segments (pairs of vertices); `onTop` draws them over everything.
+    void drawLines(const std::vector<LineVertex> &vertices, bool onTop);
+
+private:
+    GLuint meshProgram_ = 0;
+    GLuint lineProgram_ = 0;
+    GLint meshModel_ = -1, meshViewProjection_ = -1, meshColor_ = -1, meshEye_ = -1, meshSky_ = -1;
+    GLint lineViewProjection_ = -1;
+    GLuint lineArray_ = 0, lineBuffer_ = 0;
+    std::size_t lineCapacity_ = 0;
+    Eigen::Matrix4f viewProjection_ = Eigen::Matrix4f::Identity();
+    Eigen::Vector3f eye_ = Eigen::Vector3f::Zero();
+};
+
+}  // namespace cyclone::viewer

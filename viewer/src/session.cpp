@@ -1,0 +1,171 @@
+#include "session.h"
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#include "run_loop.h"
+#include "scene_loader.h"
+
+namespace cyclone::viewer {
+
+namespace {
+
+// The grab spring pulls like a critically damped oscillator of this angular frequency
+// (rad/s) whatever the mass held: stiff enough to lift a box, soft enough for the
+// explicit spring integration (omega h well below 2 at 4 sub-steps of 1/60 s).
+constexpr real kGrabOmega = 12;
+
+std::string readFile(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot be read");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::string stem(const std::string &path) {
+    const std::size_t slash = path.find_last_of('/');
+    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    const std::size_t dot = name.rfind('.');
+    return dot == std::string::npos ? name : name.substr(0, dot);
+}
+
+}  // namespace
+
+Session::Session(const std::string &path) : path_(path) {
+    try {
+        scene_ = scene::loadScene(readFile(path), stem(path));
+    } catch (const scene::SceneError &error) {
+        throw scene::SceneError(path + ": " + error.path(), error.message());
+    }
+    eventOrder_.resize(scene_.events.size());
+    std::iota(eventOrder_.begin(), eventOrder_.end(), std::size_t{0});
+    std::stable_sort(eventOrder_.begin(), eventOrder_.end(),
+                     [&](std::size_t x, std::size_t y) { return scene_.events[x].step < scene_.events[y].step; });
+    build();
+}
+
+void Session::build() {
+    stepper_.reset();
+    grab_.reset();
+    grabSpring_.reset();
+    built_ = std::make_unique<scene::SceneWorld>(scene::buildWorld(scene_));
+    FixedStepSettings steps;
+    steps.stepSeconds = scene_.dt;
+    stepper_ = std::make_unique<FixedStepper>(built_->world, steps);
+    nextEvent_ = 0;
+    present_.assign(scene_.bodies.size(), true);
+    problem_.clear();
+}
+
+void Session::restart() {
+    const WorldSettings settings = world().settings();
+    build();
+    world().setSettings(settings);
+}
+
+void Session::setSettings(const WorldSettings &settings) { world().setSettings(settings); }
+
+void Session::applyEvents(std::int64_t step) {
+    for (; nextEvent_ < eventOrder_.size() && scene_.events[eventOrder_[nextEvent_]].step <= step; ++nextEvent_) {
+        const scene::SceneEvent &event = scene_.events[eventOrder_[nextEvent_]];
+        if (event.step < step || !present_[event.body]) continue;
+        const BodyId id = built_->ids[event.body];
+        try {
+            if (event.kind == scene::EventKind::Remove && grab_ && grab_->body == id) release();
+            scene::applyEvent(world(), id, event);
+            if (event.kind == scene::EventKind::Remove) present_[event.body] = false;
+        } catch (const InvalidArgument &error) {
+            problem_ = event.path + " (step " + std::to_string(step) + "): " + error.what();
+        }
+    }
+}
+
+void Session::updateGrabSpring() {
+    if (grabSpring_) world().removeSpring(*grabSpring_);
+    grabSpring_.reset();
+    if (!grab_) return;
+    const real mass = world().body(grab_->body).getMass();
+    SpringSettings spring;
+    spring.a = grab_->body;
+    spring.aPoint = grab_->localPoint;
+    spring.bPoint = grab_->target;
+    spring.stiffness = mass * kGrabOmega * kGrabOmega;
+    spring.damping = 2 * mass * kGrabOmega;
+    spring.restLength = 0;
+    grabSpring_ = world().addSpring(spring);
+}
+
+int Session::advance(real frameSeconds) {
+    return stepper_->advance(frameSeconds, [&](real) {
+        applyEvents(static_cast<std::int64_t>(stepper_->totalSteps()));
+        updateGrabSpring();
+    });
+}
+
+void Session::singleStep() {
+    // A whole step more than what is accumulated runs exactly one step.
+    advance(stepSeconds());
+}
+
+bool Session::grab(const Vector3 &origin, const Vector3 &direction) {
+    release();
+    QueryFilter filter;
+    filter.staticBodies = false;
+    const std::optional<RayHit> hit = world().rayCast(origin, direction, std::numeric_limits<real>::infinity(), filter);
+    if (!hit) return false;
+    Grab held;
+    held.body = hit->body;
+    held.localPoint = world().body(hit->body).getPointInLocalSpace(hit->point);
+    held.target = hit->point;
+    grab_ = held;
+    return true;
+}
+
+void Session::moveGrab(const Vector3 &target) {
+    if (grab_ && target.allFinite()) grab_->target = target;
+}
+
+void Session::release() {
+    if (grabSpring_ && world().contains(grab_->body)) world().removeSpring(*grabSpring_);
+    grabSpring_.reset();
+    grab_.reset();
+}
+
+void Session::shootBall(const Vector3 &origin, const Vector3 &direction, const BallSettings &ball) {
+    BodySettings body;
+    body.shape = Shape::sphere(ball.radius);
+    body.mass = ball.mass;
+    body.position = origin;
+    body.velocity = direction.normalized() * ball.speed;
+    body.ccd = true;
+    world().addBody(body);
+}
+
+BodyState Session::state(BodyId id) const {
+    if (world().isStatic(id)) return BodyState::Static;
+    const RigidBody &body = world().body(id);
+    if (!scene::hasFiniteState(body)) return BodyState::NonFinite;
+    return body.getAwake() ? BodyState::Awake : BodyState::Asleep;
+}
+
+std::vector<Vector3> Session::springLines() const {
+    std::vector<Vector3> lines;
+    for (const scene::SceneSpring &spring : scene_.springs) {
+        if (!present_[spring.a] || (spring.b && !present_[*spring.b])) continue;
+        lines.push_back(world().body(built_->ids[spring.a]).getPointInWorldSpace(spring.settings.aPoint));
+        lines.push_back(spring.b ? world().body(built_->ids[*spring.b]).getPointInWorldSpace(spring.settings.bPoint)
+                                 : spring.settings.bPoint);
+    }
+    if (grab_) {
+        lines.push_back(world().body(grab_->body).getPointInWorldSpace(grab_->localPoint));
+        lines.push_back(grab_->target);
+    }
+    return lines;
+}
+
+}  // namespace cyclone::viewer

@@ -1,0 +1,119 @@
+// A scene being watched: the scene file, its World and the FixedStepper that runs it live,
+// with the scene's scripted events, and what the user does to it (restart, drag a body
+// with a spring, shoot a ball). No window or GL here: tests use it as it is.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cyclone/world/game_loop.h"
+#include "scene.h"
+#include "scene_world.h"
+
+namespace cyclone::viewer {
+
+/// What a body's colour says about it. A new motion type (kinematic bodies, sensors) is one
+/// more value here, one more case in Session::state() and one more colour in stateColor()
+/// (palette.h).
+enum class BodyState {
+    Static,     ///< Never moves.
+    Awake,      ///< Dynamic and simulated.
+    Asleep,     ///< Dynamic and sleeping.
+    NonFinite,  ///< Isolated by the World: its state became non-finite or left the 1e30 m range.
+};
+
+/// A body held by the mouse: a spring from a point of the body to a world point that the
+/// cursor moves.
+struct Grab {
+    BodyId body;
+    /// The point held, in the body's space, m.
+    Vector3 localPoint = Vector3::Zero();
+    /// Where the cursor pulls it, world space, m.
+    Vector3 target = Vector3::Zero();
+};
+
+/// Settings of the ball shot from the camera.
+struct BallSettings {
+    /// Radius, m, > 0.
+    real radius = 0.3;
+    /// Mass, kg, > 0.
+    real mass = 5;
+    /// Launch speed, m/s, > 0.
+    real speed = 30;
+};
+
+/// A loaded scene and its running World.
+class Session {
+public:
+    /// Loads the scene file at `path` and builds its World; throws scene::SceneError (with
+    /// the file's name in the message) or std::runtime_error when it cannot.
+    explicit Session(const std::string &path);
+
+    /// The scene file's path.
+    const std::string &path() const { return path_; }
+    /// The scene as loaded.
+    const scene::Scene &scene() const { return scene_; }
+    World &world() { return built_->world; }
+    const World &world() const { return built_->world; }
+    FixedStepper &stepper() { return *stepper_; }
+    const FixedStepper &stepper() const { return *stepper_; }
+
+    /// Builds the World again from the scene, with the solver settings in force kept.
+    void restart();
+
+    /// Runs the steps that `frameSeconds` of simulated time complete (FixedStepper::advance),
+    /// applying the scene's events due at each step and the grab's spring. Returns the
+    /// number of steps run. An event the World refuses is skipped and kept in
+    /// lastProblem().
+    int advance(real frameSeconds);
+    /// Runs exactly one step.
+    void singleStep();
+    /// Duration of one step, s.
+    real stepSeconds() const { return stepper_->settings().stepSeconds; }
+
+    /// Replaces the World's settings (World::setSettings: validated, wakes every body);
+    /// kept across restart().
+    void setSettings(const WorldSettings &settings);
+
+    /// Holds the dynamic body the ray from `origin` along `direction` meets first, at the
+    /// point met; returns false (nothing held) when it meets none.
+    bool grab(const Vector3 &origin, const Vector3 &direction);
+    /// Moves the point the held body is pulled to, m.
+    void moveGrab(const Vector3 &target);
+    /// Lets the held body go.
+    void release();
+    /// The body held, if any.
+    const std::optional<Grab> &grabbed() const { return grab_; }
+
+    /// Adds a ball at `origin` moving along `direction` (unit) at the ball's speed.
+    void shootBall(const Vector3 &origin, const Vector3 &direction, const BallSettings &ball = BallSettings());
+
+    /// The state a body's colour shows.
+    BodyState state(BodyId id) const;
+    /// The scene's springs whose bodies are all still in the World, as world-space end
+    /// points (pairs), for drawing.
+    std::vector<Vector3> springLines() const;
+    /// The last thing that went wrong while running (a refused event), or "".
+    const std::string &lastProblem() const { return problem_; }
+
+private:
+    void build();
+    void applyEvents(std::int64_t step);
+    void updateGrabSpring();
+
+    std::string path_;
+    scene::Scene scene_;
+    std::unique_ptr<scene::SceneWorld> built_;
+    std::unique_ptr<FixedStepper> stepper_;
+    std::vector<std::size_t> eventOrder_;  ///< Indices of scene_.events by step (stable).
+    std::size_t nextEvent_ = 0;
+    std::vector<bool> present_;            ///< By scene body: not removed by an event.
+    std::optional<Grab> grab_;
+    std::optional<SpringId> grabSpring_;
+    std::string problem_;
+};
+
+}  // namespace cyclone::viewer
