@@ -1,5 +1,5 @@
 // Spring forces, at the start of every sub-step of h seconds: explicit (the seed's) or
-// backward Euler.
+// backward Euler, per spring (chooseSpringForces).
 //
 // Design note. An explicit spring force makes each sub-step a symplectic Euler step of
 // the oscillator: stable only while omega h < 2, and beyond that the energy grows every
@@ -18,6 +18,15 @@
 // with the others' current forces, in kImplicitSpringPasses passes warm-started with the
 // last sub-step's forces (block Gauss-Seidel). At rest the warm start is the solution, so
 // a chain hangs exactly where its springs carry the weight below them.
+//
+// Which springs are implicit. With NewtonEulerImplicit, all of them. Otherwise a spring of
+// SpringForce::Automatic is implicit when omega h > WorldSettings::explicitSpringLimit,
+// omega^2 being the largest load of its moving ends: a body's load is the sum over its
+// springs of k (w_a + w_b), w the inverse mass of each moving end at its attachment point
+// along the spring (1/m + (r x d) . I^-1 (r x d)). That is omega^2 exactly for one spring
+// (k (1/m_a + 1/m_b)), for a body held by several springs along one line, and for the
+// highest mode of a long chain (4 k / m); explicit springs far below the limit are left
+// as they are, and keep their energy.
 #include <Eigen/LU>
 #include <algorithm>
 
@@ -48,11 +57,59 @@ Vector3 freePointVelocity(const RigidBody &body, const Vector3 &r, real h) {
     return v + w.cross(r);
 }
 
+// The inverse mass of `body` at `r` from its centre of mass along the unit vector d.
+real inverseMassAlong(const RigidBody &body, const Vector3 &r, const Vector3 &d) {
+    const Vector3 arm = r.cross(d);
+    return body.getInverseMass() + arm.dot(body.getInverseInertiaTensorWorld() * arm);
+}
+
 }  // namespace
+
+int World::Impl::chooseSpringForces(real h) {
+    const bool allImplicit = settings.integrator == Integrator::NewtonEulerImplicit;
+    const real limit = settings.explicitSpringLimit / h;  // omega, 1/s
+    // The load of every spring's ends, zeroed then summed; other bodies' entries are unused.
+    springLoad.resize(bodies.size());
+    for (const SpringRecord &s : springs) {
+        if (!s.alive) continue;
+        springLoad[s.settings.a.index] = 0;
+        if (s.settings.b) springLoad[s.settings.b->index] = 0;
+    }
+    const auto moves = [&](const BodyRecord *r) { return r && r->simulated && !r->quarantined; };
+    for (const SpringRecord &s : springs) {
+        if (!s.alive || allImplicit || s.settings.force == SpringForce::Explicit) continue;
+        BodyRecord &a = bodies[s.settings.a.index];
+        BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
+        if (!moves(&a) && !moves(b)) continue;
+        const Vector3 pa = a.body.getPointInWorldSpace(s.settings.aPoint);
+        const Vector3 pb = b ? b->body.getPointInWorldSpace(s.settings.bPoint) : s.settings.bPoint;
+        const Vector3 delta = pa - pb;
+        const real length = delta.norm();
+        // Without a direction, the centres' inverse masses (a zero-length spring at rest).
+        const Vector3 d = length > 1e-12 ? Vector3(delta / length) : Vector3::Zero();
+        real w = 0;
+        if (moves(&a)) w += inverseMassAlong(a.body, pa - a.body.getPosition(), d);
+        if (moves(b)) w += inverseMassAlong(b->body, pb - b->body.getPosition(), d);
+        if (moves(&a)) springLoad[s.settings.a.index] += s.settings.stiffness * w;
+        if (moves(b)) springLoad[s.settings.b->index] += s.settings.stiffness * w;
+    }
+    int count = 0;
+    for (SpringRecord &s : springs) {
+        if (!s.alive) continue;
+        s.implicit = allImplicit;
+        if (!allImplicit && s.settings.force == SpringForce::Automatic) {
+            real load = springLoad[s.settings.a.index];
+            if (s.settings.b) load = std::max(load, springLoad[s.settings.b->index]);
+            s.implicit = load > limit * limit;
+        }
+        count += s.implicit ? 1 : 0;
+    }
+    return count;
+}
 
 void World::Impl::addExplicitSpringForces() {
     for (SpringRecord &s : springs) {
-        if (!s.alive) continue;
+        if (!s.alive || s.implicit) continue;
         BodyRecord &a = bodies[s.settings.a.index];
         BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
         const bool bSimulated = b && b->simulated;
@@ -72,6 +129,7 @@ void World::Impl::addExplicitSpringForces() {
         if (!force.allFinite()) continue;
         if (a.simulated) a.body.addForceAtPoint(force, pa);
         if (bSimulated) b->body.addForceAtPoint(-force, pb);
+        s.implicitForce = force;
     }
 }
 
@@ -81,7 +139,7 @@ void World::Impl::addImplicitSpringForces(real h) {
     implicitSprings.clear();
     for (std::uint32_t index = 0; index < springs.size(); ++index) {
         SpringRecord &s = springs[index];
-        if (!s.alive) continue;
+        if (!s.alive || !s.implicit) continue;
         const SpringSettings &spring = s.settings;
         BodyRecord &a = bodies[spring.a.index];
         BodyRecord *b = spring.b ? &bodies[spring.b->index] : nullptr;

@@ -62,7 +62,8 @@ struct SpringRecord {
     SpringSettings settings;
     std::uint32_t generation = 0;
     bool alive = false;
-    Vector3 implicitForce = Vector3::Zero();  ///< Implicit springs: force on a in the last sub-step, N.
+    Vector3 implicitForce = Vector3::Zero();  ///< Force on a in the last sub-step, N (the implicit solve's warm start).
+    bool implicit = false;                    ///< Backward Euler in this sub-step (chooseSpringForces).
 };
 
 /// Passes over the implicit springs per sub-step (block Gauss-Seidel on the coupled system).
@@ -155,6 +156,7 @@ struct World::Impl {
     std::vector<real> angularFactor;
     std::vector<std::uint32_t> sweepCandidates;  ///< Bodies near a ccd body's sweep.
     std::vector<ImplicitSpring> implicitSprings;
+    std::vector<real> springLoad;  ///< Per body: sum of k (w_a + w_b) of its springs, 1/s^2.
 
     // Events (events.cpp). Calls between steps record into pendingEvents; a step moves
     // them into `events` and records its own there (eventSink says which list is open).
@@ -200,6 +202,9 @@ struct World::Impl {
     // The step, stage by stage.
     void step(real dt);
     void applyForces(real dt);
+    /// Marks the springs that get the backward-Euler force in a sub-step of h seconds;
+    /// returns how many.
+    int chooseSpringForces(real h);
     void addExplicitSpringForces();
     void substepForces(real h, bool firstSubstep);
     void addImplicitSpringForces(real h);

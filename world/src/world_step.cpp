@@ -173,8 +173,10 @@ void World::Impl::substepForces(real h, bool firstSubstep) {
         }
     }
     if (stats.springs == 0) return;
-    if (settings.integrator == Integrator::NewtonEulerImplicit) addImplicitSpringForces(h);
-    else addExplicitSpringForces();
+    // The explicit forces first: the implicit ones are solved with them in place.
+    const int implicitCount = chooseSpringForces(h);
+    addExplicitSpringForces();
+    if (implicitCount > 0) addImplicitSpringForces(h);
 }
 
 // --- broadphase ---------------------------------------------------------------------------
