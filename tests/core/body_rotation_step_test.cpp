@@ -71,8 +71,8 @@ TEST(RigidBodyRotationStep, TorqueFreeBoxKeepsMomentumAndEnergy) {
     }
 }
 
-// Whatever the step: at h |w| = 5 and 50 (steps of 1 s and 10 s) Newton's method alone
-// does not converge and the step is split, still keeping both.
+// Whatever the step: at h |w| of about 6 and 60 (steps of 1 s and 10 s), where Newton's
+// method from L_b may fail and the step is then split, both are still kept.
 TEST(RigidBodyRotationStep, HugeStepsKeepMomentumAndEnergy) {
     for (real h : {1.0, 10.0}) {
         RigidBody body = spinningBody(boxInertia(), Vector3(1, 5, -3));
