@@ -718,7 +718,8 @@ void writeSummary(std::ostream &md, const std::vector<Row> &rows) {
     md << "\nWhy `" << mc << "` uses the implicit midpoint rule rather than a splitting into rotations about the "
        << "body axes (`" << split << "` in the tables, run on its own, without a World around it): the "
        << "splitting keeps the energy only to O(h^2), a drift of " << value(at("dzhanibekov", "energy", split))
-       << " on the Dzhanibekov box where the target is 1e-9. At the same step its attitude error is "
+       << " on the Dzhanibekov box (" << mc << ": " << value(at("dzhanibekov", "energy", mc))
+       << "). At the same step its attitude error is "
        << value(at("dzhanibekov", "attitude", split)) << " rad there (" << mc << ": "
        << value(at("dzhanibekov", "attitude", mc)) << ") and " << value(at("tumbling-box", "attitude", split))
        << " rad on the tumbling box (" << value(at("tumbling-box", "attitude", mc)) << "). It is cheaper: "
