@@ -36,8 +36,13 @@ while (($# > 0)); do
 done
 
 bash "$root/scripts/deps.sh"
+# ccache, when installed, makes a rebuild after a small change take seconds.
+launcher=()
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
 cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DCYCLONE_BUILD_BENCH=ON \
-  -DCYCLONE_BUILD_TESTS=OFF -DCYCLONE_BUILD_EXAMPLES=OFF >/dev/null
+  -DCYCLONE_BUILD_TESTS=OFF -DCYCLONE_BUILD_EXAMPLES=OFF ${launcher[@]+"${launcher[@]}"} >/dev/null
 cmake --build "$build_dir" --parallel "$(nproc 2>/dev/null || echo 2)" --target cyclone-accuracy
 
 out=$root/docs/accuracy

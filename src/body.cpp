@@ -88,6 +88,7 @@ RigidBody::RigidBody()
       isAwake(true),
       canSleep(true),
       gyroscopicStep(GyroscopicStep::None),
+      rotationStep(RotationStep::Seed),
       transformMatrix(Matrix4::Identity()),
       forceAccum(Vector3::Zero()),
       torqueAccum(Vector3::Zero()),
@@ -121,16 +122,28 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
     const Vector3 angularAcceleration = inverseInertiaTensorWorld * torqueAccum;
 
     const StepFactors &factors = stepFactors(duration);
-    velocity += lastFrameAcceleration * duration;
-    rotation += angularAcceleration * duration;
-    velocity *= factors.linear;
-    rotation *= factors.angular;
+    if (rotationStep == RotationStep::MomentumConserving) {
+        // Strang splitting: half of the torque's impulse on L, the torque-free motion,
+        // the other half (on L in the new pose: its inverse inertia, not the old one).
+        velocity += lastFrameAcceleration * duration;
+        velocity *= factors.linear;
+        position += velocity * duration;
+        const Vector3 halfImpulse = 0.5 * duration * factors.angular * torqueAccum;
+        rotation = rotation * factors.angular + inverseInertiaTensorWorld * halfImpulse;
+        applyTorqueFreeRotation(duration);
+        rotation += inverseInertiaTensorWorld * halfImpulse;
+    } else {
+        velocity += lastFrameAcceleration * duration;
+        rotation += angularAcceleration * duration;
+        velocity *= factors.linear;
+        rotation *= factors.angular;
 
-    position += velocity * duration;
-    // q += 1/2 dt (0, w) q, then normalised: the seed's first-order orientation update.
-    const Quaternion spin(0, rotation.x() * duration, rotation.y() * duration, rotation.z() * duration);
-    orientation.coeffs() += 0.5 * (spin * orientation).coeffs();
-    orientation.normalize();
+        position += velocity * duration;
+        // q += 1/2 dt (0, w) q, then normalised: the seed's first-order orientation update.
+        const Quaternion spin(0, rotation.x() * duration, rotation.y() * duration, rotation.z() * duration);
+        orientation.coeffs() += 0.5 * (spin * orientation).coeffs();
+        orientation.normalize();
+    }
 
     calculateDerivedData();
     clearAccumulators();
@@ -208,7 +221,89 @@ Vector3 midpointStep(const Matrix3 &inertia, const Vector3 &w, real h) {
     return x;
 }
 
+// The implicit midpoint rule on Euler's equations in body space, dL/dt = L x I^-1 L, for
+// the midpoint x = (L + L') / 2: g(x) = 2 (x - L) - h x x (A x) = 0 with A = I^-1, whose
+// Jacobian is 2 - h ([x]x A - [A x]x). Newton's method from x = L converges quadratically
+// while h |A x| is below about 1. Returns false (x unusable) when it does not converge.
+bool torqueFreeMidpoint(const Matrix3 &inverseInertia, const Vector3 &momentum, real h, Vector3 *midpoint) {
+    constexpr int kMaxIterations = 12;
+    Vector3 x = momentum;
+    for (int i = 0; i < kMaxIterations; ++i) {
+        const Vector3 w = inverseInertia * x;
+        const Vector3 residual = 2 * (x - momentum) - h * x.cross(w);
+        const Matrix3 jacobian = 2 * Matrix3::Identity() - h * (skew(x) * inverseInertia - skew(w));
+        const Eigen::FullPivLU<Matrix3> lu(jacobian);
+        if (!lu.isInvertible()) return false;
+        const Vector3 correction = lu.solve(residual);
+        x -= correction;
+        if (!x.allFinite()) return false;
+        if (!(correction.norm() > 1e-14 * x.norm())) {
+            *midpoint = x;
+            return true;
+        }
+    }
+    return false;
+}
+
+// The rotation whose Cayley map is [v]x: by 2 atan(|v| / 2) about v.
+Quaternion cayley(const Vector3 &v) {
+    Quaternion q(1, 0.5 * v.x(), 0.5 * v.y(), 0.5 * v.z());
+    q.normalize();
+    return q;
+}
+
 }  // namespace
+
+void RigidBody::setRotationStep(RotationStep step) {
+    if (step != RotationStep::Seed && step != RotationStep::MomentumConserving)
+        throw InvalidArgument("RigidBody::setRotationStep", "step",
+                              "must be Seed or MomentumConserving, got " + std::to_string(static_cast<int>(step)));
+    rotationStep = step;
+}
+
+void RigidBody::applyTorqueFreeRotation(real duration) {
+    if (!std::isfinite(duration) || duration < 0)
+        throw InvalidArgument("RigidBody::applyTorqueFreeRotation", "duration",
+                              "must be finite and >= 0, got " + str(duration));
+    if (!isAwake || duration == 0) return;
+
+    const Matrix3 toWorld = orientation.toRotationMatrix();
+    const Matrix3 inertia = inverseInertiaTensor.inverse();
+    const Vector3 bodyMomentum = inertia * (toWorld.transpose() * rotation);
+    const Vector3 worldMomentum = toWorld * bodyMomentum;
+    // A body of isotropic inertia turns about a fixed axis: the midpoint is L itself.
+    const bool isotropic = hasIsotropicInertia();
+    if (!worldMomentum.allFinite()) return;
+    // Split the step while Newton's method fails (h |w| well beyond 1); at the last split
+    // each part's rotation is kept whatever it is, still a rotation, so L is kept all the same.
+    constexpr int kMaxParts = 1 << 12;
+    Quaternion turn = Quaternion::Identity();
+    for (int parts = 1;; parts *= 2) {
+        const bool last = parts >= kMaxParts;
+        const real h = duration / parts;
+        Vector3 momentum = bodyMomentum;
+        turn = Quaternion::Identity();
+        bool converged = true;
+        for (int part = 0; part < parts; ++part) {
+            Vector3 midpoint = momentum;
+            if (!isotropic && !torqueFreeMidpoint(inverseInertiaTensor, momentum, h, &midpoint)) {
+                converged = false;
+                if (!last) break;
+            }
+            const Quaternion partTurn = cayley(h * (inverseInertiaTensor * midpoint));
+            turn = turn * partTurn;
+            // L_b' = 2 x - L_b is this rotation of L_b, taken back (up to roundoff).
+            momentum = partTurn.conjugate() * momentum;
+        }
+        if (converged || last) break;
+    }
+    orientation = orientation * turn;
+    orientation.normalize();
+    calculateDerivedData();
+    const Matrix3 &newToWorld = transformMatrix.linear();
+    const Vector3 w = newToWorld * (inverseInertiaTensor * (newToWorld.transpose() * worldMomentum));
+    if (w.allFinite()) rotation = w;
+}
 
 void RigidBody::setGyroscopicStep(GyroscopicStep step) {
     if (!knownStep(step))

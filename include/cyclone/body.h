@@ -21,7 +21,9 @@
 //  - the motion average is kept whether or not the body may sleep;
 //  - an implicit gyroscopic step (GyroscopicStep), off by default, so that a spinning
 //    asymmetric body can keep its angular momentum; its calls refuse bad input with
-//    cyclone::InvalidArgument (a std::invalid_argument naming function and field).
+//    cyclone::InvalidArgument (a std::invalid_argument naming function and field);
+//  - a second-order rotation step that keeps a torque-free body's angular momentum and
+//    energy (RotationStep::MomentumConserving), off by default.
 // Setters of characteristics or state keep derived data current, so a getter
 // never returns stale data (calculateDerivedData() stays public for callers who
 // change state through a subclass).
@@ -60,6 +62,22 @@ enum class GyroscopicStep {
     Midpoint,
 };
 
+/// How RigidBody::integrate advances the orientation and the angular velocity.
+enum class RotationStep {
+    /// The seed's, first order: the torque changes the angular velocity, which is then held
+    /// through the step while the orientation turns by q += h/2 (0, w) q, normalised. A
+    /// torque-free body keeps its world angular velocity, which is right only for a body
+    /// of isotropic inertia.
+    Seed,
+    /// Second order in the step for the rotation: half of the torque's impulse on the
+    /// world angular momentum L, the torque-free motion over the whole step
+    /// (applyTorqueFreeRotation), then the other half. Without torque the world angular
+    /// momentum and the kinetic energy are kept to rounding error whatever the step; the
+    /// torque is that of the step's start, so a torque that changes with the pose is
+    /// followed at first order. The linear motion is the seed's.
+    MomentumConserving,
+};
+
 /// A rigid body: position and orientation with their first derivatives, mass and
 /// inertia, damping, accumulated force and torque, and sleep state.
 ///
@@ -87,7 +105,8 @@ public:
     /// semi-implicit Newton-Euler scheme: the gyroscopic step if one is set
     /// (setGyroscopicStep), velocities from forces, damping, then positions from the
     /// new velocities (the orientation turns by the Cayley rotation of duration times
-    /// the angular velocity: q += dt/2 (0, w) q, normalised); clears the accumulators and updates the
+    /// the angular velocity: q += dt/2 (0, w) q, normalised; or as setRotationStep says,
+    /// see RotationStep); clears the accumulators and updates the
     /// motion average. Puts the body to sleep when the average drops below the sleep
     /// threshold and the body may sleep. A sleeping body and `duration == 0` change
     /// nothing. Throws std::invalid_argument on a negative or non-finite duration.
@@ -102,6 +121,26 @@ public:
     void setGyroscopicStep(GyroscopicStep step);
     /// The gyroscopic step integrate() begins with.
     GyroscopicStep getGyroscopicStep() const { return gyroscopicStep; }
+
+    /// Sets how integrate() advances the orientation and the angular velocity (default
+    /// RotationStep::Seed). Throws InvalidArgument on a value outside the enum.
+    void setRotationStep(RotationStep step);
+    /// How integrate() advances the orientation and the angular velocity.
+    RotationStep getRotationStep() const { return rotationStep; }
+
+    /// Moves the body as a torque-free rigid body for `duration` seconds (finite, >= 0):
+    /// the implicit midpoint rule on the body-frame angular momentum L_b,
+    /// L_b' - L_b = h (L_b + L_b')/2 x W, with W = I^-1 (L_b + L_b')/2 the midpoint angular
+    /// velocity, solved by Newton's method to roundoff. That step is the rotation of L_b by
+    /// the Cayley map of -h W; the orientation turns by the opposite rotation (the Cayley
+    /// map of h W in body space), so the world angular momentum R L_b does not change and
+    /// the kinetic energy L_b . I^-1 L_b / 2, a quadratic invariant that the midpoint rule
+    /// keeps, does not either. Second order; a step with h |w| beyond about 1, where
+    /// Newton's method may not converge, is split into equal parts. The position and the
+    /// linear velocity are untouched; the angular velocity becomes R' I^-1 R'^T L. A
+    /// sleeping body and a zero duration change nothing. Throws InvalidArgument on a
+    /// negative or non-finite duration, leaving the body unchanged.
+    void applyTorqueFreeRotation(real duration);
 
     /// Replaces the angular velocity by that of one implicit `step` of Euler's
     /// torque-free equations over `duration` seconds (finite, >= 0), computed in body
@@ -313,6 +352,7 @@ protected:
     bool isAwake;                       ///< Integrated only when true.
     bool canSleep;                      ///< False keeps the body awake.
     GyroscopicStep gyroscopicStep;      ///< What integrate() applies first.
+    RotationStep rotationStep;          ///< How integrate() turns the body.
     Matrix4 transformMatrix;            ///< Body -> world transform.
 
     // Accumulators.

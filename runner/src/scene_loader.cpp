@@ -389,6 +389,13 @@ SceneSpring readSpring(const json &value, const std::string &path, const NameInd
     readOptional(value, path, "damping", settings.damping, nonNegative);
     readOptional(value, path, "rest_length", settings.restLength,
                  [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegativeLength); });
+    if (const json *force = member(value, "force")) {
+        const std::string forcePath = memberPath(path, "force");
+        const std::string &name = readString(*force, forcePath);
+        if (name == "automatic") settings.force = SpringForce::Automatic;
+        else if (name == "explicit") settings.force = SpringForce::Explicit;
+        else fail(forcePath, "unknown spring force " + jsonQuoted(name) + "; known: \"automatic\", \"explicit\"");
+    }
     return spring;
 }
 

@@ -29,6 +29,7 @@ inline constexpr IntegratorName kIntegrators[] = {
     {"newton-euler", Integrator::NewtonEuler},
     {"newton-euler-gyroscopic", Integrator::NewtonEulerGyroscopic},
     {"newton-euler-implicit", Integrator::NewtonEulerImplicit},
+    {"momentum-conserving", Integrator::MomentumConserving},
 };
 
 /// Loads a scene from the text of a scene file; `fallbackName` names the scene when the

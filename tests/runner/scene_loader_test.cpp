@@ -101,7 +101,7 @@ TEST(SceneLoader, EveryIntegratorNameOfTheTableLoads) {
 // One row per scheme: every Integrator has exactly one name, and names do not repeat.
 TEST(SceneLoader, EveryIntegratorHasOneName) {
     const Integrator schemes[] = {Integrator::NewtonEuler, Integrator::NewtonEulerGyroscopic,
-                                  Integrator::NewtonEulerImplicit};
+                                  Integrator::NewtonEulerImplicit, Integrator::MomentumConserving};
     for (Integrator scheme : schemes) {
         int rows = 0;
         for (const IntegratorName &entry : kIntegrators) rows += entry.integrator == scheme;
@@ -115,6 +115,26 @@ TEST(SceneLoader, EveryIntegratorHasOneName) {
             }
     const Scene scene = loadScene(R"({"settings": {"integrator": "newton-euler-gyroscopic"}, "bodies": []})", "x");
     EXPECT_EQ(scene.world.integrator, Integrator::NewtonEulerGyroscopic);
+    // The contract's name for the second-order scheme.
+    const Scene conserving = loadScene(R"({"settings": {"integrator": "momentum-conserving"}, "bodies": []})", "x");
+    EXPECT_EQ(conserving.world.integrator, Integrator::MomentumConserving);
+}
+
+TEST(SceneLoader, SpringForceIsReadAndChecked) {
+    const std::string bodies = R"("bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}}])";
+    const Scene automatic = loadScene("{" + bodies + R"(, "springs": [{"a": "b", "b": null}]})", "x");
+    ASSERT_EQ(automatic.springs.size(), 1u);
+    EXPECT_EQ(automatic.springs[0].settings.force, SpringForce::Automatic);
+    const Scene explicitForce =
+        loadScene("{" + bodies + R"(, "springs": [{"a": "b", "b": null, "force": "explicit"}]})", "x");
+    EXPECT_EQ(explicitForce.springs[0].settings.force, SpringForce::Explicit);
+    try {
+        loadScene("{" + bodies + R"(, "springs": [{"a": "b", "b": null, "force": "implicit"}]})", "x");
+        FAIL() << "accepted force \"implicit\"";
+    } catch (const std::exception &e) {
+        EXPECT_NE(std::string(e.what()).find("springs[0].force"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("\"implicit\""), std::string::npos) << e.what();
+    }
 }
 
 TEST(SceneLoader, EveryBodyFieldLandsInTheWorld) {

@@ -86,7 +86,7 @@ void Overlay::drawStats(const Session &session, double frameMs) {
     ImGui::Text("bodies %d  awake %d  islands %d", stats.bodies, stats.awakeBodies, stats.islands);
     ImGui::Text("contacts %d  manifolds %d", stats.contacts, stats.manifolds);
     ImGui::Text("deepest contact %.2f mm", static_cast<double>(stats.maxPenetration) * 1000);
-    if (stats.nonFiniteBodies > 0) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "non-finite bodies %d", stats.nonFiniteBodies);
+    if (stats.isolatedBodies > 0) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "isolated bodies %d", stats.isolatedBodies);
 
     std::vector<float> ordered(history_.begin() + static_cast<std::ptrdiff_t>(next_), history_.end());
     ordered.insert(ordered.end(), history_.begin(), history_.begin() + static_cast<std::ptrdiff_t>(next_));

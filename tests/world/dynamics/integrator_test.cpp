@@ -106,7 +106,8 @@ struct Oscillator {
 
     // A 1 kg ball on a spring of rest length 1 m to the origin, stretched by `stretch`
     // along x; no gravity, no damping, omega = sqrt(k).
-    Oscillator(Integrator integrator, real k, real stretch, int substeps)
+    Oscillator(Integrator integrator, real k, real stretch, int substeps,
+               SpringForce force = SpringForce::Automatic)
         : f(noGravity(integrator, substeps)), stiffness(k) {
         ball = f.sphere(Vector3(1 + stretch, 0, 0), 0.1, 1);
         SpringSettings spring;
@@ -114,6 +115,7 @@ struct Oscillator {
         spring.bPoint = Vector3::Zero();
         spring.stiffness = k;
         spring.restLength = 1;
+        spring.force = force;
         f.world.addSpring(spring);
     }
 
@@ -123,11 +125,12 @@ struct Oscillator {
     }
 };
 
-// One step of 0.1 s, k = 100, m = 1, stretch 0.1 m, at rest, one sub-step.
+// One step of 0.1 s, k = 100, m = 1, stretch 0.1 m, at rest, one sub-step (omega h = 1:
+// an automatic spring would be implicit, so the explicit one is asked for).
 // Explicit: F = -k x = -10 N, v = -1 m/s, x = 1.1 - 0.1 = 1.0 m.
 // Backward Euler: v' = (v - h k x / m) / (1 + h^2 k / m) = -1 / 2, x' = 1.1 + 0.1 v' = 1.05 m.
 TEST(Integrators, OneSpringStepWorkedByHand) {
-    Oscillator explicitSpring(Integrator::NewtonEuler, 100, 0.1, 1);
+    Oscillator explicitSpring(Integrator::NewtonEuler, 100, 0.1, 1, SpringForce::Explicit);
     explicitSpring.f.world.step(0.1);
     EXPECT_NEAR(explicitSpring.f.world.body(explicitSpring.ball).getVelocity().x(), -1, 1e-12);
     EXPECT_NEAR(explicitSpring.f.position(explicitSpring.ball).x(), 1.0, 1e-12);
@@ -162,7 +165,7 @@ TEST(Integrators, ImplicitSpringNeverGainsEnergy) {
 // eigenvalue of the step leaves the unit circle (at omega h = 10 the trace is
 // 2 - 100 = -98), and the energy grows by orders of magnitude within a few steps.
 TEST(Integrators, ExplicitSpringExplodesBeyondOmegaHTwo) {
-    Oscillator o(Integrator::NewtonEuler, std::pow(10 / kDt, 2), 0.1, 1);
+    Oscillator o(Integrator::NewtonEuler, std::pow(10 / kDt, 2), 0.1, 1, SpringForce::Explicit);
     const real start = o.energy();
     for (int i = 0; i < 5; ++i) o.f.world.step(kDt);
     EXPECT_GT(o.energy(), 1e4 * start);
@@ -232,6 +235,135 @@ TEST(Integrators, ImplicitSpringOnAnOffsetPointStaysBelowItsStartingEnergy) {
         EXPECT_LE(energy(), start) << "step " << i;
     }
     EXPECT_LT(energy(), 0.01 * start);
+}
+
+// --- Springs at the defaults -----------------------------------------------------------
+
+// With the default integrator and sub-steps, springs of omega dt = 5 and 10 (omega h =
+// 1.25 and 2.5, beyond WorldSettings::explicitSpringLimit) get the backward-Euler force,
+// whose energy shrinks every sub-step: it never rises above the start, so the stretch
+// never exceeds the initial 0.1 m. Also with one sub-step (omega h = 5 and 10).
+TEST(Integrators, StiffSpringsAtTheDefaultsNeverGainEnergy) {
+    for (int substeps : {4, 1})
+        for (real omegaDt : {5.0, 10.0}) {
+            const real omega = omegaDt / kDt;
+            Oscillator o(Integrator::NewtonEuler, omega * omega, 0.1, substeps);
+            const real start = o.energy();
+            for (int i = 0; i < 300; ++i) {
+                o.f.world.step(kDt);
+                ASSERT_LE(o.energy(), start * (1 + 1e-12)) << "omega dt " << omegaDt << ", step " << i;
+                ASSERT_LE(std::abs(o.f.position(o.ball).norm() - 1), 0.1 * 1.1) << "omega dt " << omegaDt;
+            }
+        }
+}
+
+// Springs far below the limit (omega dt = 0.1 and 0.5: omega h up to 0.5 with one
+// sub-step) stay explicit: their motion is that of SpringForce::Explicit bit for bit, so
+// the treatment takes none of their energy. Symplectic Euler keeps the modified energy
+// Q = y^2 + v^2 - u y v (y = omega x, u = omega h) exactly: after one second it is where
+// it started, to roundoff.
+TEST(Integrators, SlowSpringsAtTheDefaultsStayExplicit) {
+    for (int substeps : {4, 1})
+        for (real omegaDt : {0.1, 0.5}) {
+            const real omega = omegaDt / kDt;
+            Oscillator automatic(Integrator::NewtonEuler, omega * omega, 0.1, substeps);
+            Oscillator explicitOnly(Integrator::NewtonEuler, omega * omega, 0.1, substeps, SpringForce::Explicit);
+            const real u = omega * kDt / substeps;
+            const auto modified = [&](const Oscillator &o) {
+                const real y = omega * (o.f.position(o.ball).x() - 1);
+                const real v = o.f.world.body(o.ball).getVelocity().x();
+                return y * y + v * v - u * y * v;
+            };
+            const real start = modified(automatic);
+            for (int i = 0; i < 60; ++i) {
+                automatic.f.world.step(kDt);
+                explicitOnly.f.world.step(kDt);
+                ASSERT_EQ(automatic.f.position(automatic.ball), explicitOnly.f.position(explicitOnly.ball));
+            }
+            EXPECT_NEAR(modified(automatic), start, 1e-9 * start) << "omega dt " << omegaDt;
+        }
+}
+
+// Two 1 kg balls joined by a spring: omega^2 = k (1/m_a + 1/m_b) = 2 k. At omega dt = 10
+// the spring is implicit and the pair's energy never grows.
+TEST(Integrators, StiffSpringBetweenTwoBodiesNeverGainsEnergy) {
+    WorldFixture f(noGravity(Integrator::NewtonEuler));
+    const BodyId a = f.sphere(Vector3(0, 0, 0), 0.1, 1);
+    const BodyId b = f.sphere(Vector3(1.1, 0, 0), 0.1, 1);
+    SpringSettings spring;
+    spring.a = a;
+    spring.b = b;
+    spring.stiffness = std::pow(10 / kDt, 2) / 2;
+    spring.restLength = 1;
+    f.world.addSpring(spring);
+    const auto energy = [&] {
+        const real stretch = (f.position(b) - f.position(a)).norm() - 1;
+        return f.world.kineticEnergy() + 0.5 * spring.stiffness * stretch * stretch;
+    };
+    const real start = energy();
+    for (int i = 0; i < 300; ++i) {
+        f.world.step(kDt);
+        ASSERT_LE(energy(), start * (1 + 1e-12)) << "step " << i;
+    }
+}
+
+// A ball between two anchored springs along x, each of omega h = 0.7 alone (below the
+// limit 0.8) but together omega h = 0.7 sqrt 2 = 0.99: its load is the sum of both, so
+// both are implicit and the energy never grows. Explicit, from rest the energy peaks near
+// E0 / (1 - u/2) = 2 E0 (Integrators.ExplicitSpringStaysBoundedBelowOmegaHTwo).
+TEST(Integrators, SpringsSharingABodyAddTheirLoads) {
+    for (SpringForce force : {SpringForce::Automatic, SpringForce::Explicit}) {
+        WorldFixture f(noGravity(Integrator::NewtonEuler));
+        const BodyId ball = f.sphere(Vector3(0.1, 0, 0), 0.1, 1);
+        const real k = std::pow(0.7 * 4 / kDt, 2);
+        for (real side : {-1.0, 1.0}) {
+            SpringSettings spring;
+            spring.a = ball;
+            spring.bPoint = Vector3(side, 0, 0);
+            spring.stiffness = k;
+            spring.restLength = 1;
+            spring.force = force;
+            f.world.addSpring(spring);
+        }
+        const auto energy = [&] {
+            const real x = f.position(ball).x();
+            return f.world.kineticEnergy() + 0.5 * k * (x * x + x * x);
+        };
+        const real start = energy();
+        real highest = start;
+        for (int i = 0; i < 300; ++i) {
+            f.world.step(kDt);
+            highest = std::max(highest, energy());
+        }
+        if (force == SpringForce::Automatic) EXPECT_LE(highest, start * (1 + 1e-12));
+        else EXPECT_GT(highest, 1.5 * start);
+    }
+}
+
+TEST(Integrators, SpringSettingsAreValidated) {
+    WorldFixture f(noGravity(Integrator::NewtonEuler));
+    SpringSettings spring;
+    spring.a = f.sphere(Vector3::Zero());
+    spring.force = static_cast<SpringForce>(5);
+    try {
+        f.world.addSpring(spring);
+        FAIL() << "accepted force 5";
+    } catch (const InvalidArgument &e) {
+        EXPECT_EQ(e.function(), "World::addSpring");
+        EXPECT_EQ(e.field(), "force");
+    }
+    for (real limit : {0.0, -1.0, std::nan("")}) {
+        WorldSettings bad = noGravity(Integrator::NewtonEuler);
+        bad.explicitSpringLimit = limit;
+        try {
+            f.world.setSettings(bad);
+            FAIL() << "accepted explicitSpringLimit " << limit;
+        } catch (const InvalidArgument &e) {
+            EXPECT_EQ(e.function(), "World::setSettings");
+            EXPECT_EQ(e.field(), "explicitSpringLimit");
+        }
+    }
+    EXPECT_EQ(f.world.settings().explicitSpringLimit, WorldSettings().explicitSpringLimit);
 }
 
 }  // namespace

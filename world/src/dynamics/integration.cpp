@@ -77,8 +77,10 @@ void Integration::addSubstepForces(WorldState &world, real h, bool firstSubstep)
         }
     }
     if (world.stats.springs == 0) return;
-    if (world.settings.integrator == Integrator::NewtonEulerImplicit) world.springs.addImplicitForces(bodies, h);
-    else world.springs.addExplicitForces(bodies);
+    // The explicit forces first: the implicit ones are solved with them in place.
+    const int implicitCount = world.springs.chooseForces(bodies, world.settings, h);
+    world.springs.addExplicitForces(bodies);
+    if (implicitCount > 0) world.springs.addImplicitForces(bodies, h);
 }
 
 void Integration::integrate(WorldState &world, real h) {

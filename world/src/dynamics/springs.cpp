@@ -1,5 +1,5 @@
 // Spring forces, at the start of every sub-step of h seconds: explicit (the seed's) or
-// backward Euler.
+// backward Euler, per spring (chooseSpringForces).
 //
 // Design note. An explicit spring force makes each sub-step a symplectic Euler step of
 // the oscillator: stable only while omega h < 2, and beyond that the energy grows every
@@ -18,6 +18,15 @@
 // with the others' current forces, in kImplicitSpringPasses passes warm-started with the
 // last sub-step's forces (block Gauss-Seidel). At rest the warm start is the solution, so
 // a chain hangs exactly where its springs carry the weight below them.
+//
+// Which springs are implicit. With NewtonEulerImplicit, all of them. Otherwise a spring of
+// SpringForce::Automatic is implicit when omega h > WorldSettings::explicitSpringLimit,
+// omega^2 being the largest load of its moving ends: a body's load is the sum over its
+// springs of k (w_a + w_b), w the inverse mass of each moving end at its attachment point
+// along the spring (1/m + (r x d) . I^-1 (r x d)). That is omega^2 exactly for one spring
+// (k (1/m_a + 1/m_b)), for a body held by several springs along one line, and for the
+// highest mode of a long chain (4 k / m); explicit springs far below the limit are left
+// as they are, and keep their energy.
 #include "dynamics/springs.h"
 
 #include <algorithm>
@@ -47,11 +56,59 @@ Vector3 freePointVelocity(const RigidBody &body, const Vector3 &r, real h) {
     return v + w.cross(r);
 }
 
+// The inverse mass of `body` at `r` from its centre of mass along the unit vector d.
+real inverseMassAlong(const RigidBody &body, const Vector3 &r, const Vector3 &d) {
+    const Vector3 arm = r.cross(d);
+    return body.getInverseMass() + arm.dot(body.getInverseInertiaTensorWorld() * arm);
+}
+
 }  // namespace
+
+int SpringSet::chooseForces(BodyStore &bodies, const WorldSettings &settings, real h) {
+    const bool allImplicit = settings.integrator == Integrator::NewtonEulerImplicit;
+    const real limit = settings.explicitSpringLimit / h;  // omega, 1/s
+    // The load of every spring's ends, zeroed then summed; other bodies' entries are unused.
+    load_.resize(bodies.size());
+    for (const SpringRecord &s : records) {
+        if (!s.alive) continue;
+        load_[s.settings.a.index] = 0;
+        if (s.settings.b) load_[s.settings.b->index] = 0;
+    }
+    const auto moves = [&](const BodyRecord *r) { return r && r->simulated && !r->isolated; };
+    for (const SpringRecord &s : records) {
+        if (!s.alive || allImplicit || s.settings.force == SpringForce::Explicit) continue;
+        BodyRecord &a = bodies[s.settings.a.index];
+        BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
+        if (!moves(&a) && !moves(b)) continue;
+        const Vector3 pa = a.body.getPointInWorldSpace(s.settings.aPoint);
+        const Vector3 pb = b ? b->body.getPointInWorldSpace(s.settings.bPoint) : s.settings.bPoint;
+        const Vector3 delta = pa - pb;
+        const real length = delta.norm();
+        // Without a direction, the centres' inverse masses (a zero-length spring at rest).
+        const Vector3 d = length > 1e-12 ? Vector3(delta / length) : Vector3::Zero();
+        real w = 0;
+        if (moves(&a)) w += inverseMassAlong(a.body, pa - a.body.getPosition(), d);
+        if (moves(b)) w += inverseMassAlong(b->body, pb - b->body.getPosition(), d);
+        if (moves(&a)) load_[s.settings.a.index] += s.settings.stiffness * w;
+        if (moves(b)) load_[s.settings.b->index] += s.settings.stiffness * w;
+    }
+    int count = 0;
+    for (SpringRecord &s : records) {
+        if (!s.alive) continue;
+        s.implicit = allImplicit;
+        if (!allImplicit && s.settings.force == SpringForce::Automatic) {
+            real load = load_[s.settings.a.index];
+            if (s.settings.b) load = std::max(load, load_[s.settings.b->index]);
+            s.implicit = load > limit * limit;
+        }
+        count += s.implicit ? 1 : 0;
+    }
+    return count;
+}
 
 void SpringSet::addExplicitForces(BodyStore &bodies) {
     for (SpringRecord &s : records) {
-        if (!s.alive) continue;
+        if (!s.alive || s.implicit) continue;
         BodyRecord &a = bodies[s.settings.a.index];
         BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
         const bool bSimulated = b && b->simulated;
@@ -71,16 +128,17 @@ void SpringSet::addExplicitForces(BodyStore &bodies) {
         if (!force.allFinite()) continue;
         if (a.simulated) a.body.addForceAtPoint(force, pa);
         if (bSimulated) b->body.addForceAtPoint(-force, pb);
+        s.implicitForce = force;
     }
 }
 
 void SpringSet::addImplicitForces(BodyStore &bodies, real h) {
     // What stays fixed through the passes of this sub-step: the attachment points, the
     // spring's force there and the 3x3 system of each active spring.
-    implicit.clear();
+    solving.clear();
     for (std::uint32_t index = 0; index < records.size(); ++index) {
         SpringRecord &s = records[index];
-        if (!s.alive) continue;
+        if (!s.alive || !s.implicit) continue;
         const SpringSettings &spring = s.settings;
         BodyRecord &a = bodies[spring.a.index];
         BodyRecord *b = spring.b ? &bodies[spring.b->index] : nullptr;
@@ -124,9 +182,9 @@ void SpringSet::addImplicitForces(BodyStore &bodies, real h) {
         }
         is.response = h * stiffness + damping;
         is.system.compute(Matrix3::Identity() + h * is.response * inverseMass);
-        implicit.push_back(is);
+        solving.push_back(is);
     }
-    if (implicit.empty()) return;
+    if (solving.empty()) return;
 
     const auto apply = [&](const ImplicitSpring &is, const Vector3 &force) {
         const SpringSettings &spring = records[is.spring].settings;
@@ -134,11 +192,11 @@ void SpringSet::addImplicitForces(BodyStore &bodies, real h) {
         if (is.bMoves) bodies[spring.b->index].body.addForceAtPoint(-force, is.pb);
     };
     // Warm start: the forces of the last sub-step, which at rest are already the answer.
-    for (const ImplicitSpring &is : implicit) apply(is, records[is.spring].implicitForce);
+    for (const ImplicitSpring &is : solving) apply(is, records[is.spring].implicitForce);
     // Each pass solves every spring for the velocity its points reach with the others'
     // current forces (block Gauss-Seidel); one pass is exact for a spring alone.
     for (int pass = 0; pass < kImplicitSpringPasses; ++pass) {
-        for (const ImplicitSpring &is : implicit) {
+        for (const ImplicitSpring &is : solving) {
             SpringRecord &s = records[is.spring];
             apply(is, -s.implicitForce);
             const SpringSettings &spring = s.settings;

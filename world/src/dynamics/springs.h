@@ -15,7 +15,8 @@ struct SpringRecord {
     SpringSettings settings;
     std::uint32_t generation = 0;
     bool alive = false;
-    Vector3 implicitForce = Vector3::Zero();  ///< Implicit springs: force on a in the last sub-step, N.
+    Vector3 implicitForce = Vector3::Zero();  ///< Force on a in the last sub-step, N (the implicit solve's warm start).
+    bool implicit = false;                    ///< Backward Euler in this sub-step (SpringSet::chooseForces).
 };
 
 /// Passes over the implicit springs per sub-step (block Gauss-Seidel on the coupled system).
@@ -36,19 +37,25 @@ struct ImplicitSpring {
 struct SpringSet {
     std::vector<SpringRecord> records;
     std::vector<std::uint32_t> free;  ///< Slots of removed springs, reused first.
-    std::vector<ImplicitSpring> implicit;  ///< Scratch of addImplicitForces.
+    std::vector<ImplicitSpring> solving;  ///< Scratch of addImplicitForces.
 
     std::vector<SpringRecord>::iterator begin() { return records.begin(); }
     std::vector<SpringRecord>::iterator end() { return records.end(); }
     std::vector<SpringRecord>::const_iterator begin() const { return records.begin(); }
     std::vector<SpringRecord>::const_iterator end() const { return records.end(); }
 
-    /// Adds each spring's force at the bodies' current state (symplectic Euler: stable
+    /// Marks the springs that get the backward-Euler force in a sub-step of h seconds;
+    /// returns how many.
+    int chooseForces(BodyStore &bodies, const WorldSettings &settings, real h);
+    /// Adds each explicit spring's force at the bodies' current state (symplectic Euler: stable
     /// while omega h < 2).
     void addExplicitForces(BodyStore &bodies);
-    /// Adds the force each spring will exert at the end of a sub-step of h seconds
+    /// Adds the force each implicit spring will exert at the end of a sub-step of h seconds
     /// (backward Euler: never gains energy).
     void addImplicitForces(BodyStore &bodies, real h);
+
+private:
+    std::vector<real> load_;  ///< Per body: sum of k (w_a + w_b) of its springs, 1/s^2.
 };
 
 }  // namespace cyclone::detail

@@ -36,7 +36,8 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     // unbalanced box spinning at 6 rad/s on a frictionless floor gained 12% of its energy
     // in 20 s at 4 sub-steps; taken once, it loses 17% (the contacts cancel the tilt the
     // step gives, at first order in dt), which a first-order step may, but never gains.
-    const bool gyroscopic = settings.integrator != Integrator::NewtonEuler;
+    const bool gyroscopic = settings.integrator == Integrator::NewtonEulerGyroscopic ||
+                            settings.integrator == Integrator::NewtonEulerImplicit;
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         SolverBody &sb = bodies_[k + 1];
@@ -111,12 +112,23 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.
+    //
+    // The solver's rows hold the inverse inertia of the step's start pose, so its change
+    // of w is that of an angular impulse through that inertia. The momentum-conserving
+    // step turns w into angular momentum through the current one: it is given that
+    // impulse (I_start dw) instead, or a body whose contacts cancel its torque-free wobble
+    // in every sub-step would gain energy (docs/solver.md).
+    const bool conserving = settings.integrator == Integrator::MomentumConserving;
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         if (r.isolated) continue;
         const SolverBody &sb = bodies_[k + 1];
         if (linearFactor_[k] > 0) r.body.addVelocity((toVector3(sb.v) - predictedV_[k]) / linearFactor_[k]);
-        if (angularFactor_[k] > 0) r.body.addRotation((toVector3(sb.w) - predictedW_[k]) / angularFactor_[k]);
+        if (!(angularFactor_[k] > 0)) continue;
+        Vector3 dw = toVector3(sb.w) - predictedW_[k];
+        if (conserving && !firstSubstep && !r.body.hasIsotropicInertia())
+            dw = r.body.getInverseInertiaTensorWorld() * sb.invInertia.inverse() * dw;
+        r.body.addRotation(dw / angularFactor_[k]);
     }
 }
 

@@ -73,6 +73,16 @@ void validateSettings(const char *function, const WorldSettings &s) {
         refuse(function, "contactSolver", "is not a ContactSolverType, got " + std::to_string(solver));
     if (s.threads < 1 || s.threads > 64)
         refuse(function, "threads", "must be in [1, 64], got " + std::to_string(s.threads));
+    if (s.integrator != Integrator::NewtonEuler && s.integrator != Integrator::NewtonEulerGyroscopic &&
+        s.integrator != Integrator::NewtonEulerImplicit && s.integrator != Integrator::MomentumConserving)
+        refuse(function, "integrator",
+               "must be an Integrator value, got " + std::to_string(static_cast<int>(s.integrator)));
+    if (!(s.explicitSpringLimit > 0))
+        refuse(function, "explicitSpringLimit", "must be > 0, got " + show(s.explicitSpringLimit));
+}
+
+RotationStep rotationStep(const WorldSettings &s) {
+    return s.integrator == Integrator::MomentumConserving ? RotationStep::MomentumConserving : RotationStep::Seed;
 }
 
 // Builds the RigidBody of a settings struct; throws (nothing else changed) on bad input.
@@ -112,6 +122,7 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
     body.setVelocity(s.velocity);
     body.setRotation(s.rotation);
     body.setAcceleration(world.gravity);
+    body.setRotationStep(rotationStep(world));
     body.setCanSleep(s.canSleep);
     if (!s.awake) body.setAwake(false);
     return body;
@@ -140,6 +151,7 @@ void World::setSettings(const WorldSettings &settings) {
         r.body.setSleepEpsilon(settings.sleepEpsilon);
         if (r.isStatic) continue;
         r.body.setAcceleration(settings.gravity);
+        r.body.setRotationStep(rotationStep(settings));
         impl_->wake(index);
     }
 }
@@ -426,6 +438,9 @@ SpringId World::addSpring(const SpringSettings &s) {
     detail::requireNonNegative(function, "damping", s.damping);
     detail::requireNonNegative(function, "restLength", s.restLength);
     if (s.b && *s.b == s.a) detail::refuse(function, "b", "must differ from a");
+    if (s.force != SpringForce::Automatic && s.force != SpringForce::Explicit)
+        detail::refuse(function, "force",
+                       "must be Automatic or Explicit, got " + std::to_string(static_cast<int>(s.force)));
     std::uint32_t index;
     if (!w.springs.free.empty()) {
         index = w.springs.free.back();
