@@ -93,9 +93,11 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     if (!manifolds_.empty()) {
         if (split) loadVelocityPasses(world);
         else if (settings.warmStarting) warmStart(world);
+        beginResistance(manifolds_, resistance_);
         for (int it = 0; it < settings.velocityIterations; ++it) {
             if (split) solveVelocityPass(world, (it & 1) != 0);
             else solveSoft(bodies_, manifolds_, solveOrder_, h, true, soft_);
+            solveResistance(bodies_, resistance_);
         }
         if (split) storeVelocityPasses(world);
         stats.velocityIterations += settings.velocityIterations;
