@@ -85,6 +85,7 @@ RigidBody::RigidBody()
       inverseInertiaTensorWorld(Matrix3::Identity()),
       motion(2 * kDefaultSleepEpsilon),
       sleepEpsilon(kDefaultSleepEpsilon),
+      movingMotionCap(10),
       isAwake(true),
       canSleep(true),
       gyroscopicStep(GyroscopicStep::None),
@@ -151,10 +152,13 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
     const real currentMotion = velocity.squaredNorm() + rotation.squaredNorm();
     const real bias = factors.motionBias;
     motion = bias * motion + (1 - bias) * currentMotion;
+    // The cap bounds the average's memory of fast motion: once the body stops, the
+    // average halves each second from at most the cap down to the threshold.
+    const real cap = currentMotion >= sleepEpsilon ? movingMotionCap : real(10);
     if (mayFallAsleep && canSleep && motion < sleepEpsilon) {
         setAwake(false);
-    } else if (motion > 10 * sleepEpsilon) {
-        motion = 10 * sleepEpsilon;
+    } else if (motion > cap * sleepEpsilon) {
+        motion = cap * sleepEpsilon;
     }
 }
 
@@ -521,6 +525,12 @@ void RigidBody::setSleepEpsilon(const real newSleepEpsilon) {
     if (!std::isfinite(newSleepEpsilon) || !(newSleepEpsilon > 0))
         refuse("setSleepEpsilon", "sleepEpsilon must be finite and > 0, got " + str(newSleepEpsilon));
     sleepEpsilon = newSleepEpsilon;
+}
+
+void RigidBody::setMovingMotionCap(const real cap) {
+    if (!std::isfinite(cap) || !(cap >= 1 && cap <= 10))
+        refuse("setMovingMotionCap", "cap must be finite and in [1, 10], got " + str(cap));
+    movingMotionCap = cap;
 }
 
 void RigidBody::getLastFrameAcceleration(Vector3 *linearAcceleration) const {

@@ -296,6 +296,13 @@ public:
     void setSleepEpsilon(const real sleepEpsilon);
     /// The sleep threshold of the motion average.
     real getSleepEpsilon() const { return sleepEpsilon; }
+    /// Sets the cap of the motion average, as a multiple of the sleep threshold, in a
+    /// step where the body moves (v.v + w.w at or above the threshold); finite, in
+    /// [1, 10]. A body that stops then sleeps at most log2(cap) s later. Default 10, the
+    /// seed's clamp (the average is capped at 10 times the threshold in every step).
+    void setMovingMotionCap(const real cap);
+    /// The cap of the motion average while the body moves, a multiple of the threshold.
+    real getMovingMotionCap() const { return movingMotionCap; }
 
     // --- Dynamic quantities -------------------------------------------------------------
 
@@ -349,6 +356,7 @@ protected:
     Matrix3 inverseInertiaTensorWorld;  ///< World space, 1/(kg m^2).
     real motion;                        ///< Recency-weighted mean of v.v + w.w.
     real sleepEpsilon;                  ///< Sleep threshold of `motion`.
+    real movingMotionCap;               ///< Cap of `motion` while moving, x sleepEpsilon, [1, 10].
     bool isAwake;                       ///< Integrated only when true.
     bool canSleep;                      ///< False keeps the body awake.
     GyroscopicStep gyroscopicStep;      ///< What integrate() applies first.

@@ -354,6 +354,10 @@ SceneBody readBody(const json &value, const std::string &path) {
     readOptional(value, path, "friction", settings.material.friction,
              [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegative); });
     readOptional(value, path, "restitution", settings.material.restitution, unit);
+    readOptional(value, path, "rolling_friction", settings.material.rollingFriction,
+                 [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegative); });
+    readOptional(value, path, "spinning_friction", settings.material.spinningFriction,
+                 [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegative); });
     readOptional(value, path, "can_sleep", settings.canSleep, readBool);
     readOptional(value, path, "awake", settings.awake, readBool);
     readOptional(value, path, "ccd", settings.ccd, readBool);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "body_test_support.h"
 #include "cyclone/body.h"
@@ -68,6 +69,51 @@ TEST(RigidBodySleep, TheClampBoundsHowLongAStoppedBodyStaysAwake) {
     EXPECT_NEAR(body.getMotion(), 1.25, 1e-12);
     body.integrate(0.5);  // 3.5 s: 10 / 2^3.5 = 0.88
     EXPECT_FALSE(body.getAwake());
+}
+
+TEST(RigidBodySleep, TheMovingCapBoundsTheAverageOnlyWhileTheBodyMoves) {
+    RigidBody body = wokenBody(1);
+    body.setMovingMotionCap(1.5);
+    EXPECT_EQ(body.getMovingMotionCap(), 1.5);
+    // At rest the woken average of 2 is not capped: 0.5 * 2 + 0.5 * 0 = 1, awake.
+    body.integrate(1, false);
+    EXPECT_DOUBLE_EQ(body.getMotion(), 1);
+    body.setAwake(true);
+    body.setVelocity(10, 0, 0);
+    body.integrate(1);  // 0.5 * 2 + 0.5 * 100 = 51, capped at 1.5 * 1 while moving
+    EXPECT_EQ(body.getMotion(), 1.5);
+    body.setVelocity(0, 0, 0);
+    // At rest 1.5 * 0.5^t falls below 1 at t = log2(1.5) = 0.585 s.
+    body.integrate(0.5);  // 1.5 / 2^0.5 = 1.06
+    EXPECT_TRUE(body.getAwake());
+    body.integrate(0.1);  // 1.5 / 2^0.6 = 0.99
+    EXPECT_FALSE(body.getAwake());
+}
+
+TEST(RigidBodySleep, ASlowBodyIsNotCappedBelowItsOwnMotion) {
+    // Moving at v.v = 2 eps with a cap of 1.2 eps the average stays at the cap, above the
+    // threshold: a body moving at a steady speed above the threshold never sleeps.
+    RigidBody body = wokenBody(0.01);
+    body.setMovingMotionCap(1.2);
+    body.setVelocity(std::sqrt(0.02), 0, 0);
+    for (int i = 0; i < 600; ++i) body.integrate(1.0 / 60);
+    EXPECT_TRUE(body.getAwake());
+    EXPECT_NEAR(body.getMotion(), 0.012, 1e-15);
+}
+
+TEST(RigidBodySleep, SetMovingMotionCapRefusesValuesOutsideOneToTen) {
+    RigidBody body;
+    for (real bad : {real(0.5), real(10.5), real(NAN), real(INFINITY)}) {
+        EXPECT_THROW(body.setMovingMotionCap(bad), std::invalid_argument) << bad;
+        EXPECT_EQ(body.getMovingMotionCap(), 10);
+    }
+    try {
+        body.setMovingMotionCap(-1);
+        FAIL();
+    } catch (const std::invalid_argument &e) {
+        EXPECT_NE(std::string(e.what()).find("setMovingMotionCap"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("-1"), std::string::npos);
+    }
 }
 
 // --- Falling asleep ----------------------------------------------------------------------

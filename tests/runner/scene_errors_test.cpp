@@ -79,6 +79,8 @@ const ErrorCase kErrors[] = {
     {"DampingOutOfRange", BODY(BOX R"(, "linear_damping": 1.5)"), "bodies[0].linear_damping", "in [0, 1]"},
     {"RestitutionOutOfRange", BODY(BOX R"(, "restitution": -0.1)"), "bodies[0].restitution", "in [0, 1]"},
     {"NegativeFriction", BODY(BOX R"(, "friction": -1)"), "bodies[0].friction", ">= 0"},
+    {"NegativeRollingFriction", BODY(BOX R"(, "rolling_friction": -0.5)"), "bodies[0].rolling_friction", ">= 0"},
+    {"NegativeSpinningFriction", BODY(BOX R"(, "spinning_friction": -2)"), "bodies[0].spinning_friction", ">= 0"},
     {"SettingsNotObject", R"({"settings": [], "bodies": []})", "settings", "must be an object"},
     {"ZeroDt", R"({"settings": {"dt": 0}, "bodies": []})", "settings.dt", "must be finite and > 0, got 0"},
     {"HugeDt", R"({"settings": {"dt": 1e400}, "bodies": []})", "settings.dt", "finite"},

@@ -143,7 +143,7 @@ TEST(SceneLoader, EveryBodyFieldLandsInTheWorld) {
          "mass": 2.5, "inertia": [[2, 0.1, 0], [0.1, 3, 0], [0, 0, 4]],
          "position": [1, 2, 3], "orientation": [0, 0, 0, 2], "velocity": [4, 5, 6], "rotation": [0.1, 0.2, 0.3],
          "linear_damping": 0.9, "angular_damping": 0.8, "friction": 0.25, "restitution": 0.5,
-         "can_sleep": false, "awake": true, "ccd": true},
+         "rolling_friction": 0.01, "spinning_friction": 0.02, "can_sleep": false, "awake": true, "ccd": true},
         {"name": "sleeper", "shape": {"type": "sphere", "radius": 0.5}, "position": [10, 0, 0],
          "can_sleep": true, "awake": false}]})",
                                   "x");
@@ -169,6 +169,8 @@ TEST(SceneLoader, EveryBodyFieldLandsInTheWorld) {
     EXPECT_DOUBLE_EQ(body.getAngularDamping(), 0.8);
     EXPECT_DOUBLE_EQ(world.material(id).friction, 0.25);
     EXPECT_DOUBLE_EQ(world.material(id).restitution, 0.5);
+    EXPECT_DOUBLE_EQ(world.material(id).rollingFriction, 0.01);
+    EXPECT_DOUBLE_EQ(world.material(id).spinningFriction, 0.02);
     EXPECT_FALSE(body.getCanSleep());
     EXPECT_TRUE(body.getAwake());
 

@@ -196,6 +196,7 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     linearFactor_.resize(n);
     angularFactor_.resize(n);
     positions_.resize(n + 1);
+    resistance_.clear();
     world.workers.forEach(n, [&](std::size_t k) {
         const RigidBody &body = bodies[bodies.simulated[k]].body;
         SolverBody &sb = bodies_[k + 1];
@@ -244,6 +245,14 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
             stamp.carrier = manifolds_[s].carrier;
         }
     });
+    for (const int s : solveOrder_) {
+        const Material &ma = bodies[slotBodies_[s].a].material;
+        const Material &mb = bodies[slotBodies_[s].b].material;
+        addResistanceRows(bodies_, manifolds_[s], s, std::max(ma.rollingFriction, mb.rollingFriction),
+                          std::max(ma.spinningFriction, mb.spinningFriction), resistance_);
+    }
+    for (const ResistanceRow &row : resistance_)
+        world.stats.resistanceRows += (row.mass[0] > 0) + (row.mass[1] > 0) + (row.mass[2] > 0);
     for (std::size_t s = 0; s < manifolds_.size(); ++s) {
         const SolverManifold &m = manifolds_[s];
         if (!stamps_[s].kept) ++world.stats.jacobiansMade;

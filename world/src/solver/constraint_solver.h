@@ -14,6 +14,7 @@
 #include "solver/jacobian_stamp.h"
 #include "solver/manifold_order.h"
 #include "solver/penetration_pass.h"
+#include "solver/rolling_resistance.h"
 #include "solver/threads/carrier_threads.h"
 #include "solver/threads/partition.h"
 #include "solver/velocity_pass.h"
@@ -81,6 +82,7 @@ private:
     PartitionScratch partitionScratch_;
     std::vector<ManifoldBatch> batches_[3];            ///< Each part's groups' rows during the velocity passes.
     std::vector<PenetrationBatch> penetration_[3];     ///< And what its penetration passes need of them.
+    std::vector<ResistanceRow> resistance_;  ///< Rolling and spinning rows, in solve order (rolling_resistance.h).
     std::vector<Vector3> positions_;         ///< Position of each solver body (entry 0 unused).
     std::vector<DepthFrame> depthFrames_;    ///< Each slot's, for penetration recovery.
     CarrierScratch carrierScratch_;

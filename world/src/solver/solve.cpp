@@ -94,9 +94,11 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     if (!manifolds_.empty()) {
         if (split) loadVelocityPasses(world);
         else if (settings.warmStarting) warmStart(world);
+        beginResistance(manifolds_, resistance_);
         for (int it = 0; it < settings.velocityIterations; ++it) {
             if (split) solveVelocityPass(world, (it & 1) != 0);
             else solveSoft(bodies_, manifolds_, solveOrder_, h, true, soft_);
+            solveResistance(bodies_, resistance_);
         }
         if (split) storeVelocityPasses(world);
         stats.velocityIterations += settings.velocityIterations;
@@ -269,7 +271,7 @@ void ConstraintSolver::storeImpulses(WorldState &world) {
         const SolverManifold &m = manifolds_[s];
         PairState &pair = world.contacts.pairs[sources_[s].pair];
         const std::size_t k = sources_[s].index;
-        if (!pair.alive || k >= pair.manifolds.size()) return;  // a body was quarantined
+        if (!pair.alive || k >= pair.manifolds.size()) return;  // a body was isolated
         ManifoldState &state = pair.manifolds[k];
         for (int i = 0; i < m.count; ++i) state.points[i].normalImpulse = m.points[m.order[i]].normal.impulse;
         state.frictionImpulse = m.frictionRow[0].impulse * m.tangent[0] + m.frictionRow[1].impulse * m.tangent[1];

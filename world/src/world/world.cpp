@@ -1,5 +1,6 @@
 // The World's public calls: validation, bodies and springs, stepping, events.
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -47,6 +48,12 @@ real twiceKineticEnergy(const RigidBody &body) {
     return twice;
 }
 
+// The seed's clamp, 10 times the threshold, halves to the threshold in log2(10) s.
+constexpr real kMaxSleepDelay = 3.321928094887362;
+
+// A body whose average is capped at 2^delay thresholds sleeps `delay` seconds after it stops.
+real movingMotionCap(real sleepDelay) { return std::min(real(10), std::exp2(sleepDelay)); }
+
 void validateSettings(const char *function, const WorldSettings &s) {
     using namespace detail;
     requireFinite(function, "gravity", s.gravity);
@@ -57,6 +64,8 @@ void validateSettings(const char *function, const WorldSettings &s) {
     if (s.substeps < 1 || s.substeps > 1000)
         refuse(function, "substeps", "must be in [1, 1000], got " + std::to_string(s.substeps));
     requirePositive(function, "sleepEpsilon", s.sleepEpsilon);
+    if (!(s.sleepDelay >= 0 && s.sleepDelay <= kMaxSleepDelay))
+        refuse(function, "sleepDelay", "must be in [0, log2(10) = 3.32], got " + show(s.sleepDelay));
     requireNonNegative(function, "penetrationSlop", s.penetrationSlop);
     if (!(s.penetrationRecovery > 0 && s.penetrationRecovery <= 1))
         refuse(function, "penetrationRecovery", "must be in (0, 1], got " + show(s.penetrationRecovery));
@@ -97,9 +106,12 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
     requireUnit(function, "angularDamping", s.angularDamping);
     requireNonNegative(function, "material.friction", s.material.friction);
     requireUnit(function, "material.restitution", s.material.restitution);
+    requireNonNegative(function, "material.rollingFriction", s.material.rollingFriction);
+    requireNonNegative(function, "material.spinningFriction", s.material.spinningFriction);
 
     RigidBody body;
     body.setSleepEpsilon(world.sleepEpsilon);
+    body.setMovingMotionCap(movingMotionCap(world.sleepDelay));
     body.setPosition(s.position);
     body.setOrientation(s.orientation);
     body.setDamping(s.linearDamping, s.angularDamping);
@@ -149,6 +161,7 @@ void World::setSettings(const WorldSettings &settings) {
     for (std::uint32_t index : impl_->bodies.order) {
         detail::BodyRecord &r = impl_->bodies[index];
         r.body.setSleepEpsilon(settings.sleepEpsilon);
+        r.body.setMovingMotionCap(movingMotionCap(settings.sleepDelay));
         if (r.isStatic) continue;
         r.body.setAcceleration(settings.gravity);
         r.body.setRotationStep(rotationStep(settings));
@@ -422,6 +435,8 @@ void World::setMaterial(BodyId id, const Material &material) {
     detail::BodyRecord &r = impl_->bodies.record(id, function);
     detail::requireNonNegative(function, "friction", material.friction);
     detail::requireUnit(function, "restitution", material.restitution);
+    detail::requireNonNegative(function, "rollingFriction", material.rollingFriction);
+    detail::requireNonNegative(function, "spinningFriction", material.spinningFriction);
     r.material = material;
 }
 

@@ -78,6 +78,11 @@ struct WorldSettings {
     /// Threshold of the motion average (v.v + w.w) below which an island may sleep,
     /// (m/s)^2 + (rad/s)^2, > 0.
     real sleepEpsilon = kDefaultSleepEpsilon;
+    /// Longest time a body stays awake after it stops moving (its v.v + w.w drops below
+    /// sleepEpsilon), s, in [0, log2(10) = 3.32]: while it moves, its motion average is
+    /// capped at 2^sleepDelay x sleepEpsilon (RigidBody::setMovingMotionCap; 3.32 is the
+    /// seed's clamp). A body woken at rest still stays awake about a second.
+    real sleepDelay = 0.4;
     /// Integration scheme.
     Integrator integrator = Integrator::NewtonEuler;
     /// Springs of SpringForce::Automatic whose omega h exceeds this get the backward-Euler
@@ -136,6 +141,18 @@ struct Material {
     real friction = 0.6;
     /// Restitution in [0, 1]. A pair uses the larger of its two.
     real restitution = 0;
+    /// Resistance to rolling, m, >= 0: the torque that opposes rolling at a point or line
+    /// contact is at most this times the normal force. A pair uses the larger of its two.
+    /// The default, 2 mm, stops a ball of radius r rolling at v in about
+    /// v r (1 + I / (m r^2)) / (0.002 g) seconds (a 0.25 m ball at 1 m/s: 18 s) and keeps
+    /// it still on slopes up to atan(0.002 / r) (0.46 degrees for r = 0.25 m).
+    real rollingFriction = 0.002;
+    /// Resistance to spinning about the contact normal at a point contact, m, >= 0: the
+    /// opposing torque is at most this times the normal force (contacts of two points or
+    /// more resist spinning through their friction's twist). A pair uses the larger. The
+    /// default, 5 mm, stops a solid ball of radius r spinning in place at w in
+    /// w 0.4 r^2 / (0.005 g) seconds (r = 0.25 m at 5 rad/s: 2.5 s).
+    real spinningFriction = 0.005;
 };
 
 /// Settings of a body to add to a World.

@@ -44,6 +44,7 @@ struct StepStats {
     int contacts = 0;           ///< Contact points given to the solver.
     int jacobiansMade = 0;      ///< Manifolds whose Jacobians were made this step (the others kept theirs: WorldSettings::manifoldReuseTolerance).
     int frictionRows = 0;       ///< Friction constraint rows (per manifold with friction: 2 tangents, plus a twist with 2 or more points).
+    int resistanceRows = 0;     ///< Rolling and spinning resistance rows (2 rolling per point or line contact, 1 spinning per point contact, where the pair's lengths are > 0).
     int restitutionContacts = 0;///< Points that bounce this step.
     int islands = 0;            ///< Islands of awake dynamic bodies.
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
