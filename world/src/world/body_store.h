@@ -23,7 +23,9 @@ struct BodyRecord {
     Material material;
     std::uint32_t generation = 0;
     bool alive = false;
-    bool isStatic = false;
+    bool immovable = false;     ///< Static or kinematic: infinite mass, never moved by the dynamics, never woken.
+    bool kinematic = false;     ///< Moved only at the velocities the game sets (dynamics/kinematic_bodies.h).
+    bool moving = false;        ///< Kinematic with a velocity or rotation this step: it has a solver entry.
     bool isPlane = false;
     bool ccd = false;
     std::shared_ptr<fcl::CollisionGeometryd> core;  ///< ccd bodies: the sphere swept when already touching.
@@ -32,7 +34,7 @@ struct BodyRecord {
     Tree tree = Tree::None;
     int sleepingIsland = -1;    ///< Index in Islands::sleeping while asleep.
     int island = -1;            ///< Island of the last step (-1: none).
-    int solverIndex = 0;        ///< Index in the solver's body arrays (0: immovable).
+    int solverIndex = 0;        ///< Index in the solver's body arrays (0: immovable; moving kinematic bodies after the simulated ones).
     std::vector<std::uint32_t> pairs;  ///< Pair slots this body is in (any order).
     int awakeSlot = -1;         ///< Index in BodyStore::awake (-1: not in it).
     std::uint64_t rank = 0;     ///< When it was added: orders BodyStore::awake as `order` is.
@@ -50,6 +52,12 @@ struct BodyStore {
     std::uint64_t nextRank = 0;
     /// The bodies the step moves (awake when it began), in rank order; solver index k + 1.
     std::vector<std::uint32_t> simulated;
+    /// Every kinematic body, in the order they were added; empty in a scene without any,
+    /// which then pays nothing for them.
+    std::vector<std::uint32_t> kinematic;
+    /// The kinematic bodies moving this step, in `kinematic`'s order; solver index
+    /// simulated.size() + 1 + k.
+    std::vector<std::uint32_t> moving;
     int isolatedCount = 0;  ///< Live bodies isolated for a non-finite state.
     std::vector<std::uint32_t> planes;
     std::unordered_map<std::string, std::uint32_t> names;
@@ -65,8 +73,10 @@ struct BodyStore {
     /// The body `id` names; refused with `function`'s name when it names none.
     BodyRecord &record(BodyId id, const char *function);
     const BodyRecord &record(BodyId id, const char *function) const;
-    /// The same, and refused when the body is static.
+    /// The same, and refused when the body is static or kinematic.
     BodyRecord &dynamicRecord(BodyId id, const char *function);
+    /// The same, and refused when the body is static (dynamic and kinematic bodies pass).
+    BodyRecord &movableRecord(BodyId id, const char *function);
     /// Puts the body into `awake` or takes it out, as its state now says.
     void updateAwakeList(std::uint32_t index);
     /// Sorts `awake` by rank if a wake put it out of order: bodies are simulated in the
