@@ -368,6 +368,15 @@ SceneBody readBody(const json &value, const std::string &path) {
     readOptional(value, path, "can_sleep", settings.canSleep, readBool);
     readOptional(value, path, "awake", settings.awake, readBool);
     readOptional(value, path, "ccd", settings.ccd, readBool);
+    readOptional(value, path, "layer", settings.layer,
+                 [](const json &v, const std::string &p) { return static_cast<int>(readInteger(v, p, 0, 31)); });
+    if (const json *layers = member(value, "collides_with")) {
+        const std::string layersPath = memberPath(path, "collides_with");
+        expectArray(*layers, layersPath, 32);
+        settings.collidesWith = 0;
+        for (std::size_t k = 0; k < layers->size(); ++k)
+            settings.collidesWith |= 1u << readInteger((*layers)[k], elementPath(layersPath, k), 0, 31);
+    }
     return body;
 }
 

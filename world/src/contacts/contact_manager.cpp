@@ -69,6 +69,10 @@ void ContactManager::updateContacts(WorldState &world) {
     candidateSlots_.resize(candidates_.size(), kNoSlot);
     for (std::size_t k = 0; k < candidates_.size(); ++k) {
         const CandidatePair &c = candidates_[k];
+        if (bodies.filteredCount > 0 && !bodies.collide(c.a, c.b)) {
+            ++world.stats.filteredPairs;
+            continue;
+        }
         if (bodies[c.a].immovable && bodies[c.b].immovable) {
             // A moving kinematic body with a static or kinematic one: neither can push.
             ++world.stats.immovablePairsSkipped;

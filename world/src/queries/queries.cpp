@@ -94,7 +94,7 @@ bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter)
     const BodyRecord &r = bodies[index];
     if (!r.alive || r.isolated) return false;
     const bool considered = r.kinematic ? filter.kinematicBodies : r.immovable ? filter.staticBodies : filter.dynamicBodies;
-    if (!considered) return false;
+    if (!considered || !(filter.layers >> r.layer & 1u)) return false;
     const BodyId id = bodies.idOf(index);
     if (filter.ignore && *filter.ignore == id) return false;
     return !filter.accept || filter.accept(id);

@@ -39,6 +39,8 @@ struct BodyRecord {
     int awakeSlot = -1;         ///< Index in BodyStore::awake (-1: not in it).
     std::uint64_t rank = 0;     ///< When it was added: orders BodyStore::awake as `order` is.
     real boundingRadius = 0;    ///< Farthest point of the shape from its origin, m.
+    int layer = 0;              ///< Collision layer, [0, 31].
+    std::uint32_t collidesWith = kAllLayers;  ///< Layers it collides with, bit k for layer k.
 };
 
 struct BodyStore {
@@ -58,6 +60,9 @@ struct BodyStore {
     /// The kinematic bodies moving this step, in `kinematic`'s order; solver index
     /// simulated.size() + 1 + k.
     std::vector<std::uint32_t> moving;
+    /// Live bodies whose layer or mask is not the default: while there are none, the
+    /// candidate pairs are not filtered at all.
+    int filteredCount = 0;
     int isolatedCount = 0;  ///< Live bodies isolated for a non-finite state.
     std::vector<std::uint32_t> planes;
     std::unordered_map<std::string, std::uint32_t> names;
@@ -68,6 +73,12 @@ struct BodyStore {
 
     bool contains(BodyId id) const {
         return id.index < records.size() && records[id.index].alive && records[id.index].generation == id.generation;
+    }
+    /// Whether bodies i and j may touch: each one's mask holds the other's layer.
+    bool collide(std::uint32_t i, std::uint32_t j) const {
+        const BodyRecord &a = records[i];
+        const BodyRecord &b = records[j];
+        return (a.collidesWith >> b.layer & 1u) && (b.collidesWith >> a.layer & 1u);
     }
     BodyId idOf(std::uint32_t index) const { return {index, records[index].generation}; }
     /// The body `id` names; refused with `function`'s name when it names none.

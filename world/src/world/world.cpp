@@ -148,6 +148,8 @@ BodyId World::addBody(const BodySettings &settings) {
     }
     if (!(boundingRadius(settings.shape, *shape) <= detail::kMaxCoordinate))
         detail::refuse(function, "shape", "must fit within 1e30 m of its origin");
+    if (settings.layer < 0 || settings.layer > 31)
+        detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
     RigidBody body = makeBody(function, settings, *shape, w.settings);
 
     // Nothing below throws on user input: the world changes only from here on.
@@ -180,6 +182,9 @@ BodyId World::addBody(const BodySettings &settings) {
     r.awakeSlot = -1;
     r.rank = w.bodies.nextRank++;
     r.boundingRadius = boundingRadius(settings.shape, *shape);
+    r.layer = settings.layer;
+    r.collidesWith = settings.collidesWith;
+    if (r.layer != 0 || r.collidesWith != kAllLayers) ++w.bodies.filteredCount;
     w.bodies.order.push_back(index);
     if (!r.name.empty()) w.bodies.names.emplace(r.name, index);
 
@@ -237,6 +242,9 @@ void World::removeBody(BodyId id) {
     if (r.kinematic) w.bodies.kinematic.erase(std::find(w.bodies.kinematic.begin(), w.bodies.kinematic.end(), index));
     r.kinematic = false;
     r.moving = false;
+    if (r.layer != 0 || r.collidesWith != kAllLayers) --w.bodies.filteredCount;
+    r.layer = 0;
+    r.collidesWith = kAllLayers;
     if (r.isPlane) w.bodies.planes.erase(std::find(w.bodies.planes.begin(), w.bodies.planes.end(), index));
     w.setTree(index, Tree::None);
     if (r.sleepingIsland >= 0) {
@@ -424,6 +432,28 @@ void World::setCanSleep(BodyId id, bool canSleep) {
     detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, "World::setCanSleep");
     if (!canSleep) impl_->wake(id.index);
     r.body.setCanSleep(canSleep);
+}
+
+void World::setCollisionFilter(BodyId id, int layer, std::uint32_t collidesWith) {
+    static const char *function = "World::setCollisionFilter";
+    Impl &w = *impl_;
+    detail::BodyRecord &r = w.bodies.record(id, function);
+    if (layer < 0 || layer > 31) detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(layer));
+    const bool wasFiltered = r.layer != 0 || r.collidesWith != kAllLayers;
+    r.layer = layer;
+    r.collidesWith = collidesWith;
+    w.bodies.filteredCount += (r.layer != 0 || r.collidesWith != kAllLayers) - wasFiltered;
+    // Pairs the filter now forbids go; a body that lost a support, or may meet new ones,
+    // must be simulated to find out.
+    for (std::size_t k = r.pairs.size(); k-- > 0;) {
+        const std::uint32_t p = r.pairs[k];
+        const detail::PairState &pair = w.contacts.pairs[p];
+        const std::uint32_t other = pair.a == id.index ? pair.b : pair.a;
+        if (w.bodies.collide(pair.a, pair.b)) continue;
+        if (pair.touching() && !w.bodies[other].immovable) w.wake(other);
+        w.contacts.removePair(w.bodies, p);
+    }
+    if (!r.immovable) w.wake(id.index);
 }
 
 void World::setMaterial(BodyId id, const Material &material) {

@@ -114,6 +114,9 @@ struct WorldSettings {
     int threads = 1;
 };
 
+/// A collision mask holding every layer.
+inline constexpr std::uint32_t kAllLayers = 0xffffffffu;
+
 /// How a body moves.
 enum class Motion {
     /// Never moves: infinite mass, not integrated (scene files: "static").
@@ -174,6 +177,11 @@ struct BodySettings {
     bool awake = true;
     /// Continuous collision detection for this body (fast, thin things).
     bool ccd = false;
+    /// Collision layer, in [0, 31].
+    int layer = 0;
+    /// The layers this body collides with, bit k for layer k. Two bodies touch only when
+    /// each one's mask holds the other's layer. Every layer by default.
+    std::uint32_t collidesWith = kAllLayers;
 };
 
 /// The motion `settings` asks for: `motion`, or Static when the older `isStatic` is set.

@@ -40,6 +40,7 @@ struct StepStats {
     int movingKinematicBodies = 0; ///< Kinematic bodies moved during the step.
     int broadphasePairs = 0;    ///< Overlapping AABB pairs found (including plane pairs).
     int immovablePairsSkipped = 0; ///< Broadphase pairs of a moving kinematic body with a static or kinematic one, never tested.
+    int filteredPairs = 0;      ///< Broadphase pairs whose layers do not collide (BodySettings::layer, collidesWith), never tested.
     int pairsTested = 0;        ///< Pairs sent to the narrowphase (FCL or a test of its own).
     int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
     int manifolds = 0;          ///< Contact manifolds given to the solver.

@@ -141,6 +141,11 @@ public:
     void setAwake(BodyId id, bool awake);
     /// Allows or forbids sleep for a dynamic body; forbidding wakes it and its island.
     void setCanSleep(BodyId id, bool canSleep);
+    /// Puts the body on collision layer `layer` ([0, 31]) and makes it collide with the
+    /// layers of `collidesWith` (bit k for layer k); two bodies touch only when each one's
+    /// mask holds the other's layer. Contacts the new filter forbids end at once (reported
+    /// with the next step's events); the body and what it touched wake.
+    void setCollisionFilter(BodyId id, int layer, std::uint32_t collidesWith);
     /// Replaces the body's material (friction >= 0, restitution in [0, 1]). Wakes
     /// nothing: it acts at the body's next contact.
     void setMaterial(BodyId id, const Material &material);
