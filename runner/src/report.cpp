@@ -35,7 +35,7 @@ std::optional<std::size_t> highestDynamicBody(const Scene &scene, const SceneWor
     std::optional<std::size_t> highest;
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
         const BodySettings &body = scene.bodies[i].settings;
-        if (body.isStatic || !built.world.contains(built.ids[i])) continue;
+        if (motionOf(body) != Motion::Dynamic || !built.world.contains(built.ids[i])) continue;
         if (!highest || up.dot(body.position) > up.dot(scene.bodies[*highest].settings.position)) highest = i;
     }
     return highest;
@@ -48,7 +48,7 @@ void writeReport(std::ostream &out, const std::string &file, const Scene &scene,
     const World &world = built.world;
     std::size_t dynamicBodies = 0;
     for (const BodyId id : world.bodies()) {
-        if (!world.isStatic(id)) ++dynamicBodies;
+        if (world.motion(id) == Motion::Dynamic) ++dynamicBodies;
     }
     const StepTimes times = result.stepTimes.summary();
     out << "scene        " << scene.name << " (" << file << ")\n";

@@ -180,7 +180,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
                 result.nonFiniteWhat = "body " + jsonQuoted(scene.bodies[i].settings.name) + " has a non-finite " +
                                        quantity + " after step " + std::to_string(step);
             }
-            if (!world.isStatic(id) && body.getAwake()) anyAwake = true;
+            if (world.motion(id) == Motion::Dynamic && body.getAwake()) anyAwake = true;
         }
         if (!result.nonFinite && world.stats().isolatedBodies > 0) {
             result.nonFinite = true;

@@ -331,19 +331,32 @@ SceneBody readBody(const json &value, const std::string &path) {
     settings.name = readString(required(value, path, "name"), namePath);
     if (settings.name.empty()) fail(namePath, "must not be empty");
     readOptional(value, path, "static", settings.isStatic, readBool);
-    settings.shape = readShape(required(value, path, "shape"), memberPath(path, "shape"), settings.isStatic);
+    if (const json *motion = member(value, "motion")) {
+        const std::string motionPath = memberPath(path, "motion");
+        const std::string name = readString(*motion, motionPath);
+        if (name == "dynamic") settings.motion = Motion::Dynamic;
+        else if (name == "static") settings.motion = Motion::Static;
+        else if (name == "kinematic") settings.motion = Motion::Kinematic;
+        else fail(motionPath, "must be \"dynamic\", \"static\" or \"kinematic\", got " + jsonQuoted(name));
+        if (member(value, "static") && settings.isStatic != (settings.motion == Motion::Static))
+            fail(motionPath, jsonQuoted(name) + " disagrees with \"static\": " + (settings.isStatic ? "true" : "false"));
+        settings.isStatic = false;
+    }
+    const Motion motion = motionOf(settings);
+    const bool immovable = motion != Motion::Dynamic;
+    settings.shape = readShape(required(value, path, "shape"), memberPath(path, "shape"), motion == Motion::Static);
     const auto positive = [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); };
     const auto finite = [](const json &v, const std::string &p) { return readNumber(v, p); };
     const auto unit = [](const json &v, const std::string &p) { return readNumber(v, p, Range::Unit); };
     const auto vector = [](const json &v, const std::string &p) { return readVector3(v, p); };
-    // A static body has infinite mass whatever the file says; a mass it gives must still
-    // be a number.
-    readOptional(value, path, "mass", settings.mass, settings.isStatic ? +finite : +positive);
+    // A static or kinematic body has infinite mass whatever the file says; a mass it
+    // gives must still be a number.
+    readOptional(value, path, "mass", settings.mass, immovable ? +finite : +positive);
     if (const json *inertia = member(value, "inertia")) {
         const Matrix3 tensor = readInertia(*inertia, memberPath(path, "inertia"));
-        if (!settings.isStatic) settings.inertia = tensor;
+        if (!immovable) settings.inertia = tensor;
     }
-    if (settings.isStatic) settings.mass = 1;
+    if (immovable) settings.mass = 1;
     readOptional(value, path, "position", settings.position,
                  [](const json &v, const std::string &p) { return readVector3(v, p, Range::Length); });
     readOptional(value, path, "orientation", settings.orientation, readOrientation);
@@ -361,6 +374,15 @@ SceneBody readBody(const json &value, const std::string &path) {
     readOptional(value, path, "can_sleep", settings.canSleep, readBool);
     readOptional(value, path, "awake", settings.awake, readBool);
     readOptional(value, path, "ccd", settings.ccd, readBool);
+    readOptional(value, path, "layer", settings.layer,
+                 [](const json &v, const std::string &p) { return static_cast<int>(readInteger(v, p, 0, 31)); });
+    if (const json *layers = member(value, "collides_with")) {
+        const std::string layersPath = memberPath(path, "collides_with");
+        expectArray(*layers, layersPath, 32);
+        settings.collidesWith = 0;
+        for (std::size_t k = 0; k < layers->size(); ++k)
+            settings.collidesWith |= 1u << readInteger((*layers)[k], elementPath(layersPath, k), 0, 31);
+    }
     return body;
 }
 
@@ -439,8 +461,13 @@ SceneEvent readEvent(const json &value, const std::string &path, const Scene &sc
     const std::string targetPath = memberPath(path, action->key);
     event.body = readBodyName(value[action->key], targetPath, names);
     const BodySettings &target = scene.bodies[event.body].settings;
-    if (target.isStatic && event.kind != EventKind::Remove) {
+    const Motion targetMotion = motionOf(target);
+    if (targetMotion == Motion::Static && event.kind != EventKind::Remove) {
         fail(targetPath, "body " + jsonQuoted(target.name) + " is static; only \"remove\" applies to it");
+    }
+    if (targetMotion == Motion::Kinematic && (event.kind == EventKind::ApplyImpulse || event.kind == EventKind::SetAwake)) {
+        fail(targetPath, "body " + jsonQuoted(target.name) +
+                             " is kinematic; only \"remove\", \"set_velocity\", \"set_rotation\" and \"set_position\" apply to it");
     }
     if (action->valueKey) {
         event.value = readVector3(required(value, path, action->valueKey), memberPath(path, action->valueKey),

@@ -13,7 +13,7 @@ ordered_json vector3(const Vector3 &v) { return ordered_json::array({v.x(), v.y(
 int awakeDynamicBodies(const World &world) {
     int awake = 0;
     for (const BodyId id : world.bodies()) {
-        if (!world.isStatic(id) && world.body(id).getAwake()) ++awake;
+        if (world.motion(id) == Motion::Dynamic && world.body(id).getAwake()) ++awake;
     }
     return awake;
 }

@@ -147,7 +147,7 @@ TEST(CarrierThreads, RunsGoToTheirBodysHalfLevelByLevel) {
     detail::CarrierScratch scratch;
     detail::CarrierRuns runs;
     const std::vector<int> order = {0, 1, 2, 3, 4, 5, 6};
-    detail::assignCarriers(7, Vector3::UnitY(), manifolds, order, scratch, runs);
+    detail::assignCarriers(7, 7, Vector3::UnitY(), manifolds, order, scratch, runs);
     const std::vector<signed char> side = {-1, 0, 1, 0, 1, 1, 0};
     detail::CarrierThreads threads;
     detail::buildCarrierThreads(runs, manifolds, &side, 7, threads);

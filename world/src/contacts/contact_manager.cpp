@@ -29,6 +29,11 @@ void ContactManager::findCandidates(WorldState &world) {
         if (r.object && r.object->place(r.body.getTransform(), kBroadphaseMargin))
             movedObjects_.push_back(r.object.get());
     }
+    for (std::uint32_t index : bodies.moving) {
+        BodyRecord &r = bodies[index];
+        if (r.object && r.object->place(r.body.getTransform(), kBroadphaseMargin))
+            movedObjects_.push_back(r.object.get());
+    }
     world.broadphase.refitAwake(movedObjects_);
     candidates_.clear();
     world.broadphase.findPairs(candidates_);
@@ -64,7 +69,15 @@ void ContactManager::updateContacts(WorldState &world) {
     candidateSlots_.resize(candidates_.size(), kNoSlot);
     for (std::size_t k = 0; k < candidates_.size(); ++k) {
         const CandidatePair &c = candidates_[k];
-        if (bodies[c.a].isStatic && bodies[c.b].isStatic) continue;
+        if (bodies.filteredCount > 0 && !bodies.collide(c.a, c.b)) {
+            ++world.stats.filteredPairs;
+            continue;
+        }
+        if (bodies[c.a].immovable && bodies[c.b].immovable) {
+            // A moving kinematic body with a static or kinematic one: neither can push.
+            ++world.stats.immovablePairsSkipped;
+            continue;
+        }
         std::uint32_t p = candidateSlots_[k];
         if (!pairs.holds(p, c.a, c.b)) {
             bool created = false;
@@ -92,22 +105,25 @@ void ContactManager::updateContacts(WorldState &world) {
         const PairState &pair = pairs[p];
         if (!pair.touching()) continue;
         touchingPairs.push_back(p);
-        // A new contact with an awake body wakes a sleeping one (from the next step on).
+        // A new contact with an awake or moving kinematic body wakes a sleeping one (from
+        // the next step on).
         const BodyRecord &a = bodies[pair.a];
         const BodyRecord &b = bodies[pair.b];
-        if (a.simulated && !b.isStatic && !b.simulated) world.wake(pair.b);
-        if (b.simulated && !a.isStatic && !a.simulated) world.wake(pair.a);
+        if ((a.simulated || a.moving) && !b.immovable && !b.simulated) world.wake(pair.b);
+        if ((b.simulated || b.moving) && !a.immovable && !a.simulated) world.wake(pair.a);
     }
 
     // Pairs with an awake member that the broadphase no longer reports have separated
     // (walked body by body: sleeping bodies' pairs cost nothing).
-    for (std::uint32_t index : bodies.simulated) {
+    const auto dropUnseen = [&](std::uint32_t index) {
         std::vector<std::uint32_t> &list = bodies[index].pairs;
         for (std::size_t k = list.size(); k-- > 0;) {
             const std::uint32_t p = list[k];
             if (pairs[p].lastSeen != stepCount) removePair(bodies, p);
         }
-    }
+    };
+    for (std::uint32_t index : bodies.simulated) dropUnseen(index);
+    for (std::uint32_t index : bodies.moving) dropUnseen(index);
 }
 
 // Only a touching pair is reused: one with no manifold may come into contact within the

@@ -28,8 +28,9 @@ void Islands::build(WorldState &world) {
         y = findRoot(parent_, y);
         if (x != y) parent_[std::max(x, y)] = std::min(x, y);
     };
+    // Static and kinematic bodies (entry 0, entries past the simulated) join no island.
     for (const SolverManifold &m : world.solver.manifolds())
-        if (m.a > 0 && m.b > 0) unite(m.a - 1, m.b - 1);
+        if (m.a > 0 && m.b > 0 && m.a <= n && m.b <= n) unite(m.a - 1, m.b - 1);
     for (const SpringRecord &s : world.springs) {
         if (!s.alive || !s.settings.b) continue;
         const BodyRecord &a = bodies[s.settings.a.index];

@@ -152,13 +152,14 @@ void World::debugDraw(DebugDraw &draw, const DebugDrawOptions &options) const {
     const Impl &w = *impl_;
     for (std::uint32_t index : w.bodies.order) {
         const BodyRecord &r = w.bodies[index];
-        const DebugColor &color = r.isStatic      ? options.staticBody
+        const bool isStatic = r.immovable && !r.kinematic;  // a kinematic body is drawn awake while it moves
+        const DebugColor &color = isStatic      ? options.staticBody
                                   : r.isolated ? options.isolated
                                   : r.body.getAwake() ? options.awake
                                                       : options.asleep;
         const Matrix4 pose = r.body.getTransform();
         if (!pose.matrix().allFinite()) continue;  // an isolated body that flew off: nothing to draw
-        if (options.shapes && (!r.isStatic || options.staticBodies)) drawShape(draw, *r.shape, pose, options, color);
+        if (options.shapes && (!isStatic || options.staticBodies)) drawShape(draw, *r.shape, pose, options, color);
         if (options.boundingBoxes && r.object && r.tree != detail::Tree::None) {
             const fcl::AABBd &box = r.object->getAABB();
             Matrix4 pose = Matrix4::Identity();

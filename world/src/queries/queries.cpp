@@ -93,7 +93,8 @@ Quaternion unitOrIdentity(const Quaternion &q) {
 bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter) const {
     const BodyRecord &r = bodies[index];
     if (!r.alive || r.isolated) return false;
-    if (r.isStatic ? !filter.staticBodies : !filter.dynamicBodies) return false;
+    const bool considered = r.kinematic ? filter.kinematicBodies : r.immovable ? filter.staticBodies : filter.dynamicBodies;
+    if (!considered || !(filter.layers >> r.layer & 1u)) return false;
     const BodyId id = bodies.idOf(index);
     if (filter.ignore && *filter.ignore == id) return false;
     return !filter.accept || filter.accept(id);

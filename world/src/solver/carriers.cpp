@@ -60,12 +60,14 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
 
 }  // namespace
 
-void assignCarriers(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
+void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::vector<SolverManifold> &manifolds,
                    const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs) {
+    // Entry 0 (static or asleep) and the moving kinematic bodies are immovable anyway.
+    const auto immovable = [&](int body) { return body == 0 || body >= firstKinematic; };
     for (SolverManifold &m : manifolds) {
         m.carrier = Carrier::None;
-        if (m.a == 0) m.carrier = Carrier::A;  // static or asleep: immovable anyway
-        if (m.b == 0) m.carrier = Carrier::B;
+        if (immovable(m.a)) m.carrier = Carrier::A;
+        if (immovable(m.b)) m.carrier = Carrier::B;
     }
     if (up.isZero(0) || manifolds.empty()) {
         buildRuns(manifolds, order, nullptr, bodyCount, scratch, runs);
@@ -91,7 +93,7 @@ void assignCarriers(int bodyCount, const Vector3 &up, std::vector<SolverManifold
         adjacent[cursor[m.b]++] = m.a;
     }
 
-    // Breadth first from the immovable body.
+    // Breadth first from the immovable bodies.
     constexpr int kUnreached = std::numeric_limits<int>::max();
     std::vector<int> &level = scratch.level;
     level.assign(bodyCount, kUnreached);
@@ -99,6 +101,10 @@ void assignCarriers(int bodyCount, const Vector3 &up, std::vector<SolverManifold
     queue.clear();
     level[0] = 0;
     queue.push_back(0);
+    for (int body = firstKinematic; body < bodyCount; ++body) {
+        level[body] = 0;
+        queue.push_back(body);
+    }
     for (std::size_t head = 0; head < queue.size(); ++head) {
         const int body = queue[head];
         for (int e = start[body]; e < start[body + 1]; ++e) {
@@ -110,7 +116,7 @@ void assignCarriers(int bodyCount, const Vector3 &up, std::vector<SolverManifold
     }
 
     for (SolverManifold &m : manifolds) {
-        if (m.a == 0 || m.b == 0) continue;
+        if (immovable(m.a) || immovable(m.b)) continue;
         const int la = level[m.a];
         const int lb = level[m.b];
         if (la == lb || la == kUnreached || lb == kUnreached) continue;

@@ -26,10 +26,11 @@ struct CarrierScratch {
 /// one (normal within 60 degrees of `up`) names the lower as the support. Between two
 /// moving bodies, those at the same level, side contacts and worlds without gravity
 /// (`up` zero) get none.
-/// `bodyCount` counts the solver bodies, body 0 included.
+/// `bodyCount` counts the solver bodies, body 0 included; entries from `firstKinematic`
+/// on are moving kinematic bodies, immovable like body 0 (bodyCount when none).
 /// Also lists the carrier pass's runs (CarrierRuns) bottom up; within a level, the
 /// bodies and each body's manifolds in the solve order `order` (manifold indices).
-void assignCarriers(int bodyCount, const Vector3 &up, std::vector<SolverManifold> &manifolds,
+void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::vector<SolverManifold> &manifolds,
                    const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs);
 
 }  // namespace cyclone::detail

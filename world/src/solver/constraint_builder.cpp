@@ -16,21 +16,21 @@ namespace {
 // Solve-order height of a contact between a and b: the lower body's, m along `up`.
 real contactHeight(const BodyRecord &a, const BodyRecord &b, const Vector3 &up) {
     const real lowest = -std::numeric_limits<real>::infinity();
-    const real ha = a.isStatic ? lowest : a.body.getPosition().dot(up);
-    const real hb = b.isStatic ? lowest : b.body.getPosition().dot(up);
+    const real ha = a.immovable ? lowest : a.body.getPosition().dot(up);
+    const real hb = b.immovable ? lowest : b.body.getPosition().dot(up);
     return std::min(ha, hb);
 }
 
 // Whether a body is still in its stamped role, within `tolerance` of its stamped pose.
 bool stillStamped(const StampedBody &stamped, const BodyRecord &r, real tolerance) {
-    if (stamped.movable != r.simulated) return false;
+    if (stamped.movable != (r.simulated || r.moving)) return false;
     if (r.isPlane) return true;  // a plane cannot be moved (World::setPosition refuses it)
     const real shift = (r.body.getPosition() - stamped.position).norm();
     return movedLess(shift, r.body.getOrientation() * stamped.orientation.conjugate(), r.boundingRadius, tolerance);
 }
 
 void stampBody(StampedBody &stamped, const BodyRecord &r) {
-    stamped.movable = r.simulated;
+    stamped.movable = r.simulated || r.moving;
     stamped.position = r.body.getPosition();
     stamped.orientation = r.body.getOrientation();
 }
@@ -120,8 +120,8 @@ void ConstraintSolver::addSolverManifold(WorldState &world, const ManifoldKey &k
     for (int i = m.count; i < kMaxManifoldPoints; ++i) sm.order[i] = static_cast<signed char>(i);
     m.solverSlot = static_cast<std::uint32_t>(slot);
     m.solverStep = world.stepCount;
-    sm.a = a.simulated ? a.solverIndex : 0;
-    sm.b = b.simulated ? b.solverIndex : 0;
+    sm.a = a.simulated || a.moving ? a.solverIndex : 0;
+    sm.b = b.simulated || b.moving ? b.solverIndex : 0;
     sm.friction = friction;
     sm.restitution = 0;
     sm.touchesStatic = false;
@@ -189,13 +189,13 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     const BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
     const std::size_t n = bodies.simulated.size();
-    bodies_.resize(n + 1);
+    bodies_.resize(n + 1 + bodies.moving.size());
     bodies_[0] = SolverBody();
     predictedV_.resize(n);
     predictedW_.resize(n);
     linearFactor_.resize(n);
     angularFactor_.resize(n);
-    positions_.resize(n + 1);
+    positions_.resize(bodies_.size());
     resistance_.clear();
     world.workers.forEach(n, [&](std::size_t k) {
         const RigidBody &body = bodies[bodies.simulated[k]].body;
@@ -208,6 +208,15 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
         body.getDampingFactors(h, &linearFactor_[k], &angularFactor_[k]);
         positions_[k + 1] = body.getPosition();
     });
+    // Moving kinematic bodies: immovable entries that keep their velocity.
+    for (std::size_t k = 0; k < bodies.moving.size(); ++k) {
+        const RigidBody &body = bodies[bodies.moving[k]].body;
+        SolverBody &sb = bodies_[n + 1 + k];
+        sb = SolverBody();
+        setLanes(sb.v, body.getVelocity());
+        setLanes(sb.w, body.getRotation());
+        positions_[n + 1 + k] = body.getPosition();
+    }
     if (settings.contactSolver == ContactSolverType::SoftStep) {
         // A contact spring faster than a quarter of the sub-step rate is not resolved.
         soft_.dynamicSoftness = makeSoftness(std::min(settings.contactHertz, 0.25 / h),
@@ -226,7 +235,7 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
             partitionManifolds(manifolds_, heights_, solveOrder_, positions_, world.workers.parallel(),
                                           partitionScratch_, partition_);
         } else {
-            assignCarriers(static_cast<int>(bodies_.size()), -settings.gravity, manifolds_,
+            assignCarriers(static_cast<int>(bodies_.size()), static_cast<int>(n + 1), -settings.gravity, manifolds_,
                                   solveOrder_, carrierScratch_, carrierRuns_);
         }
     });
@@ -269,7 +278,8 @@ void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s) {
     const RigidBody &a = bodies[records.a].body;
     const RigidBody &b = bodies[records.b].body;
     m.restitution = std::max(bodies[records.a].material.restitution, bodies[records.b].material.restitution);
-    m.touchesStatic = m.a == 0 || m.b == 0;
+    m.touchesStatic = m.a == 0 || m.b == 0 || m.a > static_cast<int>(bodies.simulated.size()) ||
+                      m.b > static_cast<int>(bodies.simulated.size());
     const SolverBody &sa = bodies_[m.a];
     const SolverBody &sb = bodies_[m.b];
     if (!stamps_[s].kept) {

@@ -19,13 +19,20 @@ const BodyRecord &BodyStore::record(BodyId id, const char *function) const {
 
 BodyRecord &BodyStore::dynamicRecord(BodyId id, const char *function) {
     BodyRecord &r = record(id, function);
-    if (r.isStatic) refuse(function, "id", "names a static body, which never moves");
+    if (r.kinematic) refuse(function, "id", "names a kinematic body, which moves only at the velocity it is given");
+    if (r.immovable) refuse(function, "id", "names a static body, which never moves");
+    return r;
+}
+
+BodyRecord &BodyStore::movableRecord(BodyId id, const char *function) {
+    BodyRecord &r = record(id, function);
+    if (r.immovable && !r.kinematic) refuse(function, "id", "names a static body, which never moves");
     return r;
 }
 
 void BodyStore::updateAwakeList(std::uint32_t index) {
     BodyRecord &r = records[index];
-    const bool listed = r.alive && !r.isStatic && !r.isolated && r.body.getAwake();
+    const bool listed = r.alive && !r.immovable && !r.isolated && r.body.getAwake();
     if (listed == (r.awakeSlot >= 0)) return;
     if (listed) {
         if (!awake.empty() && records[awake.back()].rank > r.rank) awakeSorted = false;

@@ -23,7 +23,9 @@ struct BodyRecord {
     Material material;
     std::uint32_t generation = 0;
     bool alive = false;
-    bool isStatic = false;
+    bool immovable = false;     ///< Static or kinematic: infinite mass, never moved by the dynamics, never woken.
+    bool kinematic = false;     ///< Moved only at the velocities the game sets (dynamics/kinematic_bodies.h).
+    bool moving = false;        ///< Kinematic with a velocity or rotation this step: it has a solver entry.
     bool isPlane = false;
     bool ccd = false;
     std::shared_ptr<fcl::CollisionGeometryd> core;  ///< ccd bodies: the sphere swept when already touching.
@@ -32,11 +34,13 @@ struct BodyRecord {
     Tree tree = Tree::None;
     int sleepingIsland = -1;    ///< Index in Islands::sleeping while asleep.
     int island = -1;            ///< Island of the last step (-1: none).
-    int solverIndex = 0;        ///< Index in the solver's body arrays (0: immovable).
+    int solverIndex = 0;        ///< Index in the solver's body arrays (0: immovable; moving kinematic bodies after the simulated ones).
     std::vector<std::uint32_t> pairs;  ///< Pair slots this body is in (any order).
     int awakeSlot = -1;         ///< Index in BodyStore::awake (-1: not in it).
     std::uint64_t rank = 0;     ///< When it was added: orders BodyStore::awake as `order` is.
     real boundingRadius = 0;    ///< Farthest point of the shape from its origin, m.
+    int layer = 0;              ///< Collision layer, [0, 31].
+    std::uint32_t collidesWith = kAllLayers;  ///< Layers it collides with, bit k for layer k.
 };
 
 struct BodyStore {
@@ -50,6 +54,15 @@ struct BodyStore {
     std::uint64_t nextRank = 0;
     /// The bodies the step moves (awake when it began), in rank order; solver index k + 1.
     std::vector<std::uint32_t> simulated;
+    /// Every kinematic body, in the order they were added; empty in a scene without any,
+    /// which then pays nothing for them.
+    std::vector<std::uint32_t> kinematic;
+    /// The kinematic bodies moving this step, in `kinematic`'s order; solver index
+    /// simulated.size() + 1 + k.
+    std::vector<std::uint32_t> moving;
+    /// Live bodies whose layer or mask is not the default: while there are none, the
+    /// candidate pairs are not filtered at all.
+    int filteredCount = 0;
     int isolatedCount = 0;  ///< Live bodies isolated for a non-finite state.
     std::vector<std::uint32_t> planes;
     std::unordered_map<std::string, std::uint32_t> names;
@@ -61,12 +74,20 @@ struct BodyStore {
     bool contains(BodyId id) const {
         return id.index < records.size() && records[id.index].alive && records[id.index].generation == id.generation;
     }
+    /// Whether bodies i and j may touch: each one's mask holds the other's layer.
+    bool collide(std::uint32_t i, std::uint32_t j) const {
+        const BodyRecord &a = records[i];
+        const BodyRecord &b = records[j];
+        return (a.collidesWith >> b.layer & 1u) && (b.collidesWith >> a.layer & 1u);
+    }
     BodyId idOf(std::uint32_t index) const { return {index, records[index].generation}; }
     /// The body `id` names; refused with `function`'s name when it names none.
     BodyRecord &record(BodyId id, const char *function);
     const BodyRecord &record(BodyId id, const char *function) const;
-    /// The same, and refused when the body is static.
+    /// The same, and refused when the body is static or kinematic.
     BodyRecord &dynamicRecord(BodyId id, const char *function);
+    /// The same, and refused when the body is static (dynamic and kinematic bodies pass).
+    BodyRecord &movableRecord(BodyId id, const char *function);
     /// Puts the body into `awake` or takes it out, as its state now says.
     void updateAwakeList(std::uint32_t index);
     /// Sorts `awake` by rank if a wake put it out of order: bodies are simulated in the

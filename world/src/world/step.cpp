@@ -12,7 +12,11 @@ void WorldState::step(real dt) {
     events.openStep();
     StageTimes &ms = stats.ms;
 
-    { const StageTimer t(ms.forces); integration.beginStep(*this, dt); }
+    {
+        const StageTimer t(ms.forces);
+        integration.beginStep(*this, dt);
+        kinematicBodies.beginStep(*this);
+    }
     { const StageTimer t(ms.broadphase); contacts.findCandidates(*this); }
     { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this); }
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
@@ -36,7 +40,11 @@ void WorldState::step(real dt) {
             solver.solveVelocities(*this, h, first);
             ms.solveParts.velocity += t.elapsed() - (ms.solveParts.carrier - carrierBefore);
         }
-        { const StageTimer t(ms.integrate); integration.integrate(*this, h); }
+        {
+            const StageTimer t(ms.integrate);
+            integration.integrate(*this, h);
+            kinematicBodies.integrate(*this, h);
+        }
         { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position
     }
     {
@@ -49,6 +57,7 @@ void WorldState::step(real dt) {
     events.closeStep();
 
     stats.integratedBodies = static_cast<int>(bodies.simulated.size());
+    stats.movingKinematicBodies = static_cast<int>(bodies.moving.size());
     stats.bodies = static_cast<int>(bodies.order.size());
     stats.awakeBodies = static_cast<int>(bodies.awake.size());
     stats.isolatedBodies = bodies.isolatedCount;

@@ -7,7 +7,7 @@ namespace cyclone::detail {
 
 void WorldState::wake(std::uint32_t index) {
     BodyRecord &r = bodies[index];
-    if (r.isStatic || r.isolated) return;
+    if (r.immovable || r.isolated) return;
     if (r.sleepingIsland < 0) {
         if (!r.body.getAwake()) {
             r.body.setAwake(true);
@@ -43,7 +43,7 @@ void WorldState::sleepIsland(const std::uint32_t *members, int count, bool repor
     list.clear();
     for (int i = 0; i < count; ++i) {
         BodyRecord &r = bodies[members[i]];
-        if (!r.alive || r.isStatic || r.sleepingIsland >= 0) continue;
+        if (!r.alive || r.immovable || r.sleepingIsland >= 0) continue;
         list.push_back(members[i]);
         r.body.setAwake(false);
         r.sleepingIsland = island;
@@ -79,7 +79,7 @@ void WorldState::refreshCollisionObject(std::uint32_t index) {
     BodyRecord &r = bodies[index];
     if (r.object && r.object->place(r.body.getTransform(), kBroadphaseMargin))
         broadphase.refit(r.object.get(), r.tree);
-    if (!r.isStatic) {
+    if (!r.immovable) {
         wake(index);
         return;
     }
@@ -87,7 +87,7 @@ void WorldState::refreshCollisionObject(std::uint32_t index) {
     for (std::uint32_t p : bodies[index].pairs) {
         const PairState &pair = contacts.pairs[p];
         const std::uint32_t other = pair.a == index ? pair.b : pair.a;
-        if (!bodies[other].isStatic) wake(other);
+        if (!bodies[other].immovable) wake(other);
     }
 }
 

@@ -114,12 +114,18 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
     body.setMovingMotionCap(movingMotionCap(world.sleepDelay));
     body.setPosition(s.position);
     body.setOrientation(s.orientation);
-    body.setDamping(s.linearDamping, s.angularDamping);
-    if (s.isStatic) {
+    const Motion motion = motionOf(s);
+    if (motion != Motion::Dynamic) {
+        // Infinite mass, no damping: a kinematic body keeps the velocities it is given.
         body.setInverseMass(0);
         body.setAwake(false);
+        if (motion == Motion::Kinematic) {
+            body.setVelocity(s.velocity);
+            body.setRotation(s.rotation);
+        }
         return body;
     }
+    body.setDamping(s.linearDamping, s.angularDamping);
     requirePositive(function, "mass", s.mass);
     if (!std::isfinite(1 / s.mass)) refuse(function, "mass", "is too small to invert, got " + show(s.mass));
     const Matrix3 inertia = s.inertia ? *s.inertia : Matrix3(shape.unitInertia() * s.mass);
@@ -162,7 +168,7 @@ void World::setSettings(const WorldSettings &settings) {
         detail::BodyRecord &r = impl_->bodies[index];
         r.body.setSleepEpsilon(settings.sleepEpsilon);
         r.body.setMovingMotionCap(movingMotionCap(settings.sleepDelay));
-        if (r.isStatic) continue;
+        if (r.immovable) continue;
         r.body.setAcceleration(settings.gravity);
         r.body.setRotationStep(rotationStep(settings));
         impl_->wake(index);
@@ -176,8 +182,11 @@ BodyId World::addBody(const BodySettings &settings) {
     Impl &w = *impl_;
     if (!settings.name.empty() && w.bodies.names.count(settings.name))
         detail::refuse(function, "name", "must be unique, \"" + settings.name + "\" is already taken");
+    if (settings.isStatic && settings.motion == Motion::Kinematic)
+        detail::refuse(function, "isStatic", "is true while motion is Kinematic; set one of them");
+    const Motion motion = motionOf(settings);
     const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh;
-    if (staticOnly && !settings.isStatic)
+    if (staticOnly && motion != Motion::Static)
         detail::refuse(function, "shape.type",
                        std::string("\"") + shapeTypeName(settings.shape.type) + "\" is for static bodies only");
     std::shared_ptr<const detail::CollisionShape> shape;
@@ -188,6 +197,8 @@ BodyId World::addBody(const BodySettings &settings) {
     }
     if (!(boundingRadius(settings.shape, *shape) <= detail::kMaxCoordinate))
         detail::refuse(function, "shape", "must fit within 1e30 m of its origin");
+    if (settings.layer < 0 || settings.layer > 31)
+        detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
     RigidBody body = makeBody(function, settings, *shape, w.settings);
 
     // Nothing below throws on user input: the world changes only from here on.
@@ -205,10 +216,12 @@ BodyId World::addBody(const BodySettings &settings) {
     r.name = settings.name;
     r.material = settings.material;
     r.alive = true;
-    r.isStatic = settings.isStatic;
+    r.immovable = motion != Motion::Dynamic;
+    r.kinematic = motion == Motion::Kinematic;
+    r.moving = false;
     r.isPlane = settings.shape.type == ShapeType::Plane;
-    r.ccd = settings.ccd;
-    r.core = settings.ccd && !settings.isStatic ? detail::makeCore(detail::sweptShape(*shape)) : nullptr;
+    r.ccd = settings.ccd && motion == Motion::Dynamic;
+    r.core = r.ccd ? detail::makeCore(detail::sweptShape(*shape)) : nullptr;
     r.isolated = false;
     r.simulated = false;
     r.tree = Tree::None;
@@ -218,6 +231,9 @@ BodyId World::addBody(const BodySettings &settings) {
     r.awakeSlot = -1;
     r.rank = w.bodies.nextRank++;
     r.boundingRadius = boundingRadius(settings.shape, *shape);
+    r.layer = settings.layer;
+    r.collidesWith = settings.collidesWith;
+    if (r.layer != 0 || r.collidesWith != kAllLayers) ++w.bodies.filteredCount;
     w.bodies.order.push_back(index);
     if (!r.name.empty()) w.bodies.names.emplace(r.name, index);
 
@@ -228,7 +244,10 @@ BodyId World::addBody(const BodySettings &settings) {
         r.object = std::make_unique<detail::BodyObject>(shape->geometry(), r.body.getTransform());
         r.object->setUserData(reinterpret_cast<void *>(static_cast<std::uintptr_t>(index)));
         r.object->place(r.body.getTransform(), detail::kBroadphaseMargin);
-        if (r.isStatic) {
+        if (r.kinematic) {
+            w.bodies.kinematic.push_back(index);
+            w.setTree(index, Tree::Static);  // until its first step in motion (KinematicBodies)
+        } else if (r.immovable) {
             w.setTree(index, Tree::Static);
         } else if (r.body.getAwake()) {
             w.setTree(index, Tree::Awake);
@@ -249,7 +268,7 @@ void World::removeBody(BodyId id) {
     for (std::uint32_t p : r.pairs) {
         const detail::PairState &pair = w.contacts.pairs[p];
         const std::uint32_t other = pair.a == index ? pair.b : pair.a;
-        if (pair.touching() && !w.bodies[other].isStatic) w.wake(other);
+        if (pair.touching() && !w.bodies[other].immovable) w.wake(other);
     }
     w.contacts.removePairsOf(w.bodies, index);
     for (detail::SpringRecord &s : w.springs) {
@@ -258,7 +277,7 @@ void World::removeBody(BodyId id) {
         const bool onB = s.settings.b && *s.settings.b == id;
         if (!onA && !onB) continue;
         const BodyId other = onA ? s.settings.b.value_or(BodyId()) : s.settings.a;
-        if (contains(other) && !w.bodies[other.index].isStatic) w.wake(other.index);
+        if (contains(other) && !w.bodies[other.index].immovable) w.wake(other.index);
         s.alive = false;
         ++s.generation;
         w.springs.free.push_back(static_cast<std::uint32_t>(&s - w.springs.records.data()));
@@ -269,6 +288,12 @@ void World::removeBody(BodyId id) {
         for (std::uint32_t m : members)
             if (m != index) w.wake(m);
     }
+    if (r.kinematic) w.bodies.kinematic.erase(std::find(w.bodies.kinematic.begin(), w.bodies.kinematic.end(), index));
+    r.kinematic = false;
+    r.moving = false;
+    if (r.layer != 0 || r.collidesWith != kAllLayers) --w.bodies.filteredCount;
+    r.layer = 0;
+    r.collidesWith = kAllLayers;
     if (r.isPlane) w.bodies.planes.erase(std::find(w.bodies.planes.begin(), w.bodies.planes.end(), index));
     w.setTree(index, Tree::None);
     if (r.sleepingIsland >= 0) {
@@ -315,7 +340,14 @@ std::optional<BodyId> World::findBody(const std::string &name) const {
 const RigidBody &World::body(BodyId id) const { return impl_->bodies.record(id, "World::body").body; }
 const std::string &World::name(BodyId id) const { return impl_->bodies.record(id, "World::name").name; }
 const Shape &World::shape(BodyId id) const { return impl_->bodies.record(id, "World::shape").shape->shape(); }
-bool World::isStatic(BodyId id) const { return impl_->bodies.record(id, "World::isStatic").isStatic; }
+bool World::isStatic(BodyId id) const {
+    const detail::BodyRecord &r = impl_->bodies.record(id, "World::isStatic");
+    return r.immovable && !r.kinematic;
+}
+Motion World::motion(BodyId id) const {
+    const detail::BodyRecord &r = impl_->bodies.record(id, "World::motion");
+    return r.kinematic ? Motion::Kinematic : r.immovable ? Motion::Static : Motion::Dynamic;
+}
 const Material &World::material(BodyId id) const { return impl_->bodies.record(id, "World::material").material; }
 
 // --- Changing bodies --------------------------------------------------------------------
@@ -342,18 +374,44 @@ void World::setOrientation(BodyId id, const Quaternion &orientation) {
 
 void World::setVelocity(BodyId id, const Vector3 &velocity) {
     static const char *function = "World::setVelocity";
-    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::BodyRecord &r = impl_->bodies.movableRecord(id, function);
     detail::requireFinite(function, "velocity", velocity);
     impl_->wake(id.index);
     r.body.setVelocity(velocity);
+    if (r.kinematic && detail::movesAt(velocity, r.body.getRotation())) impl_->kinematicBodies.startMoving(*impl_, id.index);
 }
 
 void World::setRotation(BodyId id, const Vector3 &rotation) {
     static const char *function = "World::setRotation";
-    detail::BodyRecord &r = impl_->bodies.dynamicRecord(id, function);
+    detail::BodyRecord &r = impl_->bodies.movableRecord(id, function);
     detail::requireFinite(function, "rotation", rotation);
     impl_->wake(id.index);
     r.body.setRotation(rotation);
+    if (r.kinematic && detail::movesAt(r.body.getVelocity(), rotation)) impl_->kinematicBodies.startMoving(*impl_, id.index);
+}
+
+void World::moveKinematic(BodyId id, const Vector3 &targetPosition, const Quaternion &targetOrientation, real dt) {
+    static const char *function = "World::moveKinematic";
+    Impl &w = *impl_;
+    detail::BodyRecord &r = w.bodies.record(id, function);
+    if (!r.kinematic)
+        detail::refuse(function, "id", std::string("names a ") + (r.immovable ? "static" : "dynamic") +
+                                           " body; only kinematic bodies are moved to a pose");
+    detail::requirePlace(function, "targetPosition", targetPosition);
+    if (!targetOrientation.coeffs().allFinite()) detail::refuse(function, "targetOrientation", "must be finite");
+    if (!std::isfinite(dt) || !(dt > 0)) detail::refuse(function, "dt", "must be finite and > 0, got " + detail::show(dt));
+    const Quaternion target = targetOrientation.coeffs().isZero(0) ? Quaternion::Identity() : targetOrientation.normalized();
+    const Vector3 velocity = (targetPosition - r.body.getPosition()) / dt;
+    // The shorter turn from the current orientation to the target, as an angular velocity.
+    Quaternion turn = target * r.body.getOrientation().conjugate();
+    if (turn.w() < 0) turn.coeffs() = -turn.coeffs();
+    const Eigen::AngleAxis<real> axisAngle(turn);
+    const Vector3 rotation = axisAngle.angle() > 0 ? Vector3(axisAngle.axis() * (axisAngle.angle() / dt)) : Vector3::Zero();
+    if (!velocity.allFinite() || !rotation.allFinite())
+        detail::refuse(function, "dt", "gives a non-finite velocity, got " + detail::show(dt));
+    r.body.setVelocity(velocity);
+    r.body.setRotation(rotation);
+    if (detail::movesAt(velocity, rotation)) w.kinematicBodies.startMoving(w, id.index);
 }
 
 void World::applyImpulse(BodyId id, const Vector3 &impulse) {
@@ -430,6 +488,28 @@ void World::setCanSleep(BodyId id, bool canSleep) {
     r.body.setCanSleep(canSleep);
 }
 
+void World::setCollisionFilter(BodyId id, int layer, std::uint32_t collidesWith) {
+    static const char *function = "World::setCollisionFilter";
+    Impl &w = *impl_;
+    detail::BodyRecord &r = w.bodies.record(id, function);
+    if (layer < 0 || layer > 31) detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(layer));
+    const bool wasFiltered = r.layer != 0 || r.collidesWith != kAllLayers;
+    r.layer = layer;
+    r.collidesWith = collidesWith;
+    w.bodies.filteredCount += (r.layer != 0 || r.collidesWith != kAllLayers) - wasFiltered;
+    // Pairs the filter now forbids go; a body that lost a support, or may meet new ones,
+    // must be simulated to find out.
+    for (std::size_t k = r.pairs.size(); k-- > 0;) {
+        const std::uint32_t p = r.pairs[k];
+        const detail::PairState &pair = w.contacts.pairs[p];
+        const std::uint32_t other = pair.a == id.index ? pair.b : pair.a;
+        if (w.bodies.collide(pair.a, pair.b)) continue;
+        if (pair.touching() && !w.bodies[other].immovable) w.wake(other);
+        w.contacts.removePair(w.bodies, p);
+    }
+    if (!r.immovable) w.wake(id.index);
+}
+
 void World::setMaterial(BodyId id, const Material &material) {
     static const char *function = "World::setMaterial";
     detail::BodyRecord &r = impl_->bodies.record(id, function);
@@ -468,8 +548,8 @@ SpringId World::addSpring(const SpringSettings &s) {
     r.settings = s;
     r.alive = true;
     r.implicitForce.setZero();
-    if (!w.bodies[s.a.index].isStatic) w.wake(s.a.index);
-    if (s.b && !w.bodies[s.b->index].isStatic) w.wake(s.b->index);
+    if (!w.bodies[s.a.index].immovable) w.wake(s.a.index);
+    if (s.b && !w.bodies[s.b->index].immovable) w.wake(s.b->index);
     return {index, r.generation};
 }
 
@@ -483,8 +563,8 @@ void World::removeSpring(SpringId id) {
     r.alive = false;
     ++r.generation;
     w.springs.free.push_back(id.index);
-    if (contains(a) && !w.bodies[a.index].isStatic) w.wake(a.index);
-    if (b && contains(*b) && !w.bodies[b->index].isStatic) w.wake(b->index);
+    if (contains(a) && !w.bodies[a.index].immovable) w.wake(a.index);
+    if (b && contains(*b) && !w.bodies[b->index].immovable) w.wake(b->index);
 }
 
 // --- Stepping ---------------------------------------------------------------------------
@@ -502,7 +582,7 @@ real World::kineticEnergy() const {
     real twice = 0;
     for (std::uint32_t index : impl_->bodies.order) {
         const detail::BodyRecord &r = impl_->bodies[index];
-        if (!r.isStatic) twice += twiceKineticEnergy(r.body);
+        if (!r.immovable) twice += twiceKineticEnergy(r.body);
     }
     return twice / 2;
 }

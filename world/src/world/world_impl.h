@@ -14,6 +14,7 @@
 #include "dynamics/ccd.h"
 #include "dynamics/integration.h"
 #include "dynamics/islands.h"
+#include "dynamics/kinematic_bodies.h"
 #include "dynamics/springs.h"
 #include "solver/constraint_solver.h"
 #include "world/body_store.h"
@@ -32,6 +33,7 @@ struct WorldState {
     ContactManager contacts;
     ConstraintSolver solver;
     Integration integration;
+    KinematicBodies kinematicBodies;
     Islands islands;
     ContinuousCollision ccd;
     EventLog events;

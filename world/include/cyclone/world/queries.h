@@ -18,6 +18,10 @@ struct QueryFilter {
     bool staticBodies = true;
     /// Whether dynamic bodies, awake or asleep, are considered.
     bool dynamicBodies = true;
+    /// Whether kinematic bodies, moving or not, are considered.
+    bool kinematicBodies = true;
+    /// The layers considered, bit k for layer k (BodySettings::layer); every layer by default.
+    std::uint32_t layers = kAllLayers;
     /// A body to leave out, e.g. the player's own body when casting from its eyes (a
     /// handle that names no body of the world leaves nothing out).
     std::optional<BodyId> ignore;

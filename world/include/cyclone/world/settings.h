@@ -135,6 +135,22 @@ struct WorldSettings {
     int threads = 1;
 };
 
+/// A collision mask holding every layer.
+inline constexpr std::uint32_t kAllLayers = 0xffffffffu;
+
+/// How a body moves.
+enum class Motion {
+    /// Never moves: infinite mass, not integrated (scene files: "static").
+    Static,
+    /// Infinite mass, moved only by the velocity and angular velocity the game sets
+    /// (World::setVelocity, setRotation, moveKinematic); gravity, contacts and springs do
+    /// not move it, and it pushes and carries the dynamic bodies it touches. It never
+    /// sleeps while it moves (scene files: "kinematic").
+    Kinematic,
+    /// Moved by gravity, forces, springs and contacts (scene files: "dynamic").
+    Dynamic,
+};
+
 /// Surface properties of a body.
 struct Material {
     /// Coulomb friction coefficient, >= 0. A pair uses the geometric mean of its two.
@@ -161,7 +177,11 @@ struct BodySettings {
     std::string name;
     /// Collision shape, in the body's frame.
     Shape shape;
-    /// A static body never moves, has infinite mass and is not integrated.
+    /// How the body moves. Kinematic bodies ignore `mass`, `inertia`, the damping and
+    /// `canSleep`, and start with `velocity` and `rotation`.
+    Motion motion = Motion::Dynamic;
+    /// The older spelling of `motion = Motion::Static`: true with `motion` left Dynamic
+    /// means Static; true with `motion = Motion::Kinematic` is refused as contradictory.
     bool isStatic = false;
     /// Mass of a dynamic body, kg, finite, > 0.
     real mass = 1;
@@ -173,9 +193,9 @@ struct BodySettings {
     Vector3 position = Vector3::Zero();
     /// Orientation; normalised on add, (0,0,0,0) means identity.
     Quaternion orientation = Quaternion::Identity();
-    /// World-space linear velocity of a dynamic body, m/s, finite.
+    /// World-space linear velocity of a dynamic or kinematic body, m/s, finite.
     Vector3 velocity = Vector3::Zero();
-    /// World-space angular velocity of a dynamic body, rad/s, finite.
+    /// World-space angular velocity of a dynamic or kinematic body, rad/s, finite.
     Vector3 rotation = Vector3::Zero();
     /// Fraction of linear velocity kept after one second, [0, 1]; 1 means none.
     real linearDamping = 1;
@@ -190,7 +210,17 @@ struct BodySettings {
     bool awake = true;
     /// Continuous collision detection for this body (fast, thin things).
     bool ccd = false;
+    /// Collision layer, in [0, 31].
+    int layer = 0;
+    /// The layers this body collides with, bit k for layer k. Two bodies touch only when
+    /// each one's mask holds the other's layer. Every layer by default.
+    std::uint32_t collidesWith = kAllLayers;
 };
+
+/// The motion `settings` asks for: `motion`, or Static when the older `isStatic` is set.
+inline Motion motionOf(const BodySettings &settings) {
+    return settings.isStatic ? Motion::Static : settings.motion;
+}
 
 /// Handle of a body in a World. Stale handles (of removed bodies) are refused. A
 /// default-constructed BodyId names no body.

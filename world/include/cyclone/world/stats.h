@@ -37,7 +37,10 @@ struct StepStats {
     int bodies = 0;             ///< Bodies in the world (static and dynamic).
     int awakeBodies = 0;        ///< Dynamic bodies awake after the step.
     int integratedBodies = 0;   ///< Dynamic bodies integrated during the step.
+    int movingKinematicBodies = 0; ///< Kinematic bodies moved during the step.
     int broadphasePairs = 0;    ///< Overlapping AABB pairs found (including plane pairs).
+    int immovablePairsSkipped = 0; ///< Broadphase pairs of a moving kinematic body with a static or kinematic one, never tested.
+    int filteredPairs = 0;      ///< Broadphase pairs whose layers do not collide (BodySettings::layer, collidesWith), never tested.
     int pairsTested = 0;        ///< Pairs sent to the narrowphase (FCL or a test of its own).
     int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
     int manifolds = 0;          ///< Contact manifolds given to the solver.

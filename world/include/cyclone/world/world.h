@@ -63,8 +63,9 @@ public:
     // --- Bodies -------------------------------------------------------------------------
 
     /// Adds a body and returns its handle; throws InvalidArgument (nothing added) on a bad
-    /// shape, mass, inertia or number, a plane or mesh on a dynamic body, or a duplicate
-    /// non-empty name. A dynamic body added awake (the default) is simulated from the
+    /// shape, mass, inertia or number, a plane or mesh on a dynamic or kinematic body,
+    /// `isStatic` with Motion::Kinematic, or a duplicate non-empty name. A kinematic body
+    /// added with a velocity or rotation moves from the first step. A dynamic body added awake (the default) is simulated from the
     /// next step; one added with `awake = false` sleeps until something wakes it.
     BodyId addBody(const BodySettings &settings);
     /// Removes a body; the bodies touching it or joined to it by a spring wake, and so do
@@ -90,8 +91,10 @@ public:
     const std::string &name(BodyId id) const;
     /// The body's shape, in its own frame.
     const Shape &shape(BodyId id) const;
-    /// Whether the body is static.
+    /// Whether the body is static (Motion::Static).
     bool isStatic(BodyId id) const;
+    /// How the body moves.
+    Motion motion(BodyId id) const;
     /// The body's material.
     const Material &material(BodyId id) const;
 
@@ -104,11 +107,20 @@ public:
     /// Turns the body to `orientation` (finite; normalised; (0,0,0,0) means identity); a
     /// plane is refused. Wakes as setPosition() does.
     void setOrientation(BodyId id, const Quaternion &orientation);
-    /// Sets the linear velocity (m/s, finite) of a dynamic body. Wakes it and its island.
+    /// Sets the linear velocity (m/s, finite) of a dynamic body, which wakes it and its
+    /// island, or of a kinematic body, which keeps it until it is set again; a kinematic
+    /// body set in motion wakes the bodies touching it. A static body is refused.
     void setVelocity(BodyId id, const Vector3 &velocity);
-    /// Sets the angular velocity (rad/s, world axes, finite) of a dynamic body. Wakes it
-    /// and its island.
+    /// Sets the angular velocity (rad/s, world axes, finite) of a dynamic or kinematic
+    /// body, waking as setVelocity() does.
     void setRotation(BodyId id, const Vector3 &rotation);
+    /// Sets a kinematic body's velocity and rotation so that it reaches `targetPosition`
+    /// (m, finite) and `targetOrientation` (finite; normalised; (0,0,0,0) means identity)
+    /// after one step of `dt` seconds (finite, > 0; the dt the next step() is given),
+    /// turning the shorter way; it keeps them afterwards, so call it each step, or set
+    /// zero velocities to stop. Wakes as setVelocity() does. A static or dynamic body is
+    /// refused.
+    void moveKinematic(BodyId id, const Vector3 &targetPosition, const Quaternion &targetOrientation, real dt);
     /// Applies an impulse (N s, finite) at the centre of mass of a dynamic body: its
     /// velocity changes by impulse / mass at once. Wakes it and its island.
     void applyImpulse(BodyId id, const Vector3 &impulse);
@@ -129,6 +141,11 @@ public:
     void setAwake(BodyId id, bool awake);
     /// Allows or forbids sleep for a dynamic body; forbidding wakes it and its island.
     void setCanSleep(BodyId id, bool canSleep);
+    /// Puts the body on collision layer `layer` ([0, 31]) and makes it collide with the
+    /// layers of `collidesWith` (bit k for layer k); two bodies touch only when each one's
+    /// mask holds the other's layer. Contacts the new filter forbids end at once (reported
+    /// with the next step's events); the body and what it touched wake.
+    void setCollisionFilter(BodyId id, int layer, std::uint32_t collidesWith);
     /// Replaces the body's material (friction >= 0, restitution in [0, 1]). Wakes
     /// nothing: it acts at the body's next contact.
     void setMaterial(BodyId id, const Material &material);

@@ -1,0 +1,52 @@
+#include "dynamics/kinematic_bodies.h"
+
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+
+void KinematicBodies::beginStep(WorldState &world) {
+    BodyStore &bodies = world.bodies;
+    bodies.moving.clear();
+    for (std::uint32_t index : bodies.kinematic) {
+        BodyRecord &r = bodies[index];
+        const bool moving = !r.isolated && movesAt(r.body.getVelocity(), r.body.getRotation());
+        if (moving && !r.moving) startMoving(world, index);
+        if (!moving && r.moving) {
+            r.moving = false;
+            r.body.setAwake(false);  // its velocities are zero already
+            world.setTree(index, Tree::Static);
+        }
+        r.solverIndex = 0;
+        if (!moving) continue;
+        r.solverIndex = static_cast<int>(bodies.simulated.size() + bodies.moving.size()) + 1;
+        bodies.moving.push_back(index);
+    }
+}
+
+void KinematicBodies::startMoving(WorldState &world, std::uint32_t index) {
+    BodyRecord &r = world.bodies[index];
+    if (r.moving || r.isolated) return;
+    r.moving = true;
+    r.body.setAwake(true);
+    if (r.object) r.object->place(r.body.getTransform(), kBroadphaseMargin);
+    world.setTree(index, Tree::Awake);
+    // What rested on it must follow from the first step it moves.
+    for (std::uint32_t p : r.pairs) {
+        const PairState &pair = world.contacts.pairs[p];
+        const std::uint32_t other = pair.a == index ? pair.b : pair.a;
+        if (!world.bodies[other].immovable) world.wake(other);
+    }
+}
+
+void KinematicBodies::integrate(WorldState &world, real h) {
+    BodyStore &bodies = world.bodies;
+    for (std::uint32_t index : bodies.moving) {
+        RigidBody &body = bodies[index].body;
+        body.setPosition(body.getPosition() + h * body.getVelocity());
+        const Vector3 w = body.getRotation();
+        const real angle = w.norm() * h;
+        if (angle > 0) body.setOrientation(Quaternion(Eigen::AngleAxis<real>(angle, w.normalized())) * body.getOrientation());
+    }
+}
+
+}  // namespace cyclone::detail
