@@ -76,16 +76,13 @@ void validateSettings(const char *function, const WorldSettings &s) {
     requireNonNegative(function, "speculativeDistance", s.speculativeDistance);
     requireNonNegative(function, "manifoldReuseTolerance", s.manifoldReuseTolerance);
     const int integrator = static_cast<int>(s.integrator), solver = static_cast<int>(s.contactSolver);
-    if (integrator < 0 || integrator > static_cast<int>(Integrator::NewtonEulerImplicit))
-        refuse(function, "integrator", "is not an Integrator, got " + std::to_string(integrator));
     if (solver < 0 || solver > static_cast<int>(ContactSolverType::SplitImpulse))
         refuse(function, "contactSolver", "is not a ContactSolverType, got " + std::to_string(solver));
     if (s.threads < 1 || s.threads > 64)
         refuse(function, "threads", "must be in [1, 64], got " + std::to_string(s.threads));
     if (s.integrator != Integrator::NewtonEuler && s.integrator != Integrator::NewtonEulerGyroscopic &&
         s.integrator != Integrator::NewtonEulerImplicit && s.integrator != Integrator::MomentumConserving)
-        refuse(function, "integrator",
-               "must be an Integrator value, got " + std::to_string(static_cast<int>(s.integrator)));
+        refuse(function, "integrator", "is not an Integrator, got " + std::to_string(integrator));
     if (!(s.explicitSpringLimit > 0))
         refuse(function, "explicitSpringLimit", "must be > 0, got " + show(s.explicitSpringLimit));
 }
