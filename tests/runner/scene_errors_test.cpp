@@ -136,6 +136,10 @@ const ErrorCase kErrors[] = {
      "events[1].set_velocity", "was removed by events[0] at step 1"},
     {"RemovedTwice", TWO_BODIES(R"(, "events": [{"step": 4, "remove": "a"}, {"step": 4, "remove": "a"}])"),
      "events[1].remove", "was removed by events[0]"},
+    // Fields of the contract this engine does not build yet are refused, never run as something else.
+    {"SensorNotSupported", BODY(BOX R"(, "sensor": true)"), "bodies[0].sensor", "not supported"},
+    {"JointsNotSupported", TWO_BODIES(R"(, "joints": [{"type": "ball", "a": "a", "anchor": [0, 3, 0]}])"), "joints[0]",
+     "not supported"},
 };
 
 class SceneErrorClass : public ::testing::TestWithParam<ErrorCase> {};

@@ -57,8 +57,12 @@ TEST(SceneFields, FieldsOfAnotherKindAndFieldsOutOfPlace) {
 
 // Every field the contract names, of both versions, in one scene: no warning. The runner
 // does not act on motion, layers, sensors or joints yet; it must not call them typos.
+// Field names only: the loader refuses joints (and sensors) until the World has them,
+// but the table knows every field of the contract.
+std::vector<SceneWarning> fieldWarnings(const std::string &text) { return unknownFields(nlohmann::json::parse(text)); }
+
 TEST(SceneFields, EveryFieldOfTheContractIsKnown) {
-    const auto warnings = warningsOf(R"({"name": "all",
+    const auto warnings = fieldWarnings(R"({"name": "all",
         "settings": {"gravity": [0, -9.81, 0], "dt": 0.01, "steps": 5, "velocity_iterations": 4,
                      "position_iterations": 1, "substeps": 2, "sleep": true, "sleep_epsilon": 0.01,
                      "integrator": "newton-euler"},
@@ -88,7 +92,7 @@ TEST(SceneFields, EveryFieldOfTheContractIsKnown) {
                    {"step": 2, "set_position": "s", "position": [3, 2, 0]},
                    {"step": 2, "apply_impulse": "c", "impulse": [0, 1, 0], "point": [6, 1, 0]},
                    {"step": 3, "set_awake": "c", "awake": false}]})");
-    EXPECT_TRUE(warnings.empty()) << warnings.size() << " warnings, the first " << warnings.front().first;
+    EXPECT_TRUE(warnings.empty()) << warnings.size() << " warnings, the first " << warnings.front().path;
 }
 
 TEST(SceneFields, CompoundChildrenAreChecked) {
