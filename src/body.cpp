@@ -1,62 +1,26 @@
 #include "cyclone/body.h"
 
+#include "cyclone/detail/validation.h"
+
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <cmath>
 #include <limits>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 
 namespace cyclone {
 namespace {
 
-[[noreturn]] void refuse(const char *function, const std::string &what) {
-    throw std::invalid_argument(std::string("RigidBody::") + function + ": " + what);
-}
-
-std::string str(real value) {
-    std::ostringstream out;
-    out.precision(17);
-    out << value;
-    return out.str();
-}
-
-std::string str(const Vector3 &v) {
-    return "(" + str(v.x()) + ", " + str(v.y()) + ", " + str(v.z()) + ")";
-}
-
-void requireFinite(const char *function, const char *field, const Vector3 &v) {
-    if (!v.allFinite()) refuse(function, std::string(field) + " must be finite, got " + str(v));
-}
-
-std::string str(const Matrix3 &m) {
-    std::ostringstream shown;
-    shown.precision(17);
-    shown << "[" << m.row(0) << "; " << m.row(1) << "; " << m.row(2) << "]";
-    return shown.str();
-}
-
-void requireUnitInterval(const char *function, const char *field, real value) {
-    if (!(value >= 0 && value <= 1))
-        refuse(function, std::string(field) + " must be in [0, 1], got " + str(value));
-}
-
-// An inertia tensor or its inverse must be a finite, symmetric, positive definite matrix.
-void requireSymmetricPositiveDefinite(const char *function, const char *field, const Matrix3 &m) {
-    if (!m.allFinite()) refuse(function, std::string(field) + " must be finite, got " + str(m));
-    const real scale = m.cwiseAbs().maxCoeff();
-    if ((m - m.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
-        refuse(function, std::string(field) + " must be symmetric, got " + str(m));
-    const Eigen::LDLT<Matrix3> ldlt(m);
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.vectorD().minCoeff() > 0))
-        refuse(function, std::string(field) + " must be positive definite, got " + str(m));
-}
+using detail::refuse;
+using detail::requireFinite;
+using detail::requireNonNegative;
+using detail::requirePositive;
+using detail::requireSymmetricPositiveDefinite;
+using detail::requireUnit;
+using detail::show;
 
 Quaternion normalisedOrientation(const char *function, const Quaternion &q) {
-    if (!q.coeffs().allFinite())
-        refuse(function, "orientation must be finite, got (" + str(q.w()) + ", " + str(q.x()) + ", " +
-                             str(q.y()) + ", " + str(q.z()) + ")");
+    requireFinite(function, "orientation", q);
     // stableNorm, not norm: the squared norm overflows for components near 1e155 and
     // underflows near 1e-155, which would turn a valid rotation into zero or identity.
     const real norm = q.coeffs().stableNorm();
@@ -114,8 +78,7 @@ void RigidBody::calculateDerivedData() {
 void RigidBody::integrate(real duration) { integrate(duration, true); }
 
 void RigidBody::integrate(real duration, bool mayFallAsleep) {
-    if (!std::isfinite(duration) || duration < 0)
-        refuse("integrate", "duration must be finite and >= 0, got " + str(duration));
+    requireNonNegative("RigidBody::integrate", "duration", duration);
     if (!isAwake || duration == 0) return;
 
     applyGyroscopicStep(gyroscopicStep, duration);
@@ -163,8 +126,7 @@ void RigidBody::integrate(real duration, bool mayFallAsleep) {
 }
 
 void RigidBody::getDampingFactors(real duration, real *linear, real *angular) const {
-    if (!std::isfinite(duration) || duration < 0)
-        refuse("getDampingFactors", "duration must be finite and >= 0, got " + str(duration));
+    requireNonNegative("RigidBody::getDampingFactors", "duration", duration);
     const StepFactors &factors = stepFactors(duration);
     *linear = factors.linear;
     *angular = factors.angular;
@@ -260,15 +222,13 @@ Quaternion cayley(const Vector3 &v) {
 
 void RigidBody::setRotationStep(RotationStep step) {
     if (step != RotationStep::Seed && step != RotationStep::MomentumConserving)
-        throw InvalidArgument("RigidBody::setRotationStep", "step",
-                              "must be Seed or MomentumConserving, got " + std::to_string(static_cast<int>(step)));
+        refuse("RigidBody::setRotationStep", "step",
+               "must be Seed or MomentumConserving, got " + std::to_string(static_cast<int>(step)));
     rotationStep = step;
 }
 
 void RigidBody::applyTorqueFreeRotation(real duration) {
-    if (!std::isfinite(duration) || duration < 0)
-        throw InvalidArgument("RigidBody::applyTorqueFreeRotation", "duration",
-                              "must be finite and >= 0, got " + str(duration));
+    requireNonNegative("RigidBody::applyTorqueFreeRotation", "duration", duration);
     if (!isAwake || duration == 0) return;
 
     const Matrix3 toWorld = orientation.toRotationMatrix();
@@ -311,7 +271,7 @@ void RigidBody::applyTorqueFreeRotation(real duration) {
 
 void RigidBody::setGyroscopicStep(GyroscopicStep step) {
     if (!knownStep(step))
-        throw InvalidArgument("RigidBody::setGyroscopicStep", "step",
+        refuse("RigidBody::setGyroscopicStep", "step",
                               "must be None, BackwardEuler or Midpoint, got " + std::to_string(static_cast<int>(step)));
     gyroscopicStep = step;
 }
@@ -319,10 +279,9 @@ void RigidBody::setGyroscopicStep(GyroscopicStep step) {
 void RigidBody::applyGyroscopicStep(GyroscopicStep step, real duration) {
     static const char *function = "RigidBody::applyGyroscopicStep";
     if (!knownStep(step))
-        throw InvalidArgument(function, "step",
-                              "must be None, BackwardEuler or Midpoint, got " + std::to_string(static_cast<int>(step)));
-    if (!std::isfinite(duration) || duration < 0)
-        throw InvalidArgument(function, "duration", "must be finite and >= 0, got " + str(duration));
+        refuse(function, "step",
+               "must be None, BackwardEuler or Midpoint, got " + std::to_string(static_cast<int>(step)));
+    requireNonNegative(function, "duration", duration);
     if (step == GyroscopicStep::None || !isAwake || duration == 0 || hasIsotropicInertia()) return;
 
     const Matrix3 toWorld = orientation.toRotationMatrix();
@@ -340,9 +299,9 @@ void RigidBody::applyGyroscopicStep(GyroscopicStep step, real duration) {
 }
 
 void RigidBody::setMass(const real mass) {
-    if (!std::isfinite(mass) || !(mass > 0)) refuse("setMass", "mass must be finite and > 0, got " + str(mass));
+    requirePositive("RigidBody::setMass", "mass", mass);
     // Below about 5.6e-309 kg the inverse overflows, and the next force would be NaN.
-    if (!std::isfinite(1 / mass)) refuse("setMass", "mass is too small to invert, got " + str(mass));
+    if (!std::isfinite(1 / mass)) refuse("RigidBody::setMass", "mass", "is too small to invert, got " + show(mass));
     inverseMass = 1 / mass;
 }
 
@@ -352,8 +311,7 @@ real RigidBody::getMass() const {
 }
 
 void RigidBody::setInverseMass(const real newInverseMass) {
-    if (!std::isfinite(newInverseMass) || !(newInverseMass >= 0))
-        refuse("setInverseMass", "inverseMass must be finite and >= 0, got " + str(newInverseMass));
+    requireNonNegative("RigidBody::setInverseMass", "inverseMass", newInverseMass);
     inverseMass = newInverseMass;
 }
 
@@ -362,11 +320,11 @@ real RigidBody::getInverseMass() const { return inverseMass; }
 bool RigidBody::hasFiniteMass() const { return inverseMass > 0; }
 
 void RigidBody::setInertiaTensor(const Matrix3 &inertiaTensor) {
-    requireSymmetricPositiveDefinite("setInertiaTensor", "inertiaTensor", inertiaTensor);
+    requireSymmetricPositiveDefinite("RigidBody::setInertiaTensor", "inertiaTensor", inertiaTensor);
     const Matrix3 inverse = inertiaTensor.inverse();
     if (!inverse.allFinite())
-        refuse("setInertiaTensor", "inertiaTensor has no finite inverse in double precision, got " +
-                                       str(inertiaTensor));
+        refuse("RigidBody::setInertiaTensor", "inertiaTensor",
+               "has no finite inverse in double precision, got " + show(inertiaTensor));
     inverseInertiaTensor = 0.5 * (inverse + inverse.transpose());
     calculateDerivedData();
 }
@@ -380,7 +338,7 @@ void RigidBody::getInertiaTensorWorld(Matrix3 *inertiaTensor) const { *inertiaTe
 Matrix3 RigidBody::getInertiaTensorWorld() const { return inverseInertiaTensorWorld.inverse(); }
 
 void RigidBody::setInverseInertiaTensor(const Matrix3 &inverseInertiaTensor_) {
-    requireSymmetricPositiveDefinite("setInverseInertiaTensor", "inverseInertiaTensor", inverseInertiaTensor_);
+    requireSymmetricPositiveDefinite("RigidBody::setInverseInertiaTensor", "inverseInertiaTensor", inverseInertiaTensor_);
     inverseInertiaTensor = inverseInertiaTensor_;
     calculateDerivedData();
 }
@@ -398,28 +356,28 @@ void RigidBody::getInverseInertiaTensorWorld(Matrix3 *inverseInertiaTensor_) con
 Matrix3 RigidBody::getInverseInertiaTensorWorld() const { return inverseInertiaTensorWorld; }
 
 void RigidBody::setDamping(const real linear, const real angular) {
-    requireUnitInterval("setDamping", "linearDamping", linear);
-    requireUnitInterval("setDamping", "angularDamping", angular);
+    requireUnit("RigidBody::setDamping", "linearDamping", linear);
+    requireUnit("RigidBody::setDamping", "angularDamping", angular);
     linearDamping = linear;
     angularDamping = angular;
 }
 
 void RigidBody::setLinearDamping(const real linear) {
-    requireUnitInterval("setLinearDamping", "linearDamping", linear);
+    requireUnit("RigidBody::setLinearDamping", "linearDamping", linear);
     linearDamping = linear;
 }
 
 real RigidBody::getLinearDamping() const { return linearDamping; }
 
 void RigidBody::setAngularDamping(const real angular) {
-    requireUnitInterval("setAngularDamping", "angularDamping", angular);
+    requireUnit("RigidBody::setAngularDamping", "angularDamping", angular);
     angularDamping = angular;
 }
 
 real RigidBody::getAngularDamping() const { return angularDamping; }
 
 void RigidBody::setPosition(const Vector3 &newPosition) {
-    requireFinite("setPosition", "position", newPosition);
+    requireFinite("RigidBody::setPosition", "position", newPosition);
     position = newPosition;
     // The rotation and world inertia depend on the orientation only: they are current.
     transformMatrix.translation() = position;
@@ -430,7 +388,7 @@ void RigidBody::setPosition(const real x, const real y, const real z) { setPosit
 void RigidBody::getPosition(Vector3 *out) const { *out = position; }
 
 void RigidBody::setOrientation(const Quaternion &newOrientation) {
-    orientation = normalisedOrientation("setOrientation", newOrientation);
+    orientation = normalisedOrientation("RigidBody::setOrientation", newOrientation);
     calculateDerivedData();
 }
 
@@ -474,7 +432,7 @@ Vector3 RigidBody::getDirectionInWorldSpace(const Vector3 &direction) const {
 }
 
 void RigidBody::setVelocity(const Vector3 &newVelocity) {
-    requireFinite("setVelocity", "velocity", newVelocity);
+    requireFinite("RigidBody::setVelocity", "velocity", newVelocity);
     velocity = newVelocity;
 }
 
@@ -485,12 +443,12 @@ void RigidBody::getVelocity(Vector3 *out) const { *out = velocity; }
 Vector3 RigidBody::getVelocity() const { return velocity; }
 
 void RigidBody::addVelocity(const Vector3 &deltaVelocity) {
-    requireFinite("addVelocity", "deltaVelocity", deltaVelocity);
+    requireFinite("RigidBody::addVelocity", "deltaVelocity", deltaVelocity);
     velocity += deltaVelocity;
 }
 
 void RigidBody::setRotation(const Vector3 &newRotation) {
-    requireFinite("setRotation", "rotation", newRotation);
+    requireFinite("RigidBody::setRotation", "rotation", newRotation);
     rotation = newRotation;
 }
 
@@ -501,7 +459,7 @@ void RigidBody::getRotation(Vector3 *out) const { *out = rotation; }
 Vector3 RigidBody::getRotation() const { return rotation; }
 
 void RigidBody::addRotation(const Vector3 &deltaRotation) {
-    requireFinite("addRotation", "deltaRotation", deltaRotation);
+    requireFinite("RigidBody::addRotation", "deltaRotation", deltaRotation);
     rotation += deltaRotation;
 }
 
@@ -522,14 +480,13 @@ void RigidBody::setCanSleep(const bool newCanSleep) {
 }
 
 void RigidBody::setSleepEpsilon(const real newSleepEpsilon) {
-    if (!std::isfinite(newSleepEpsilon) || !(newSleepEpsilon > 0))
-        refuse("setSleepEpsilon", "sleepEpsilon must be finite and > 0, got " + str(newSleepEpsilon));
+    requirePositive("RigidBody::setSleepEpsilon", "sleepEpsilon", newSleepEpsilon);
     sleepEpsilon = newSleepEpsilon;
 }
 
 void RigidBody::setMovingMotionCap(const real cap) {
     if (!std::isfinite(cap) || !(cap >= 1 && cap <= 10))
-        refuse("setMovingMotionCap", "cap must be finite and in [1, 10], got " + str(cap));
+        refuse("RigidBody::setMovingMotionCap", "cap", "must be finite and in [1, 10], got " + show(cap));
     movingMotionCap = cap;
 }
 
@@ -545,33 +502,33 @@ void RigidBody::clearAccumulators() {
 }
 
 void RigidBody::addForce(const Vector3 &force) {
-    requireFinite("addForce", "force", force);
+    requireFinite("RigidBody::addForce", "force", force);
     forceAccum += force;
     if (!isAwake) setAwake(true);
 }
 
 void RigidBody::addForceAtPoint(const Vector3 &force, const Vector3 &point) {
-    requireFinite("addForceAtPoint", "force", force);
-    requireFinite("addForceAtPoint", "point", point);
+    requireFinite("RigidBody::addForceAtPoint", "force", force);
+    requireFinite("RigidBody::addForceAtPoint", "point", point);
     forceAccum += force;
     torqueAccum += (point - position).cross(force);
     if (!isAwake) setAwake(true);
 }
 
 void RigidBody::addForceAtBodyPoint(const Vector3 &force, const Vector3 &point) {
-    requireFinite("addForceAtBodyPoint", "force", force);
-    requireFinite("addForceAtBodyPoint", "point", point);
+    requireFinite("RigidBody::addForceAtBodyPoint", "force", force);
+    requireFinite("RigidBody::addForceAtBodyPoint", "point", point);
     addForceAtPoint(force, getPointInWorldSpace(point));
 }
 
 void RigidBody::addTorque(const Vector3 &torque) {
-    requireFinite("addTorque", "torque", torque);
+    requireFinite("RigidBody::addTorque", "torque", torque);
     torqueAccum += torque;
     if (!isAwake) setAwake(true);
 }
 
 void RigidBody::setAcceleration(const Vector3 &newAcceleration) {
-    requireFinite("setAcceleration", "acceleration", newAcceleration);
+    requireFinite("RigidBody::setAcceleration", "acceleration", newAcceleration);
     acceleration = newAcceleration;
 }
 
