@@ -26,6 +26,15 @@ real stepReach(const BodyRecord &r, real dt) {
     return (body.getVelocity().norm() + body.getRotation().norm() * r.boundingRadius) * dt;
 }
 
+// How far any point of A can move relative to any point of B in a step of dt, m: two
+// bodies falling together reach nothing of each other.
+real relativeReach(const BodyRecord &a, const BodyRecord &b, real dt) {
+    const RigidBody &ba = a.body;
+    const RigidBody &bb = b.body;
+    const real turning = ba.getRotation().norm() * a.boundingRadius + bb.getRotation().norm() * b.boundingRadius;
+    return ((ba.getVelocity() - bb.getVelocity()).norm() + turning) * dt;
+}
+
 // How far A and B can close in on each other along `normal` (A to B) within dt, m.
 real closing(const BodyRecord &a, const BodyRecord &b, const Vector3 &normal, real dt) {
     const RigidBody &ba = a.body;
@@ -202,7 +211,7 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
     fresh_.clear();
     NarrowphaseSettings narrowphase;
     narrowphase.speculativeDistance = settings.speculativeDistance;
-    const real reach = stepReach(a, dt) + stepReach(b, dt);
+    const real reach = relativeReach(a, b, dt);
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     int n = collide(*a.shape, poseA, *b.shape, poseB, narrowphase, fresh_);
     if (narrowphase.reach > 0 && n > 0) {
