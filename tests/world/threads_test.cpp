@@ -95,6 +95,9 @@ TEST(Threads, ChangingTheCountBetweenStepsChangesNothing) {
     const int counts[] = {2, 1, 4, 2};
     for (int i = 0; i < 160; ++i) {
         if (i % 40 == 0) {
+            // setSettings wakes every body: the fixed scene gets the same call, with its
+            // thread count unchanged, so that only the count differs.
+            fixed.world->setSettings(fixed.world->settings());
             WorldSettings settings = changed.world->settings();
             settings.threads = counts[i / 40];
             changed.world->setSettings(settings);

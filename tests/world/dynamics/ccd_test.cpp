@@ -87,10 +87,21 @@ Shot shoot(const Shape &mover, const BodySettings &wall, bool ccd, real speed = 
     return shot;
 }
 
-// Without ccd the 0.1 m wall is missed: 3.3 m per step jumps it.
-TEST(ContinuousCollision, WithoutItAFastBodyTunnels) {
-    const Shot shot = shoot(Shape::sphere(0.05), staticBody(Shape::box(Vector3(0.05, 2, 2))), false);
+// Without ccd a one-sided mesh wall is missed: 3.3 m per step jumps it (meshes get no
+// speculative contacts).
+TEST(ContinuousCollision, WithoutItAFastBodyTunnelsThroughAMesh) {
+    const std::vector<Vector3> face{{-0.05, -2, -2}, {-0.05, 2, -2}, {-0.05, 2, 2}, {-0.05, -2, 2}};
+    const Shot shot = shoot(Shape::sphere(0.05), staticBody(Shape::mesh(face, {{0, 2, 1}, {0, 3, 2}})), false);
     EXPECT_GT(shot.finalX, 1);
+    EXPECT_EQ(shot.sweeps, 0);
+}
+
+// Without ccd a solid wall stops it all the same: its box grown by the step's reach
+// finds the wall and the speculative contact holds it on the near side.
+TEST(ContinuousCollision, WithoutItSpeculativeContactsStopAFastBody) {
+    const Shot shot = shoot(Shape::sphere(0.05), staticBody(Shape::box(Vector3(0.05, 2, 2))), false);
+    EXPECT_LT(shot.finalX, -0.1 + 0.002);
+    EXPECT_LT(shot.finalVelocityX, 0.01);
     EXPECT_EQ(shot.sweeps, 0);
 }
 
@@ -118,7 +129,11 @@ TEST(ContinuousCollision, NoShapeTunnelsThroughAnyObstacle) {
         for (const auto &[moverName, mover] : movers()) {
             const Shot shot = shoot(mover, w, true, 200, inside);
             EXPECT_FALSE(shot.entered) << moverName << " into " << wallName;
-            EXPECT_GE(shot.hits, 1) << moverName << " against " << wallName;
+            // Solid obstacles stop the movers by speculative contacts before a sweep
+            // finds anything; a mesh has none and needs the sweep.
+            if (wall.type == ShapeType::Mesh) {
+                EXPECT_GE(shot.hits, 1) << moverName << " against " << wallName;
+            }
             if (!flat) continue;
             EXPECT_LT(shot.finalX, -0.1 + 0.002) << moverName << " against " << wallName;
             EXPECT_LT(shot.finalVelocityX, 0.01) << moverName << " against " << wallName;

@@ -34,7 +34,7 @@ constexpr real kParallelEdgeSine = 1e-6;
 }  // namespace
 
 bool boxBoxAxis(const Vector3 &halfA, const Matrix4 &poseA, const Vector3 &halfB, const Matrix4 &poseB,
-                Vector3 &normal, real &overlap) {
+                Vector3 &normal, real &overlap, real reach) {
     const Matrix3 rotationA = poseA.linear();
     // B's axes and centre in A's frame.
     const Matrix3 r = rotationA.transpose() * poseB.linear();
@@ -53,7 +53,7 @@ bool boxBoxAxis(const Vector3 &halfA, const Matrix4 &poseA, const Vector3 &halfB
             bestOverlap = o;
             found = true;
         }
-        return o >= 0;
+        return o >= -reach;
     };
     for (int i = 0; i < 3; ++i)
         if (!face(Vector3::Unit(i), halfA[i] + halfB.dot(absR.row(i).transpose()), t[i])) return false;
@@ -72,7 +72,7 @@ bool boxBoxAxis(const Vector3 &halfA, const Matrix4 &poseA, const Vector3 &halfB
             const real radii = halfA.dot(axis.cwiseAbs()) + halfB.dot((r.transpose() * axis).cwiseAbs());
             const real offset = t.dot(axis);
             const real o = radii - std::abs(offset);
-            if (!(o >= 0)) return false;
+            if (!(o >= -reach)) return false;
             if (o < edgeLimit && o < bestOverlap) {
                 best = offset >= 0 ? axis : Vector3(-axis);
                 bestOverlap = o;

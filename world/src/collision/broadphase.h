@@ -31,15 +31,17 @@ class BodyObject : public fcl::CollisionObjectd {
 public:
     using fcl::CollisionObjectd::CollisionObjectd;
 
-    /// Places the object at `pose` and refreshes its fat box; true when the tight box
-    /// left the fat one (the tree must then be updated).
-    bool place(const fcl::Transform3d &pose, double margin) {
+    /// Places the object at `pose` and refreshes its fat box; true when the tight box,
+    /// grown by `reach` (how far the body can move before the next refit, m), left the fat
+    /// one (the tree must then be updated).
+    bool place(const fcl::Transform3d &pose, double margin, double reach = 0) {
         setTransform(pose);
         // FCL's computeAABB bounds a rotated shape by its bounding sphere (a rotated unit
         // box gets a 1.73 m box); the rotated local box is much tighter.
         const fcl::AABBd &local = collisionGeometry()->aabb_local;
         const fcl::Vector3d centre = pose * boxCentre(local);
-        const fcl::Vector3d half = pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_));
+        const fcl::Vector3d half =
+            pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) + fcl::Vector3d::Constant(reach);
         aabb.min_ = centre - half;
         aabb.max_ = centre + half;
         if (boxContains(fat_, aabb)) {

@@ -27,6 +27,11 @@ struct Manifold {
 struct NarrowphaseSettings {
     /// Clipped points up to this far apart are kept (speculative contact), m, >= 0.
     real speculativeDistance = 0.02;
+    /// Shapes apart by less than this still get a manifold, its points' depths down to
+    /// -reach (a speculative contact: the solver lets them close the gap and no more), m,
+    /// >= 0. 0: only shapes that overlap or touch. Meshes get none (continuous collision
+    /// covers them).
+    real reach = 0;
     /// Test every pair with FCL, even the pairs that have a test of their own (box-box,
     /// sphere-sphere, sphere-box, a plane against any solid shape); for comparing the two.
     bool forceFcl = false;

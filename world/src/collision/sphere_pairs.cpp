@@ -23,17 +23,19 @@ void onePoint(const Vector3 &normal, const Vector3 &pointA, const Vector3 &point
 
 }  // namespace
 
-bool sphereSphere(real radiusA, const Vector3 &centreA, real radiusB, const Vector3 &centreB, Manifold &out) {
+bool sphereSphere(real radiusA, const Vector3 &centreA, real radiusB, const Vector3 &centreB, Manifold &out,
+                  real reach) {
     const Vector3 offset = centreB - centreA;
     const real distance = offset.norm();
     const real depth = radiusA + radiusB - distance;
-    if (!(depth >= 0) || !(distance > kMinCentreDistance)) return false;
+    if (!(depth >= -reach) || !(distance > kMinCentreDistance)) return false;
     const Vector3 n = offset / distance;
     onePoint(n, centreA + radiusA * n, centreB - radiusB * n, depth, out);
     return true;
 }
 
-bool sphereBox(real radius, const Vector3 &centre, const Vector3 &half, const Matrix4 &poseB, Manifold &out) {
+bool sphereBox(real radius, const Vector3 &centre, const Vector3 &half, const Matrix4 &poseB, Manifold &out,
+               real reach) {
     const Matrix3 rotation = poseB.linear();
     const Vector3 local = rotation.transpose() * (centre - poseB.translation());
     const Vector3 nearest = local.cwiseMax(-half).cwiseMin(half);
@@ -42,7 +44,7 @@ bool sphereBox(real radius, const Vector3 &centre, const Vector3 &half, const Ma
     if (distance > 0) {
         // Centre outside the box: the normal runs from the centre to the nearest point.
         const real depth = radius - distance;
-        if (!(depth >= 0)) return false;
+        if (!(depth >= -reach)) return false;
         const Vector3 n = rotation * (toBox / distance);
         onePoint(n, centre + radius * n, rotation * nearest + poseB.translation(), depth, out);
         return true;

@@ -29,12 +29,14 @@ public:
     /// Pairs touching after this step's narrowphase, in the broadphase's order.
     std::vector<std::uint32_t> touchingPairs;
 
-    /// The broadphase stage: refits the awake bodies' boxes and lists the candidate pairs
-    /// (planes tested apart).
-    void findCandidates(WorldState &world);
-    /// The narrowphase stage: each candidate's manifolds, kept or made anew; wakes
-    /// sleeping bodies a new contact touches; drops the pairs that separated.
-    void updateContacts(WorldState &world);
+    /// The broadphase stage: refits the awake bodies' boxes, each grown by how far the
+    /// body can move in the step of `dt` s, and lists the candidate pairs (planes tested
+    /// apart).
+    void findCandidates(WorldState &world, real dt);
+    /// The narrowphase stage: each candidate's manifolds, kept or made anew (speculative
+    /// ones for shapes apart that can meet within `dt`); wakes sleeping bodies a new
+    /// contact touches; drops the pairs that separated.
+    void updateContacts(WorldState &world, real dt);
     /// Records the contacts that began or ended since the last call in the step's events.
     void reportContactEvents(WorldState &world);
 
@@ -53,7 +55,7 @@ private:
     /// relative to each other since it was last tested; false: it must be tested.
     bool reuseManifolds(const WorldState &world, std::uint32_t p);
     /// Runs the narrowphase on pair p and merges what it finds into the pair's manifolds.
-    void testPair(WorldState &world, std::uint32_t p);
+    void testPair(WorldState &world, std::uint32_t p, real dt);
 
     static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::uint64_t anchorsIssued_ = 0;

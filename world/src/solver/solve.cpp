@@ -85,6 +85,11 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
             p.velocityBias = 0;
             if (p.depth < 0) {
                 p.velocityBias = p.depth * inverseH;  // apart: may close the gap during this sub-step, no more
+                // A speculative contact that closes its gap within this sub-step at a
+                // speed that bounces: the bounce, as if it had touched.
+                if (m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold &&
+                    -p.approachSpeed * h >= -p.depth)
+                    p.velocityBias = -m.restitution * p.approachSpeed;
             } else if (firstSubstep && m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold) {
                 p.velocityBias = -m.restitution * p.approachSpeed;
             }

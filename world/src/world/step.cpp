@@ -17,8 +17,8 @@ void WorldState::step(real dt) {
         integration.beginStep(*this, dt);
         kinematicBodies.beginStep(*this);
     }
-    { const StageTimer t(ms.broadphase); contacts.findCandidates(*this); }
-    { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this); }
+    { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
+    { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
     { const StageTimer t(ms.manifolds); solver.build(*this); }
     { const StageTimer t(ms.islands); islands.build(*this); }

@@ -21,9 +21,10 @@ struct ContactBegin {
     Vector3 point = Vector3::Zero();
     /// Unit contact normal, world space, pointing from `a` towards `b`.
     Vector3 normal = Vector3::UnitY();
-    /// Penetration of the deepest contact point, m: > 0 overlapping, 0 touching, a small
-    /// negative value (down to -WorldSettings::speculativeDistance) for a point kept just
-    /// apart.
+    /// Penetration of the deepest contact point, m: > 0 overlapping, 0 touching, < 0 for
+    /// bodies still apart: a speculative contact, made in the step in which the bodies,
+    /// at their speeds, can close the gap (down to minus the distance they cover in the
+    /// step), or a point kept just apart (down to -WorldSettings::speculativeDistance).
     real depth = 0;
     /// Speed at which the two bodies approached each other along `normal` at `point`
     /// when the contact was found, before the solver acted, m/s: > 0 approaching, < 0

@@ -110,7 +110,10 @@ struct WorldSettings {
     /// Approach speed below which restitution is ignored, m/s, >= 0.
     real restitutionThreshold = 1.0;
     /// Contact points up to this far apart are kept, so a tilting face keeps its
-    /// support without a contact appearing suddenly, m, >= 0.
+    /// support without a contact appearing suddenly, m, >= 0. Bodies that move also get
+    /// speculative contacts with what they can reach within the step at their speeds
+    /// (whatever this distance), so that a landing body stops at the surface in the step
+    /// of the impact; meshes get none (BodySettings::ccd covers them).
     real speculativeDistance = 0.02;
     /// A touching pair whose bodies moved less than this relative to each other since its
     /// last narrowphase keeps its manifold (depths refreshed from the anchors), and a
