@@ -15,6 +15,9 @@ namespace cyclone::detail {
 namespace {
 
 constexpr int kMaxSteps = 64;
+// A shape touching a surface at the start and moving within this sine of parallel to it
+// slides along it.
+constexpr real kSlideSine = 1e-3;
 
 Matrix4 moved(const Matrix4 &start, const Vector3 &translation, real t) {
     Matrix4 pose = start;
@@ -52,9 +55,14 @@ bool castConvex(const CollisionShape &moving, const Matrix4 &start, const Vector
         }
         const real gap = between.norm();
         normal = between / gap;
-        if (gap <= kShapeCastTolerance) break;
         const real speed = translation.dot(normal);
         if (!(speed > 0)) return false;  // parting or sliding past: never closer
+        if (gap <= kShapeCastTolerance) {
+            // Touching at the start: sliding along the surface (within the GJK normal's
+            // noise, 1e-3 rad) is not a hit.
+            if (step == 0 && speed <= kSlideSine * translation.norm()) return false;
+            break;
+        }
         t += (gap - kShapeCastTolerance / 2) / speed;
         if (t > limit) return false;
     }
