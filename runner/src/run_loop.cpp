@@ -109,7 +109,7 @@ void applyEvent(World &world, BodyId id, const SceneEvent &event) {
     case EventKind::Remove: world.removeBody(id); break;
     case EventKind::SetVelocity: world.setVelocity(id, event.value); break;
     case EventKind::SetRotation: world.setRotation(id, event.value); break;
-    case EventKind::SetPosition: world.setPosition(id, event.value); break;
+    case EventKind::SetPosition: world.setFramePosition(id, event.value); break;
     case EventKind::ApplyImpulse:
         if (event.point) {
             world.applyImpulse(id, event.value, *event.point);
@@ -202,7 +202,8 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
             for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
                 const BodyId id = built.ids[i];
                 if (present[i] && !world.isStatic(id)) {
-                    options.trace->write(step, time, scene.bodies[i].settings.name, world.body(id));
+                    options.trace->write(step, time, scene.bodies[i].settings.name, world.body(id),
+                                         world.framePosition(id) - world.body(id).getPosition());
                 }
             }
         }

@@ -285,9 +285,36 @@ Shape readShape(const json &value, const std::string &path, bool isStatic) {
                 shape.triangles.push_back(indices);
             }
         }
+    } else if (type == "compound") {
+        shape.type = ShapeType::Compound;
+        const std::string childrenPath = memberPath(path, "children");
+        const json &children = required(value, path, "children");
+        expectArray(children, childrenPath, kMaxShapePoints);
+        if (children.empty()) fail(childrenPath, "needs at least 1 child");
+        for (std::size_t i = 0; i < children.size(); ++i) {
+            const std::string childPath = elementPath(childrenPath, i);
+            const json &child = children[i];
+            expectObject(child, childPath);
+            CompoundChild part;
+            const std::string shapePath = memberPath(childPath, "shape");
+            const json &childShape = required(child, childPath, "shape");
+            expectObject(childShape, shapePath);
+            const json *childType = member(childShape, "type");
+            if (childType && childType->is_string()) {
+                const std::string &name = childType->get_ref<const std::string &>();
+                if (name == "plane" || name == "mesh" || name == "compound")
+                    fail(memberPath(shapePath, "type"), "a compound's child must be convex (box, sphere, capsule, "
+                                                        "cylinder or convex), got " + jsonQuoted(name));
+            }
+            part.shape = readShape(childShape, shapePath, false);
+            readOptional(child, childPath, "position", part.position,
+                         [](const json &v, const std::string &p) { return readVector3(v, p, Range::Length); });
+            readOptional(child, childPath, "orientation", part.orientation, readOrientation);
+            shape.children.push_back(std::move(part));
+        }
     } else {
         fail(typePath, "unknown shape type " + jsonQuoted(type) +
-                           "; known: box, sphere, capsule, cylinder, convex, plane, mesh");
+                           "; known: box, sphere, capsule, cylinder, convex, plane, mesh, compound");
     }
     return shape;
 }

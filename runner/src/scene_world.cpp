@@ -35,6 +35,7 @@ std::pair<const char *, real> sizeOf(const Shape &shape) {
     case ShapeType::Sphere:
     case ShapeType::Capsule:
     case ShapeType::Cylinder: return {"shape.radius", shape.radius};
+    case ShapeType::Compound: return {"shape.children", shape.children.empty() ? 0 : sizeOf(shape.children[0].shape).second};
     default: {
         real size = 0;
         for (const Vector3 &v : shape.vertices) size = std::max(size, v.norm());
@@ -177,6 +178,10 @@ SceneWorld buildWorld(const Scene &scene) {
         SpringSettings settings = spring.settings;
         settings.a = built.ids[spring.a];
         if (spring.b) settings.b = built.ids[*spring.b];
+        // The file places attachments in a body's frame, which for a compound is not its
+        // centre of mass (the World's body space).
+        settings.aPoint -= built.world.localCentreOfMass(settings.a);
+        if (settings.b) settings.bPoint -= built.world.localCentreOfMass(*settings.b);
         try {
             built.world.addSpring(settings);
         } catch (const InvalidArgument &error) {

@@ -44,9 +44,11 @@ ordered_json summaryJson(const Scene &scene, const SceneWorld &built, const RunR
         const Quaternion q = body.getOrientation();
         ordered_json entry;
         entry["name"] = scene.bodies[i].settings.name;
-        entry["position"] = vector3(body.getPosition());
+        // A compound is reported by its frame: its origin's position and velocity.
+        const Vector3 frameOffset = world.framePosition(id) - body.getPosition();
+        entry["position"] = vector3(body.getPosition() + frameOffset);
         entry["orientation"] = ordered_json::array({q.w(), q.x(), q.y(), q.z()});
-        entry["velocity"] = vector3(body.getVelocity());
+        entry["velocity"] = vector3(body.getVelocity() + body.getRotation().cross(frameOffset));
         entry["rotation"] = vector3(body.getRotation());
         entry["awake"] = body.getAwake();
         bodies.push_back(std::move(entry));

@@ -17,15 +17,16 @@ void appendNumber(std::string &line, real value) {
 
 TraceWriter::TraceWriter(std::ostream &out) : out_(out) { out_ << kTraceHeader << '\n'; }
 
-void TraceWriter::write(std::int64_t step, real time, const std::string &name, const RigidBody &body) {
+void TraceWriter::write(std::int64_t step, real time, const std::string &name, const RigidBody &body,
+                        const Vector3 &frameOffset) {
     std::string line = std::to_string(step);
     appendNumber(line, time);
     line += ',';
     line += csvField(name);
-    const Vector3 p = body.getPosition();
+    const Vector3 p = body.getPosition() + frameOffset;
     const Quaternion q = body.getOrientation();
-    const Vector3 v = body.getVelocity();
     const Vector3 w = body.getRotation();
+    const Vector3 v = body.getVelocity() + w.cross(frameOffset);
     for (real x : {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}) {
         appendNumber(line, x);
     }

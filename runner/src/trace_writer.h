@@ -17,8 +17,11 @@ class TraceWriter {
 public:
     /// Writes the header to `out`; rows follow with write().
     explicit TraceWriter(std::ostream &out);
-    /// One row: the body's state after step `step` (0-based), at `time` seconds.
-    void write(std::int64_t step, real time, const std::string &name, const RigidBody &body);
+    /// One row: the body's state after step `step` (0-based), at `time` seconds. With a
+    /// `frameOffset` (world space, m, from the centre of mass to a compound's frame), the
+    /// row gives that frame's position and its origin's velocity.
+    void write(std::int64_t step, real time, const std::string &name, const RigidBody &body,
+               const Vector3 &frameOffset = Vector3::Zero());
 
 private:
     std::ostream &out_;

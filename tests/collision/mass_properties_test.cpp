@@ -127,7 +127,8 @@ TEST(ConvexHull, PyramidHasASquareBaseAndFourTriangles) {
     // Volume by the pyramid formula: base 0.64 m^2 times height 1 m over 3.
     real volume = 0;
     Matrix3 inertia;
-    detail::polyhedronMassProperties(p->vertices(), p->faces(), volume, inertia);
+    Vector3 centroid;
+    detail::polyhedronMassProperties(p->vertices(), p->faces(), volume, inertia, centroid);
     EXPECT_NEAR(volume, 0.64 / 3, 1e-12);
 }
 

@@ -96,7 +96,7 @@ TEST(SceneFields, EveryFieldOfTheContractIsKnown) {
 }
 
 TEST(SceneFields, CompoundChildrenAreChecked) {
-    // The loader refuses compound shapes until the World has them; the table knows them.
+    // A compound's children and their shapes are checked for unknown fields too.
     const nlohmann::json document = nlohmann::json::parse(R"({"bodies": [{"name": "t", "shape": {"type": "compound",
         "children": [{"shape": {"type": "box", "half_extents": [1, 1, 1], "radius": 2}, "positon": [0, 1, 0]}]}}]})");
     const std::vector<SceneWarning> warnings = unknownFields(document);

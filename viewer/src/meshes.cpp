@@ -2,6 +2,7 @@
 
 #include <libqhull_r/qhull_ra.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -213,10 +214,26 @@ TriangleMesh planeMesh(const Shape &shape) {
 
 }  // namespace
 
-TriangleMesh shapeMesh(const Shape &shape) {
+TriangleMesh shapeMesh(const Shape &shape, const Vector3 &origin) {
     const float r = static_cast<float>(shape.radius), length = static_cast<float>(shape.length);
     TriangleMesh mesh;
     switch (shape.type) {
+    case ShapeType::Compound:
+        // Each child placed in the compound's frame, moved to the body's (origin).
+        for (const CompoundChild &child : shape.children) {
+            const TriangleMesh part = shapeMesh(child.shape);
+            const Eigen::Matrix3f turn = child.orientation.normalized().toRotationMatrix().cast<float>();
+            const Eigen::Vector3f shift = toFloat(Vector3(child.position - origin));
+            const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
+            for (MeshVertex v : part.vertices) {
+                const Eigen::Vector3f p = turn * Eigen::Vector3f(v.position[0], v.position[1], v.position[2]) + shift;
+                const Eigen::Vector3f n = turn * Eigen::Vector3f(v.normal[0], v.normal[1], v.normal[2]);
+                for (int k = 0; k < 3; ++k) v.position[k] = p[k], v.normal[k] = n[k];
+                mesh.vertices.push_back(v);
+            }
+            for (std::uint32_t i : part.indices) mesh.indices.push_back(first + i);
+        }
+        return mesh;
     case ShapeType::Box: return boxMesh(toFloat(shape.halfExtents));
     case ShapeType::Sphere:
         addHemisphere(mesh, r, 0, 1, kRoundSegments / 4);
@@ -273,6 +290,19 @@ Bounds bodyBounds(const World &world, BodyId id) {
     case ShapeType::Mesh:
         for (const Vector3 &p : shape.vertices) bounds.add(centre + rotation * toFloat(p));
         break;
+    case ShapeType::Compound: {
+        // Each child's bounds grown to its bounding sphere, about the body's centre.
+        const Vector3 origin = world.localCentreOfMass(id);
+        for (const CompoundChild &child : shape.children) {
+            real reach = child.shape.radius + child.shape.length / 2;
+            if (child.shape.type == ShapeType::Box) reach = child.shape.halfExtents.norm();
+            for (const Vector3 &p : child.shape.vertices) reach = std::max(reach, p.norm());
+            const Eigen::Vector3f at = centre + rotation * toFloat(Vector3(child.position - origin));
+            bounds.add(at - Eigen::Vector3f::Constant(static_cast<float>(reach)));
+            bounds.add(at + Eigen::Vector3f::Constant(static_cast<float>(reach)));
+        }
+        break;
+    }
     case ShapeType::Sphere:
     case ShapeType::Capsule:
     case ShapeType::Cylinder: {

@@ -31,8 +31,10 @@ inline constexpr float kGridSpacing = 1.0f;
 
 /// The triangles of `shape` in its body's frame. A plane becomes a square of half size
 /// kPlaneHalfSize around the point of its surface nearest the body's origin; a convex
-/// shape becomes its hull (empty if the points span no volume, which the World refuses).
-TriangleMesh shapeMesh(const Shape &shape);
+/// shape becomes its hull (empty if the points span no volume, which the World refuses);
+/// a compound, its children, moved so that `origin` (its centre of mass in its frame,
+/// World::localCentreOfMass) is the body's origin.
+TriangleMesh shapeMesh(const Shape &shape, const Vector3 &origin = Vector3::Zero());
 
 /// Grid lines on a plane shape's surface, kGridSpacing apart, within the square of
 /// shapeMesh(); pairs of end points in the body's frame, lifted 1 mm off the surface so

@@ -46,7 +46,7 @@ const GpuMesh &WorldView::meshOf(const World &world, BodyId id) {
     if (meshes_.size() <= id.index) meshes_.resize(id.index + 1);
     CachedMesh &cached = meshes_[id.index];
     if (!cached.valid || cached.generation != id.generation) {
-        cached.mesh = GpuMesh(shapeMesh(world.shape(id)));
+        cached.mesh = GpuMesh(shapeMesh(world.shape(id), world.localCentreOfMass(id)));
         cached.generation = id.generation;
         cached.valid = true;
     }

@@ -9,9 +9,11 @@
 
 #include <algorithm>
 #include <charconv>
+#include <limits>
 #include <cmath>
 #include <string>
 
+#include "collision/broadphase.h"
 #include "collision/convex_hull.h"
 #include "cyclone/world/error.h"
 
@@ -99,8 +101,46 @@ Matrix3 capsuleInertia(real r, real length) {
     return Vector3(side, side, axial).asDiagonal();
 }
 
+// The broadphase's geometry of a compound: a box the size of its children's bounds whose
+// local AABB (and the bounding sphere FCL places rotated boxes by) is theirs, which need
+// not be centred on the centre of mass. FCL recomputes a geometry's local AABB whenever a
+// collision object is made of it, hence the override. Only the broadphase and queries'
+// tree walks see it; the children are what collide.
+class CompoundBounds : public fcl::Boxd {
+public:
+    explicit CompoundBounds(const fcl::AABBd &bounds) : fcl::Boxd(bounds.max_ - bounds.min_), bounds_(bounds) {}
+    void computeLocalAABB() override {
+        aabb_local = bounds_;
+        aabb_center = boxCentre(bounds_);
+        aabb_radius = 0.5 * (bounds_.max_ - bounds_.min_).norm();
+    }
+
+private:
+    fcl::AABBd bounds_;
+};
+
+// Farthest point of a compiled solid (or mesh) from its origin; 0 for a plane.
+real solidBoundingRadius(const CollisionShape &c) {
+    const Shape &shape = c.shape();
+    switch (shape.type) {
+        case ShapeType::Box: return shape.halfExtents.norm();
+        case ShapeType::Sphere: return shape.radius;
+        case ShapeType::Capsule: return shape.radius + shape.length / 2;
+        case ShapeType::Cylinder: return std::hypot(shape.radius, shape.length / 2);
+        case ShapeType::Convex:
+        case ShapeType::Mesh: {
+            real r = 0;
+            for (const Vector3 &v : c.vertices()) r = std::max(r, v.norm());
+            return r;
+        }
+        case ShapeType::Plane:
+        case ShapeType::Compound: break;
+    }
+    return 0;
+}
+
 void compileConvex(const Shape &shape, std::vector<Vector3> &vertices, std::vector<std::vector<int>> &faces,
-                   std::vector<Vector3> &normals, Matrix3 &inertia,
+                   std::vector<Vector3> &normals, Matrix3 &inertia, real &volume, Vector3 &centroid,
                    std::shared_ptr<fcl::CollisionGeometryd> &geometry) {
     for (size_t i = 0; i < shape.vertices.size(); ++i) requireFinite(index("shape.vertices", i), shape.vertices[i]);
     if (shape.vertices.size() < 4)
@@ -108,8 +148,7 @@ void compileConvex(const Shape &shape, std::vector<Vector3> &vertices, std::vect
     ConvexHull hull;
     if (!computeConvexHull(shape.vertices, hull))
         refuse("shape.vertices", "are all coplanar (or coincident): their hull has no volume");
-    real volume = 0;
-    polyhedronMassProperties(hull.vertices, hull.faces, volume, inertia);
+    polyhedronMassProperties(hull.vertices, hull.faces, volume, inertia, centroid);
     if (!(volume > 0)) refuse("shape.vertices", "span no volume");
 
     auto fclVertices = std::make_shared<std::vector<fcl::Vector3d>>(hull.vertices.begin(), hull.vertices.end());
@@ -164,6 +203,82 @@ void compileMesh(const Shape &shape, std::vector<Vector3> &vertices, std::vector
 
 }  // namespace
 
+// Mass properties at one density: child k holds the fraction V_k / V of the mass at its
+// centroid c_k, so the centre of mass is sum (V_k / V) c_k, and the inertia about it is
+// each child's own (turned into the frame's axes, R I R^T) plus the parallel-axis term
+// m_k (|d|^2 E - d d^T) for its offset d from the centre of mass.
+void compileCompound(const Shape &shape, CollisionShape &c) {
+    if (shape.children.empty()) refuse("shape.children", "must hold at least one child");
+    std::vector<CompoundPart> parts;
+    std::vector<Vector3> centroids;
+    real volume = 0;
+    Vector3 moment = Vector3::Zero();
+    for (std::size_t k = 0; k < shape.children.size(); ++k) {
+        const CompoundChild &child = shape.children[k];
+        const std::string field = index("shape.children", k);
+        const ShapeType type = child.shape.type;
+        if (type == ShapeType::Plane || type == ShapeType::Mesh || type == ShapeType::Compound)
+            refuse(field + ".shape.type", std::string("\"") + shapeTypeName(type) +
+                                              "\" is not a convex shape; a compound's children are box, sphere, "
+                                              "capsule, cylinder or convex");
+        requireFinite(field + ".position", child.position);
+        if (!child.orientation.coeffs().allFinite())
+            refuse(field + ".orientation", "must be finite, got [" + str(child.orientation.w()) + ", " +
+                                               str(child.orientation.x()) + ", " + str(child.orientation.y()) +
+                                               ", " + str(child.orientation.z()) + "]");
+        std::shared_ptr<const CollisionShape> compiled;
+        try {
+            compiled = compileShape(child.shape);
+        } catch (const InvalidArgument &e) {
+            refuse(field + "." + e.field(), e.problem());
+        }
+        const real length = child.orientation.norm();
+        const Quaternion q = length > 0 ? Quaternion(child.orientation.coeffs() / length) : Quaternion::Identity();
+        CompoundPart part;
+        part.shape = compiled;
+        part.pose.linear() = q.toRotationMatrix();
+        part.pose.translation() = child.position;
+        centroids.push_back(part.pose * compiled->centroid());
+        volume += compiled->volume();
+        moment += compiled->volume() * centroids.back();
+        parts.push_back(std::move(part));
+    }
+    const Vector3 centre = moment / volume;
+    Matrix3 inertia = Matrix3::Zero();
+    fcl::AABBd box;
+    real radius = 0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        CompoundPart &part = parts[k];
+        const CollisionShape &child = *part.shape;
+        const real fraction = child.volume() / volume;
+        // The child's unit inertia is about its own origin; about its centroid it is
+        // smaller by the parallel-axis term of the centroid's offset.
+        const Vector3 &g = child.centroid();
+        const Matrix3 own = child.unitInertia() - (g.squaredNorm() * Matrix3::Identity() - g * g.transpose());
+        const Matrix3 rotation = part.pose.linear();
+        const Vector3 d = centroids[k] - centre;
+        inertia += fraction * (rotation * own * rotation.transpose() +
+                               (d.squaredNorm() * Matrix3::Identity() - d * d.transpose()));
+        part.pose.translation() -= centre;
+        const fcl::AABBd &local = child.geometry()->aabb_local;
+        const Vector3 middle = part.pose * boxCentre(local);
+        const Vector3 half = rotation.cwiseAbs() * (0.5 * (local.max_ - local.min_));
+        const fcl::AABBd placed(middle - half, middle + half);
+        if (k == 0) box = placed;
+        else box += placed;
+        radius = std::max(radius, part.pose.translation().norm() + child.boundingRadius());
+    }
+    auto geometry = std::make_shared<CompoundBounds>(box);
+    geometry->computeLocalAABB();
+    c.geometry_ = geometry;
+    c.parts_ = std::move(parts);
+    c.unitInertia_ = inertia;
+    c.volume_ = volume;
+    c.frameToCentre_ = centre;
+    c.centroid_ = Vector3::Zero();
+    c.boundingRadius_ = radius;
+}
+
 std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
     auto compiled = std::make_shared<CollisionShape>();
     CollisionShape &c = *compiled;
@@ -172,11 +287,13 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
             for (size_t k = 0; k < 3; ++k) requirePositive(index("shape.half_extents", k), shape.halfExtents[k]);
             c.geometry_ = std::make_shared<fcl::Boxd>(2 * shape.halfExtents);
             c.unitInertia_ = boxInertia(shape.halfExtents);
+            c.volume_ = 8 * shape.halfExtents.prod();
             break;
         case ShapeType::Sphere:
             requirePositive("shape.radius", shape.radius);
             c.geometry_ = std::make_shared<fcl::Sphered>(shape.radius);
             c.unitInertia_ = Matrix3::Identity() * (real(2) / 5 * shape.radius * shape.radius);
+            c.volume_ = 4 * kPi * std::pow(shape.radius, 3) / 3;
             break;
         case ShapeType::Capsule:
             requirePositive("shape.radius", shape.radius);
@@ -184,15 +301,18 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
                 refuse("shape.length", "must be finite and >= 0, got " + str(shape.length));
             c.geometry_ = std::make_shared<fcl::Capsuled>(shape.radius, shape.length);
             c.unitInertia_ = capsuleInertia(shape.radius, shape.length);
+            c.volume_ = kPi * shape.radius * shape.radius * (shape.length + 4 * shape.radius / 3);
             break;
         case ShapeType::Cylinder:
             requirePositive("shape.radius", shape.radius);
             requirePositive("shape.length", shape.length);
             c.geometry_ = std::make_shared<fcl::Cylinderd>(shape.radius, shape.length);
             c.unitInertia_ = cylinderInertia(shape.radius, shape.length);
+            c.volume_ = kPi * shape.radius * shape.radius * shape.length;
             break;
         case ShapeType::Convex:
-            compileConvex(shape, c.vertices_, c.faces_, c.faceNormals_, c.unitInertia_, c.geometry_);
+            compileConvex(shape, c.vertices_, c.faces_, c.faceNormals_, c.unitInertia_, c.volume_, c.centroid_,
+                          c.geometry_);
             break;
         case ShapeType::Plane: {
             requireFinite("shape.normal", shape.normal);
@@ -208,12 +328,27 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
         case ShapeType::Mesh:
             compileMesh(shape, c.vertices_, c.faces_, c.faceNormals_, c.geometry_);
             break;
+        case ShapeType::Compound:
+            compileCompound(shape, c);
+            c.shape_ = shape;
+            return compiled;
         default:
             refuse("shape.type", "is not a known shape type");
     }
     c.geometry_->computeLocalAABB();
     c.shape_ = shape;
+    c.boundingRadius_ = solidBoundingRadius(c);
     return compiled;
+}
+
+std::size_t CollisionShape::furthestPart(const Matrix4 &pose, const Vector3 &direction) const {
+    std::size_t best = 0;
+    real bestAlong = -std::numeric_limits<real>::infinity();
+    for (std::size_t k = 0; k < parts_.size(); ++k) {
+        const real along = parts_[k].shape->supportPoint(pose * parts_[k].pose, direction, -1).dot(direction);
+        if (along > bestAlong) bestAlong = along, best = k;
+    }
+    return best;
 }
 
 void CollisionShape::supportingFeature(const Matrix4 &pose, const Vector3 &direction, int triangle,
@@ -333,6 +468,11 @@ void CollisionShape::supportingFeature(const Matrix4 &pose, const Vector3 &direc
             out.count = 4;
             break;
         }
+        case ShapeType::Compound: {
+            const std::size_t k = furthestPart(pose, direction);
+            parts_[k].shape->supportingFeature(pose * parts_[k].pose, direction, -1, out);
+            break;
+        }
         case ShapeType::Mesh: {
             if (triangle < 0 || triangle >= static_cast<int>(faces_.size())) break;
             const std::vector<int> &t = faces_[triangle];
@@ -382,6 +522,10 @@ Vector3 CollisionShape::supportPoint(const Matrix4 &pose, const Vector3 &directi
         }
         case ShapeType::Plane:
             return origin + planeOffset_ * (rotation * planeNormal_);
+        case ShapeType::Compound: {
+            const std::size_t k = furthestPart(pose, direction);
+            return parts_[k].shape->supportPoint(pose * parts_[k].pose, direction, -1);
+        }
         case ShapeType::Mesh: {
             if (triangle < 0 || triangle >= static_cast<int>(faces_.size())) return origin;
             const Vector3 local = rotation.transpose() * direction;

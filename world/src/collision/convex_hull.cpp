@@ -107,11 +107,12 @@ bool computeConvexHull(const std::vector<Vector3> &points, ConvexHull &hull) {
 }
 
 void polyhedronMassProperties(const std::vector<Vector3> &vertices, const std::vector<std::vector<int>> &faces,
-                              real &volume, Matrix3 &unitInertia) {
+                              real &volume, Matrix3 &unitInertia, Vector3 &centroid) {
     // Each fan triangle (a, b, c) with the origin spans a signed tetrahedron whose
     // second moment about the origin is V/20 (aa' + bb' + cc' + ss'), s = a + b + c.
     volume = 0;
     Matrix3 secondMoment = Matrix3::Zero();
+    Vector3 firstMoment = Vector3::Zero();  // each tetrahedron's centroid is s / 4
     for (const std::vector<int> &face : faces) {
         const Vector3 &a = vertices[face[0]];
         for (size_t k = 1; k + 1 < face.size(); ++k) {
@@ -120,10 +121,12 @@ void polyhedronMassProperties(const std::vector<Vector3> &vertices, const std::v
             const real v = a.dot(b.cross(c)) / 6;
             const Vector3 s = a + b + c;
             volume += v;
+            firstMoment += v / 4 * s;
             secondMoment += v / 20 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
         }
     }
     secondMoment /= volume;
+    centroid = firstMoment / volume;
     unitInertia = secondMoment.trace() * Matrix3::Identity() - secondMoment;
 }
 

@@ -21,10 +21,10 @@ struct ConvexHull {
 /// span no volume: fewer than 4, or all (nearly) coplanar, relative to their extent.
 bool computeConvexHull(const std::vector<Vector3> &points, ConvexHull &hull);
 
-/// Volume (m^3) and inertia tensor of a unit-mass, uniform-density polyhedron about
-/// the frame origin (kg m^2), by decomposition into tetrahedra with apex at the origin.
-/// Faces must be counter-clockwise seen from outside.
+/// Volume (m^3), centroid (m) and inertia tensor of a unit-mass, uniform-density
+/// polyhedron about the frame origin (kg m^2), by decomposition into tetrahedra with
+/// apex at the origin. Faces must be counter-clockwise seen from outside.
 void polyhedronMassProperties(const std::vector<Vector3> &vertices, const std::vector<std::vector<int>> &faces,
-                              real &volume, Matrix3 &unitInertia);
+                              real &volume, Matrix3 &unitInertia, Vector3 &centroid);
 
 }  // namespace cyclone::detail

@@ -18,6 +18,7 @@
 #include <cmath>
 
 #include "collision/box_box.h"
+#include "collision/broadphase.h"
 #include "collision/contact_building.h"
 #include "collision/shape_contact.h"
 #include "collision/sphere_pairs.h"
@@ -241,10 +242,50 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
     return -1;
 }
 
+// The box of a shape placed at `pose`, widened by `margin`: the world box of its local
+// one turned, as the broadphase places bodies.
+fcl::AABBd placedBox(const CollisionShape &shape, const Matrix4 &pose, real margin) {
+    const fcl::AABBd &local = shape.geometry()->aabb_local;
+    const Vector3 centre = pose * boxCentre(local);
+    const Vector3 half = pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) + Vector3::Constant(margin);
+    return fcl::AABBd(centre - half, centre + half);
+}
+
+// A compound against any shape (or another compound): each pair of children whose boxes
+// come within the speculative distance, its manifolds tagged with the children.
+int collideCompound(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                    const NarrowphaseSettings &settings, std::vector<Manifold> &out) {
+    const std::size_t countA = a.isCompound() ? a.children().size() : 1;
+    const std::size_t countB = b.isCompound() ? b.children().size() : 1;
+    // A half-space has no box to compare with.
+    const bool unbounded = a.shape().type == ShapeType::Plane || b.shape().type == ShapeType::Plane;
+    int appended = 0;
+    for (std::size_t i = 0; i < countA; ++i) {
+        const CollisionShape &childA = a.isCompound() ? *a.children()[i].shape : a;
+        const Matrix4 childPoseA = a.isCompound() ? partPose(a, i, poseA) : poseA;
+        const fcl::AABBd boxA = unbounded ? fcl::AABBd() : placedBox(childA, childPoseA, settings.speculativeDistance);
+        for (std::size_t j = 0; j < countB; ++j) {
+            const CollisionShape &childB = b.isCompound() ? *b.children()[j].shape : b;
+            const Matrix4 childPoseB = b.isCompound() ? partPose(b, j, poseB) : poseB;
+            if (!unbounded && !boxA.overlap(placedBox(childB, childPoseB, 0)))
+                continue;
+            const std::size_t first = out.size();
+            const int n = collide(childA, childPoseA, childB, childPoseB, settings, out);
+            for (std::size_t k = first; k < out.size(); ++k) {
+                out[k].childA = static_cast<int>(i);
+                out[k].childB = static_cast<int>(j);
+            }
+            appended += n;
+        }
+    }
+    return appended;
+}
+
 }  // namespace
 
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
             const NarrowphaseSettings &settings, std::vector<Manifold> &out) {
+    if (a.isCompound() || b.isCompound()) return collideCompound(a, poseA, b, poseB, settings, out);
     const ShapeType typeA = a.shape().type;
     const ShapeType typeB = b.shape().type;
     if (typeA == ShapeType::Plane && typeB == ShapeType::Plane) return 0;
@@ -298,6 +339,28 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
     return appendReduced(points, normal, out);
+}
+
+}  // namespace cyclone::detail
+
+namespace cyclone::detail {
+
+bool intersects(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB) {
+    if (a.isCompound()) {
+        for (std::size_t k = 0; k < a.children().size(); ++k)
+            if (intersects(*a.children()[k].shape, partPose(a, k, poseA), b, poseB)) return true;
+        return false;
+    }
+    if (b.isCompound()) return intersects(b, poseB, a, poseA);
+    static const fcl::CollisionRequestd request = [] {
+        fcl::CollisionRequestd r(1, false);
+        r.gjk_solver_type = fcl::GST_LIBCCD;
+        return r;
+    }();
+    static thread_local fcl::CollisionResultd result;
+    result.clear();
+    fcl::collide(a.geometry().get(), poseA, b.geometry().get(), poseB, request, result);
+    return result.isCollision();
 }
 
 }  // namespace cyclone::detail

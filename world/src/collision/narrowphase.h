@@ -22,6 +22,8 @@ struct Manifold {
     Vector3 normal = Vector3::UnitY();  ///< Unit, world space, pointing from A to B.
     int count = 0;
     std::array<ContactPoint, kMaxPoints> points;
+    int childA = 0;  ///< The child of A it touches when A is a compound, else 0.
+    int childB = 0;  ///< The child of B it touches when B is a compound, else 0.
 };
 
 struct NarrowphaseSettings {
@@ -44,10 +46,16 @@ struct NarrowphaseSettings {
 /// (GST_LIBCCD, through collideShapes), and so does every pair with `settings.forceFcl`.
 /// Normals point from A to B whatever order FCL used internally; near-zero normals are
 /// dropped. Mesh triangles are one-sided: a shape is pushed out to the side their
-/// counter-clockwise winding faces. Allocates nothing once `out` has grown, except inside
-/// FCL for box-box pairs forced through it and for meshes.
+/// counter-clockwise winding faces. A compound is tested child by child (each child pair
+/// whose boxes, widened by the speculative distance, overlap), and its manifolds name
+/// the children (Manifold::childA, childB). Allocates nothing once `out` has grown, except
+/// inside FCL for box-box pairs forced through it and for meshes.
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
             const NarrowphaseSettings &settings, std::vector<Manifold> &out);
+
+/// Whether `a` at `poseA` and `b` at `poseB` overlap or touch, by fcl::collide (a
+/// compound child by child).
+bool intersects(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB);
 
 /// The order in which collide() lists the points of a manifold, applied to `count`
 /// (<= Manifold::kMaxPoints) existing points with B-side positions `pointB` and depths

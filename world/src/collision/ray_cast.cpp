@@ -258,6 +258,20 @@ bool rayBox(const Vector3 &origin, const Vector3 &direction, const Vector3 &min,
 }
 
 bool rayShape(const Ray &ray, const CollisionShape &shape, const Matrix4 &pose, RaySurfaceHit &hit) {
+    if (shape.isCompound()) {
+        // The nearest entry into any child; each child's own ray stops at the best so far.
+        Ray nearer = ray;
+        bool found = false;
+        for (std::size_t k = 0; k < shape.children().size(); ++k) {
+            RaySurfaceHit candidate;
+            if (!rayShape(nearer, *shape.children()[k].shape, partPose(shape, k, pose), candidate)) continue;
+            if (found && !(candidate.distance < hit.distance)) continue;
+            hit = candidate;
+            nearer.maxDistance = candidate.distance;
+            found = true;
+        }
+        return found;
+    }
     const Matrix3 rotation = pose.linear();
     const Vector3 o = rotation.transpose() * (ray.origin - pose.translation());
     const Vector3 d = rotation.transpose() * ray.direction;
@@ -277,6 +291,7 @@ bool rayShape(const Ray &ray, const CollisionShape &shape, const Matrix4 &pose, 
         case ShapeType::Convex: found = rayLocalConvex(o, d, shape, limit, t, n); break;
         case ShapeType::Plane: found = rayLocalPlane(o, d, shape, limit, t, n); break;
         case ShapeType::Mesh: found = rayLocalMesh(o, d, shape, limit, t, n); break;
+        case ShapeType::Compound: break;  // taken child by child above
     }
     if (!found) return false;
     hit.distance = t;

@@ -24,7 +24,8 @@ struct RaySurfaceHit {
 /// The first point where `ray` enters `shape` placed at `pose`, within [0, maxDistance]:
 /// exact for boxes, spheres, capsules, cylinders, convex hulls and planes (whose solid
 /// side the ray must enter from outside), and for mesh triangles hit from either side.
-/// A solid that contains the origin is not hit. False when there is no such point.
+/// A solid that contains the origin is not hit; a compound is hit where the ray first
+/// enters one of its children. False when there is no such point.
 bool rayShape(const Ray &ray, const CollisionShape &shape, const Matrix4 &pose, RaySurfaceHit &hit);
 
 /// The distance at which `ray` enters `box` (0 when it starts inside), if it does so

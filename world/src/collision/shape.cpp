@@ -57,6 +57,13 @@ Shape Shape::mesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>>
     return shape;
 }
 
+Shape Shape::compound(std::vector<CompoundChild> children) {
+    Shape shape;
+    shape.type = ShapeType::Compound;
+    shape.children = std::move(children);
+    return shape;
+}
+
 const char *shapeTypeName(ShapeType type) {
     switch (type) {
         case ShapeType::Box: return "box";
@@ -66,6 +73,7 @@ const char *shapeTypeName(ShapeType type) {
         case ShapeType::Convex: return "convex";
         case ShapeType::Plane: return "plane";
         case ShapeType::Mesh: return "mesh";
+        case ShapeType::Compound: return "compound";
     }
     return "unknown";
 }

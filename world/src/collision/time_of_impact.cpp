@@ -14,11 +14,26 @@ constexpr real kFractionTolerance = 1e-7;
 // Most poses the sampled sweep tests (a hull with a tiny inner radius moving far).
 constexpr int kMaxSamples = 4096;
 
+// Calls visit(geometry, pose) for the shape, or for each child of a compound.
+template <class Visit>
+bool anyPart(const SweptShape &shape, const Matrix4 &pose, Visit visit) {
+    if (!shape.compound) return visit(shape.geometry, pose);
+    const CollisionShape &c = *shape.compound;
+    for (std::size_t k = 0; k < c.children().size(); ++k)
+        if (visit(c.children()[k].shape->geometry().get(), partPose(c, k, pose))) return true;
+    return false;
+}
+
 bool overlap(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, const Matrix4 &poseB) {
     fcl::CollisionRequestd request;
     request.gjk_solver_type = fcl::GST_LIBCCD;
     fcl::CollisionResultd result;
-    return fcl::collide(a.geometry, poseA, b.geometry, poseB, request, result) > 0;
+    return anyPart(a, poseA, [&](const fcl::CollisionGeometryd *ga, const Matrix4 &pa) {
+        return anyPart(b, poseB, [&](const fcl::CollisionGeometryd *gb, const Matrix4 &pb) {
+            result.clear();
+            return fcl::collide(ga, pa, gb, pb, request, result) > 0;
+        });
+    });
 }
 
 real innerRadius(const CollisionShape &c) {
@@ -33,6 +48,12 @@ real innerRadius(const CollisionShape &c) {
             for (std::size_t f = 0; f < c.faces().size(); ++f)
                 inner = std::min(inner, c.faceNormals()[f].dot(c.vertices()[c.faces()[f][0]]));
             return std::max(inner, real(0));
+        }
+        case ShapeType::Compound: {
+            real inner = 0;
+            for (const CompoundPart &part : c.children())
+                inner = std::max(inner, innerRadius(*part.shape) - part.pose.translation().norm());
+            return inner;
         }
         case ShapeType::Plane:
         case ShapeType::Mesh: break;
@@ -50,6 +71,7 @@ real boundingRadius(const fcl::CollisionGeometryd &geometry) {
 SweptShape sweptShape(const CollisionShape &shape) {
     SweptShape swept;
     swept.geometry = shape.geometry().get();
+    swept.compound = shape.isCompound() ? &shape : nullptr;
     swept.boundingRadius = boundingRadius(*shape.geometry());
     swept.innerRadius = innerRadius(shape);
     return swept;
@@ -74,12 +96,24 @@ bool separation(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, 
     fcl::DistanceRequestd request(true);
     request.gjk_solver_type = fcl::GST_LIBCCD;
     fcl::DistanceResultd result;
-    if (!(fcl::distance(a.geometry, poseA, b.geometry, poseB, request, result) > 0)) return false;
-    const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
-    distance = between.norm();
-    if (!(distance > 0) || !between.allFinite()) return false;
-    direction = between / distance;
-    return true;
+    bool found = false;
+    // The nearest pair of parts (a compound's children); any touching pair means none.
+    const bool touching = anyPart(a, poseA, [&](const fcl::CollisionGeometryd *ga, const Matrix4 &pa) {
+        return anyPart(b, poseB, [&](const fcl::CollisionGeometryd *gb, const Matrix4 &pb) {
+            result.clear();
+            if (!(fcl::distance(ga, pa, gb, pb, request, result) > 0)) return true;
+            const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
+            const real gap = between.norm();
+            if (!(gap > 0) || !between.allFinite()) return true;
+            if (!found || gap < distance) {
+                distance = gap;
+                direction = between / gap;
+                found = true;
+            }
+            return false;
+        });
+    });
+    return found && !touching;
 }
 
 real travel(const Matrix4 &from, const Matrix4 &to, real radius) {

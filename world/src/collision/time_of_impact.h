@@ -14,10 +14,13 @@ inline constexpr real kSweepTolerance = 0.00005;
 /// A shape as a sweep sees it.
 struct SweptShape {
     const fcl::CollisionGeometryd *geometry = nullptr;
+    /// A compound, whose children are tested in place of `geometry`; null otherwise.
+    const CollisionShape *compound = nullptr;
     /// Farthest point of the shape from its origin, m.
     real boundingRadius = 0;
     /// Radius of the largest ball about the origin inside the shape, m (0 for a mesh, or
-    /// a hull whose origin is not inside it). A body that moves less than this in a step
+    /// a hull whose origin is not inside it; a compound's is its children's largest ball
+    /// about the centre of mass, if any child holds one). A body that moves less than this in a step
     /// cannot pass through anything.
     real innerRadius = 0;
 };

@@ -249,11 +249,38 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
         keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance, anchorsIssued_);
         return;
     }
+    if (a.shape->isCompound() || b.shape->isCompound()) {
+        mergeByChildren(pair, poseA, poseB, matchDistance);
+        return;
+    }
     // At most four manifolds per pair (a mesh may report more normals).
     const int kept = std::min(n, 4);
     pair.manifolds.resize(kept);
     for (int k = 0; k < kept; ++k)
         mergeManifold(pair.manifolds[k], fresh_[k], poseA, poseB, matchDistance, newAnchorsId());
+}
+
+// A compound's manifolds belong to pairs of children: each fresh one warm-starts from the
+// old one of the same children (the n-th of a child pair from its n-th, for a child on a
+// mesh with several normals), wherever it stood in the list.
+void ContactManager::mergeByChildren(PairState &pair, const Matrix4 &poseA, const Matrix4 &poseB, real matchDistance) {
+    previous_.swap(pair.manifolds);
+    previousUsed_.assign(previous_.size(), 0);
+    const std::size_t kept = std::min(fresh_.size(), kMaxCompoundManifolds);
+    pair.manifolds.resize(kept);
+    for (std::size_t k = 0; k < kept; ++k) {
+        const Manifold &fresh = fresh_[k];
+        ManifoldState &state = pair.manifolds[k];
+        state = ManifoldState();
+        for (std::size_t j = 0; j < previous_.size(); ++j) {
+            if (previousUsed_[j] || previous_[j].childA != fresh.childA || previous_[j].childB != fresh.childB) continue;
+            previousUsed_[j] = 1;
+            state = previous_[j];
+            break;
+        }
+        mergeManifold(state, fresh, poseA, poseB, matchDistance, newAnchorsId());
+    }
+    previous_.clear();
 }
 
 std::uint32_t ContactManager::findOrAddPair(BodyStore &bodies, std::uint32_t i, std::uint32_t j, bool &created) {

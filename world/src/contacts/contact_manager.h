@@ -56,6 +56,13 @@ private:
     bool reuseManifolds(const WorldState &world, std::uint32_t p);
     /// Runs the narrowphase on pair p and merges what it finds into the pair's manifolds.
     void testPair(WorldState &world, std::uint32_t p, real dt);
+    /// Merges fresh_ into a pair with a compound, each manifold with the old one of its
+    /// children.
+    void mergeByChildren(PairState &pair, const Matrix4 &poseA, const Matrix4 &poseB, real matchDistance);
+
+    /// Most manifolds a pair with a compound keeps (one per touching pair of children,
+    /// or more against a mesh).
+    static constexpr std::size_t kMaxCompoundManifolds = 32;
 
     static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::uint64_t anchorsIssued_ = 0;
@@ -64,6 +71,8 @@ private:
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
     std::vector<std::uint32_t> candidateSlots_;
     std::vector<Manifold> fresh_;
+    std::vector<ManifoldState> previous_;  ///< A compound pair's manifolds before the merge.
+    std::vector<char> previousUsed_;       ///< Per entry of previous_: taken by a fresh one.
     std::vector<std::uint32_t> stepPairs_;  ///< Pair slots the broadphase reported this step.
     std::vector<char> pairReused_;          ///< Per entry of stepPairs_.
     std::vector<ContactTrack> tracks_;      ///< By pair slot.

@@ -150,6 +150,8 @@ void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &p
         state.twistImpulse = 0;
     }
     state.normal = fresh.normal;
+    state.childA = fresh.childA;
+    state.childB = fresh.childB;
     state.localNormal = poseA.linear().transpose() * fresh.normal;
     state.count = fresh.count;
     const real match2 = matchDistance * matchDistance;

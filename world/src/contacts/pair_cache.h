@@ -35,6 +35,8 @@ struct ManifoldState {
     std::uint64_t anchorsId = 0;
     std::uint32_t solverSlot = 0;  ///< Its solver slot in step solverStep (ConstraintSolver::assignSlots).
     std::uint64_t solverStep = ~std::uint64_t(0);  ///< The last step it was solved in (~0: never).
+    int childA = 0;  ///< The child of A it touches when A is a compound, else 0.
+    int childB = 0;  ///< The child of B it touches when B is a compound, else 0.
 };
 
 /// Which manifold of which pair: a PairCache slot and an index in PairState::manifolds.
@@ -108,7 +110,7 @@ void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA,
 
 /// Replaces `state` with `fresh`, carrying each old point's impulses to the new point
 /// whose anchor on A lies within `matchDistance` (warm starting). The new anchors are
-/// numbered `anchorsId`.
+/// numbered `anchorsId`. `state` must be the manifold of the same children (or of none).
 void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,
                    real matchDistance, std::uint64_t anchorsId);
 

@@ -37,6 +37,10 @@ void drawShape(DebugDraw &draw, const detail::CollisionShape &shape, const Matri
     const Vector3 z = rotation.col(2);
     const int segments = options.circleSegments;
     switch (s.type) {
+        case ShapeType::Compound:
+            for (std::size_t k = 0; k < shape.children().size(); ++k)
+                drawShape(draw, *shape.children()[k].shape, detail::partPose(shape, k, pose), options, color);
+            break;
         case ShapeType::Box: draw.box(pose, s.halfExtents, color); break;
         case ShapeType::Sphere:
             draw.circle(origin, x, s.radius, segments, color);

@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "collision/narrowphase.h"
 #include "collision/ray_cast.h"
+#include "collision/shape_cast.h"
 #include "world/validation.h"
 #include "world/world_impl.h"
 
@@ -149,17 +151,13 @@ std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Qu
     Matrix4 pose = Matrix4::Identity();
     pose.linear() = unitOrIdentity(orientation).toRotationMatrix();
     pose.translation() = position;
+    // A compound query shape is placed by its frame, as a body is.
+    pose.translation() += pose.linear() * compiled->frameToCentre();
     const fcl::CollisionObjectd query(compiled->geometry(), pose);
-    fcl::CollisionRequestd request(1, false);
-    request.gjk_solver_type = fcl::GST_LIBCCD;
-    fcl::CollisionResultd result;
     const auto test = [&](std::uint32_t index) {
         if (!w.accepts(index, filter)) return;
         const BodyRecord &r = w.bodies[index];
-        result.clear();
-        fcl::collide(compiled->geometry().get(), pose, r.shape->geometry().get(), r.body.getTransform(), request,
-                     result);
-        if (result.isCollision()) out.push_back(w.bodies.idOf(index));
+        if (detail::intersects(*compiled, pose, *r.shape, r.body.getTransform())) out.push_back(w.bodies.idOf(index));
     };
     OverlapWalk<decltype(test)> walk{query.getAABB(), test};
     if (filter.dynamicBodies) {
@@ -172,6 +170,66 @@ std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Qu
     }
     std::sort(out.begin(), out.end(), [](const BodyId &x, const BodyId &y) { return x.index < y.index; });
     return out.size();
+}
+
+std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &position,
+                                             const Quaternion &orientation, const Vector3 &translation,
+                                             const QueryFilter &filter) const {
+    static const char *function = "World::shapeCast";
+    const Impl &w = *impl_;
+    detail::requirePlace(function, "position", position);
+    detail::requireFinite(function, "orientation", orientation);
+    detail::requireFinite(function, "translation", translation);
+    const real length = translation.stableNorm();
+    if (!(length > 0)) detail::refuse(function, "translation", "must not be zero, got " + detail::show(translation));
+    if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh)
+        detail::refuse(function, "shape.type",
+                       std::string("\"") + shapeTypeName(shape.type) + "\" cannot be cast; cast a solid shape");
+    std::shared_ptr<const detail::CollisionShape> compiled;
+    try {
+        compiled = detail::compileShape(shape);
+    } catch (const InvalidArgument &e) {
+        throw InvalidArgument(function, e.field(), e.problem());
+    }
+    Matrix4 start = Matrix4::Identity();
+    start.linear() = unitOrIdentity(orientation).toRotationMatrix();
+    start.translation() = position + start.linear() * compiled->frameToCentre();
+
+    // Every body whose box meets the box swept by the shape's.
+    const fcl::CollisionObjectd query(compiled->geometry(), start);
+    fcl::AABBd swept = query.getAABB();
+    swept += fcl::AABBd(swept.min_ + translation, swept.max_ + translation);
+    bool found = false;
+    std::uint32_t best = 0;
+    detail::CastHit hit;
+    const auto test = [&](std::uint32_t index) {
+        if (!w.accepts(index, filter)) return;
+        const BodyRecord &r = w.bodies[index];
+        detail::CastHit candidate;
+        const real limit = found ? hit.fraction : 1;
+        if (!detail::castShape(*compiled, start, translation, *r.shape, r.body.getTransform(), limit, candidate)) return;
+        if (found && (candidate.fraction > hit.fraction || (candidate.fraction == hit.fraction && index > best))) return;
+        found = true;
+        best = index;
+        hit = candidate;
+    };
+    OverlapWalk<decltype(test)> walk{swept, test};
+    if (filter.dynamicBodies || filter.kinematicBodies) {
+        walk.visit(w.broadphase.root(detail::Tree::Awake));
+        walk.visit(w.broadphase.root(detail::Tree::Asleep));
+    }
+    if (filter.staticBodies || filter.kinematicBodies) {
+        walk.visit(w.broadphase.root(detail::Tree::Static));
+        for (std::uint32_t plane : w.bodies.planes) test(plane);
+    }
+    if (!found) return std::nullopt;
+    ShapeCastHit result;
+    result.body = w.bodies.idOf(best);
+    result.fraction = hit.fraction;
+    result.distance = hit.fraction * length;
+    result.point = hit.point;
+    result.normal = hit.normal;
+    return result;
 }
 
 }  // namespace cyclone

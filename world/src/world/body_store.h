@@ -43,6 +43,13 @@ struct BodyRecord {
     std::uint32_t collidesWith = kAllLayers;  ///< Layers it collides with, bit k for layer k.
 };
 
+/// The offset from a body's shape frame to its centre of mass, world space, m: zero
+/// except for a compound, whose frame is where its children were placed.
+inline Vector3 frameToCentre(const RigidBody &body, const CollisionShape &shape) {
+    if (!shape.isCompound()) return Vector3::Zero();
+    return body.getOrientation() * shape.frameToCentre();
+}
+
 struct BodyStore {
     std::vector<BodyRecord> records;
     std::vector<std::uint32_t> free;   ///< Slots of removed bodies, reused first.

@@ -27,6 +27,7 @@ real boundingRadius(const Shape &shape, const detail::CollisionShape &compiled) 
             for (const Vector3 &v : compiled.vertices()) r = std::max(r, v.norm());
             return r;
         }
+        case ShapeType::Compound: return compiled.boundingRadius();
         case ShapeType::Plane: break;
     }
     return 0;
@@ -197,6 +198,7 @@ BodyId World::addBody(const BodySettings &settings) {
     if (settings.layer < 0 || settings.layer > 31)
         detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
     RigidBody body = makeBody(function, settings, *shape, w.settings);
+    if (shape->isCompound()) body.setPosition(body.getPosition() + detail::frameToCentre(body, *shape));
 
     // Nothing below throws on user input: the world changes only from here on.
     std::uint32_t index;

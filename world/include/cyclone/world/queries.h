@@ -1,6 +1,7 @@
 /// \file
-/// Queries against a World's bodies: the closest hit of a ray (World::rayCast) and the
-/// bodies a shape overlaps (World::overlap). Both walk the broadphase trees, so their
+/// Queries against a World's bodies: the closest hit of a ray (World::rayCast), the
+/// first hit of a moving shape (World::shapeCast) and the bodies a shape overlaps
+/// (World::overlap). Both walk the broadphase trees, so their
 /// cost grows with the bodies near the ray or the shape, not with the world's size.
 #pragma once
 
@@ -42,6 +43,22 @@ struct RayHit {
     Vector3 normal = Vector3::UnitY();
     /// Distance from the ray's origin to `point`, m, in [0, maxDistance].
     real distance = 0;
+};
+
+/// The first hit of a shape cast, as returned by World::shapeCast().
+struct ShapeCastHit {
+    /// The body hit.
+    BodyId body;
+    /// How much of the translation the shape travels before it touches, in [0, 1].
+    real fraction = 0;
+    /// The same as a distance along the translation, m: fraction times its length.
+    real distance = 0;
+    /// World-space point where the shapes touch, on the cast shape, m (along a face or
+    /// an edge, one of its points).
+    Vector3 point = Vector3::Zero();
+    /// Unit surface normal of the body hit at `point`, world space, pointing out of it
+    /// towards the cast shape.
+    Vector3 normal = Vector3::UnitY();
 };
 
 }  // namespace cyclone

@@ -188,10 +188,13 @@ struct BodySettings {
     bool isStatic = false;
     /// Mass of a dynamic body, kg, finite, > 0.
     real mass = 1;
-    /// Body-space inertia tensor, kg m^2, symmetric positive definite; empty means
-    /// computed from the shape and the mass.
+    /// Body-space inertia tensor (about the centre of mass, in the shape frame's axes),
+    /// kg m^2, symmetric positive definite; empty means computed from the shape and the
+    /// mass.
     std::optional<Matrix3> inertia;
-    /// World-space position of the centre of mass (the shape's origin), m, finite, each
+    /// World-space position of the centre of mass (the shape's origin; for a compound,
+    /// the origin of the frame its children are placed in, and the centre of mass lies
+    /// where their masses put it), m, finite, each
     /// coordinate within 1e30.
     Vector3 position = Vector3::Zero();
     /// Orientation; normalised on add, (0,0,0,0) means identity.

@@ -19,7 +19,10 @@ enum class ShapeType {
     Convex,    ///< Shape::convex: the hull of points.
     Plane,     ///< Shape::plane: a half-space; static bodies only.
     Mesh,      ///< Shape::mesh: triangles; static bodies only.
+    Compound,  ///< Shape::compound: convex children, each placed in the body's frame.
 };
+
+struct CompoundChild;
 
 /// A collision shape in the body's own frame; the body's position is the frame's origin.
 /// Build one with the named constructors; only the fields of its type are read.
@@ -33,6 +36,8 @@ struct Shape {
     std::vector<std::array<int, 3>> triangles;   ///< Mesh: vertex indices of each triangle.
     Vector3 normal = Vector3::UnitY();           ///< Plane: outward normal (any length > 0).
     real offset = 0;  ///< Plane: the solid is normal.x <= offset with the normal as given (distance offset/|normal| along it), m.
+    /// Compound: the children, at least one, each a box, sphere, capsule, cylinder or convex hull.
+    std::vector<CompoundChild> children;
 
     /// A box centred on the origin with half sizes `halfExtents` along x, y, z (m, each
     /// finite and > 0).
@@ -55,6 +60,25 @@ struct Shape {
     /// A triangle mesh for static bodies (m, finite): each triangle three distinct vertex
     /// indices of non-zero area, at least one triangle. Both sides of a triangle collide.
     static Shape mesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles);
+    /// A body made of convex children (box, sphere, capsule, cylinder or convex; at least
+    /// one), each placed in the compound's frame. The children's mass is spread at one
+    /// density: the centre of mass and inertia follow from their volumes and places
+    /// (parallel-axis theorem). A body with a compound shape is placed by this frame
+    /// (BodySettings::position and orientation, World::framePosition), while its
+    /// RigidBody's position is its centre of mass. Children may overlap; they never
+    /// collide with each other.
+    static Shape compound(std::vector<CompoundChild> children);
+};
+
+/// A child of a compound shape: a convex shape placed in the compound's frame.
+struct CompoundChild {
+    /// The child's shape: box, sphere, capsule, cylinder or convex.
+    Shape shape;
+    /// Where the child's origin lies in the compound's frame, m, finite.
+    Vector3 position = Vector3::Zero();
+    /// The child's orientation in the compound's frame, finite; normalised, (0,0,0,0)
+    /// means identity.
+    Quaternion orientation = Quaternion::Identity();
 };
 
 /// Name of a shape type as in scene files: "box", "sphere", ...

@@ -91,6 +91,15 @@ public:
     const std::string &name(BodyId id) const;
     /// The body's shape, in its own frame.
     const Shape &shape(BodyId id) const;
+    /// World-space origin of the body's shape frame, m: for a compound, the frame its
+    /// children are placed in (where BodySettings::position put it); for any other shape,
+    /// the centre of mass, body(id).getPosition(). The frame turns with the body
+    /// (body(id).getOrientation()).
+    Vector3 framePosition(BodyId id) const;
+    /// The body's shape frame as a transform: framePosition() and the body's orientation.
+    Matrix4 framePose(BodyId id) const;
+    /// The centre of mass in the body's shape frame, m: zero except for a compound.
+    Vector3 localCentreOfMass(BodyId id) const;
     /// Whether the body is static (Motion::Static).
     bool isStatic(BodyId id) const;
     /// How the body moves.
@@ -100,12 +109,17 @@ public:
 
     // --- Changing bodies: each wakes the body and its island ----------------------------
 
-    /// Moves the body's centre of mass to `position` (m, finite, each coordinate within
+    /// Moves the body's centre of mass (for a compound, not its frame: see
+    /// setFramePosition()) to `position` (m, finite, each coordinate within
     /// 1e30 of the origin); a plane is refused. Wakes the body and its island; a moved
     /// static body wakes the bodies touching it.
     void setPosition(BodyId id, const Vector3 &position);
-    /// Turns the body to `orientation` (finite; normalised; (0,0,0,0) means identity); a
-    /// plane is refused. Wakes as setPosition() does.
+    /// Moves the body so that the origin of its shape frame (framePosition()) lies at
+    /// `position` (m, finite, within 1e30 of the origin): setPosition() for a compound's
+    /// frame. Wakes as setPosition() does.
+    void setFramePosition(BodyId id, const Vector3 &position);
+    /// Turns the body about its centre of mass to `orientation` (finite; normalised;
+    /// (0,0,0,0) means identity); a plane is refused. Wakes as setPosition() does.
     void setOrientation(BodyId id, const Quaternion &orientation);
     /// Sets the linear velocity (m/s, finite) of a dynamic body, which wakes it and its
     /// island, or of a kinematic body, which keeps it until it is set again; a kinematic
@@ -191,12 +205,26 @@ public:
                                   real maxDistance = std::numeric_limits<real>::infinity(),
                                   const QueryFilter &filter = QueryFilter()) const;
 
+    /// The first body that `shape` (any shape but a plane or a mesh; a compound is placed
+    /// by its frame), placed at `position` (m, finite, within 1e30 of the origin) with
+    /// `orientation` (finite; normalised; (0,0,0,0) means identity) and moved by
+    /// `translation` (m, finite, not zero) without turning, touches, among those `filter`
+    /// accepts; none when it touches nothing on the way. The shapes are apart by at most
+    /// 0.1 mm, never overlapping, at the distance reported (conservative advancement on
+    /// the GJK distance; planes exact). A body the shape overlaps at the start is hit at
+    /// 0 only if the translation goes deeper into it; otherwise it is left out, so that a
+    /// character standing on the ground can cast along it. Ties go to the smaller
+    /// BodyId::index. The building block of a character controller.
+    std::optional<ShapeCastHit> shapeCast(const Shape &shape, const Vector3 &position, const Quaternion &orientation,
+                                          const Vector3 &translation,
+                                          const QueryFilter &filter = QueryFilter()) const;
+
     /// The bodies whose shapes intersect (overlap or touch) `shape` placed at `position`
     /// (m, finite, within 1e30 of the origin) with `orientation` (finite, normalised;
     /// (0,0,0,0) means identity), among those `filter` accepts, written into `out`
     /// (cleared first) in increasing BodyId::index. Returns how many. `shape` is
-    /// validated as for addBody(); a plane is refused (it is unbounded). Tested exactly
-    /// with FCL.
+    /// validated as for addBody(); a plane is refused (it is unbounded); a compound is
+    /// placed by its frame. Tested exactly with FCL (a compound child by child).
     std::size_t overlap(const Shape &shape, const Vector3 &position, const Quaternion &orientation,
                         std::vector<BodyId> &out, const QueryFilter &filter = QueryFilter()) const;
 
