@@ -73,6 +73,7 @@ void ContactManager::updateContacts(WorldState &world) {
             ++world.stats.filteredPairs;
             continue;
         }
+        if (world.joints.excludesContact(c.a, c.b)) continue;  // joined without collideConnected
         if (bodies[c.a].immovable && bodies[c.b].immovable) {
             // A moving kinematic body with a static or kinematic one: neither can push.
             ++world.stats.immovablePairsSkipped;
