@@ -118,6 +118,7 @@ void JointSet::prepare(WorldState &world, const std::vector<SolverBody> &solverB
     stepTime_ += h;
     makeRows(world, solverBodies, h, false);
     factorise(solverBodies);
+    constrainBoundedMasses(solverBodies);
     world.stats.jointRows += static_cast<int>(rows_.size());
 }
 
@@ -158,6 +159,35 @@ void JointSet::factorise(const std::vector<SolverBody> &solverBodies) {
     ldlt_.compute(k);
     factorised_ = ldlt_.info() == Eigen::Success;
     rhs_.resize(n);
+}
+
+// A bounded row's impulse is followed by the equality block's answer to it, which gives
+// back part of what it did: a door's limit row alone sees the door's inertia about its
+// centre, but the hinge makes it turn about its edge. Its mass is therefore the one it has
+// with the equality rows held, 1 / (k_bb - k_be K^-1 k_eb) (the Schur complement), with
+// which one pass stops a limit exactly.
+void JointSet::constrainBoundedMasses(const std::vector<SolverBody> &solverBodies) {
+    const int n = static_cast<int>(equality_.size());
+    if (n == 0 || !factorised_ || bounded_.empty()) return;
+    for (const int k : bounded_) {
+        JointRow &r = rows_[k];
+        rhs_.setZero(n);
+        bool coupled = false;
+        for (int side = 0; side < 2; ++side) {
+            const int body = side == 0 ? r.a : r.b;
+            if (body == 0 || !(solverBodies[body].invMass > 0)) continue;
+            for (const int e : rowsOfBody_[body]) {
+                rhs_[e / 2] += coupling(rows_[equality_[e / 2]], e % 2, r, side);
+                coupled = true;
+            }
+        }
+        if (!coupled) continue;
+        const real k0 = r.mass > 0 ? 1 / r.mass - r.gamma : 0;
+        delta_ = ldlt_.solve(rhs_);
+        const real held = k0 - rhs_.dot(delta_);
+        // A row the equality rows fix entirely (held ~ 0) keeps its free mass.
+        if (held > 1e-9 * k0 && std::isfinite(held)) r.mass = 1 / (held + r.gamma);
+    }
 }
 
 void JointSet::warmStart(std::vector<SolverBody> &solverBodies) const {

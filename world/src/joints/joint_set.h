@@ -138,6 +138,8 @@ private:
     void makeRows(const WorldState &world, const std::vector<SolverBody> &solverBodies, real h, bool positions);
     /// Factorises J M^-1 J^T of the equality rows (equality_).
     void factorise(const std::vector<SolverBody> &solverBodies);
+    /// Gives each bounded row its effective mass with the equality rows held.
+    void constrainBoundedMasses(const std::vector<SolverBody> &solverBodies);
 
     std::unordered_map<std::uint64_t, int> excluded_;  ///< Joined pairs that do not collide: joints per pair.
     std::vector<JointRow> rows_;
