@@ -118,6 +118,7 @@ void applyEvent(World &world, BodyId id, const SceneEvent &event) {
         }
         break;
     case EventKind::SetAwake: world.setAwake(id, event.awake); break;
+    case EventKind::RemoveJoint: break;
     }
 }
 
@@ -133,12 +134,22 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
     std::size_t nextEvent = 0;
     std::vector<bool> present(scene.bodies.size(), true);
 
+    result.jointError.assign(scene.joints.size(), 0);
+    result.jointMaxError.assign(scene.joints.size(), 0);
+    result.jointBrokenAt.assign(scene.joints.size(), std::nullopt);
     const auto runStart = Clock::now();
     for (std::int64_t step = 0; step < options.steps; ++step) {
         std::string eventsOfStep;  // for a failure of the step: what this step was given
         for (; nextEvent < eventOrder.size() && scene.events[eventOrder[nextEvent]].step <= step; ++nextEvent) {
             const SceneEvent &event = scene.events[eventOrder[nextEvent]];
             if (event.step < step) continue;
+            if (event.kind == EventKind::RemoveJoint) {
+                // A joint that broke, or went with one of its bodies, is already gone.
+                const JointId joint = built.joints[event.joint];
+                if (world.contains(joint)) world.removeJoint(joint);
+                eventsOfStep += (eventsOfStep.empty() ? "" : ", ") + event.path;
+                continue;
+            }
             try {
                 applyEvent(world, built.ids[event.body], event);
             } catch (const InvalidArgument &error) {
@@ -195,6 +206,16 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
                                  stepFailure);
         }
         if (!anyAwake && !result.nonFinite && !result.firstAllAsleepStep) result.firstAllAsleepStep = step;
+        for (const JointBreak &broken : world.events().jointsBroken) {
+            const auto it = std::find(built.joints.begin(), built.joints.end(), broken.joint);
+            if (it != built.joints.end()) result.jointBrokenAt[static_cast<std::size_t>(it - built.joints.begin())] = step;
+        }
+        for (std::size_t j = 0; j < built.joints.size(); ++j) {
+            if (!world.contains(built.joints[j])) continue;
+            const real error = world.jointState(built.joints[j]).error;
+            result.jointError[j] = error;
+            result.jointMaxError[j] = std::max(result.jointMaxError[j], error);
+        }
 
         const bool last = step + 1 == options.steps || result.nonFinite;
         if (options.trace && ((step + 1) % options.traceEvery == 0 || last)) {

@@ -71,13 +71,20 @@ struct RunResult {
     bool nonFinite = false;
     /// What became non-finite, for the message: body, step and quantity.
     std::string nonFiniteWhat;
+    /// Each scene joint's error after the last step it existed in, m (scene order).
+    std::vector<real> jointError;
+    /// Each scene joint's largest error after any step, m.
+    std::vector<real> jointMaxError;
+    /// The step in which each scene joint broke, if it did.
+    std::vector<std::optional<std::int64_t>> jointBrokenAt;
 };
 
 /// Whether position, orientation, velocity and rotation are all finite.
 bool hasFiniteState(const RigidBody &body);
 
 /// Applies one scripted event to the body `id` through the World API (the call the event
-/// names); the World's InvalidArgument passes through.
+/// names); the World's InvalidArgument passes through. remove_joint is not a body's
+/// event: runScene applies it.
 void applyEvent(World &world, BodyId id, const SceneEvent &event);
 
 /// Runs `world` (built from `scene`). Throws SceneError at an event's path if the World

@@ -1,5 +1,6 @@
 // A scene as loaded from a scene file (the scene-format contract): world
-// settings, run settings, named bodies, springs between named bodies and scripted events.
+// settings, run settings, named bodies, springs and joints between named bodies and
+// scripted events.
 // Everything in it has been validated; each part keeps its JSON path for later messages.
 #pragma once
 
@@ -41,8 +42,22 @@ struct SceneSpring {
     SpringSettings settings;
 };
 
+/// A joint between two named bodies, or a body and the world when `b` is empty.
+struct SceneJoint {
+    /// JSON path of the joint, e.g. "joints[2]".
+    std::string path;
+    /// Unique among the scene's joints.
+    std::string name;
+    /// Index in Scene::bodies of the first body.
+    std::size_t a = 0;
+    /// Index in Scene::bodies of the second body; empty: joined to the world.
+    std::optional<std::size_t> b;
+    /// Everything else (the body handles are filled in later).
+    JointSettings settings;
+};
+
 /// What a scripted event does; each is one World call.
-enum class EventKind { Remove, SetVelocity, SetRotation, SetPosition, ApplyImpulse, SetAwake };
+enum class EventKind { Remove, SetVelocity, SetRotation, SetPosition, ApplyImpulse, SetAwake, RemoveJoint };
 
 /// Name of an event kind as in scene files: "remove", "set_velocity", ...
 const char *eventKindName(EventKind kind);
@@ -54,8 +69,10 @@ struct SceneEvent {
     /// Step at whose start the event applies, >= 0.
     std::int64_t step = 0;
     EventKind kind = EventKind::Remove;
-    /// Index in Scene::bodies of the target body.
+    /// Index in Scene::bodies of the target body (every kind but RemoveJoint).
     std::size_t body = 0;
+    /// Index in Scene::joints of the joint remove_joint removes.
+    std::size_t joint = 0;
     /// Velocity (m/s), rotation (rad/s), position (m) or impulse (N s), by kind.
     Vector3 value = Vector3::Zero();
     /// World-space point of an impulse (m); empty: the centre of mass.
@@ -84,6 +101,7 @@ struct Scene {
     std::int64_t steps = 600;
     std::vector<SceneBody> bodies;
     std::vector<SceneSpring> springs;
+    std::vector<SceneJoint> joints;
     /// Events in file order (a run applies those of one step in this order).
     std::vector<SceneEvent> events;
     /// Fields the contract does not have, in file order; they change nothing.

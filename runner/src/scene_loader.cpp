@@ -456,6 +456,90 @@ SceneSpring readSpring(const json &value, const std::string &path, const NameInd
     return spring;
 }
 
+JointType readJointType(const json &value, const std::string &path) {
+    const std::string &name = readString(value, path);
+    if (name == "ball") return JointType::Ball;
+    if (name == "hinge") return JointType::Hinge;
+    if (name == "fixed") return JointType::Fixed;
+    if (name == "slider") return JointType::Slider;
+    if (name == "distance") return JointType::Distance;
+    fail(path, "unknown joint type " + jsonQuoted(name) + "; known: \"ball\", \"hinge\", \"fixed\", \"slider\", \"distance\"");
+}
+
+SceneJoint readJoint(const json &value, const std::string &path, const NameIndex &names) {
+    expectObject(value, path);
+    SceneJoint joint;
+    joint.path = path;
+    JointSettings &s = joint.settings;
+    joint.name = readString(required(value, path, "name"), memberPath(path, "name"));
+    s.type = readJointType(required(value, path, "type"), memberPath(path, "type"));
+    const std::string typeName = value.at("type").get<std::string>();
+    joint.a = readBodyName(required(value, path, "a"), memberPath(path, "a"), names);
+    if (const json &b = required(value, path, "b"); !b.is_null()) {
+        const std::string bPath = memberPath(path, "b");
+        joint.b = readBodyName(b, bPath, names);
+        if (*joint.b == joint.a) fail(bPath, "must name a different body than a (or be null to join a to the world)");
+    }
+    s.anchor = readVector3(required(value, path, "anchor"), memberPath(path, "anchor"), Range::Length);
+    const bool axial = s.type == JointType::Hinge || s.type == JointType::Slider;
+    const bool distance = s.type == JointType::Distance;
+    // A field another type has would be silently ignored: refused, at its place.
+    const auto onlyFor = [&](const char *key, bool allowed, const char *types) {
+        if (member(value, key) && !allowed)
+            fail(memberPath(path, key), std::string("only ") + types + " joints have it, not a " + jsonQuoted(typeName) + " joint");
+    };
+    onlyFor("anchor_b", distance, "distance");
+    onlyFor("limits", axial, "hinge and slider");
+    onlyFor("motor", axial, "hinge and slider");
+    onlyFor("min_distance", distance, "distance");
+    onlyFor("max_distance", distance, "distance");
+    onlyFor("stiffness", distance, "distance");
+    onlyFor("damping", distance, "distance");
+    if (const json *anchorB = member(value, "anchor_b")) s.anchorB = readVector3(*anchorB, memberPath(path, "anchor_b"), Range::Length);
+    if (axial) {
+        const std::string axisPath = memberPath(path, "axis");
+        s.axis = readVector3(required(value, path, "axis"), axisPath);
+        if (!(s.axis.norm() > 1e-12)) fail(axisPath, "must not be zero, got " + describe(value.at("axis")));
+    }
+    if (const json *limits = member(value, "limits")) {
+        const std::string limitsPath = memberPath(path, "limits");
+        expectArray(*limits, limitsPath, 2);
+        if (limits->size() != 2) fail(limitsPath, "must be [lo, hi], got " + describe(*limits));
+        JointLimits l;
+        l.lower = readNumber((*limits)[0], elementPath(limitsPath, 0));
+        l.upper = readNumber((*limits)[1], elementPath(limitsPath, 1));
+        if (!(l.lower <= l.upper)) fail(limitsPath, "lo must be <= hi, got " + describe(*limits));
+        if (s.type == JointType::Hinge && (l.lower < -M_PI || l.upper > M_PI))
+            fail(limitsPath, "a hinge's angles must be within [-pi, pi], got " + describe(*limits));
+        s.limits = l;
+    }
+    if (const json *motor = member(value, "motor")) {
+        const std::string motorPath = memberPath(path, "motor");
+        expectObject(*motor, motorPath);
+        JointMotor m;
+        m.speed = readNumber(required(*motor, motorPath, "speed"), memberPath(motorPath, "speed"));
+        m.maxForce = readNumber(required(*motor, motorPath, "max_force"), memberPath(motorPath, "max_force"), Range::NonNegative);
+        s.motor = m;
+    }
+    const auto nonNegative = [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegative); };
+    if (const json *d = member(value, "min_distance")) s.minDistance = readNumber(*d, memberPath(path, "min_distance"), Range::NonNegativeLength);
+    if (const json *d = member(value, "max_distance")) s.maxDistance = readNumber(*d, memberPath(path, "max_distance"), Range::NonNegativeLength);
+    if (distance) {
+        const real at = (s.anchor - s.anchorB.value_or(s.anchor)).norm();
+        if (!(s.minDistance.value_or(at) <= s.maxDistance.value_or(at))) {
+            fail(memberPath(path, s.maxDistance ? "max_distance" : "min_distance"),
+                 "min_distance must be <= max_distance, got " + formatNumber(s.minDistance.value_or(at)) + " > " +
+                     formatNumber(s.maxDistance.value_or(at)) + (s.minDistance && s.maxDistance ? "" : " (the anchors' distance at load)"));
+        }
+    }
+    readOptional(value, path, "stiffness", s.stiffness, nonNegative);
+    readOptional(value, path, "damping", s.damping, nonNegative);
+    readOptional(value, path, "break_force", s.breakForce,
+                 [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); });
+    if (const json *collide = member(value, "collide_connected")) s.collideConnected = readBool(*collide, memberPath(path, "collide_connected"));
+    return joint;
+}
+
 struct EventAction {
     const char *key;
     EventKind kind;
@@ -468,9 +552,11 @@ constexpr EventAction kEventActions[] = {
     {"set_position", EventKind::SetPosition, "position"},
     {"apply_impulse", EventKind::ApplyImpulse, "impulse"},
     {"set_awake", EventKind::SetAwake, nullptr},
+    {"remove_joint", EventKind::RemoveJoint, nullptr},
 };
 
-SceneEvent readEvent(const json &value, const std::string &path, const Scene &scene, const NameIndex &names) {
+SceneEvent readEvent(const json &value, const std::string &path, const Scene &scene, const NameIndex &names,
+                     const NameIndex &jointNames) {
     expectObject(value, path);
     SceneEvent event;
     event.path = path;
@@ -486,10 +572,17 @@ SceneEvent readEvent(const json &value, const std::string &path, const Scene &sc
     }
     if (!action) {
         fail(path, "needs one of \"remove\", \"set_velocity\", \"set_rotation\", \"set_position\", "
-                   "\"apply_impulse\", \"set_awake\"");
+                   "\"apply_impulse\", \"set_awake\", \"remove_joint\"");
     }
     event.kind = action->kind;
     const std::string targetPath = memberPath(path, action->key);
+    if (event.kind == EventKind::RemoveJoint) {
+        const std::string &name = readString(value[action->key], targetPath);
+        const auto it = jointNames.find(name);
+        if (it == jointNames.end()) fail(targetPath, "no joint named " + jsonQuoted(name));
+        event.joint = it->second;
+        return event;
+    }
     event.body = readBodyName(value[action->key], targetPath, names);
     const BodySettings &target = scene.bodies[event.body].settings;
     const Motion targetMotion = motionOf(target);
@@ -523,8 +616,18 @@ void checkRemovals(const Scene &scene) {
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t x, std::size_t y) { return scene.events[x].step < scene.events[y].step; });
     std::map<std::size_t, const SceneEvent *> removedBy;
+    std::map<std::size_t, const SceneEvent *> jointRemovedBy;
     for (std::size_t i : order) {
         const SceneEvent &event = scene.events[i];
+        if (event.kind == EventKind::RemoveJoint) {
+            const auto [it, first] = jointRemovedBy.emplace(event.joint, &event);
+            if (!first) {
+                fail(memberPath(event.path, "remove_joint"),
+                     "joint " + jsonQuoted(scene.joints[event.joint].name) + " was removed by " + it->second->path +
+                         " at step " + std::to_string(it->second->step));
+            }
+            continue;
+        }
         const auto removed = removedBy.find(event.body);
         if (removed != removedBy.end()) {
             fail(memberPath(event.path, eventKindName(event.kind)),
@@ -579,16 +682,23 @@ Scene loadSceneDocument(const json &document, const std::string &fallbackName) {
             scene.springs.push_back(readSpring((*springs)[i], elementPath("springs", i), names));
         }
     }
-    // The contract's joints are not built yet: a scene that has some is refused rather than
-    // run without them.
+    NameIndex jointNames;
     if (const json *joints = member(document, "joints")) {
         expectArray(*joints, "joints", kMaxSprings);
-        if (!joints->empty()) fail(elementPath("joints", 0), "joints are not supported by this version of cyclone-world");
+        for (std::size_t i = 0; i < joints->size(); ++i) {
+            SceneJoint joint = readJoint((*joints)[i], elementPath("joints", i), names);
+            const auto [it, inserted] = jointNames.emplace(joint.name, i);
+            if (!inserted) {
+                fail(memberPath(joint.path, "name"), "duplicate joint name " + jsonQuoted(joint.name) + ", also " +
+                                                          scene.joints[it->second].path + ".name");
+            }
+            scene.joints.push_back(std::move(joint));
+        }
     }
     if (const json *events = member(document, "events")) {
         expectArray(*events, "events", kMaxEvents);
         for (std::size_t i = 0; i < events->size(); ++i) {
-            scene.events.push_back(readEvent((*events)[i], elementPath("events", i), scene, names));
+            scene.events.push_back(readEvent((*events)[i], elementPath("events", i), scene, names, jointNames));
         }
         checkRemovals(scene);
     }

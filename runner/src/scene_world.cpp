@@ -160,7 +160,7 @@ SceneWorld buildWorld(const Scene &scene) {
                              throw SceneError("settings", error.what());
                          }
                      }(),
-                     {}};
+                     {}, {}};
     built.ids.reserve(scene.bodies.size());
     for (const SceneBody &body : scene.bodies) {
         try {
@@ -188,6 +188,19 @@ SceneWorld buildWorld(const Scene &scene) {
             throw refuse(spring.path, error);
         } catch (const std::exception &error) {
             throw SceneError(spring.path, error.what());
+        }
+    }
+    built.joints.reserve(scene.joints.size());
+    for (const SceneJoint &joint : scene.joints) {
+        JointSettings settings = joint.settings;
+        settings.a = built.ids[joint.a];
+        if (joint.b) settings.b = built.ids[*joint.b];
+        try {
+            built.joints.push_back(built.world.addJoint(settings));
+        } catch (const InvalidArgument &error) {
+            throw refuse(joint.path, error);
+        } catch (const std::exception &error) {
+            throw SceneError(joint.path, error.what());
         }
     }
     return built;

@@ -14,6 +14,8 @@ namespace cyclone::scene {
 struct SceneWorld {
     World world;
     std::vector<BodyId> ids;
+    /// The handle of every scene joint, in scene order.
+    std::vector<JointId> joints;
 };
 
 /// Builds the World of `scene`. Throws SceneError with the JSON path of the part the

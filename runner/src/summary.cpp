@@ -54,6 +54,20 @@ ordered_json summaryJson(const Scene &scene, const SceneWorld &built, const RunR
         bodies.push_back(std::move(entry));
     }
     summary["bodies"] = std::move(bodies);
+    if (!scene.joints.empty()) {
+        ordered_json joints = ordered_json::array();
+        for (std::size_t j = 0; j < scene.joints.size(); ++j) {
+            ordered_json entry;
+            entry["name"] = scene.joints[j].name;
+            const bool ran = j < result.jointError.size();  // a run that took no step has none
+            entry["broken_at_step"] =
+                ran && result.jointBrokenAt[j] ? ordered_json(*result.jointBrokenAt[j]) : ordered_json(nullptr);
+            entry["error"] = ran ? result.jointError[j] : 0.0;
+            entry["max_error"] = ran ? result.jointMaxError[j] : 0.0;
+            joints.push_back(std::move(entry));
+        }
+        summary["joints"] = std::move(joints);
+    }
     return summary;
 }
 

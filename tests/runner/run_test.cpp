@@ -44,7 +44,8 @@ std::vector<std::string> lines(const std::string &text) {
 }
 
 const char *const kShippedScenes[] = {"tower",   "pyramid-20", "pyramid-10", "resting-shapes", "incline",
-                                      "sleep-wake", "springs", "mixed-shapes"};
+                                      "sleep-wake", "springs", "mixed-shapes", "pendulum", "chain-20",
+                                      "chain-20-heavy", "chain-20-heavy-swing", "door", "crane"};
 
 TEST(Run, EveryShippedSceneRunsAsItIs) {
     for (const char *name : kShippedScenes) {
@@ -267,6 +268,51 @@ TEST(Cli, ReportSaysWhenNothingSleeps) {
     const Process p = runWorld({"report", scenePath("pyramid-20"), "--steps", "5"}, dir);
     ASSERT_EQ(p.status, 0) << p.err;
     EXPECT_NE(p.out.find("asleep       never"), std::string::npos) << p.out;
+}
+
+}  // namespace
+
+namespace {
+
+// The shipped heavy chain swinging from horizontal, through the runner: every joint is in
+// the summary, in scene order, none broken, each within the issue's 50 mm target.
+TEST(Run, JointsAreInTheSummary) {
+    TempDir dir;
+    const Process p = runWorld({"run", scenePath("chain-20-heavy-swing"), "--steps", "120", "--summary", dir.file("s.json")}, dir);
+    ASSERT_EQ(p.status, 0) << p.err;
+    const json summary = json::parse(readText(dir.file("s.json")));
+    ASSERT_EQ(summary["joints"].size(), 21u);
+    for (std::size_t j = 0; j < 21; ++j) {
+        const json &joint = summary["joints"][j];
+        EXPECT_EQ(joint["name"], "j" + std::to_string(j));
+        EXPECT_TRUE(joint["broken_at_step"].is_null());
+        EXPECT_LE(joint["error"].get<double>(), joint["max_error"].get<double>());
+        EXPECT_LE(joint["max_error"].get<double>(), 0.05);
+    }
+}
+
+// A joint whose break force is below the weight it holds breaks in the first step (step
+// 0); a remove_joint event for it later finds it gone and does nothing.
+TEST(Run, BrokenJointIsReportedWithItsStep) {
+    TempDir dir;
+    const std::string scene = dir.file("break.json");
+    writeText(scene, R"({"name": "break", "settings": {"steps": 10},
+        "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.2}, "mass": 2, "position": [0, 5, 0]},
+                   {"name": "c", "shape": {"type": "sphere", "radius": 0.2}, "mass": 2, "position": [3, 5, 0]}],
+        "joints": [{"name": "weak", "type": "ball", "a": "b", "b": null, "anchor": [0, 5, 0], "break_force": 15},
+                   {"name": "strong", "type": "ball", "a": "c", "b": null, "anchor": [3, 5, 0], "break_force": 25}],
+        "events": [{"step": 5, "remove_joint": "weak"}, {"step": 5, "remove_joint": "strong"}]})");
+    const Process p = runWorld({"run", scene, "--summary", dir.file("s.json")}, dir);
+    ASSERT_EQ(p.status, 0) << p.err;
+    const json summary = json::parse(readText(dir.file("s.json")));
+    // Each holds m g = 19.62 N: "weak" (15 N) breaks in step 0, "strong" (25 N) holds until
+    // its event removes it at step 5; both bodies then fall.
+    EXPECT_EQ(summary["joints"][0]["broken_at_step"], 0);
+    EXPECT_TRUE(summary["joints"][1]["broken_at_step"].is_null());
+    // Held during step 0 (the break is found at its end), then 9 steps of free fall.
+    EXPECT_NEAR(summary["bodies"][0]["velocity"][1].get<double>(), -9 * 9.81 / 60, 1e-9);
+    EXPECT_LT(summary["bodies"][1]["velocity"][1].get<double>(), -0.5);  // 5 steps: -0.8175 m/s
+    EXPECT_GT(summary["bodies"][1]["velocity"][1].get<double>(), -0.9);
 }
 
 }  // namespace

@@ -55,10 +55,9 @@ TEST(SceneFields, FieldsOfAnotherKindAndFieldsOutOfPlace) {
     EXPECT_EQ(warnings, expected);
 }
 
-// Every field the contract names, of both versions, in one scene: no warning. The runner
-// does not act on motion, layers, sensors or joints yet; it must not call them typos.
-// Field names only: the loader refuses joints (and sensors) until the World has them,
-// but the table knows every field of the contract.
+// Every field the contract names, of both versions, in one scene: no warning. Field names
+// only: the loader refuses sensors until the World has them (and a hinge with a distance
+// joint's fields), but the table knows every field of the contract.
 std::vector<SceneWarning> fieldWarnings(const std::string &text) { return unknownFields(nlohmann::json::parse(text)); }
 
 TEST(SceneFields, EveryFieldOfTheContractIsKnown) {
@@ -91,7 +90,7 @@ TEST(SceneFields, EveryFieldOfTheContractIsKnown) {
                    {"step": 1, "set_rotation": "b", "rotation": [0, 1, 0]},
                    {"step": 2, "set_position": "s", "position": [3, 2, 0]},
                    {"step": 2, "apply_impulse": "c", "impulse": [0, 1, 0], "point": [6, 1, 0]},
-                   {"step": 3, "set_awake": "c", "awake": false}]})");
+                   {"step": 3, "set_awake": "c", "awake": false}, {"step": 4, "remove_joint": "j"}]})");
     EXPECT_TRUE(warnings.empty()) << warnings.size() << " warnings, the first " << warnings.front().path;
 }
 

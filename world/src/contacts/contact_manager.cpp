@@ -127,6 +127,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             ++world.stats.filteredPairs;
             continue;
         }
+        if (world.joints.excludesContact(c.a, c.b)) continue;  // joined without collideConnected
         if (bodies[c.a].immovable && bodies[c.b].immovable) {
             // A moving kinematic body with a static or kinematic one: neither can push.
             ++world.stats.immovablePairsSkipped;

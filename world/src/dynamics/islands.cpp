@@ -37,6 +37,12 @@ void Islands::build(WorldState &world) {
         const BodyRecord &b = bodies[s.settings.b->index];
         if (a.simulated && b.simulated) unite(a.solverIndex - 1, b.solverIndex - 1);
     }
+    for (const JointRecord &j : world.joints.records) {
+        if (!j.alive || !j.settings.b) continue;
+        const BodyRecord &a = bodies[j.settings.a.index];
+        const BodyRecord &b = bodies[j.settings.b->index];
+        if (a.simulated && b.simulated) unite(a.solverIndex - 1, b.solverIndex - 1);
+    }
     // Islands are numbered in the order of their first members. A parent never comes
     // after its child (unite keeps the smaller root), so in one walk each entry's parent
     // already holds its island, stored as ~island to tell it from a parent's index.

@@ -38,7 +38,8 @@ public:
     /// One sub-step's velocities: predicted without contacts, then corrected by the
     /// velocity passes and the carrier pass, and given to the bodies.
     void solveVelocities(WorldState &world, real h, bool firstSubstep);
-    /// Pushes bodies out of penetration beyond the slop without adding energy.
+    /// Pushes bodies out of penetration beyond the slop without adding energy, then
+    /// projects the joined bodies' positions onto their joints.
     void recoverPenetration(WorldState &world, real h);
     /// SoftStep's restitution pass, once per step.
     void applyRestitution(WorldState &world);
@@ -58,6 +59,7 @@ private:
     void solveVelocityPass(WorldState &world, bool reverse);
     void storeVelocityPasses(WorldState &world);
     void solveCarrierPass(WorldState &world, bool reverse);
+    void recoverContactPenetration(WorldState &world, real h);
 
     /// The body records of a slot's A and B: the passes over the slots read them here,
     /// not from the pair, whose record is a cache miss away.

@@ -96,6 +96,13 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         }
     });
 
+    // Joints: rows made at the sub-step's poses, warm-started, and solved in the same
+    // passes as the contacts, after them (joints/joint_set.h).
+    const bool joints = world.stats.joints > 0;
+    if (joints) {
+        world.joints.prepare(world, bodies_, h);
+        world.joints.warmStart(bodies_);
+    }
     if (!manifolds_.empty()) {
         if (split) loadVelocityPasses(world);
         else if (settings.warmStarting) warmStart(world);
@@ -104,6 +111,7 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
             if (split) solveVelocityPass(world, (it & 1) != 0);
             else solveSoft(bodies_, manifolds_, solveOrder_, h, true, soft_);
             solveResistance(bodies_, resistance_);
+            if (joints) world.joints.solveVelocities(bodies_);
         }
         if (split) storeVelocityPasses(world);
         stats.velocityIterations += settings.velocityIterations;
@@ -114,8 +122,13 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
             // A run sweeps its points in one direction: the other one next step, so that
             // no point of a face takes the larger share step after step (carrier_pass.h).
             solveCarrierPass(world, ((settings.velocityIterations & 1) != 0) != ((world.stepCount & 1) != 0));
+            // The carrier pass moved joined bodies too: the joints have the last word.
+            if (joints) world.joints.solveVelocities(bodies_);
         }
+    } else if (joints) {
+        for (int it = 0; it < settings.velocityIterations; ++it) world.joints.solveVelocities(bodies_);
     }
+    if (joints) world.joints.storeImpulses();
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.
@@ -187,6 +200,11 @@ void ConstraintSolver::solveCarrierPass(WorldState &world, bool reverse) {
 }
 
 void ConstraintSolver::recoverPenetration(WorldState &world, real h) {
+    recoverContactPenetration(world, h);
+    if (world.stats.joints > 0) world.joints.correctPositions(world, bodies_, world.settings.positionIterations);
+}
+
+void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
     BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
     StepStats &stats = world.stats;

@@ -16,6 +16,7 @@ void WorldState::step(real dt) {
         const StageTimer t(ms.forces);
         integration.beginStep(*this, dt);
         kinematicBodies.beginStep(*this);
+        joints.beginStep(*this);
     }
     { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
     { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
@@ -51,6 +52,7 @@ void WorldState::step(real dt) {
         const StageTimer t(ms.solve);
         solver.applyRestitution(*this);
         solver.storeImpulses(*this);
+        joints.finishStep(*this, dt);
     }
     { const StageTimer t(ms.ccd); ccd.sweep(*this); }
     { const StageTimer t(ms.sleep); islands.updateSleep(*this); }

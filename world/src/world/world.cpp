@@ -270,6 +270,7 @@ void World::removeBody(BodyId id) {
         if (pair.touching() && !w.bodies[other].immovable) w.wake(other);
     }
     w.contacts.removePairsOf(w.bodies, index);
+    w.joints.removeJointsOf(w, id);
     for (detail::SpringRecord &s : w.springs) {
         if (!s.alive) continue;
         const bool onA = s.settings.a == id;

@@ -16,6 +16,7 @@
 #include "dynamics/islands.h"
 #include "dynamics/kinematic_bodies.h"
 #include "dynamics/springs.h"
+#include "joints/joint_set.h"
 #include "solver/constraint_solver.h"
 #include "world/body_store.h"
 #include "world/event_log.h"
@@ -29,6 +30,7 @@ struct WorldState {
     WorldSettings settings;
     BodyStore bodies;
     SpringSet springs;
+    JointSet joints;
     Broadphase broadphase;
     ContactManager contacts;
     ConstraintSolver solver;

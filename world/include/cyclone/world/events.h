@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cyclone/core.h"
+#include "cyclone/world/joints.h"
 #include "cyclone/world/settings.h"
 
 namespace cyclone {
@@ -42,6 +43,17 @@ struct ContactEnd {
     BodyId b;
 };
 
+/// A joint broke: the mean force or torque it exerted during the step exceeded its
+/// JointSettings::breakForce or breakTorque. It has been removed (its JointId is stale).
+struct JointBreak {
+    /// The joint, removed.
+    JointId joint;
+    /// Its mean force on body a during the step, world space, N.
+    Vector3 force = Vector3::Zero();
+    /// Its angular rows' mean torque on body a during the step, world space, N m.
+    Vector3 torque = Vector3::Zero();
+};
+
 /// The events of one step, as returned by World::events().
 ///
 /// Each list holds what happened in the last World::step() and in the World calls made
@@ -64,6 +76,8 @@ struct WorldEvents {
     /// Dynamic bodies that woke up: touched by an awake body, joined to one by a spring,
     /// or woken by a World call (see World for the calls that wake).
     std::vector<BodyId> wokeUp;
+    /// Joints that broke (and were removed) at the end of the step.
+    std::vector<JointBreak> jointsBroken;
 
     /// Empties every list, keeping their storage.
     void clear() {
@@ -71,6 +85,7 @@ struct WorldEvents {
         contactEnds.clear();
         fellAsleep.clear();
         wokeUp.clear();
+        jointsBroken.clear();
     }
 };
 

@@ -54,6 +54,8 @@ struct StepStats {
     int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
     int carrierSweeps = 0;      ///< Sweeps the carrier pass gave bodies resting on others, one body's sweep each (summed over sub-steps; 0 without shock propagation).
     int springs = 0;            ///< Springs evaluated (once per step, whatever the sub-steps).
+    int joints = 0;             ///< Joints solved this step (at least one end simulated).
+    int jointRows = 0;          ///< Joint rows solved (summed over sub-steps).
     int gyroscopicBodies = 0;   ///< Bodies given the implicit gyroscopic step (anisotropic inertia only).
     int ccdSweeps = 0;          ///< ccd bodies that moved far enough this step to be swept.
     int ccdHits = 0;            ///< ccd bodies moved back to their time of impact.

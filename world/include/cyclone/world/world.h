@@ -10,9 +10,10 @@
 /// its velocity (setVelocity, setRotation) or applies a force, torque or impulse
 /// (applyImpulse, addForce, addForceAtPoint, addTorque) wakes it and its sleeping island;
 /// so do setAwake(id, true), setCanSleep(id, false), setSettings (every body), adding a
-/// spring (its bodies) and removing a spring or a body (the bodies it joined or touched).
-/// During a step, an awake body that touches a sleeping one, or is joined to it by a
-/// spring, wakes it (and its island) from the next step on. Reading (body(), events(),
+/// spring or a joint (its bodies), setting a joint's motor speed (its bodies), and
+/// removing a spring, a joint or a body (the bodies it joined or touched). During a step,
+/// an awake body that touches a sleeping one, or is joined to it by a spring or a joint,
+/// wakes it (and its island) from the next step on; a joint that breaks wakes its bodies. Reading (body(), events(),
 /// rayCast(), overlap(), debugDraw(), ...) and setMaterial() wake nothing.
 ///
 /// Errors: bad input throws cyclone::InvalidArgument naming the function, the field and
@@ -33,6 +34,7 @@
 #include "cyclone/world/debug_draw.h"
 #include "cyclone/world/error.h"
 #include "cyclone/world/events.h"
+#include "cyclone/world/joints.h"
 #include "cyclone/world/queries.h"
 #include "cyclone/world/settings.h"
 #include "cyclone/world/shape.h"
@@ -68,8 +70,8 @@ public:
     /// added with a velocity or rotation moves from the first step. A dynamic body added awake (the default) is simulated from the
     /// next step; one added with `awake = false` sleeps until something wakes it.
     BodyId addBody(const BodySettings &settings);
-    /// Removes a body; the bodies touching it or joined to it by a spring wake, and so do
-    /// the others of its sleeping island. Its springs are removed. Throws InvalidArgument
+    /// Removes a body; the bodies touching it or joined to it by a spring or a joint wake,
+    /// and so do the others of its sleeping island. Its springs and joints are removed. Throws InvalidArgument
     /// on a stale handle.
     void removeBody(BodyId id);
     /// True while `id` names a body of this world.
@@ -172,6 +174,33 @@ public:
     /// Removes a spring; it wakes the dynamic bodies it joined. Throws InvalidArgument on
     /// a stale handle.
     void removeSpring(SpringId id);
+
+    // --- Joints -------------------------------------------------------------------------
+
+    /// Adds a joint (see JointSettings for units, defaults and ranges) at the bodies'
+    /// current poses; it wakes the dynamic bodies it joins, and from then on an awake end
+    /// wakes the other, and the two sleep together. Unless collideConnected, the two
+    /// bodies stop colliding with each other (a contact they have ends at once). Throws
+    /// InvalidArgument (nothing added) on a stale body, b equal to a, no dynamic body, or
+    /// a field out of its range.
+    JointId addJoint(const JointSettings &settings);
+    /// Removes a joint; it wakes the dynamic bodies it joined. Throws InvalidArgument on a
+    /// stale handle.
+    void removeJoint(JointId id);
+    /// True while `id` names a joint of this world (removing a body removes its joints;
+    /// a broken joint is removed).
+    bool contains(JointId id) const;
+    /// The joint's mean force and torque in the last step it was solved in, and its
+    /// error and angle or offset at the bodies' current poses. Throws InvalidArgument on a
+    /// stale handle.
+    JointState jointState(JointId id) const;
+    /// The joint's settings as given (the axis normalised). Throws InvalidArgument on a
+    /// stale handle.
+    const JointSettings &jointSettings(JointId id) const;
+    /// Sets the target speed of a hinge's or slider's motor (rad/s or m/s, finite); it
+    /// wakes the joint's dynamic bodies. Throws InvalidArgument on a stale handle, a joint
+    /// without a motor, or a non-finite speed.
+    void setMotorSpeed(JointId id, real speed);
 
     // --- Stepping -----------------------------------------------------------------------
 

@@ -1,0 +1,290 @@
+// Each joint type's rows at the bodies' current poses.
+//
+// Conventions: a row's value is a function C of the two poses whose rate is
+// J v = linA.v_a + angA.w_a + linB.v_b + angB.w_b. Positions are a's relative to b's
+// frame (the world without b): the anchors' gap is p_a - p_b, a hinge's angle is a's
+// turn about b's axis, a slider's offset is (p_a - p_b).n with n turning with b.
+//  - A direction t fixed in b, C = t.(p_a - p_b): d/dt gives linA = t, angA = r_a x t,
+//    linB = -t and angB = -((p_a - x_b) x t), since t turns with w_b.
+//  - A rotation lock about e: angA = e, angB = -e, C the component of the rotation
+//    from a's reference orientation to its current one (2 vec(q_e), w >= 0).
+//  - A hinge's axis lock: t perpendicular to b's axis n_b, C = (n_b x n_a).t, whose rate
+//    is (w_a - w_b).t while the axes agree.
+#include <algorithm>
+#include <cmath>
+
+#include "joints/joint_set.h"
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+namespace {
+
+// Two unit vectors completing the unit `n` to an orthonormal basis.
+void perpendiculars(const Vector3 &n, Vector3 *t1, Vector3 *t2) {
+    const Vector3 helper = std::abs(n.x()) < 0.57 ? Vector3::UnitX() : Vector3::UnitY();
+    *t1 = n.cross(helper).normalized();
+    *t2 = n.cross(*t1);
+}
+
+// The poses a joint's rows are made from.
+struct JointFrame {
+    Vector3 xa, xb;          ///< Centres of mass (x_b: zero without b), m.
+    Quaternion qa, qb;       ///< Orientations (q_b: identity without b).
+    Vector3 pa, pb;          ///< The anchors in world space, m.
+    Vector3 axis;            ///< b's axis in world space.
+};
+
+JointFrame frameOf(const BodyStore &bodies, const JointRecord &j) {
+    JointFrame f;
+    const RigidBody &a = bodies[j.settings.a.index].body;
+    f.xa = a.getPosition();
+    f.qa = a.getOrientation();
+    f.pa = a.getPointInWorldSpace(j.localA);
+    if (j.settings.b) {
+        const RigidBody &b = bodies[j.settings.b->index].body;
+        f.xb = b.getPosition();
+        f.qb = b.getOrientation();
+        f.pb = b.getPointInWorldSpace(j.localB);
+        f.axis = b.getDirectionInWorldSpace(j.axisB);
+    } else {
+        f.xb = Vector3::Zero();
+        f.qb = Quaternion::Identity();
+        f.pb = j.localB;
+        f.axis = j.axisB;
+    }
+    return f;
+}
+
+// The rotation that takes a from its reference orientation (relative to b) to its
+// current one, as a world-space rotation vector (small-angle: 2 vec(q)).
+Vector3 rotationError(const JointFrame &f, const JointRecord &j) {
+    Quaternion e = f.qa * j.reference.conjugate() * f.qb.conjugate();
+    if (e.w() < 0) e.coeffs() = -e.coeffs();
+    return 2 * e.vec();
+}
+
+// a's turn about b's axis since creation, rad, in (-pi, pi].
+real hingeAngle(const JointFrame &f, const JointRecord &j) {
+    const Quaternion delta = f.qb.conjugate() * f.qa * j.reference.conjugate();
+    real angle = 2 * std::atan2(delta.vec().dot(j.axisB), delta.w());
+    if (angle > M_PI) angle -= 2 * M_PI;
+    if (angle <= -M_PI) angle += 2 * M_PI;
+    return angle;
+}
+
+// Appends rows to `out` and fills their Jacobians; the caller completes them.
+class RowMaker {
+public:
+    RowMaker(std::vector<JointRow> &out, const JointFrame &f, int a, int b, std::uint32_t joint)
+        : out_(out), f_(f), a_(a), b_(b), joint_(joint) {}
+
+    // C = t.(p_a - p_b), t fixed in b.
+    JointRow &linear(int slot, const Vector3 &t) {
+        JointRow &r = add(slot);
+        r.linA = t;
+        r.angA = (f_.pa - f_.xa).cross(t);
+        r.linB = -t;
+        r.angB = -(f_.pa - f_.xb).cross(t);
+        r.error = t.dot(f_.pa - f_.pb);
+        return r;
+    }
+    // A rotation row about e with the value `error`.
+    JointRow &angular(int slot, const Vector3 &e, real error) {
+        JointRow &r = add(slot);
+        r.angular = true;
+        r.angA = e;
+        r.angB = -e;
+        r.error = error;
+        return r;
+    }
+
+private:
+    JointRow &add(int slot) {
+        out_.emplace_back();
+        JointRow &r = out_.back();
+        r.a = a_;
+        r.b = b_;
+        r.joint = joint_;
+        r.slot = slot;
+        return r;
+    }
+    std::vector<JointRow> &out_;
+    const JointFrame &f_;
+    int a_, b_;
+    std::uint32_t joint_;
+};
+
+// The limit rows of a value (hinge angle, slider offset); `row(slot)` makes a row whose
+// rate is the value's. In the position pass only a violated limit has a row.
+template <class MakeRow>
+void addLimits(const JointLimits &limits, int slot, bool positions, const MakeRow &row, real value) {
+    const real lower = value - limits.lower;  // >= 0 within the range
+    const real upper = value - limits.upper;  // <= 0 within the range
+    if (!positions || lower < 0) {
+        JointRow &r = row(slot);
+        r.bound = RowBound::Lower;
+        r.error = lower;
+    }
+    if (!positions || upper > 0) {
+        JointRow &r = row(slot + 1);
+        r.bound = RowBound::Upper;
+        r.error = upper;
+    }
+}
+
+}  // namespace
+
+void JointSet::measure(const BodyStore &bodies, const JointRecord &j, real *error, real *position) const {
+    const JointFrame f = frameOf(bodies, j);
+    const Vector3 gap = f.pa - f.pb;
+    *position = 0;
+    switch (j.settings.type) {
+        case JointType::Ball:
+        case JointType::Fixed: *error = gap.norm(); break;
+        case JointType::Hinge:
+            *error = gap.norm();
+            *position = hingeAngle(f, j);
+            break;
+        case JointType::Slider:
+            *position = gap.dot(f.axis);
+            *error = (gap - *position * f.axis).norm();
+            break;
+        case JointType::Distance: {
+            const real d = gap.norm();
+            *error = d > j.maxDistance ? d - j.maxDistance : (d < j.minDistance ? j.minDistance - d : 0);
+            *position = d;
+            break;
+        }
+    }
+}
+
+void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &solverBodies, real h,
+                        bool positions) {
+    const BodyStore &bodies = world.bodies;
+    const auto solverIndex = [](const BodyRecord &r) { return r.simulated || r.moving ? r.solverIndex : 0; };
+    const WorldSettings &settings = world.settings;
+    rows_.clear();
+    equality_.clear();
+    bounded_.clear();
+    for (std::uint32_t index = 0; index < records.size(); ++index) {
+        const JointRecord &j = records[index];
+        if (!j.alive) continue;
+        const BodyRecord &ra = bodies[j.settings.a.index];
+        const BodyRecord *rb = j.settings.b ? &bodies[j.settings.b->index] : nullptr;
+        if (ra.isolated || (rb && rb->isolated)) continue;
+        const int a = solverIndex(ra);
+        const int b = rb ? solverIndex(*rb) : 0;
+        // Only simulated bodies move: a joint between two others has nothing to solve.
+        if (!(a >= 1 && ra.simulated) && !(rb && b >= 1 && rb->simulated)) continue;
+        const JointFrame f = frameOf(bodies, j);
+        RowMaker make(rows_, f, a, b, index);
+        const std::size_t first = rows_.size();
+        const JointSettings &s = j.settings;
+        const auto point = [&]() {
+            for (int k = 0; k < 3; ++k) make.linear(k, Vector3::Unit(k));
+        };
+        const auto lockRotation = [&](int slot) {
+            const Vector3 e = rotationError(f, j);
+            for (int k = 0; k < 3; ++k) make.angular(slot + k, Vector3::Unit(k), e[k]);
+        };
+        switch (s.type) {
+            case JointType::Ball: point(); break;
+            case JointType::Fixed:
+                point();
+                lockRotation(3);
+                break;
+            case JointType::Hinge: {
+                point();
+                Vector3 t1, t2;
+                perpendiculars(f.axis, &t1, &t2);
+                const Vector3 axisA = f.qa * j.axisA;
+                const Vector3 tilt = f.axis.cross(axisA);
+                make.angular(3, t1, tilt.dot(t1));
+                make.angular(4, t2, tilt.dot(t2));
+                const real angle = hingeAngle(f, j);
+                const auto about = [&](int slot) -> JointRow & { return make.angular(slot, f.axis, angle); };
+                if (s.limits) addLimits(*s.limits, 5, positions, about, angle);
+                if (s.motor && !positions) {
+                    JointRow &r = about(7);
+                    r.bound = RowBound::Motor;
+                    r.target = s.motor->speed;
+                    r.maxImpulse = s.motor->maxForce * h;
+                }
+                break;
+            }
+            case JointType::Slider: {
+                Vector3 t1, t2;
+                perpendiculars(f.axis, &t1, &t2);
+                make.linear(0, t1);
+                make.linear(1, t2);
+                lockRotation(2);
+                const real offset = (f.pa - f.pb).dot(f.axis);
+                const auto along = [&](int slot) -> JointRow & { return make.linear(slot, f.axis); };
+                if (s.limits) addLimits(*s.limits, 5, positions, along, offset);
+                if (s.motor && !positions) {
+                    JointRow &r = along(7);
+                    r.bound = RowBound::Motor;
+                    r.target = s.motor->speed;
+                    r.maxImpulse = s.motor->maxForce * h;
+                }
+                break;
+            }
+            case JointType::Distance: {
+                const Vector3 gap = f.pa - f.pb;
+                const real d = gap.norm();
+                // Without a direction the anchors coincide: a rope's lower limit of 0 is met.
+                const Vector3 n = d > 1e-9 ? Vector3(gap / d) : Vector3::UnitY();
+                const bool rigid = s.stiffness == 0;
+                if (rigid && j.minDistance == j.maxDistance) {
+                    if (d > 1e-9) make.linear(0, n).error = d - j.maxDistance;
+                    break;
+                }
+                const real lower = d - j.minDistance;
+                const real upper = d - j.maxDistance;
+                const bool lowerRow = j.minDistance > 0 && d > 1e-9 && (rigid ? !positions || lower < 0 : lower < 0);
+                const bool upperRow = d > 1e-9 && (rigid ? !positions || upper > 0 : upper > 0);
+                if (lowerRow && !(positions && !rigid)) {
+                    JointRow &r = make.linear(0, n);
+                    r.bound = RowBound::Lower;
+                    r.error = lower;
+                    r.soft = !rigid;
+                }
+                if (upperRow && !(positions && !rigid)) {
+                    JointRow &r = make.linear(1, n);
+                    r.bound = RowBound::Upper;
+                    r.error = upper;
+                    r.soft = !rigid;
+                }
+                break;
+            }
+        }
+        // Effective masses, softness, M^-1 J^T.
+        const SolverBody &sa = solverBodies[a];
+        const SolverBody &sb = solverBodies[b];
+        for (std::size_t k = first; k < rows_.size(); ++k) {
+            JointRow &r = rows_[k];
+            r.mLinA = sa.invMass * r.linA;
+            r.mAngA = sa.invInertia * r.angA;
+            r.mLinB = sb.invMass * r.linB;
+            r.mAngB = sb.invInertia * r.angB;
+            const real k0 = r.linA.dot(r.mLinA) + r.angA.dot(r.mAngA) + r.linB.dot(r.mLinB) + r.angB.dot(r.mAngB);
+            if (r.soft) {
+                // Catto's soft constraint: the spring and damper over a sub-step, implicitly.
+                const real hk = h * s.stiffness;
+                const real denominator = h * (s.damping + hk);
+                r.gamma = denominator > 0 ? 1 / denominator : 0;
+                r.bias = r.error * hk * r.gamma;
+            }
+            r.mass = k0 + r.gamma > 0 ? 1 / (k0 + r.gamma) : 0;
+            // A rigid limit may close what is left of its range within the sub-step, no more;
+            // once violated, the position pass pushes it back (no bias: no energy).
+            if (!r.soft && r.bound == RowBound::Lower) r.bias = std::max(r.error, real(0)) / h;
+            if (!r.soft && r.bound == RowBound::Upper) r.bias = std::min(r.error, real(0)) / h;
+            if (!positions && settings.warmStarting) r.impulse = j.impulse[r.slot];
+            if (positions || r.bound == RowBound::Equality) equality_.push_back(static_cast<int>(k));
+            else bounded_.push_back(static_cast<int>(k));
+        }
+    }
+}
+
+}  // namespace cyclone::detail

@@ -1,0 +1,326 @@
+// The joints' lifecycle (add, remove, wake, break) and their solve: the direct block of
+// the equality rows, the bounded rows' sequential impulses, the position projection.
+#include "joints/joint_set.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+namespace {
+
+real rate(const JointRow &r, const std::vector<SolverBody> &bodies) {
+    const SolverBody &a = bodies[r.a];
+    const SolverBody &b = bodies[r.b];
+    return r.linA.dot(toVector3(a.v)) + r.angA.dot(toVector3(a.w)) + r.linB.dot(toVector3(b.v)) +
+           r.angB.dot(toVector3(b.w));
+}
+
+void apply(const JointRow &r, real impulse, std::vector<SolverBody> &bodies) {
+    if (r.a != 0) {
+        SolverBody &a = bodies[r.a];
+        setLanes(a.v, toVector3(a.v) + r.mLinA * impulse);
+        setLanes(a.w, toVector3(a.w) + r.mAngA * impulse);
+    }
+    if (r.b != 0) {
+        SolverBody &b = bodies[r.b];
+        setLanes(b.v, toVector3(b.v) + r.mLinB * impulse);
+        setLanes(b.w, toVector3(b.w) + r.mAngB * impulse);
+    }
+}
+
+// J_i,c . M_c^-1 J_j,c for the rows' shared body on sides si, sj (0: a, 1: b).
+real coupling(const JointRow &ri, int si, const JointRow &rj, int sj) {
+    const Vector3 &lin = si == 0 ? ri.linA : ri.linB;
+    const Vector3 &ang = si == 0 ? ri.angA : ri.angB;
+    const Vector3 &mLin = sj == 0 ? rj.mLinA : rj.mLinB;
+    const Vector3 &mAng = sj == 0 ? rj.mAngA : rj.mAngB;
+    return lin.dot(mLin) + ang.dot(mAng);
+}
+
+}  // namespace
+
+JointId JointSet::add(const BodyStore &bodies, const JointSettings &s) {
+    std::uint32_t index;
+    if (!free.empty()) {
+        index = free.back();
+        free.pop_back();
+    } else {
+        index = static_cast<std::uint32_t>(records.size());
+        records.emplace_back();
+    }
+    JointRecord &j = records[index];
+    const std::uint32_t generation = j.generation;
+    j = JointRecord();
+    j.generation = generation;
+    j.alive = true;
+    j.settings = s;
+    const RigidBody &a = bodies[s.a.index].body;
+    const Vector3 anchorB = s.type == JointType::Distance && s.anchorB ? *s.anchorB : s.anchor;
+    j.localA = a.getPointInLocalSpace(s.anchor);
+    j.axisA = a.getDirectionInLocalSpace(s.axis);
+    Quaternion qb = Quaternion::Identity();
+    if (s.b) {
+        const RigidBody &b = bodies[s.b->index].body;
+        j.localB = b.getPointInLocalSpace(anchorB);
+        j.axisB = b.getDirectionInLocalSpace(s.axis);
+        qb = b.getOrientation();
+    } else {
+        j.localB = anchorB;
+        j.axisB = s.axis;
+    }
+    j.reference = qb.conjugate() * a.getOrientation();
+    const real distance = (s.anchor - anchorB).norm();
+    j.minDistance = s.minDistance.value_or(distance);
+    j.maxDistance = s.maxDistance.value_or(distance);
+    if (s.b && !s.collideConnected) ++excluded_[pairKey(s.a.index, s.b->index)];
+    ++count;
+    return {index, j.generation};
+}
+
+void JointSet::remove(std::uint32_t index) {
+    JointRecord &j = records[index];
+    if (j.settings.b && !j.settings.collideConnected) {
+        const auto it = excluded_.find(pairKey(j.settings.a.index, j.settings.b->index));
+        if (--it->second == 0) excluded_.erase(it);
+    }
+    j.alive = false;
+    ++j.generation;
+    free.push_back(index);
+    --count;
+}
+
+void JointSet::beginStep(WorldState &world) {
+    if (empty()) return;
+    BodyStore &bodies = world.bodies;
+    stepTime_ = 0;
+    for (JointRecord &j : records) {
+        if (!j.alive) continue;
+        j.linearImpulse.setZero();
+        j.angularImpulse.setZero();
+        BodyRecord &a = bodies[j.settings.a.index];
+        BodyRecord *b = j.settings.b ? &bodies[j.settings.b->index] : nullptr;
+        if (!a.simulated && !(b && b->simulated)) continue;
+        if (a.isolated || (b && b->isolated)) continue;
+        // A joint joins its bodies: one awake end wakes the other.
+        if (!a.simulated && !a.immovable) world.wake(j.settings.a.index);
+        if (b && !b->simulated && !b->immovable) world.wake(j.settings.b->index);
+        ++world.stats.joints;
+    }
+}
+
+void JointSet::prepare(WorldState &world, const std::vector<SolverBody> &solverBodies, real h) {
+    if (world.stats.joints == 0) {
+        rows_.clear();
+        return;
+    }
+    stepTime_ += h;
+    makeRows(world, solverBodies, h, false);
+    factorise(solverBodies);
+    constrainBoundedMasses(solverBodies);
+    world.stats.jointRows += static_cast<int>(rows_.size());
+}
+
+void JointSet::factorise(const std::vector<SolverBody> &solverBodies) {
+    const int n = static_cast<int>(equality_.size());
+    factorised_ = false;
+    if (n == 0) return;
+    // The equality rows of each movable body, with the side it is on.
+    rowsOfBody_.resize(solverBodies.size());
+    for (std::vector<int> &list : rowsOfBody_) list.clear();
+    for (int i = 0; i < n; ++i) {
+        const JointRow &r = rows_[equality_[i]];
+        if (r.a != 0 && solverBodies[r.a].invMass > 0) rowsOfBody_[r.a].push_back(2 * i);
+        if (r.b != 0 && solverBodies[r.b].invMass > 0) rowsOfBody_[r.b].push_back(2 * i + 1);
+    }
+    // K = J M^-1 J^T, summed body by body (the lower triangle is enough for LDL^T, but
+    // both are given: SimplicialLDLT reads the lower one by default).
+    triplets_.clear();
+    for (const std::vector<int> &list : rowsOfBody_) {
+        for (const int ei : list) {
+            for (const int ej : list) {
+                if (ej > ei) continue;
+                const JointRow &ri = rows_[equality_[ei / 2]];
+                const JointRow &rj = rows_[equality_[ej / 2]];
+                triplets_.emplace_back(ei / 2, ej / 2, coupling(ri, ei % 2, rj, ej % 2));
+            }
+        }
+    }
+    // A tiny relative regulariser keeps redundant rows (a loop, two joints on one pair)
+    // solvable; their shared impulse then splits between them.
+    for (int i = 0; i < n; ++i) {
+        const JointRow &r = rows_[equality_[i]];
+        const real diagonal = r.mass > 0 ? 1 / r.mass : 0;
+        triplets_.emplace_back(i, i, diagonal * 1e-9 + 1e-15);
+    }
+    Eigen::SparseMatrix<real> k(n, n);
+    k.setFromTriplets(triplets_.begin(), triplets_.end());
+    ldlt_.compute(k);
+    factorised_ = ldlt_.info() == Eigen::Success;
+    rhs_.resize(n);
+}
+
+// A bounded row's impulse is followed by the equality block's answer to it, which gives
+// back part of what it did: a door's limit row alone sees the door's inertia about its
+// centre, but the hinge makes it turn about its edge. Its mass is therefore the one it has
+// with the equality rows held, 1 / (k_bb - k_be K^-1 k_eb) (the Schur complement), with
+// which one pass stops a limit exactly.
+void JointSet::constrainBoundedMasses(const std::vector<SolverBody> &solverBodies) {
+    const int n = static_cast<int>(equality_.size());
+    if (n == 0 || !factorised_ || bounded_.empty()) return;
+    for (const int k : bounded_) {
+        JointRow &r = rows_[k];
+        rhs_.setZero(n);
+        bool coupled = false;
+        for (int side = 0; side < 2; ++side) {
+            const int body = side == 0 ? r.a : r.b;
+            if (body == 0 || !(solverBodies[body].invMass > 0)) continue;
+            for (const int e : rowsOfBody_[body]) {
+                rhs_[e / 2] += coupling(rows_[equality_[e / 2]], e % 2, r, side);
+                coupled = true;
+            }
+        }
+        if (!coupled) continue;
+        const real k0 = r.mass > 0 ? 1 / r.mass - r.gamma : 0;
+        delta_ = ldlt_.solve(rhs_);
+        const real held = k0 - rhs_.dot(delta_);
+        // A row the equality rows fix entirely (held ~ 0) keeps its free mass.
+        if (held > 1e-9 * k0 && std::isfinite(held)) r.mass = 1 / (held + r.gamma);
+    }
+}
+
+void JointSet::warmStart(std::vector<SolverBody> &solverBodies) const {
+    for (const JointRow &r : rows_)
+        if (r.impulse != 0) apply(r, r.impulse, solverBodies);
+}
+
+void JointSet::solveVelocities(std::vector<SolverBody> &solverBodies) {
+    for (const int k : bounded_) {
+        JointRow &r = rows_[k];
+        real delta;
+        const real old = r.impulse;
+        if (r.bound == RowBound::Motor) {
+            delta = -r.mass * (rate(r, solverBodies) - r.target);
+            r.impulse = std::clamp(old + delta, -r.maxImpulse, r.maxImpulse);
+        } else {
+            delta = -r.mass * (rate(r, solverBodies) + r.bias + r.gamma * old);
+            r.impulse = r.bound == RowBound::Lower ? std::max(old + delta, real(0)) : std::min(old + delta, real(0));
+        }
+        apply(r, r.impulse - old, solverBodies);
+    }
+    const int n = static_cast<int>(equality_.size());
+    if (n == 0) return;
+    if (!factorised_) {
+        // Sequential impulses, should the factorisation ever fail.
+        for (const int k : equality_) {
+            JointRow &r = rows_[k];
+            const real delta = -r.mass * rate(r, solverBodies);
+            r.impulse += delta;
+            apply(r, delta, solverBodies);
+        }
+        return;
+    }
+    for (int i = 0; i < n; ++i) rhs_[i] = -rate(rows_[equality_[i]], solverBodies);
+    delta_ = ldlt_.solve(rhs_);
+    for (int i = 0; i < n; ++i) {
+        JointRow &r = rows_[equality_[i]];
+        if (!std::isfinite(delta_[i])) continue;
+        r.impulse += delta_[i];
+        apply(r, delta_[i], solverBodies);
+    }
+}
+
+void JointSet::storeImpulses() {
+    // A joint's rows are consecutive: its slots without a row this sub-step start at 0.
+    std::uint32_t last = UINT32_MAX;
+    for (const JointRow &r : rows_) {
+        JointRecord &j = records[r.joint];
+        if (r.joint != last) std::fill(std::begin(j.impulse), std::end(j.impulse), real(0));
+        last = r.joint;
+        j.impulse[r.slot] = r.impulse;
+        if (r.angular) j.angularImpulse += r.angA * r.impulse;
+        else j.linearImpulse += r.linA * r.impulse;
+    }
+}
+
+void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody> &solverBodies, int iterations) {
+    if (world.stats.joints == 0) return;
+    BodyStore &bodies = world.bodies;
+    // Newton's iteration on the positions: one step is exact for a joint alone, but a
+    // whipping chain turns its links far enough in a sub-step that the linearisation needs
+    // a few more; they stop once every row is within kProjectionTolerance.
+    const int projections = iterations > 0 ? std::max(iterations, kMaxProjections) : 0;
+    for (int it = 0; it < projections; ++it) {
+        makeRows(world, solverBodies, 1, true);
+        const int n = static_cast<int>(equality_.size());
+        real largest = 0;
+        for (const int k : equality_) largest = std::max(largest, std::abs(rows_[k].error));
+        if (!(largest > kProjectionTolerance)) break;
+        factorise(solverBodies);
+        if (!factorised_) break;
+        for (int i = 0; i < n; ++i) rhs_[i] = -rows_[equality_[i]].error;
+        delta_ = ldlt_.solve(rhs_);
+        if (!delta_.allFinite()) break;
+        // The moves M^-1 J^T delta, body by body.
+        moves_.assign(2 * solverBodies.size(), Vector3::Zero());
+        for (int i = 0; i < n; ++i) {
+            const JointRow &r = rows_[equality_[i]];
+            moves_[2 * r.a] += r.mLinA * delta_[i];
+            moves_[2 * r.a + 1] += r.mAngA * delta_[i];
+            moves_[2 * r.b] += r.mLinB * delta_[i];
+            moves_[2 * r.b + 1] += r.mAngB * delta_[i];
+        }
+        for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+            const Vector3 &dx = moves_[2 * (k + 1)];
+            const Vector3 &dq = moves_[2 * (k + 1) + 1];
+            if (dx.isZero(0) && dq.isZero(0)) continue;
+            RigidBody &body = bodies[bodies.simulated[k]].body;
+            Quaternion q = body.getOrientation();
+            const Quaternion spin(0, dq.x(), dq.y(), dq.z());
+            q.coeffs() += 0.5 * (spin * q).coeffs();
+            body.setPosition(body.getPosition() + dx);
+            body.setOrientation(q);
+        }
+    }
+    rows_.clear();
+}
+
+void JointSet::finishStep(WorldState &world, real dt) {
+    if (world.stats.joints == 0) return;
+    const real time = stepTime_ > 0 ? stepTime_ : dt;
+    broken_.clear();
+    for (std::uint32_t index = 0; index < records.size(); ++index) {
+        JointRecord &j = records[index];
+        if (!j.alive) continue;
+        j.force = j.linearImpulse / time;
+        j.torque = j.angularImpulse / time;
+        if (j.force.norm() > j.settings.breakForce || j.torque.norm() > j.settings.breakTorque)
+            broken_.push_back(index);
+    }
+    for (const std::uint32_t index : broken_) {
+        JointRecord &j = records[index];
+        world.events.sink->jointsBroken.push_back({{index, j.generation}, j.force, j.torque});
+        const BodyId a = j.settings.a;
+        const std::optional<BodyId> b = j.settings.b;
+        remove(index);
+        if (!world.bodies[a.index].immovable) world.wake(a.index);
+        if (b && !world.bodies[b->index].immovable) world.wake(b->index);
+    }
+}
+
+void JointSet::removeJointsOf(WorldState &world, BodyId id) {
+    if (empty()) return;
+    for (std::uint32_t index = 0; index < records.size(); ++index) {
+        const JointRecord &j = records[index];
+        if (!j.alive) continue;
+        const bool onA = j.settings.a == id;
+        const bool onB = j.settings.b && *j.settings.b == id;
+        if (!onA && !onB) continue;
+        const std::optional<BodyId> other = onA ? j.settings.b : std::optional<BodyId>(j.settings.a);
+        remove(index);
+        if (other && world.bodies.contains(*other) && !world.bodies[other->index].immovable) world.wake(other->index);
+    }
+}
+
+}  // namespace cyclone::detail

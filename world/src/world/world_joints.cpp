@@ -1,0 +1,159 @@
+// The World's joint calls: validation, adding and removing, reading, the motor's target.
+#include <cmath>
+#include <string>
+
+#include "world/validation.h"
+#include "world/world_impl.h"
+
+namespace cyclone {
+namespace {
+
+const char *typeName(JointType type) {
+    switch (type) {
+        case JointType::Ball: return "Ball";
+        case JointType::Hinge: return "Hinge";
+        case JointType::Fixed: return "Fixed";
+        case JointType::Slider: return "Slider";
+        case JointType::Distance: return "Distance";
+    }
+    return "?";
+}
+
+// A threshold: > 0, infinity allowed.
+void requireThreshold(const char *function, const char *field, real value) {
+    if (!(value > 0)) detail::refuse(function, field, "must be > 0 (infinity: never breaks), got " + detail::show(value));
+}
+
+// Everything addJoint refuses, before anything changes; returns the axis normalised.
+Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
+    static const char *function = "World::addJoint";
+    if (s.type != JointType::Ball && s.type != JointType::Hinge && s.type != JointType::Fixed &&
+        s.type != JointType::Slider && s.type != JointType::Distance)
+        detail::refuse(function, "type", "is not a JointType, got " + std::to_string(static_cast<int>(s.type)));
+    const std::string type = typeName(s.type);
+    const detail::BodyRecord &a = w.bodies.record(s.a, function);
+    const detail::BodyRecord *b = s.b ? &w.bodies.record(*s.b, function) : nullptr;
+    if (s.b && *s.b == s.a) detail::refuse(function, "b", "must differ from a");
+    if (a.immovable && (!b || b->immovable))
+        detail::refuse(function, "a", "one of the joined bodies must be dynamic (a static or kinematic body cannot move)");
+    detail::requirePlace(function, "anchor", s.anchor);
+    const bool axial = s.type == JointType::Hinge || s.type == JointType::Slider;
+    const bool distance = s.type == JointType::Distance;
+    if (s.anchorB) {
+        if (!distance) detail::refuse(function, "anchorB", "only distance joints have a second anchor (" + type + " joint)");
+        detail::requirePlace(function, "anchorB", *s.anchorB);
+    }
+    Vector3 axis = s.axis;
+    if (axial) {
+        detail::requireFinite(function, "axis", s.axis);
+        const real length = s.axis.norm();
+        if (!(length > 1e-12) || !std::isfinite(length))
+            detail::refuse(function, "axis", "must not be zero, got " + detail::show(s.axis));
+        axis = s.axis / length;
+    }
+    if (s.limits) {
+        if (!axial) detail::refuse(function, "limits", "only hinge and slider joints have limits (" + type + " joint)");
+        const JointLimits &l = *s.limits;
+        if (!std::isfinite(l.lower)) detail::refuse(function, "limits.lower", "must be finite, got " + detail::show(l.lower));
+        if (!std::isfinite(l.upper)) detail::refuse(function, "limits.upper", "must be finite, got " + detail::show(l.upper));
+        if (!(l.lower <= l.upper))
+            detail::refuse(function, "limits", "lower must be <= upper, got [" + detail::show(l.lower) + ", " +
+                                                   detail::show(l.upper) + "]");
+        if (s.type == JointType::Hinge && (l.lower < -M_PI || l.upper > M_PI))
+            detail::refuse(function, "limits", "a hinge's limits must be within [-pi, pi], got [" +
+                                                   detail::show(l.lower) + ", " + detail::show(l.upper) + "]");
+    }
+    if (s.motor) {
+        if (!axial) detail::refuse(function, "motor", "only hinge and slider joints have motors (" + type + " joint)");
+        if (!std::isfinite(s.motor->speed))
+            detail::refuse(function, "motor.speed", "must be finite, got " + detail::show(s.motor->speed));
+        detail::requireNonNegative(function, "motor.maxForce", s.motor->maxForce);
+    }
+    if ((s.minDistance || s.maxDistance || s.stiffness != 0 || s.damping != 0) && !distance) {
+        const char *field = s.minDistance ? "minDistance" : s.maxDistance ? "maxDistance" : s.stiffness != 0 ? "stiffness" : "damping";
+        detail::refuse(function, field, std::string("only distance joints have it (") + type + " joint)");
+    }
+    if (distance) {
+        const real at = (s.anchor - s.anchorB.value_or(s.anchor)).norm();
+        if (s.minDistance) detail::requireNonNegative(function, "minDistance", *s.minDistance);
+        if (s.maxDistance) detail::requireNonNegative(function, "maxDistance", *s.maxDistance);
+        const real lo = s.minDistance.value_or(at);
+        const real hi = s.maxDistance.value_or(at);
+        if (!(lo <= hi))
+            detail::refuse(function, "maxDistance", "must be >= minDistance, got min " + detail::show(lo) + ", max " +
+                                                        detail::show(hi));
+        detail::requireNonNegative(function, "stiffness", s.stiffness);
+        detail::requireNonNegative(function, "damping", s.damping);
+    }
+    requireThreshold(function, "breakForce", s.breakForce);
+    requireThreshold(function, "breakTorque", s.breakTorque);
+    return axis;
+}
+
+// The joint `id` names; refused with `function`'s name when it names none.
+detail::JointRecord &jointRecord(detail::WorldState &w, JointId id, const char *function) {
+    if (!w.joints.contains(id)) detail::refuse(function, "id", "does not name a joint of this world");
+    return w.joints.records[id.index];
+}
+
+void wakeJoined(detail::WorldState &w, BodyId a, const std::optional<BodyId> &b) {
+    if (w.bodies.contains(a) && !w.bodies[a.index].immovable) w.wake(a.index);
+    if (b && w.bodies.contains(*b) && !w.bodies[b->index].immovable) w.wake(b->index);
+}
+
+}  // namespace
+
+JointId World::addJoint(const JointSettings &settings) {
+    Impl &w = *impl_;
+    JointSettings s = settings;
+    s.axis = validate(w, settings);
+    const JointId id = w.joints.add(w.bodies, s);
+    if (s.b && !s.collideConnected) {
+        // The pair's contacts end now, as a collision filter's do.
+        detail::BodyRecord &a = w.bodies[s.a.index];
+        for (std::size_t k = a.pairs.size(); k-- > 0;) {
+            const std::uint32_t p = a.pairs[k];
+            const detail::PairState &pair = w.contacts.pairs[p];
+            if ((pair.a == s.a.index && pair.b == s.b->index) || (pair.b == s.a.index && pair.a == s.b->index))
+                w.contacts.removePair(w.bodies, p);
+        }
+    }
+    wakeJoined(w, s.a, s.b);
+    return id;
+}
+
+void World::removeJoint(JointId id) {
+    Impl &w = *impl_;
+    const detail::JointRecord &j = jointRecord(w, id, "World::removeJoint");
+    const BodyId a = j.settings.a;
+    const std::optional<BodyId> b = j.settings.b;
+    w.joints.remove(id.index);
+    wakeJoined(w, a, b);
+}
+
+bool World::contains(JointId id) const { return impl_->joints.contains(id); }
+
+JointState World::jointState(JointId id) const {
+    const detail::JointRecord &j = jointRecord(*impl_, id, "World::jointState");
+    JointState state;
+    state.force = j.force;
+    state.torque = j.torque;
+    impl_->joints.measure(impl_->bodies, j, &state.error, &state.position);
+    return state;
+}
+
+const JointSettings &World::jointSettings(JointId id) const {
+    return jointRecord(*impl_, id, "World::jointSettings").settings;
+}
+
+void World::setMotorSpeed(JointId id, real speed) {
+    static const char *function = "World::setMotorSpeed";
+    Impl &w = *impl_;
+    detail::JointRecord &j = jointRecord(w, id, function);
+    if (!j.settings.motor) detail::refuse(function, "id", "names a joint without a motor");
+    if (!std::isfinite(speed)) detail::refuse(function, "speed", "must be finite, got " + detail::show(speed));
+    j.settings.motor->speed = speed;
+    wakeJoined(w, j.settings.a, j.settings.b);
+}
+
+}  // namespace cyclone
