@@ -55,10 +55,9 @@ TEST(SceneFields, FieldsOfAnotherKindAndFieldsOutOfPlace) {
     EXPECT_EQ(warnings, expected);
 }
 
-// Every field the contract names, of both versions, in one scene: no warning. The runner
-// does not act on motion, layers, sensors or joints yet; it must not call them typos.
-// Field names only: the loader refuses joints (and sensors) until the World has them,
-// but the table knows every field of the contract.
+// Every field the contract names, of both versions, in one scene: no warning. Field names
+// only: the loader refuses joints until the World has them, but the table knows every
+// field of the contract.
 std::vector<SceneWarning> fieldWarnings(const std::string &text) { return unknownFields(nlohmann::json::parse(text)); }
 
 TEST(SceneFields, EveryFieldOfTheContractIsKnown) {
