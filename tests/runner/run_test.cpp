@@ -44,7 +44,7 @@ std::vector<std::string> lines(const std::string &text) {
 }
 
 const char *const kShippedScenes[] = {"tower",   "pyramid-20", "pyramid-10", "resting-shapes", "incline",
-                                      "sleep-wake", "springs", "mixed-shapes"};
+                                      "sleep-wake", "springs", "mixed-shapes", "trigger-zone"};
 
 TEST(Run, EveryShippedSceneRunsAsItIs) {
     for (const char *name : kShippedScenes) {

@@ -46,6 +46,27 @@ TEST(SensorEvents, SummaryListsBeginsAndEndsInOrder) {
     EXPECT_EQ(summary["metrics"]["contacts"], 0);
 }
 
+// The shipped trigger zone counts what enters: the two crates dropped over it, the ball
+// that rolls through it (and out), not the crate dropped beside it nor the layer-3 bird
+// that flies through; crate0's removal at step 300 ends its overlap. (When each begins
+// depends on the contacts; the count and the order of the crates do not: crate0 falls
+// 0.65 m, crate1 1.65 m, before reaching the zone's top.)
+TEST(SensorEvents, TheTriggerZoneCountsWhatEnters) {
+    TempDir dir;
+    const Process p = runWorld({"run", scenePath("trigger-zone"), "--summary", dir.file("s.json"), "--quiet"}, dir);
+    ASSERT_EQ(p.status, 0) << p.err;
+    const json events = json::parse(readText(dir.file("s.json")))["sensor_events"];
+    std::vector<std::string> begins, ends;
+    for (const json &e : events) {
+        EXPECT_EQ(e["sensor"], "zone");
+        (e["event"] == "begin" ? begins : ends).push_back(e["body"].get<std::string>());
+    }
+    EXPECT_EQ(begins, (std::vector<std::string>{"crate0", "crate1", "ball"}));
+    EXPECT_EQ(ends, (std::vector<std::string>{"ball", "crate0"}));
+    ASSERT_FALSE(events.empty());
+    EXPECT_EQ(events.back(), json::parse(R"({"step": 300, "sensor": "zone", "body": "crate0", "event": "end"})"));
+}
+
 TEST(SensorEvents, NoKeyWithoutSensors) {
     TempDir dir;
     const Process p =
