@@ -10,7 +10,8 @@
 /// its velocity (setVelocity, setRotation) or applies a force, torque or impulse
 /// (applyImpulse, addForce, addForceAtPoint, addTorque) wakes it and its sleeping island;
 /// so do setAwake(id, true), setCanSleep(id, false), setSettings (every body), adding a
-/// spring (its bodies) and removing a spring or a body (the bodies it joined or touched).
+/// spring (its bodies) and removing a spring or a body (the bodies it joined or touched);
+/// setCollisionFilter and setPairCollision wake as they say. Sensors wake nothing.
 /// During a step, an awake body that touches a sleeping one, or is joined to it by a
 /// spring, wakes it (and its island) from the next step on. Reading (body(), events(),
 /// rayCast(), overlap(), debugDraw(), ...) and setMaterial() wake nothing.
