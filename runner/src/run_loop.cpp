@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace cyclone::scene {
 
@@ -133,6 +134,17 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
                      [&](std::size_t x, std::size_t y) { return scene.events[x].step < scene.events[y].step; });
     std::size_t nextEvent = 0;
     std::vector<bool> present(scene.bodies.size(), true);
+    // Scene index by BodyId, for sensor events (whose ids may be stale: a removed body's).
+    std::unordered_map<std::uint64_t, std::size_t> sceneIndex;
+    const auto key = [](BodyId id) { return std::uint64_t(id.generation) << 32 | id.index; };
+    for (std::size_t i = 0; i < built.ids.size(); ++i) sceneIndex.emplace(key(built.ids[i]), i);
+    const auto recordSensorEvents = [&](std::int64_t step) {
+        const WorldEvents &events = world.events();
+        for (const SensorEvent &e : events.sensorEnds)
+            result.sensorEvents.push_back({step, sceneIndex.at(key(e.sensor)), sceneIndex.at(key(e.body)), false});
+        for (const SensorEvent &e : events.sensorBegins)
+            result.sensorEvents.push_back({step, sceneIndex.at(key(e.sensor)), sceneIndex.at(key(e.body)), true});
+    };
 
     result.jointError.assign(scene.joints.size(), 0);
     result.jointMaxError.assign(scene.joints.size(), 0);
@@ -180,6 +192,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
         result.stepTimes.add(secondsSince(stepStart) * 1000.0);
         result.steps = step + 1;
         result.maxPenetrationOfRun = std::max(result.maxPenetrationOfRun, world.stats().maxPenetration);
+        if (stepFailure.empty()) recordSensorEvents(step);
 
         bool anyAwake = false;
         for (std::size_t i = 0; i < scene.bodies.size() && !result.nonFinite; ++i) {

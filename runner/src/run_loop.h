@@ -54,6 +54,18 @@ private:
     std::uint64_t draw_ = 0x2545f4914f6cdd1dULL;
 };
 
+/// A body began or stopped overlapping a sensor (the summary's `sensor_events`).
+struct SensorEventRecord {
+    /// Step (0-based) whose events reported it.
+    std::int64_t step = 0;
+    /// Index in Scene::bodies of the sensor.
+    std::size_t sensor = 0;
+    /// Index in Scene::bodies of the body.
+    std::size_t body = 0;
+    /// True for "begin", false for "end".
+    bool begin = true;
+};
+
 struct RunResult {
     /// Steps actually taken (fewer than asked when the state became non-finite).
     std::int64_t steps = 0;
@@ -67,6 +79,9 @@ struct RunResult {
     std::optional<std::int64_t> firstAllAsleepStep;
     /// Deepest contact over every step of the run, m.
     real maxPenetrationOfRun = 0;
+    /// Every sensor event in the order the World reported them: per step, the ends (an
+    /// end a call caused comes before the step's own), then the begins.
+    std::vector<SensorEventRecord> sensorEvents;
     /// True when some body's state became NaN or infinite; the run stopped there.
     bool nonFinite = false;
     /// What became non-finite, for the message: body, step and quantity.

@@ -410,10 +410,7 @@ SceneBody readBody(const json &value, const std::string &path) {
         for (std::size_t k = 0; k < layers->size(); ++k)
             settings.collidesWith |= 1u << readInteger((*layers)[k], elementPath(layersPath, k), 0, 31);
     }
-    // The contract's sensors are not built yet: run as a solid body, a sensor would push
-    // what it should only report, so such a scene is refused, not run as something else.
-    if (const json *sensor = member(value, "sensor"); sensor && readBool(*sensor, memberPath(path, "sensor")))
-        fail(memberPath(path, "sensor"), "sensors are not supported by this version of cyclone-world");
+    readOptional(value, path, "sensor", settings.sensor, readBool);
     return body;
 }
 

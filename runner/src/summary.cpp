@@ -1,5 +1,7 @@
 #include "summary.h"
 
+#include <algorithm>
+
 namespace cyclone::scene {
 
 using nlohmann::ordered_json;
@@ -67,6 +69,20 @@ ordered_json summaryJson(const Scene &scene, const SceneWorld &built, const RunR
             joints.push_back(std::move(entry));
         }
         summary["joints"] = std::move(joints);
+    }
+    const bool hasSensors = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                        [](const SceneBody &body) { return body.settings.sensor; });
+    if (hasSensors) {
+        ordered_json events = ordered_json::array();
+        for (const SensorEventRecord &e : result.sensorEvents) {
+            ordered_json entry;
+            entry["step"] = e.step;
+            entry["sensor"] = scene.bodies[e.sensor].settings.name;
+            entry["body"] = scene.bodies[e.body].settings.name;
+            entry["event"] = e.begin ? "begin" : "end";
+            events.push_back(std::move(entry));
+        }
+        summary["sensor_events"] = std::move(events);
     }
     return summary;
 }

@@ -14,8 +14,8 @@ namespace cyclone::scene {
 /// Dynamic bodies of the world awake now.
 int awakeDynamicBodies(const World &world);
 
-/// The summary of a run: scene, steps, dt, wall_seconds, step_ms, metrics and the bodies
-/// still in the world, in scene order. Non-finite numbers appear as null.
+/// The summary of a run: scene, steps, dt, wall_seconds, step_ms, metrics, the bodies
+/// still in the world, in scene order, and, for a scene with sensors, sensor_events. Non-finite numbers appear as null.
 nlohmann::ordered_json summaryJson(const Scene &scene, const SceneWorld &world, const RunResult &result);
 
 /// The summary as the text of the file: one field per line, one body per line.

@@ -155,8 +155,11 @@ const ErrorCase kErrors[] = {
      "events[1].set_velocity", "was removed by events[0] at step 1"},
     {"RemovedTwice", TWO_BODIES(R"(, "events": [{"step": 4, "remove": "a"}, {"step": 4, "remove": "a"}])"),
      "events[1].remove", "was removed by events[0]"},
+    {"MeshSensorOnDynamicBody",
+     BODY(R"("sensor": true, "shape": {"type": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 0, 1]], "triangles": [[0, 1, 2]]})"),
+     "bodies[0].shape.type", "static bodies only"},
+    {"SensorNotABool", BODY(BOX R"(, "sensor": 1)"), "bodies[0].sensor", "true or false"},
     // Fields of the contract this engine does not build yet are refused, never run as something else.
-    {"SensorNotSupported", BODY(BOX R"(, "sensor": true)"), "bodies[0].sensor", "not supported"},
     // Joints: the place is the joint's index and field.
     {"JointAxisZero",
      TWO_BODIES(R"(, "joints": [{"name": "j0", "type": "ball", "a": "a", "b": null, "anchor": [0, 3, 0]},

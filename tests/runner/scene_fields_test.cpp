@@ -56,8 +56,8 @@ TEST(SceneFields, FieldsOfAnotherKindAndFieldsOutOfPlace) {
 }
 
 // Every field the contract names, of both versions, in one scene: no warning. Field names
-// only: the loader refuses sensors until the World has them (and a hinge with a distance
-// joint's fields), but the table knows every field of the contract.
+// only: the loader refuses some combinations (a hinge with a distance joint's fields),
+// but the table knows every field of the contract.
 std::vector<SceneWarning> fieldWarnings(const std::string &text) { return unknownFields(nlohmann::json::parse(text)); }
 
 TEST(SceneFields, EveryFieldOfTheContractIsKnown) {

@@ -8,6 +8,7 @@
 
 #include "camera.h"
 #include "meshes.h"
+#include "palette.h"
 #include "session.h"
 
 namespace cyclone::viewer {
@@ -146,6 +147,21 @@ TEST(ViewerSession, ColoursFollowTheBodysState) {
     EXPECT_EQ(session.state(box), BodyState::Awake);
     session.world().setAwake(box, false);
     EXPECT_EQ(session.state(box), BodyState::Asleep);
+}
+
+// Sensors and kinematic bodies have colours of their own, unlike every other state's.
+TEST(ViewerSession, SensorsAndKinematicBodiesHaveTheirOwnColours) {
+    Session session(scenePath("trigger-zone"));
+    EXPECT_EQ(session.state(bodyNamed(session, "zone")), BodyState::Sensor);
+    EXPECT_EQ(session.state(bodyNamed(session, "bird")), BodyState::Kinematic);
+    const BodyState states[] = {BodyState::Static, BodyState::Awake, BodyState::Asleep, BodyState::NonFinite,
+                                BodyState::Kinematic, BodyState::Sensor};
+    for (BodyState x : states)
+        for (BodyState y : states) {
+            if (x == y) continue;
+            const Rgb a = stateColor(x), b = stateColor(y);
+            EXPECT_TRUE(a.r != b.r || a.g != b.g || a.b != b.b);
+        }
 }
 
 TEST(ViewerSession, SpringLinesJoinTheSpringsEnds) {

@@ -78,5 +78,91 @@ TEST(CollisionFilter, LayerOutsideTheRangeIsRefused) {
     EXPECT_EQ(f.world.bodyCount(), 1u);
 }
 
+// Two boxes kept apart pass through each other: in zero gravity box b slides at 1 m/s
+// into box a for 2.4 s, from x = 3 to x = 3 - 2.4 = 0.6 (constant velocity, exact to
+// rounding), while a stays at rest. Allowed to collide again, they are pushed apart until
+// their centres are a box width (1 m) apart, less the slop the solver leaves.
+TEST(PairCollision, BoxesKeptApartPassThroughAndSeparateWhenAllowedAgain) {
+    WorldSettings settings = noSleep();
+    settings.gravity = Vector3::Zero();
+    WorldFixture f(settings);
+    const BodyId a = f.box(Vector3(0, 0, 0));
+    const BodyId b = f.box(Vector3(3, 0, 0));
+    f.world.setPairCollision(a, b, false);
+    EXPECT_FALSE(f.world.pairCollision(b, a));
+    f.world.setVelocity(b, Vector3(-1, 0, 0));
+    for (int step = 0; step < 144; ++step) {
+        f.world.step(kDt);
+        EXPECT_EQ(f.world.stats().pairsTested, 0);
+        EXPECT_EQ(f.world.stats().broadphasePairs, 0) << "filtered in the broadphase, never a candidate";
+    }
+    EXPECT_EQ(f.world.stats().filteredPairs, 1);
+    EXPECT_NEAR(f.position(b).x(), 0.6, 1e-9);
+    EXPECT_EQ(f.position(a), Vector3::Zero());
+    EXPECT_EQ(f.world.body(a).getVelocity(), Vector3::Zero());
+
+    f.world.setVelocity(b, Vector3::Zero());
+    f.world.setPairCollision(a, b, true);
+    EXPECT_TRUE(f.world.pairCollision(a, b));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().filteredPairs, 0);
+    EXPECT_EQ(f.world.events().contactBegins.size(), 1u);
+    f.simulate(2);
+    EXPECT_GT(f.position(b).x() - f.position(a).x(), 1 - 0.01);
+}
+
+// A box asleep on another: keeping the pair apart ends their contact at once and wakes the
+// upper box, which falls through the lower one onto the ground (centre at its half
+// height, 0.5 m, where the lower one is).
+TEST(PairCollision, KeepingApartEndsTheContactAndWakesWhatRestedOnIt) {
+    WorldFixture f;
+    f.ground();
+    const BodyId lower = f.box(Vector3(0, 0.5, 0));
+    const BodyId upper = f.box(Vector3(0, 1.5, 0));
+    f.simulate(3);
+    ASSERT_FALSE(f.awake(upper));
+    f.world.setPairCollision(lower, upper, false);
+    EXPECT_TRUE(f.awake(upper));
+    f.world.step(kDt);
+    ASSERT_EQ(f.world.events().contactEnds.size(), 1u);
+    EXPECT_EQ(f.world.events().contactEnds[0].a, lower);
+    EXPECT_EQ(f.world.events().contactEnds[0].b, upper);
+    f.simulate(3);
+    EXPECT_NEAR(f.position(upper).y(), 0.5, 0.01);
+    EXPECT_NEAR(f.position(lower).y(), 0.5, 0.01);
+}
+
+// Removing a body drops its rules: a body that takes the slot later collides as usual.
+TEST(PairCollision, RulesGoWithTheirBodies) {
+    WorldFixture f;
+    const BodyId a = f.box(Vector3(0, 0, 0));
+    const BodyId b = f.box(Vector3(5, 0, 0));
+    f.world.setPairCollision(a, b, false);
+    f.world.removeBody(b);
+    const BodyId c = f.box(Vector3(5, 0, 0));
+    ASSERT_EQ(c.index, b.index);
+    EXPECT_TRUE(f.world.pairCollision(a, c));
+}
+
+TEST(PairCollision, BadIdsAreRefused) {
+    WorldFixture f;
+    const BodyId a = f.box(Vector3(0, 0, 0));
+    const BodyId b = f.box(Vector3(5, 0, 0));
+    const auto refused = [&](BodyId x, BodyId y, const char *field) {
+        try {
+            f.world.setPairCollision(x, y, false);
+            ADD_FAILURE() << field;
+        } catch (const InvalidArgument &e) {
+            EXPECT_NE(std::string(e.what()).find("World::setPairCollision"), std::string::npos);
+            EXPECT_EQ(e.field(), field);
+        }
+    };
+    refused(a, a, "b");
+    refused(BodyId(), b, "a");
+    refused(a, BodyId{b.index, b.generation + 1}, "b");
+    EXPECT_TRUE(f.world.pairCollision(a, b)) << "nothing changed";
+    EXPECT_THROW(f.world.pairCollision(a, BodyId()), InvalidArgument);
+}
+
 }  // namespace
 }  // namespace cyclone::test

@@ -154,6 +154,39 @@ TEST(PayForUse, NoRestitutionWorkWithoutRestitution) {
 
 // 100 sleeping boxes and one awake sphere resting on the ground far from them: the step
 // integrates, pairs and tests the sphere alone (its one pair is with the ground).
+// Without sensors there is no sensor stage (its time stays exactly 0, it is not even
+// timed), and a sensor whose box meets nothing tests nothing: a ball falling beside a
+// trigger box is never a sensor pair.
+TEST(PayForUse, SensorsCostNothingUntilSomethingReachesThem) {
+    WorldFixture f(noSleep());
+    f.ground();
+    f.box(Vector3(0, 0.5, 0));
+    const BodyId ball = f.sphere(Vector3(5, 3, 0), 0.25);
+    for (int i = 0; i < 30; ++i) {
+        f.world.step(kDt);
+        EXPECT_EQ(f.world.stats().ms.sensors, 0);
+        EXPECT_EQ(f.world.stats().sensorPairs, 0);
+        EXPECT_EQ(f.world.stats().filteredPairs, 0);
+    }
+    BodySettings zone;
+    zone.motion = Motion::Static;
+    zone.sensor = true;
+    zone.shape = Shape::box(Vector3(1, 1, 1));
+    zone.position = Vector3(0, 5, 0);  // above the box, 4 m from the ball's path
+    f.world.addBody(zone);
+    // Once, when it is added, the sensor is tested against what its box meets, and against
+    // the ground plane, which has no box: one test, no overlap.
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().sensorPairs, 1);
+    EXPECT_TRUE(f.world.events().sensorBegins.empty());
+    for (int i = 0; i < 30; ++i) {
+        f.world.step(kDt);
+        EXPECT_EQ(f.world.stats().sensorPairs, 0) << i;
+        EXPECT_TRUE(f.world.events().sensorBegins.empty());
+    }
+    EXPECT_LT(f.position(ball).y(), 3);
+}
+
 TEST(PayForUse, SleepingBodiesCostNoStepWork) {
     WorldFixture f;
     f.ground();

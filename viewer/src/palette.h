@@ -26,6 +26,8 @@ inline constexpr Rgb stateColor(BodyState state) {
     case BodyState::Awake: return Rgb{0.95f, 0.55f, 0.20f};
     case BodyState::Asleep: return Rgb{0.35f, 0.42f, 0.80f};
     case BodyState::NonFinite: return Rgb{0.95f, 0.10f, 0.10f};
+    case BodyState::Kinematic: return Rgb{0.55f, 0.80f, 0.35f};
+    case BodyState::Sensor: return Rgb{0.30f, 0.85f, 0.85f};
     }
     return Rgb{};
 }

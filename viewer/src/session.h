@@ -15,14 +15,15 @@
 
 namespace cyclone::viewer {
 
-/// What a body's colour says about it. A new motion type (kinematic bodies, sensors) is one
-/// more value here, one more case in Session::state() and one more colour in stateColor()
-/// (palette.h).
+/// What a body's colour says about it. A new kind of body is one more value here, one
+/// more case in Session::state() and one more colour in stateColor() (palette.h).
 enum class BodyState {
     Static,     ///< Never moves.
     Awake,      ///< Dynamic and simulated.
     Asleep,     ///< Dynamic and sleeping.
     NonFinite,  ///< Isolated by the World: its state became non-finite or left the 1e30 m range.
+    Kinematic,  ///< Moved only at the velocity the scene sets.
+    Sensor,     ///< Reports what overlaps it, pushes nothing (whatever its motion).
 };
 
 /// A body held by the mouse: a spring from a point of the body to a world point that the

@@ -118,6 +118,9 @@ void Overlay::drawStats(const Session &session, double frameMs) {
     legendEntry("static", BodyState::Static);
     ImGui::SameLine();
     legendEntry("non-finite", BodyState::NonFinite);
+    legendEntry("kinematic", BodyState::Kinematic);
+    ImGui::SameLine();
+    legendEntry("sensor", BodyState::Sensor);
     ImGui::End();
 }
 

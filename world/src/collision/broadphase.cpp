@@ -6,8 +6,25 @@ namespace {
 // FCL calls this for every overlapping pair; recording them keeps the narrowphase (and
 // its timing) a stage of its own.
 bool recordPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
-    auto *out = static_cast<std::vector<CandidatePair> *>(data);
-    out->push_back({bodyIndexOf(o1), bodyIndexOf(o2)});
+    auto *out = static_cast<BroadphasePairs *>(data);
+    out->contacts.push_back({bodyIndexOf(o1), bodyIndexOf(o2)});
+    return false;
+}
+
+struct FilteredWalk {
+    BroadphasePairs *out;
+    const PairFilter *filter;
+};
+
+// The same with a filter: a pair it drops is never a candidate.
+bool recordFilteredPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
+    auto *walk = static_cast<FilteredWalk *>(data);
+    const CandidatePair pair{bodyIndexOf(o1), bodyIndexOf(o2)};
+    switch (walk->filter->classify(pair.a, pair.b)) {
+        case PairKind::Contact: walk->out->contacts.push_back(pair); break;
+        case PairKind::Sensor: walk->out->sensors.push_back(pair); break;
+        case PairKind::Filtered: ++walk->out->filtered; break;
+    }
     return false;
 }
 
@@ -76,19 +93,25 @@ const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
     return nullptr;
 }
 
-void Broadphase::findPairs(std::vector<CandidatePair> &out) {
+void Broadphase::findPairs(BroadphasePairs &out, const PairFilter *filter) {
     // Resting bodies stay inside their fat boxes: most steps of a settled scene change no
     // tree, and the walk would find the same pairs in the same order.
-    if (changed_) {
+    if (changed_ || filter != lastFilter_) {
         pairs_.clear();
+        FilteredWalk walk{&pairs_, filter};
+        void *data = filter ? static_cast<void *>(&walk) : static_cast<void *>(&pairs_);
+        const auto record = filter ? recordFilteredPair : recordPair;
         if (!awake_.empty()) {
-            awake_.collide(&pairs_, recordPair);
-            if (!asleep_.empty()) awake_.collide(&asleep_, &pairs_, recordPair);
-            if (!static_.empty()) awake_.collide(&static_, &pairs_, recordPair);
+            awake_.collide(data, record);
+            if (!asleep_.empty()) awake_.collide(&asleep_, data, record);
+            if (!static_.empty()) awake_.collide(&static_, data, record);
         }
         changed_ = false;
+        lastFilter_ = filter;
     }
-    out.insert(out.end(), pairs_.begin(), pairs_.end());
+    out.contacts.insert(out.contacts.end(), pairs_.contacts.begin(), pairs_.contacts.end());
+    out.sensors.insert(out.sensors.end(), pairs_.sensors.begin(), pairs_.sensors.end());
+    out.filtered += pairs_.filtered;
 }
 
 }  // namespace cyclone::detail

@@ -67,6 +67,36 @@ struct CandidatePair {
     std::uint32_t b;
 };
 
+/// What becomes of a pair of overlapping boxes.
+enum class PairKind : std::uint8_t {
+    Contact,   ///< A candidate contact, for the narrowphase.
+    Sensor,    ///< A sensor and a body it sees, for the sensors' overlap test.
+    Filtered,  ///< Never tested: layers, a pair rule, or two sensors.
+};
+
+/// Sorts pairs in the broadphase callback, so that filtered pairs never become candidates.
+class PairFilter {
+public:
+    /// What the pair of bodies i and j is.
+    virtual PairKind classify(std::uint32_t i, std::uint32_t j) const = 0;
+
+protected:
+    ~PairFilter() = default;
+};
+
+/// The pairs of one broadphase walk, sorted by kind.
+struct BroadphasePairs {
+    std::vector<CandidatePair> contacts;  ///< Candidate contacts.
+    std::vector<CandidatePair> sensors;   ///< A sensor and a body it sees (either order).
+    int filtered = 0;                     ///< Pairs dropped.
+
+    void clear() {
+        contacts.clear();
+        sensors.clear();
+        filtered = 0;
+    }
+};
+
 class Broadphase {
 public:
     Broadphase();
@@ -78,10 +108,14 @@ public:
     void refitAwake(const std::vector<fcl::CollisionObjectd *> &moved);
     /// Refits one object in `tree` after its box moved.
     void refit(fcl::CollisionObjectd *object, Tree tree);
-    /// Appends every pair of overlapping AABBs with at least one awake member. When no
-    /// tree has changed since the last call, the pairs (and their order) are the same:
-    /// they are given again without walking the trees.
-    void findPairs(std::vector<CandidatePair> &out);
+    /// Appends every pair of overlapping AABBs with at least one awake member to
+    /// `out.contacts`, or, with a `filter`, each where the filter says. When no tree has
+    /// changed since the last call (and invalidate() was not called), the pairs (and their
+    /// order) are the same: they are given again without walking the trees. Without a
+    /// filter nothing is asked per pair.
+    void findPairs(BroadphasePairs &out, const PairFilter *filter);
+    /// The next findPairs() walks the trees: what a filter says of some pair changed.
+    void invalidate() { changed_ = true; }
     /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
     /// leaf's data is its collision object.
     const fcl::detail::NodeBase<fcl::AABBd> *root(Tree tree) const;
@@ -94,8 +128,9 @@ private:
     fcl::DynamicAABBTreeCollisionManagerd asleep_;
     fcl::DynamicAABBTreeCollisionManagerd static_;
     std::unique_ptr<fcl::CollisionObjectd> probe_;  ///< Carries the box of overlapping().
-    std::vector<CandidatePair> pairs_;  ///< What findPairs() found when it last walked the trees.
+    BroadphasePairs pairs_;  ///< What findPairs() found when it last walked the trees.
     bool changed_ = true;               ///< Whether a tree changed since then.
+    const PairFilter *lastFilter_ = nullptr;  ///< The filter of that walk.
 
     fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree);
 };

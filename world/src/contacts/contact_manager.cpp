@@ -89,28 +89,47 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
     for (std::uint32_t index : bodies.simulated) place(index);
     for (std::uint32_t index : bodies.moving) place(index);
     world.broadphase.refitAwake(movedObjects_);
-    candidates_.clear();
-    world.broadphase.findPairs(candidates_);
+    found_.clear();
+    const bool filtering = bodies.filtering();
+    world.broadphase.findPairs(found_, filtering ? &bodies : nullptr);
 
-    // Planes stay out of the trees: test each awake body's AABB against each plane.
-    // The half-space is the compiled one (unit normal, offset along it, as FCL has it),
-    // placed by the plane body's pose as the narrowphase places it.
+    // Planes stay out of the trees: test each awake body's AABB against each plane (and,
+    // for sensors, each moving kinematic body's). The half-space is the compiled one (unit
+    // normal, offset along it, as FCL has it), placed by the plane body's pose as the
+    // narrowphase places it.
     for (std::uint32_t plane : bodies.planes) {
         const CollisionShape &p = *bodies[plane].shape;
         const Matrix4 pose = bodies[plane].body.getTransform();
         const Vector3 n = pose.linear() * p.planeNormal();
         const real offset = p.planeOffset() + n.dot(pose.translation());
-        for (std::uint32_t index : bodies.simulated) {
-            const BodyRecord &r = bodies[index];
-            if (!r.object) continue;
+        const auto below = [&](const BodyRecord &r) {
             const fcl::AABBd &box = r.object->getAABB();
             const Vector3 centre = boxCentre(box);
             const Vector3 half = 0.5 * (box.max_ - box.min_);
-            const real lowest = n.dot(centre) - n.cwiseAbs().dot(half);
-            if (lowest <= offset + settings.speculativeDistance) candidates_.push_back({plane, index});
+            return n.dot(centre) - n.cwiseAbs().dot(half) <= offset + settings.speculativeDistance;
+        };
+        for (std::uint32_t index : bodies.simulated) {
+            const BodyRecord &r = bodies[index];
+            if (!r.object || !below(r)) continue;
+            if (!filtering) {
+                found_.contacts.push_back({plane, index});
+                continue;
+            }
+            switch (bodies.classify(plane, index)) {
+                case PairKind::Contact: found_.contacts.push_back({plane, index}); break;
+                case PairKind::Sensor: found_.sensors.push_back({plane, index}); break;
+                case PairKind::Filtered: ++found_.filtered; break;
+            }
+        }
+        if (bodies.sensorCount == 0) continue;
+        for (std::uint32_t index : bodies.moving) {
+            const BodyRecord &r = bodies[index];
+            if (r.object && below(r) && bodies.classify(plane, index) == PairKind::Sensor)
+                found_.sensors.push_back({plane, index});
         }
     }
-    world.stats.broadphasePairs = static_cast<int>(candidates_.size());
+    world.stats.broadphasePairs = static_cast<int>(found_.contacts.size());
+    world.stats.filteredPairs = found_.filtered;
 }
 
 void ContactManager::updateContacts(WorldState &world, real dt) {
@@ -120,13 +139,10 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     stepPairs_.clear();
     // The broadphase lists a settled scene's pairs in the same order step after step:
     // the slot each candidate had last step is checked first, saving most table look-ups.
-    candidateSlots_.resize(candidates_.size(), kNoSlot);
-    for (std::size_t k = 0; k < candidates_.size(); ++k) {
-        const CandidatePair &c = candidates_[k];
-        if (bodies.filteredCount > 0 && !bodies.collide(c.a, c.b)) {
-            ++world.stats.filteredPairs;
-            continue;
-        }
+    const std::vector<CandidatePair> &candidates = found_.contacts;
+    candidateSlots_.resize(candidates.size(), kNoSlot);
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const CandidatePair &c = candidates[k];
         if (world.joints.excludesContact(c.a, c.b)) continue;  // joined without collideConnected
         if (bodies[c.a].immovable && bodies[c.b].immovable) {
             // A moving kinematic body with a static or kinematic one: neither can push.

@@ -40,6 +40,9 @@ public:
     /// Records the contacts that began or ended since the last call in the step's events.
     void reportContactEvents(WorldState &world);
 
+    /// The step's pairs of a sensor and a body it sees (either order), for the sensors.
+    const std::vector<CandidatePair> &sensorCandidates() const { return found_.sensors; }
+
     ManifoldState &manifold(ManifoldRef ref) { return pairs[ref.pair].manifolds[ref.index]; }
     /// The pair of bodies i and j, created (and listed with both bodies) if new.
     std::uint32_t findOrAddPair(BodyStore &bodies, std::uint32_t i, std::uint32_t j, bool &created);
@@ -67,7 +70,7 @@ private:
     static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::uint64_t anchorsIssued_ = 0;
     std::vector<fcl::CollisionObjectd *> movedObjects_;  ///< Objects whose fat box moved.
-    std::vector<CandidatePair> candidates_;
+    BroadphasePairs found_;  ///< The step's pairs: candidate contacts, sensor pairs, the filtered count.
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
     std::vector<std::uint32_t> candidateSlots_;
     std::vector<Manifold> fresh_;

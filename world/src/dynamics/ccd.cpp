@@ -16,7 +16,7 @@
 // centre, is swept instead (Box2D v3's fallback), and the body stops where the core
 // touches: deep, but on the near side, and with its centre's speed towards the obstacle
 // taken away, or the sweep would hold it there step after step. Bodies without ccd cost
-// nothing.
+// nothing. What the layers, a pair rule or a sensor keep from touching is not swept against.
 #include "dynamics/ccd.h"
 
 #include <algorithm>
@@ -56,8 +56,9 @@ void ContinuousCollision::sweep(WorldState &world) {
         swept.expand(fcl::Vector3d::Constant(self.boundingRadius + kBroadphaseMargin));
         candidates_.clear();
         world.broadphase.overlapping(swept, candidates_);
+        const bool filtering = bodies.filtering();
         for (std::uint32_t other : candidates_) {
-            if (other == index) continue;
+            if (other == index || (filtering && bodies.classify(index, other) != PairKind::Contact)) continue;
             const BodyRecord &o = bodies[other];
             const SweptShape target = sweptShape(*o.shape);
             const Matrix4 &otherStart = o.object->getTransform();
@@ -79,7 +80,7 @@ void ContinuousCollision::sweep(WorldState &world) {
         // below the surface, with the pose interpolated (exact for a translating body). A
         // half-space has no far side to tunnel to: a touching plane is the solver's.
         for (std::uint32_t plane : bodies.planes) {
-            if (touching(plane)) continue;
+            if (touching(plane) || (filtering && bodies.classify(index, plane) != PairKind::Contact)) continue;
             const CollisionShape &p = *bodies[plane].shape;
             const Vector3 &n = p.planeNormal();
             const real above0 = n.dot(r.shape->supportPoint(start, -n, 0)) - p.planeOffset();

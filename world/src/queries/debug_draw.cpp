@@ -115,6 +115,7 @@ void validate(const DebugDrawOptions &o) {
     const std::pair<const char *, const DebugColor *> colors[] = {
         {"options.awake", &o.awake},           {"options.asleep", &o.asleep},
         {"options.staticBody", &o.staticBody}, {"options.isolated", &o.isolated},
+        {"options.sensor", &o.sensor},
         {"options.boundingBox", &o.boundingBox}, {"options.contactPoint", &o.contactPoint},
         {"options.contactNormal", &o.contactNormal}};
     for (const auto &[field, c] : colors)
@@ -157,7 +158,8 @@ void World::debugDraw(DebugDraw &draw, const DebugDrawOptions &options) const {
     for (std::uint32_t index : w.bodies.order) {
         const BodyRecord &r = w.bodies[index];
         const bool isStatic = r.immovable && !r.kinematic;  // a kinematic body is drawn awake while it moves
-        const DebugColor &color = isStatic      ? options.staticBody
+        const DebugColor &color = r.sensor && !r.isolated ? options.sensor
+                                  : isStatic   ? options.staticBody
                                   : r.isolated ? options.isolated
                                   : r.body.getAwake() ? options.awake
                                                       : options.asleep;

@@ -94,7 +94,7 @@ Quaternion unitOrIdentity(const Quaternion &q) {
 
 bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter) const {
     const BodyRecord &r = bodies[index];
-    if (!r.alive || r.isolated) return false;
+    if (!r.alive || r.isolated || (r.sensor && !filter.sensors)) return false;
     const bool considered = r.kinematic ? filter.kinematicBodies : r.immovable ? filter.staticBodies : filter.dynamicBodies;
     if (!considered || !(filter.layers >> r.layer & 1u)) return false;
     const BodyId id = bodies.idOf(index);

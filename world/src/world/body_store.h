@@ -4,6 +4,7 @@
 
 #include <fcl/fcl.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -41,6 +42,8 @@ struct BodyRecord {
     real boundingRadius = 0;    ///< Farthest point of the shape from its origin, m.
     int layer = 0;              ///< Collision layer, [0, 31].
     std::uint32_t collidesWith = kAllLayers;  ///< Layers it collides with, bit k for layer k.
+    bool sensor = false;        ///< Reports overlaps, never touches (contacts/sensors.h).
+    std::vector<std::uint32_t> keptApart;  ///< Bodies it never collides with (World::setPairCollision), any order.
 };
 
 /// The offset from a body's shape frame to its centre of mass, world space, m: zero
@@ -50,7 +53,7 @@ inline Vector3 frameToCentre(const RigidBody &body, const CollisionShape &shape)
     return body.getOrientation() * shape.frameToCentre();
 }
 
-struct BodyStore {
+struct BodyStore final : PairFilter {
     std::vector<BodyRecord> records;
     std::vector<std::uint32_t> free;   ///< Slots of removed bodies, reused first.
     std::vector<std::uint32_t> order;  ///< Live bodies in the order they were added.
@@ -67,9 +70,13 @@ struct BodyStore {
     /// The kinematic bodies moving this step, in `kinematic`'s order; solver index
     /// simulated.size() + 1 + k.
     std::vector<std::uint32_t> moving;
-    /// Live bodies whose layer or mask is not the default: while there are none, the
-    /// candidate pairs are not filtered at all.
+    /// Live bodies whose layer or mask is not the default: while there are none (and no
+    /// sensor or pair rule), the broadphase asks nothing per pair.
     int filteredCount = 0;
+    /// Live sensors.
+    int sensorCount = 0;
+    /// Pairs kept apart by World::setPairCollision.
+    int keptApartCount = 0;
     int isolatedCount = 0;  ///< Live bodies isolated for a non-finite state.
     std::vector<std::uint32_t> planes;
     std::unordered_map<std::string, std::uint32_t> names;
@@ -86,6 +93,34 @@ struct BodyStore {
         const BodyRecord &a = records[i];
         const BodyRecord &b = records[j];
         return (a.collidesWith >> b.layer & 1u) && (b.collidesWith >> a.layer & 1u);
+    }
+    /// Whether a World::setPairCollision rule keeps bodies i and j apart.
+    bool keptApart(std::uint32_t i, std::uint32_t j) const {
+        const std::vector<std::uint32_t> &a = records[i].keptApart;
+        const std::vector<std::uint32_t> &b = records[j].keptApart;
+        if (a.empty() || b.empty()) return false;
+        const bool aShorter = a.size() <= b.size();
+        const std::vector<std::uint32_t> &list = aShorter ? a : b;
+        return std::find(list.begin(), list.end(), aShorter ? j : i) != list.end();
+    }
+    /// Whether pairs must be asked classify() at all: some body has a layer, a mask, a
+    /// sensor flag or a pair rule that is not the default.
+    bool filtering() const { return filteredCount > 0 || sensorCount > 0 || keptApartCount > 0; }
+    /// Contact when the layers let bodies i and j touch, Sensor when one is a sensor that
+    /// sees the other (its mask holds the other's layer), Filtered otherwise (two sensors,
+    /// or a pair rule).
+    PairKind classify(std::uint32_t i, std::uint32_t j) const override {
+        const BodyRecord &a = records[i];
+        const BodyRecord &b = records[j];
+        PairKind kind;
+        if (a.sensor || b.sensor) {
+            const BodyRecord &sensor = a.sensor ? a : b;
+            const BodyRecord &other = a.sensor ? b : a;
+            kind = !other.sensor && (sensor.collidesWith >> other.layer & 1u) ? PairKind::Sensor : PairKind::Filtered;
+        } else {
+            kind = collide(i, j) ? PairKind::Contact : PairKind::Filtered;
+        }
+        return kind != PairKind::Filtered && keptApart(i, j) ? PairKind::Filtered : kind;
     }
     BodyId idOf(std::uint32_t index) const { return {index, records[index].generation}; }
     /// The body `id` names; refused with `function`'s name when it names none.

@@ -1,4 +1,4 @@
-// World::step: forces -> broadphase -> narrowphase -> contact events -> constraints ->
+// World::step: forces -> broadphase -> narrowphase -> contact events -> sensors -> constraints ->
 // islands -> per sub-step (forces, solve, integrate, penetration) -> continuous
 // collision -> sleep. Each stage adds its time to stats().ms.
 #include "world/stage_timer.h"
@@ -21,6 +21,7 @@ void WorldState::step(real dt) {
     { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
     { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
+    if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(*this); }
     { const StageTimer t(ms.manifolds); solver.build(*this); }
     { const StageTimer t(ms.islands); islands.build(*this); }
 
@@ -63,7 +64,7 @@ void WorldState::step(real dt) {
     stats.bodies = static_cast<int>(bodies.order.size());
     stats.awakeBodies = static_cast<int>(bodies.awake.size());
     stats.isolatedBodies = bodies.isolatedCount;
-    ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.manifolds + ms.islands + ms.solve +
+    ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.sensors + ms.manifolds + ms.islands + ms.solve +
                ms.integrate + ms.ccd + ms.sleep;
 }
 

@@ -63,6 +63,7 @@ void WorldState::isolate(std::uint32_t index) {
     bodies.updateAwakeList(index);
     setTree(index, Tree::None);
     contacts.removePairsOf(bodies, index);
+    sensors.removed(*this, index);
 }
 
 void WorldState::setTree(std::uint32_t index, Tree tree) {
@@ -79,6 +80,7 @@ void WorldState::refreshCollisionObject(std::uint32_t index) {
     BodyRecord &r = bodies[index];
     if (r.object && r.object->place(r.body.getTransform(), kBroadphaseMargin))
         broadphase.refit(r.object.get(), r.tree);
+    sensors.moved(*this, index);
     if (!r.immovable) {
         wake(index);
         return;

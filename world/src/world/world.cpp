@@ -219,7 +219,7 @@ BodyId World::addBody(const BodySettings &settings) {
     r.kinematic = motion == Motion::Kinematic;
     r.moving = false;
     r.isPlane = settings.shape.type == ShapeType::Plane;
-    r.ccd = settings.ccd && motion == Motion::Dynamic;
+    r.ccd = settings.ccd && motion == Motion::Dynamic && !settings.sensor;
     r.core = r.ccd ? detail::makeCore(detail::sweptShape(*shape)) : nullptr;
     r.isolated = false;
     r.simulated = false;
@@ -233,6 +233,8 @@ BodyId World::addBody(const BodySettings &settings) {
     r.layer = settings.layer;
     r.collidesWith = settings.collidesWith;
     if (r.layer != 0 || r.collidesWith != kAllLayers) ++w.bodies.filteredCount;
+    r.sensor = settings.sensor;
+    w.bodies.sensorCount += r.sensor;
     w.bodies.order.push_back(index);
     if (!r.name.empty()) w.bodies.names.emplace(r.name, index);
 
@@ -256,6 +258,7 @@ BodyId World::addBody(const BodySettings &settings) {
             w.sleepIsland(&self, 1, false);
         }
     }
+    w.sensors.added(w, index);
     return w.bodies.idOf(index);
 }
 
@@ -271,6 +274,7 @@ void World::removeBody(BodyId id) {
     }
     w.contacts.removePairsOf(w.bodies, index);
     w.joints.removeJointsOf(w, id);
+    w.leaveFilters(index);
     for (detail::SpringRecord &s : w.springs) {
         if (!s.alive) continue;
         const bool onA = s.settings.a == id;
@@ -507,6 +511,7 @@ void World::setCollisionFilter(BodyId id, int layer, std::uint32_t collidesWith)
         if (pair.touching() && !w.bodies[other].immovable) w.wake(other);
         w.contacts.removePair(w.bodies, p);
     }
+    w.filterChanged(id.index);
     if (!r.immovable) w.wake(id.index);
 }
 

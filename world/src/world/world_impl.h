@@ -10,6 +10,7 @@
 
 #include "collision/broadphase.h"
 #include "contacts/contact_manager.h"
+#include "contacts/sensors.h"
 #include "cyclone/world/world.h"
 #include "dynamics/ccd.h"
 #include "dynamics/integration.h"
@@ -33,6 +34,7 @@ struct WorldState {
     JointSet joints;
     Broadphase broadphase;
     ContactManager contacts;
+    Sensors sensors;
     ConstraintSolver solver;
     Integration integration;
     KinematicBodies kinematicBodies;
@@ -61,6 +63,14 @@ struct WorldState {
     void setTree(std::uint32_t index, Tree tree);
     /// After a teleport: refits the body's box and wakes what it or its contacts concern.
     void refreshCollisionObject(std::uint32_t index);
+
+    // Layers, pair rules and sensors (world/world_filters.cpp).
+    /// After body `index`'s layers or pair rules changed: the broadphase walks again, and
+    /// the sensor overlaps they now forbid end.
+    void filterChanged(std::uint32_t index);
+    /// Before body `index` is removed: its sensor overlaps end, and its pair rules and
+    /// sensor flag go.
+    void leaveFilters(std::uint32_t index);
 
     /// Whether a query considers the body (queries/queries.cpp).
     bool accepts(std::uint32_t index, const QueryFilter &filter) const;

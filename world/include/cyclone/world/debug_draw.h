@@ -1,7 +1,7 @@
 /// \file
 /// Debug drawing: the game implements DebugDraw with its renderer's lines, and
 /// World::debugDraw() draws the bodies' shapes, their broadphase boxes and the contacts
-/// through it, coloured by state (awake, asleep, static, isolated).
+/// through it, coloured by state (awake, asleep, static, isolated) and sensors apart.
 #pragma once
 
 #include "cyclone/core.h"
@@ -42,6 +42,8 @@ struct DebugDrawOptions {
     DebugColor staticBody{0.65f, 0.65f, 0.65f, 1};
     /// Bodies isolated because their state became non-finite (or beyond 1e30 m).
     DebugColor isolated{1, 0.1f, 0.1f, 1};
+    /// Sensors (BodySettings::sensor), whatever their motion: translucent by default.
+    DebugColor sensor{0.2f, 0.85f, 0.85f, 0.5f};
     /// Broadphase boxes.
     DebugColor boundingBox{0.9f, 0.6f, 0.2f, 1};
     /// Contact points.

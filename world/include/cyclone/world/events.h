@@ -54,6 +54,14 @@ struct JointBreak {
     Vector3 torque = Vector3::Zero();
 };
 
+/// A body began or stopped overlapping a sensor (BodySettings::sensor).
+struct SensorEvent {
+    /// The sensor.
+    BodyId sensor;
+    /// The body it sees.
+    BodyId body;
+};
+
 /// The events of one step, as returned by World::events().
 ///
 /// Each list holds what happened in the last World::step() and in the World calls made
@@ -70,6 +78,16 @@ struct WorldEvents {
     std::vector<ContactBegin> contactBegins;
     /// Contacts that ended.
     std::vector<ContactEnd> contactEnds;
+    /// Bodies that began to overlap a sensor: found by the step's exact test (a sensor or a
+    /// body added overlapping, asleep or not, is reported by the first step after it).
+    /// Sorted by the sensor's BodyId::index, then the body's.
+    std::vector<SensorEvent> sensorBegins;
+    /// Bodies that stopped overlapping a sensor: they moved apart (found by the step, sorted
+    /// as sensorBegins), or a call ended the overlap (World::removeBody of either, whose
+    /// BodyId is then stale; a filter that now keeps them apart), reported in call order
+    /// before the step's. An overlap that a call ended and the step found again is in
+    /// both lists: read the ends first.
+    std::vector<SensorEvent> sensorEnds;
     /// Dynamic bodies that fell asleep (an island at rest, or World::setAwake(id, false)).
     /// A body added asleep is not reported.
     std::vector<BodyId> fellAsleep;
@@ -83,6 +101,8 @@ struct WorldEvents {
     void clear() {
         contactBegins.clear();
         contactEnds.clear();
+        sensorBegins.clear();
+        sensorEnds.clear();
         fellAsleep.clear();
         wokeUp.clear();
         jointsBroken.clear();

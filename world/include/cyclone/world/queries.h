@@ -23,6 +23,9 @@ struct QueryFilter {
     bool kinematicBodies = true;
     /// The layers considered, bit k for layer k (BodySettings::layer); every layer by default.
     std::uint32_t layers = kAllLayers;
+    /// Whether sensors (BodySettings::sensor) are considered; by default a ray or a shape
+    /// passes through them as bodies do.
+    bool sensors = false;
     /// A body to leave out, e.g. the player's own body when casting from its eyes (a
     /// handle that names no body of the world leaves nothing out).
     std::optional<BodyId> ignore;

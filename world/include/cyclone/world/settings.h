@@ -219,8 +219,17 @@ struct BodySettings {
     /// Collision layer, in [0, 31].
     int layer = 0;
     /// The layers this body collides with, bit k for layer k. Two bodies touch only when
-    /// each one's mask holds the other's layer. Every layer by default.
+    /// each one's mask holds the other's layer. Every layer by default. A sensor sees the
+    /// bodies whose layer its own mask holds (theirs does not matter).
     std::uint32_t collidesWith = kAllLayers;
+    /// A sensor reports the bodies that overlap it (WorldEvents::sensorBegins and
+    /// sensorEnds) but pushes nothing and is pushed by nothing: its pairs never reach the
+    /// contact solver. It sees every body but other sensors (static, sleeping and
+    /// kinematic ones included) whose layer its `collidesWith` holds and that no
+    /// World::setPairCollision rule keeps from it. Any shape on a static body; any but a
+    /// plane or a mesh on a kinematic or dynamic one (a dynamic sensor falls like any
+    /// body, through the others). A mesh sensor sees what crosses its triangles.
+    bool sensor = false;
 };
 
 /// The motion `settings` asks for: `motion`, or Static when the older `isStatic` is set.

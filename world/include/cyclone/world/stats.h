@@ -22,6 +22,7 @@ struct StageTimes {
     double broadphase = 0;   ///< AABB updates and overlapping pairs.
     double narrowphase = 0;  ///< Contact tests (FCL or a pair's own) and manifold reuse.
     double events = 0;       ///< Contact begin and end detection.
+    double sensors = 0;      ///< Sensor overlap tests and their events (0 without sensors).
     double manifolds = 0;    ///< Point matching, warm-start data, the solver's manifolds (its Jacobians: solveParts.setup).
     double islands = 0;      ///< Island building and wake propagation.
     double solve = 0;        ///< Velocity and position iterations (parts in solveParts).
@@ -38,9 +39,10 @@ struct StepStats {
     int awakeBodies = 0;        ///< Dynamic bodies awake after the step.
     int integratedBodies = 0;   ///< Dynamic bodies integrated during the step.
     int movingKinematicBodies = 0; ///< Kinematic bodies moved during the step.
-    int broadphasePairs = 0;    ///< Overlapping AABB pairs found (including plane pairs).
+    int broadphasePairs = 0;    ///< Overlapping AABB pairs that may touch (including plane pairs): the narrowphase's candidates (filtered and sensor pairs are counted apart).
     int immovablePairsSkipped = 0; ///< Broadphase pairs of a moving kinematic body with a static or kinematic one, never tested.
-    int filteredPairs = 0;      ///< Broadphase pairs whose layers do not collide (BodySettings::layer, collidesWith), never tested.
+    int filteredPairs = 0;      ///< Overlapping box pairs dropped in the broadphase, never tested: layers that do not collide (BodySettings::layer, collidesWith), a World::setPairCollision rule, or two sensors.
+    int sensorPairs = 0;        ///< Pairs of a sensor and a body tested for overlap (those the broadphase found, and those a call asked for).
     int pairsTested = 0;        ///< Pairs sent to the narrowphase (FCL or a test of its own).
     int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
     int manifolds = 0;          ///< Contact manifolds given to the solver.

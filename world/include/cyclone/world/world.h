@@ -11,9 +11,11 @@
 /// (applyImpulse, addForce, addForceAtPoint, addTorque) wakes it and its sleeping island;
 /// so do setAwake(id, true), setCanSleep(id, false), setSettings (every body), adding a
 /// spring or a joint (its bodies), setting a joint's motor speed (its bodies), and
-/// removing a spring, a joint or a body (the bodies it joined or touched). During a step,
-/// an awake body that touches a sleeping one, or is joined to it by a spring or a joint,
-/// wakes it (and its island) from the next step on; a joint that breaks wakes its bodies. Reading (body(), events(),
+/// removing a spring, a joint or a body (the bodies it joined or touched);
+/// setCollisionFilter and setPairCollision wake as they say. Sensors wake nothing.
+/// During a step, an awake body that touches a sleeping one, or is joined to it by a
+/// spring or a joint, wakes it (and its island) from the next step on; a joint that
+/// breaks wakes its bodies. Reading (body(), events(),
 /// rayCast(), overlap(), debugDraw(), ...) and setMaterial() wake nothing.
 ///
 /// Errors: bad input throws cyclone::InvalidArgument naming the function, the field and
@@ -65,14 +67,16 @@ public:
     // --- Bodies -------------------------------------------------------------------------
 
     /// Adds a body and returns its handle; throws InvalidArgument (nothing added) on a bad
-    /// shape, mass, inertia or number, a plane or mesh on a dynamic or kinematic body,
+    /// shape, mass, inertia or number, a plane or mesh on a dynamic or kinematic body
+    /// (sensor or not),
     /// `isStatic` with Motion::Kinematic, or a duplicate non-empty name. A kinematic body
     /// added with a velocity or rotation moves from the first step. A dynamic body added awake (the default) is simulated from the
     /// next step; one added with `awake = false` sleeps until something wakes it.
     BodyId addBody(const BodySettings &settings);
     /// Removes a body; the bodies touching it or joined to it by a spring or a joint wake,
-    /// and so do the others of its sleeping island. Its springs and joints are removed. Throws InvalidArgument
-    /// on a stale handle.
+    /// and so do the others of its sleeping island. Its springs, joints and
+    /// setPairCollision rules are removed, and its overlaps with sensors end (reported with
+    /// the next step's events). Throws InvalidArgument on a stale handle.
     void removeBody(BodyId id);
     /// True while `id` names a body of this world.
     bool contains(BodyId id) const;
@@ -159,9 +163,23 @@ public:
     void setCanSleep(BodyId id, bool canSleep);
     /// Puts the body on collision layer `layer` ([0, 31]) and makes it collide with the
     /// layers of `collidesWith` (bit k for layer k); two bodies touch only when each one's
-    /// mask holds the other's layer. Contacts the new filter forbids end at once (reported
-    /// with the next step's events); the body and what it touched wake.
+    /// mask holds the other's layer (a sensor sees the layers its mask holds). Contacts and
+    /// sensor overlaps the new filter forbids end at once (reported with the next step's
+    /// events); the body and what it touched wake.
     void setCollisionFilter(BodyId id, int layer, std::uint32_t collidesWith);
+    /// Whether bodies `a` and `b` (two different bodies) may touch, or the sensor among them
+    /// see the other, as far as the pair is concerned: `collide` false keeps them apart
+    /// whatever their layers (a projectile and its shooter, a ragdoll's limbs), true (the
+    /// default of every pair) leaves it to the layers. False ends their contact or overlap
+    /// at once (reported with the next step's events) and wakes a dynamic body that
+    /// touched the other; true wakes the dynamic ones so that they meet again. The rule
+    /// lasts until it is changed or one of the bodies is removed. Throws InvalidArgument
+    /// on a stale handle or a == b.
+    void setPairCollision(BodyId a, BodyId b, bool collide);
+    /// The pair's rule set by setPairCollision (true unless set false).
+    bool pairCollision(BodyId a, BodyId b) const;
+    /// Whether the body is a sensor (BodySettings::sensor).
+    bool isSensor(BodyId id) const;
     /// Replaces the body's material (friction >= 0, restitution in [0, 1]). Wakes
     /// nothing: it acts at the body's next contact.
     void setMaterial(BodyId id, const Material &material);

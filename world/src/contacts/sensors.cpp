@@ -1,0 +1,134 @@
+#include "contacts/sensors.h"
+
+#include <algorithm>
+
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+namespace {
+
+// FCL's yes-or-no test (no contact points): all a sensor needs.
+bool overlapping(const BodyRecord &a, const BodyRecord &b) {
+    fcl::CollisionRequestd request(1, false);
+    request.gjk_solver_type = fcl::GST_LIBCCD;
+    fcl::CollisionResultd result;
+    fcl::collide(a.shape->geometry().get(), a.body.getTransform(), b.shape->geometry().get(), b.body.getTransform(),
+                 request, result);
+    return result.isCollision();
+}
+
+bool bySensorThenBody(const SensorEvent &x, const SensorEvent &y) {
+    return x.sensor.index != y.sensor.index ? x.sensor.index < y.sensor.index : x.body.index < y.body.index;
+}
+
+}  // namespace
+
+void Sensors::added(WorldState &world, std::uint32_t index) {
+    const BodyRecord &r = world.bodies[index];
+    const bool awakeDynamic = !r.immovable && r.body.getAwake();
+    if (r.sensor || (world.bodies.sensorCount > 0 && !awakeDynamic)) recheck(index);
+}
+
+void Sensors::moved(WorldState &world, std::uint32_t index) {
+    if (world.bodies.sensorCount > 0 && world.bodies[index].immovable) recheck(index);
+}
+
+void Sensors::removed(WorldState &world, std::uint32_t index) {
+    for (std::uint32_t slot = 0; slot < overlaps_.slots(); ++slot) {
+        const PairState &pair = overlaps_[slot];
+        if (pair.alive && (pair.a == index || pair.b == index)) end(world, slot);
+    }
+}
+
+void Sensors::filterChanged(WorldState &world, std::uint32_t index) {
+    for (std::uint32_t slot = 0; slot < overlaps_.slots(); ++slot) {
+        const PairState &pair = overlaps_[slot];
+        if (pair.alive && (pair.a == index || pair.b == index) && world.bodies.classify(pair.a, pair.b) != PairKind::Sensor)
+            end(world, slot);
+    }
+    if (world.bodies.sensorCount > 0) recheck(index);
+}
+
+void Sensors::end(WorldState &world, std::uint32_t slot) {
+    const BodyStore &bodies = world.bodies;
+    const PairState &pair = overlaps_[slot];
+    const bool aIsSensor = bodies[pair.a].sensor;
+    world.events.sink->sensorEnds.push_back(
+        {bodies.idOf(aIsSensor ? pair.a : pair.b), bodies.idOf(aIsSensor ? pair.b : pair.a)});
+    overlaps_.remove(slot);
+}
+
+void Sensors::gatherAround(WorldState &world, std::uint32_t index) {
+    const BodyStore &bodies = world.bodies;
+    const auto consider = [&](std::uint32_t other) {
+        if (other == index || bodies.classify(index, other) != PairKind::Sensor) return;
+        candidates_.push_back(bodies[index].sensor ? CandidatePair{index, other} : CandidatePair{other, index});
+    };
+    const BodyRecord &r = bodies[index];
+    if (r.isPlane) {
+        // A half-space has no box to look up: every other body that is not a plane.
+        for (std::uint32_t other : bodies.order)
+            if (!bodies[other].isPlane && !bodies[other].isolated) consider(other);
+        return;
+    }
+    found_.clear();
+    world.broadphase.overlapping(r.object->getAABB(), found_);
+    for (std::uint32_t other : found_) consider(other);
+    for (std::uint32_t plane : bodies.planes) consider(plane);
+}
+
+void Sensors::update(WorldState &world) {
+    BodyStore &bodies = world.bodies;
+    const std::uint64_t step = world.stepCount;
+    WorldEvents &events = *world.events.sink;
+    const std::size_t beginsBefore = events.sensorBegins.size();
+    const std::size_t endsBefore = events.sensorEnds.size();
+
+    candidates_.clear();
+    for (const CandidatePair &c : world.contacts.sensorCandidates())
+        candidates_.push_back(bodies[c.a].sensor ? c : CandidatePair{c.b, c.a});
+    if (checkedStep_.size() < bodies.size()) checkedStep_.resize(bodies.size(), 0);
+    for (std::uint32_t index : rechecks_) {
+        const BodyRecord &r = bodies[index];
+        if (!r.alive || r.isolated || checkedStep_[index] == step) continue;
+        checkedStep_[index] = step;
+        gatherAround(world, index);
+    }
+    rechecks_.clear();
+    // Each pair once, sensor by sensor: the events come in this order.
+    std::sort(candidates_.begin(), candidates_.end(),
+              [](const CandidatePair &x, const CandidatePair &y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+    candidates_.erase(std::unique(candidates_.begin(), candidates_.end(),
+                                  [](const CandidatePair &x, const CandidatePair &y) { return x.a == y.a && x.b == y.b; }),
+                      candidates_.end());
+
+    for (const CandidatePair &c : candidates_) {
+        ++world.stats.sensorPairs;
+        if (overlapping(bodies[c.a], bodies[c.b])) {
+            bool created = false;
+            const std::uint32_t slot = overlaps_.findOrAdd(c.a, c.b, created);
+            overlaps_[slot].lastSeen = step;
+            if (created) events.sensorBegins.push_back({bodies.idOf(c.a), bodies.idOf(c.b)});
+        } else if (const long slot = overlaps_.find(c.a, c.b); slot >= 0) {
+            end(world, static_cast<std::uint32_t>(slot));
+        }
+    }
+
+    // An overlap the step did not report although one of its bodies was in the walk: their
+    // boxes parted.
+    for (std::uint32_t slot = 0; slot < overlaps_.slots(); ++slot) {
+        const PairState &pair = overlaps_[slot];
+        if (!pair.alive || pair.lastSeen == step) continue;
+        const BodyRecord &a = bodies[pair.a];
+        const BodyRecord &b = bodies[pair.b];
+        if (a.simulated || a.moving || b.simulated || b.moving || checkedStep_[pair.a] == step ||
+            checkedStep_[pair.b] == step)
+            end(world, slot);
+    }
+    std::sort(events.sensorBegins.begin() + static_cast<std::ptrdiff_t>(beginsBefore), events.sensorBegins.end(),
+              bySensorThenBody);
+    std::sort(events.sensorEnds.begin() + static_cast<std::ptrdiff_t>(endsBefore), events.sensorEnds.end(),
+              bySensorThenBody);
+}
+
+}  // namespace cyclone::detail
