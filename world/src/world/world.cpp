@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "collision/time_of_impact.h"
+#include "world/mass_range.h"
 #include "world/validation.h"
 #include "world/world_impl.h"
 
@@ -123,9 +124,8 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
         return body;
     }
     body.setDamping(s.linearDamping, s.angularDamping);
-    requirePositive(function, "mass", s.mass);
-    if (!std::isfinite(1 / s.mass)) refuse(function, "mass", "is too small to invert, got " + show(s.mass));
     const Matrix3 inertia = s.inertia ? *s.inertia : Matrix3(shape.unitInertia() * s.mass);
+    requireSolvableMass(function, s.mass, inertia, boundingRadius(s.shape, shape));
     try {
         body.setInertiaTensor(inertia);
     } catch (const std::invalid_argument &) {

@@ -171,6 +171,20 @@ struct Material {
     real spinningFriction = 0.005;
 };
 
+/// Smallest mass of a dynamic body, kg; also the smallest principal moment of inertia
+/// over the squared bounding radius R (the farthest point of the shape from its origin).
+/// Why: a contact's effective inverse mass along a row is at most
+/// k = sum over its two bodies of 1/m + R^2 / I_min <= 4e100, and the solver inverts
+/// 3 x 3 blocks of such rows (friction and twist) by cofactors, whose determinant is a sum
+/// of six products of three k: 6 (4e100)^3 = 4e302 stays below the largest double
+/// (1.8e308) with room for rounding. Below the range, 1 / m or its products overflow and
+/// the solve turns NaN (a 1e-155 kg body once froze every step).
+inline constexpr real kMinMass = 1e-100;
+/// Largest mass of a dynamic body, kg; also the largest principal moment of inertia over
+/// R^2. Why: the blocks' determinants shrink as (1/m)^3, and below 1e-300 they leave the
+/// normal doubles (2.2e-308), so that friction would silently vanish.
+inline constexpr real kMaxMass = 1e100;
+
 /// Settings of a body to add to a World.
 struct BodySettings {
     /// Unique within the world when not empty; used in reports and scene files.
@@ -183,10 +197,13 @@ struct BodySettings {
     /// The older spelling of `motion = Motion::Static`: true with `motion` left Dynamic
     /// means Static; true with `motion = Motion::Kinematic` is refused as contradictory.
     bool isStatic = false;
-    /// Mass of a dynamic body, kg, finite, > 0.
+    /// Mass of a dynamic body, kg, in [kMinMass, kMaxMass] = [1e-100, 1e100].
     real mass = 1;
-    /// Body-space inertia tensor, kg m^2, symmetric positive definite; empty means
-    /// computed from the shape and the mass.
+    /// Body-space inertia tensor, kg m^2, symmetric positive definite, each principal
+    /// moment over R^2 (R: the shape's farthest point from its origin, m) in
+    /// [kMinMass, kMaxMass]; empty means computed from the shape and the mass (then
+    /// checked the same way: a unit cube's moments are m/6 and R^2 = 3/4, so its mass must
+    /// be at least 4.5e-100 kg).
     std::optional<Matrix3> inertia;
     /// World-space position of the centre of mass (the shape's origin), m, finite, each
     /// coordinate within 1e30.
