@@ -169,6 +169,10 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
         result.stepTimes.add(secondsSince(stepStart) * 1000.0);
         result.steps = step + 1;
         result.maxPenetrationOfRun = std::max(result.maxPenetrationOfRun, world.stats().maxPenetration);
+        if (world.stats().errors & StepError::PairBudgetExceeded) {
+            if (!result.firstPairBudgetStep) result.firstPairBudgetStep = step;
+            ++result.pairBudgetSteps;
+        }
 
         bool anyAwake = false;
         for (std::size_t i = 0; i < scene.bodies.size() && !result.nonFinite; ++i) {

@@ -71,6 +71,10 @@ struct RunResult {
     bool nonFinite = false;
     /// What became non-finite, for the message: body, step and quantity.
     std::string nonFiniteWhat;
+    /// Steps that dropped pairs for WorldSettings::maxPairs (StepError::PairBudgetExceeded).
+    std::int64_t pairBudgetSteps = 0;
+    /// The first of them; empty if none.
+    std::optional<std::int64_t> firstPairBudgetStep;
 };
 
 /// Whether position, orientation, velocity and rotation are all finite.

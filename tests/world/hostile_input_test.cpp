@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "world_fixture.h"
 
@@ -85,6 +86,68 @@ TEST(HostileInput, BodiesAtBothEndsOfTheRangeStepTogether) {
         EXPECT_TRUE(f.world.body(id).getPosition().allFinite());
         EXPECT_TRUE(f.world.body(id).getVelocity().allFinite());
     }
+}
+
+// Six unit boxes spawned at one point over a ground plane: C(6, 2) = 15 box pairs and 6
+// box-plane pairs. With a budget of 10 pairs the step keeps the 6 plane pairs and the
+// first 4 box pairs, drops the other 11 and says so; the plane still holds every box.
+WorldSettings budgetOf(int maxPairs) {
+    WorldSettings s = noSleep();
+    s.maxPairs = maxPairs;
+    return s;
+}
+
+std::vector<BodyId> spawnSixAtOnePoint(WorldFixture &f) {
+    f.ground();
+    std::vector<BodyId> boxes;
+    for (int i = 0; i < 6; ++i) boxes.push_back(f.box(Vector3(0, 0.5, 0)));
+    return boxes;
+}
+
+TEST(PairBudget, TheExcessPairsAreDroppedAndReported) {
+    WorldFixture f(budgetOf(10));
+    const std::vector<BodyId> boxes = spawnSixAtOnePoint(f);
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().broadphasePairs, 10);
+    EXPECT_NE(f.world.stats().errors & StepError::PairBudgetExceeded, 0u);
+    for (int i = 0; i < 120; ++i) f.world.step(kDt);
+    // Resting on the plane, each box's centre is half its height up, less the slop.
+    for (BodyId id : boxes) EXPECT_GT(f.world.body(id).getPosition().y(), 0.45);
+}
+
+TEST(PairBudget, WithinTheBudgetNothingIsReported) {
+    WorldFixture f(budgetOf(21));
+    spawnSixAtOnePoint(f);
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().broadphasePairs, 21);
+    EXPECT_EQ(f.world.stats().errors, 0u);
+}
+
+// Which pairs are dropped depends only on the world's history: two worlds built alike end
+// alike, to the bit.
+TEST(PairBudget, TheDroppedPairsAreTheSameEveryRun) {
+    WorldFixture one(budgetOf(10)), two(budgetOf(10));
+    const std::vector<BodyId> a = spawnSixAtOnePoint(one), b = spawnSixAtOnePoint(two);
+    for (int i = 0; i < 60; ++i) {
+        one.world.step(kDt);
+        two.world.step(kDt);
+    }
+    for (std::size_t k = 0; k < a.size(); ++k)
+        EXPECT_EQ(one.world.body(a[k]).getPosition(), two.world.body(b[k]).getPosition());
+}
+
+TEST(PairBudget, ABudgetBelowOneIsRefused) {
+    WorldFixture f;
+    WorldSettings s;
+    s.maxPairs = 0;
+    try {
+        f.world.setSettings(s);
+        FAIL() << "maxPairs 0 accepted";
+    } catch (const InvalidArgument &e) {
+        EXPECT_EQ(e.field(), "maxPairs");
+        EXPECT_NE(e.problem().find("got 0"), std::string::npos);
+    }
+    EXPECT_EQ(f.world.settings().maxPairs, 65536);
 }
 
 }  // namespace

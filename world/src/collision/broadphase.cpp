@@ -3,11 +3,22 @@
 namespace cyclone::detail {
 namespace {
 
+// Where the walk puts its pairs, and how many it may.
+struct PairWalk {
+    std::vector<CandidatePair> *out;
+    std::size_t limit;
+    bool complete = true;
+};
+
 // FCL calls this for every overlapping pair; recording them keeps the narrowphase (and
-// its timing) a stage of its own.
+// its timing) a stage of its own. Returning true stops FCL's walk.
 bool recordPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
-    auto *out = static_cast<std::vector<CandidatePair> *>(data);
-    out->push_back({bodyIndexOf(o1), bodyIndexOf(o2)});
+    auto *walk = static_cast<PairWalk *>(data);
+    if (walk->out->size() >= walk->limit) {
+        walk->complete = false;
+        return true;
+    }
+    walk->out->push_back({bodyIndexOf(o1), bodyIndexOf(o2)});
     return false;
 }
 
@@ -76,19 +87,23 @@ const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
     return nullptr;
 }
 
-void Broadphase::findPairs(std::vector<CandidatePair> &out) {
+bool Broadphase::findPairs(std::vector<CandidatePair> &out, std::size_t limit) {
     // Resting bodies stay inside their fat boxes: most steps of a settled scene change no
     // tree, and the walk would find the same pairs in the same order.
-    if (changed_) {
+    if (changed_ || limit != limit_) {
         pairs_.clear();
+        PairWalk walk{&pairs_, limit};
         if (!awake_.empty()) {
-            awake_.collide(&pairs_, recordPair);
-            if (!asleep_.empty()) awake_.collide(&asleep_, &pairs_, recordPair);
-            if (!static_.empty()) awake_.collide(&static_, &pairs_, recordPair);
+            awake_.collide(&walk, recordPair);
+            if (walk.complete && !asleep_.empty()) awake_.collide(&asleep_, &walk, recordPair);
+            if (walk.complete && !static_.empty()) awake_.collide(&static_, &walk, recordPair);
         }
         changed_ = false;
+        limit_ = limit;
+        complete_ = walk.complete;
     }
     out.insert(out.end(), pairs_.begin(), pairs_.end());
+    return complete_;
 }
 
 }  // namespace cyclone::detail

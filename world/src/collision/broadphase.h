@@ -76,10 +76,12 @@ public:
     void refitAwake(const std::vector<fcl::CollisionObjectd *> &moved);
     /// Refits one object in `tree` after its box moved.
     void refit(fcl::CollisionObjectd *object, Tree tree);
-    /// Appends every pair of overlapping AABBs with at least one awake member. When no
-    /// tree has changed since the last call, the pairs (and their order) are the same:
-    /// they are given again without walking the trees.
-    void findPairs(std::vector<CandidatePair> &out);
+    /// Appends every pair of overlapping AABBs with at least one awake member, at most
+    /// `limit` of them: the walk stops at the limit, so the pairs kept are the first ones
+    /// of the trees' fixed order. Returns false when pairs were left out. When no tree has
+    /// changed since the last call (and the limit is the same), the pairs and their order
+    /// are the same: they are given again without walking the trees.
+    bool findPairs(std::vector<CandidatePair> &out, std::size_t limit);
     /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
     /// leaf's data is its collision object.
     const fcl::detail::NodeBase<fcl::AABBd> *root(Tree tree) const;
@@ -94,6 +96,8 @@ private:
     std::unique_ptr<fcl::CollisionObjectd> probe_;  ///< Carries the box of overlapping().
     std::vector<CandidatePair> pairs_;  ///< What findPairs() found when it last walked the trees.
     bool changed_ = true;               ///< Whether a tree changed since then.
+    std::size_t limit_ = 0;             ///< The limit of that walk.
+    bool complete_ = true;              ///< Whether that walk found every pair.
 
     fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree);
 };

@@ -36,11 +36,12 @@ void ContactManager::findCandidates(WorldState &world) {
     }
     world.broadphase.refitAwake(movedObjects_);
     candidates_.clear();
-    world.broadphase.findPairs(candidates_);
 
     // Planes stay out of the trees: test each awake body's AABB against each plane.
     // The half-space is the compiled one (unit normal, offset along it, as FCL has it),
-    // placed by the plane body's pose as the narrowphase places it.
+    // placed by the plane body's pose as the narrowphase places it. They are found first,
+    // so that the pair budget never drops a body's floor, and listed after the trees'.
+    planeCandidates_.clear();
     for (std::uint32_t plane : bodies.planes) {
         const CollisionShape &p = *bodies[plane].shape;
         const Matrix4 pose = bodies[plane].body.getTransform();
@@ -53,9 +54,15 @@ void ContactManager::findCandidates(WorldState &world) {
             const Vector3 centre = boxCentre(box);
             const Vector3 half = 0.5 * (box.max_ - box.min_);
             const real lowest = n.dot(centre) - n.cwiseAbs().dot(half);
-            if (lowest <= offset + settings.speculativeDistance) candidates_.push_back({plane, index});
+            if (lowest <= offset + settings.speculativeDistance) planeCandidates_.push_back({plane, index});
         }
     }
+    const std::size_t budget = static_cast<std::size_t>(settings.maxPairs);
+    const std::size_t treeBudget = budget > planeCandidates_.size() ? budget - planeCandidates_.size() : 0;
+    const bool complete = world.broadphase.findPairs(candidates_, treeBudget);
+    candidates_.insert(candidates_.end(), planeCandidates_.begin(), planeCandidates_.end());
+    if (candidates_.size() > budget) candidates_.resize(budget);  // more plane pairs than the budget
+    if (!complete || planeCandidates_.size() > budget) world.stats.errors |= StepError::PairBudgetExceeded;
     world.stats.broadphasePairs = static_cast<int>(candidates_.size());
 }
 

@@ -59,6 +59,7 @@ private:
     std::uint64_t anchorsIssued_ = 0;
     std::vector<fcl::CollisionObjectd *> movedObjects_;  ///< Objects whose fat box moved.
     std::vector<CandidatePair> candidates_;
+    std::vector<CandidatePair> planeCandidates_;  ///< This step's body-plane pairs, found before the trees'.
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
     std::vector<std::uint32_t> candidateSlots_;
     std::vector<Manifold> fresh_;

@@ -79,6 +79,7 @@ void validateSettings(const char *function, const WorldSettings &s) {
     const int integrator = static_cast<int>(s.integrator), solver = static_cast<int>(s.contactSolver);
     if (solver < 0 || solver > static_cast<int>(ContactSolverType::SplitImpulse))
         refuse(function, "contactSolver", "is not a ContactSolverType, got " + std::to_string(solver));
+    if (s.maxPairs < 1) refuse(function, "maxPairs", "must be >= 1, got " + std::to_string(s.maxPairs));
     if (s.threads < 1 || s.threads > 64)
         refuse(function, "threads", "must be in [1, 64], got " + std::to_string(s.threads));
     if (s.integrator != Integrator::NewtonEuler && s.integrator != Integrator::NewtonEulerGyroscopic &&

@@ -129,6 +129,12 @@ struct WorldSettings {
     /// Stacks then hold at any mass ratio and do not lean; off, every pass is plain
     /// Gauss-Seidel.
     bool shockPropagation = true;
+    /// Most pairs of overlapping broadphase boxes a step keeps, in [1, 2^31 - 1]; beyond
+    /// it the step drops the rest and says so (StepStats::errors, PairBudgetExceeded).
+    /// Each pair kept while touching costs about 8.7 KB until its bodies part (a pile of
+    /// 300 unit boxes spawned at one point: 45,150 pairs, 394 MB; docs/hostile_input.md),
+    /// so the default, 65,536 (as Jolt's samples' body pairs), bounds them near 0.6 GB.
+    int maxPairs = 65536;
     /// Threads that run a step, the calling thread included, in [1, 64]. The contact
     /// solver shares its work among them; the results are the same whatever the count
     /// (docs/solver.md, "Threads"). 1 starts no thread.
