@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "cyclone/world/game_loop.h"
 #include "world_fixture.h"
 
 namespace cyclone::test {
@@ -148,6 +149,83 @@ TEST(PairBudget, ABudgetBelowOneIsRefused) {
         EXPECT_NE(e.problem().find("got 0"), std::string::npos);
     }
     EXPECT_EQ(f.world.settings().maxPairs, 65536);
+}
+
+template <class Call>
+void expectThrowsAt(Call call, const std::string &field) {
+    try {
+        call();
+        FAIL() << "no throw";
+    } catch (const InvalidArgument &e) {
+        EXPECT_EQ(e.field(), field) << e.what();
+    }
+}
+
+// A moved-from World used to dereference a null state; now every call throws.
+TEST(MustNot, AMovedFromWorldThrows) {
+    World from;
+    World to(std::move(from));
+    expectThrowsAt([&] { from.step(kDt); }, "this");
+    expectThrowsAt([&] { from.addBody(unitBox(Vector3::Zero(), 1)); }, "this");
+    expectThrowsAt([&] { (void)from.bodyCount(); }, "this");
+    // Assigned to, it is a World again.
+    from = World();
+    EXPECT_EQ(from.bodyCount(), 0u);
+    EXPECT_NO_THROW(from.step(kDt));
+}
+
+// A FixedStepper keeps a pointer to its World: once that World is moved from, advancing
+// throws instead of stepping a null state.
+TEST(MustNot, AFixedStepperWhoseWorldMovedThrows) {
+    World world;
+    FixedStepper stepper(world);
+    World elsewhere(std::move(world));
+    expectThrowsAt([&] { stepper.advance(0.1); }, "this");
+}
+
+// A QueryFilter::accept that removes bodies pulled the broadphase tree from under the walk
+// (a segfault); the query now throws as soon as accept returns.
+TEST(MustNot, AQueryFilterThatRemovesBodiesThrows) {
+    WorldFixture f;
+    std::vector<BodyId> boxes;
+    for (int i = 0; i < 8; ++i) boxes.push_back(f.box(Vector3(0, 0, 2.0 * i)));
+    QueryFilter filter;
+    filter.accept = [&](BodyId id) {
+        for (BodyId other : boxes)
+            if (other != id && f.world.contains(other)) f.world.removeBody(other);
+        return true;
+    };
+    expectThrowsAt([&] { f.world.rayCast(Vector3(0, 0, -5), Vector3(0, 0, 1), 100, filter); }, "filter.accept");
+    std::vector<BodyId> out;
+    for (int i = 0; i < 8; ++i) boxes.push_back(f.box(Vector3(0, 0, 2.0 * i)));
+    expectThrowsAt([&] { f.world.overlap(Shape::box(Vector3(1, 1, 20)), Vector3::Zero(), Quaternion::Identity(), out, filter); },
+                   "filter.accept");
+    // A filter that only reads is fine.
+    QueryFilter reading;
+    reading.accept = [&](BodyId id) { return f.world.body(id).getPosition().z() > 100; };
+    EXPECT_FALSE(f.world.rayCast(Vector3(0, 0, -5), Vector3(0, 0, 1), 100, reading));
+}
+
+// A body isolated for a non-finite state is never simulated again: calls that would
+// change it used to succeed without effect (it reported awake, never moved). They are
+// refused; it can still be read and removed, and a new body takes its place.
+TEST(IsolatedBodies, ChangingOneIsRefusedAndRemovingItWorks) {
+    WorldFixture f;
+    const BodyId body = f.box(Vector3(0, 5, 0));
+    f.world.addForce(body, Vector3(0, 1e308, 0));
+    f.world.addForce(body, Vector3(0, 1e308, 0));  // inf: 1e308 + 1e308 overflows
+    f.world.step(kDt);
+    ASSERT_EQ(f.world.stats().isolatedBodies, 1);
+    expectThrowsAt([&] { f.world.setPosition(body, Vector3(0, 1, 0)); }, "id");
+    expectThrowsAt([&] { f.world.setVelocity(body, Vector3::Zero()); }, "id");
+    expectThrowsAt([&] { f.world.setAwake(body, true); }, "id");
+    expectThrowsAt([&] { f.world.applyImpulse(body, Vector3(0, 1, 0)); }, "id");
+    EXPECT_NO_THROW((void)f.world.body(body));
+    f.world.removeBody(body);
+    const BodyId again = f.box(Vector3(0, 5, 0));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().isolatedBodies, 0);
+    EXPECT_LT(f.world.body(again).getPosition().y(), 5.0);  // it falls
 }
 
 }  // namespace

@@ -57,6 +57,7 @@ fcl::DynamicAABBTreeCollisionManagerd *Broadphase::manager(Tree tree) {
 void Broadphase::place(fcl::CollisionObjectd *object, Tree from, Tree to) {
     if (from == to) return;
     changed_ = true;
+    ++changes_;
     if (auto *source = manager(from)) source->unregisterObject(object);
     if (auto *target = manager(to)) {
         target->registerObject(object);
@@ -68,12 +69,14 @@ void Broadphase::refitAwake(const std::vector<fcl::CollisionObjectd *> &moved) {
     if (moved.empty()) return;
     awake_.update(moved);
     changed_ = true;
+    ++changes_;
 }
 
 void Broadphase::refit(fcl::CollisionObjectd *object, Tree tree) {
     if (auto *m = manager(tree)) {
         m->update(object);
         changed_ = true;
+        ++changes_;
     }
 }
 

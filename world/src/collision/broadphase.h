@@ -88,6 +88,9 @@ public:
     /// Appends the body index of every object, in any tree, whose box overlaps `box`
     /// (continuous collision's candidates along a sweep).
     void overlapping(const fcl::AABBd &box, std::vector<std::uint32_t> &out);
+    /// Counts the changes to the trees (objects placed, moved or refitted): a walk of a
+    /// tree is invalid once it changes.
+    std::uint64_t changes() const { return changes_; }
 
 private:
     fcl::DynamicAABBTreeCollisionManagerd awake_;
@@ -96,6 +99,7 @@ private:
     std::unique_ptr<fcl::CollisionObjectd> probe_;  ///< Carries the box of overlapping().
     std::vector<CandidatePair> pairs_;  ///< What findPairs() found when it last walked the trees.
     bool changed_ = true;               ///< Whether a tree changed since then.
+    std::uint64_t changes_ = 0;         ///< See changes().
     std::size_t limit_ = 0;             ///< The limit of that walk.
     bool complete_ = true;              ///< Whether that walk found every pair.
 

@@ -353,7 +353,7 @@ const Material &World::material(BodyId id) const { return impl_->bodies.record(i
 void World::setPosition(BodyId id, const Vector3 &position) {
     static const char *function = "World::setPosition";
     Impl &w = *impl_;
-    detail::BodyRecord &r = w.bodies.record(id, function);
+    detail::BodyRecord &r = w.bodies.changeableRecord(id, function);
     detail::requirePlace(function, "position", position);
     if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their offset");
     r.body.setPosition(position);
@@ -363,7 +363,7 @@ void World::setPosition(BodyId id, const Vector3 &position) {
 void World::setOrientation(BodyId id, const Quaternion &orientation) {
     static const char *function = "World::setOrientation";
     Impl &w = *impl_;
-    detail::BodyRecord &r = w.bodies.record(id, function);
+    detail::BodyRecord &r = w.bodies.changeableRecord(id, function);
     detail::requireFinite(function, "orientation", orientation);
     if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their normal");
     r.body.setOrientation(orientation);
