@@ -28,6 +28,19 @@ Quaternion normalisedOrientation(const char *function, const Quaternion &q) {
     return Quaternion(q.coeffs() / norm);
 }
 
+// The inverse of a symmetric positive definite 3 x 3 matrix M through its equilibrated
+// form: with D = diag(1 / sqrt(M_ii)), D M D has a unit diagonal, and M^-1 = D (D M D)^-1 D.
+// The plain cofactor inverse forms products of three entries, which leave the double range
+// for entries beyond about 5.6e102 (the inverse came out zero) or below 1.8e-103, or for
+// diagonals as far apart as diag(1e-300, 1, 1e300).
+Matrix3 scaledInverse(const Matrix3 &m) {
+    const Vector3 diagonal = m.diagonal();
+    if (!(diagonal.minCoeff() > 0) || !diagonal.allFinite()) return m.inverse();
+    const Vector3 d = diagonal.cwiseSqrt().cwiseInverse();
+    const Matrix3 equilibrated = d.asDiagonal() * m * d.asDiagonal();
+    return d.asDiagonal() * equilibrated.inverse() * d.asDiagonal();
+}
+
 // The matrix of v x (cross product on the left).
 Matrix3 skew(const Vector3 &v) {
     Matrix3 m;
@@ -232,7 +245,7 @@ void RigidBody::applyTorqueFreeRotation(real duration) {
     if (!isAwake || duration == 0) return;
 
     const Matrix3 toWorld = orientation.toRotationMatrix();
-    const Matrix3 inertia = inverseInertiaTensor.inverse();
+    const Matrix3 inertia = scaledInverse(inverseInertiaTensor);
     const Vector3 bodyMomentum = inertia * (toWorld.transpose() * rotation);
     const Vector3 worldMomentum = toWorld * bodyMomentum;
     // A body of isotropic inertia turns about a fixed axis: the midpoint is L itself.
@@ -286,7 +299,7 @@ void RigidBody::applyGyroscopicStep(GyroscopicStep step, real duration) {
 
     const Matrix3 toWorld = orientation.toRotationMatrix();
     const Vector3 w = toWorld.transpose() * rotation;
-    const Matrix3 inertia = inverseInertiaTensor.inverse();
+    const Matrix3 inertia = scaledInverse(inverseInertiaTensor);
     Vector3 next = step == GyroscopicStep::Midpoint ? midpointStep(inertia, w, duration)
                                                     : backwardEulerStep(inertia, w, duration);
     // Backward Euler's solution satisfies w'.I w' = w'.I w <= sqrt(w'.I w') sqrt(w.I w);
@@ -321,7 +334,7 @@ bool RigidBody::hasFiniteMass() const { return inverseMass > 0; }
 
 void RigidBody::setInertiaTensor(const Matrix3 &inertiaTensor) {
     requireSymmetricPositiveDefinite("RigidBody::setInertiaTensor", "inertiaTensor", inertiaTensor);
-    const Matrix3 inverse = inertiaTensor.inverse();
+    const Matrix3 inverse = scaledInverse(inertiaTensor);
     if (!inverse.allFinite())
         refuse("RigidBody::setInertiaTensor", "inertiaTensor",
                "has no finite inverse in double precision, got " + show(inertiaTensor));
@@ -331,11 +344,11 @@ void RigidBody::setInertiaTensor(const Matrix3 &inertiaTensor) {
 
 void RigidBody::getInertiaTensor(Matrix3 *inertiaTensor) const { *inertiaTensor = getInertiaTensor(); }
 
-Matrix3 RigidBody::getInertiaTensor() const { return inverseInertiaTensor.inverse(); }
+Matrix3 RigidBody::getInertiaTensor() const { return scaledInverse(inverseInertiaTensor); }
 
 void RigidBody::getInertiaTensorWorld(Matrix3 *inertiaTensor) const { *inertiaTensor = getInertiaTensorWorld(); }
 
-Matrix3 RigidBody::getInertiaTensorWorld() const { return inverseInertiaTensorWorld.inverse(); }
+Matrix3 RigidBody::getInertiaTensorWorld() const { return scaledInverse(inverseInertiaTensorWorld); }
 
 void RigidBody::setInverseInertiaTensor(const Matrix3 &inverseInertiaTensor_) {
     requireSymmetricPositiveDefinite("RigidBody::setInverseInertiaTensor", "inverseInertiaTensor", inverseInertiaTensor_);

@@ -243,6 +243,11 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
     } else if (!invocation.quiet) {
         out << resultLine(scene, *built, result) << "\n";
     }
+    if (result.firstPairBudgetStep) {
+        err << oneLine(file) << ": step " << *result.firstPairBudgetStep << ": warning: more bodies overlapped than "
+            << built->world.settings().maxPairs << " pairs; the excess pairs were dropped (in "
+            << result.pairBudgetSteps << " of " << result.steps << " steps), so some bodies passed through others\n";
+    }
     if (result.nonFinite) {
         err << oneLine(file) << ": " << oneLine(result.nonFiniteWhat) << "; run stopped"
             << (summaryFile ? ", summary has \"non_finite\": true" : "") << "\n";

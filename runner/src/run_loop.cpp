@@ -193,6 +193,10 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
         result.steps = step + 1;
         result.maxPenetrationOfRun = std::max(result.maxPenetrationOfRun, world.stats().maxPenetration);
         if (stepFailure.empty()) recordSensorEvents(step);
+        if (world.stats().errors & StepError::PairBudgetExceeded) {
+            if (!result.firstPairBudgetStep) result.firstPairBudgetStep = step;
+            ++result.pairBudgetSteps;
+        }
 
         bool anyAwake = false;
         for (std::size_t i = 0; i < scene.bodies.size() && !result.nonFinite; ++i) {

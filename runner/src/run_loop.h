@@ -92,6 +92,10 @@ struct RunResult {
     std::vector<real> jointMaxError;
     /// The step in which each scene joint broke, if it did.
     std::vector<std::optional<std::int64_t>> jointBrokenAt;
+    /// Steps that dropped pairs for WorldSettings::maxPairs (StepError::PairBudgetExceeded).
+    std::int64_t pairBudgetSteps = 0;
+    /// The first of them; empty if none.
+    std::optional<std::int64_t> firstPairBudgetStep;
 };
 
 /// Whether position, orientation, velocity and rotation are all finite.

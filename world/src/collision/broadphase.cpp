@@ -3,22 +3,35 @@
 namespace cyclone::detail {
 namespace {
 
+// Where the walk puts its pairs, what decides where each goes (null: every pair is a
+// candidate contact, and nothing is asked), and how many it may keep.
+struct PairWalk {
+    BroadphasePairs *out;
+    const PairFilter *filter;
+    std::size_t limit;
+    bool complete = true;
+
+    // False (and the walk stops) once the limit is reached.
+    bool room() {
+        if (out->contacts.size() + out->sensors.size() < limit) return true;
+        complete = false;
+        return false;
+    }
+};
+
 // FCL calls this for every overlapping pair; recording them keeps the narrowphase (and
-// its timing) a stage of its own.
+// its timing) a stage of its own. Returning true stops FCL's walk.
 bool recordPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
-    auto *out = static_cast<BroadphasePairs *>(data);
-    out->contacts.push_back({bodyIndexOf(o1), bodyIndexOf(o2)});
+    auto *walk = static_cast<PairWalk *>(data);
+    if (!walk->room()) return true;
+    walk->out->contacts.push_back({bodyIndexOf(o1), bodyIndexOf(o2)});
     return false;
 }
 
-struct FilteredWalk {
-    BroadphasePairs *out;
-    const PairFilter *filter;
-};
-
 // The same with a filter: a pair it drops is never a candidate.
 bool recordFilteredPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
-    auto *walk = static_cast<FilteredWalk *>(data);
+    auto *walk = static_cast<PairWalk *>(data);
+    if (!walk->room()) return true;
     const CandidatePair pair{bodyIndexOf(o1), bodyIndexOf(o2)};
     switch (walk->filter->classify(pair.a, pair.b)) {
         case PairKind::Contact: walk->out->contacts.push_back(pair); break;
@@ -63,6 +76,7 @@ fcl::DynamicAABBTreeCollisionManagerd *Broadphase::manager(Tree tree) {
 void Broadphase::place(fcl::CollisionObjectd *object, Tree from, Tree to) {
     if (from == to) return;
     changed_ = true;
+    ++changes_;
     if (auto *source = manager(from)) source->unregisterObject(object);
     if (auto *target = manager(to)) {
         target->registerObject(object);
@@ -74,12 +88,14 @@ void Broadphase::refitAwake(const std::vector<fcl::CollisionObjectd *> &moved) {
     if (moved.empty()) return;
     awake_.update(moved);
     changed_ = true;
+    ++changes_;
 }
 
 void Broadphase::refit(fcl::CollisionObjectd *object, Tree tree) {
     if (auto *m = manager(tree)) {
         m->update(object);
         changed_ = true;
+        ++changes_;
     }
 }
 
@@ -93,25 +109,27 @@ const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
     return nullptr;
 }
 
-void Broadphase::findPairs(BroadphasePairs &out, const PairFilter *filter) {
+bool Broadphase::findPairs(BroadphasePairs &out, const PairFilter *filter, std::size_t limit) {
     // Resting bodies stay inside their fat boxes: most steps of a settled scene change no
     // tree, and the walk would find the same pairs in the same order.
-    if (changed_ || filter != lastFilter_) {
+    if (changed_ || filter != lastFilter_ || limit != limit_) {
         pairs_.clear();
-        FilteredWalk walk{&pairs_, filter};
-        void *data = filter ? static_cast<void *>(&walk) : static_cast<void *>(&pairs_);
+        PairWalk walk{&pairs_, filter, limit};
         const auto record = filter ? recordFilteredPair : recordPair;
         if (!awake_.empty()) {
-            awake_.collide(data, record);
-            if (!asleep_.empty()) awake_.collide(&asleep_, data, record);
-            if (!static_.empty()) awake_.collide(&static_, data, record);
+            awake_.collide(&walk, record);
+            if (walk.complete && !asleep_.empty()) awake_.collide(&asleep_, &walk, record);
+            if (walk.complete && !static_.empty()) awake_.collide(&static_, &walk, record);
         }
         changed_ = false;
         lastFilter_ = filter;
+        limit_ = limit;
+        complete_ = walk.complete;
     }
     out.contacts.insert(out.contacts.end(), pairs_.contacts.begin(), pairs_.contacts.end());
     out.sensors.insert(out.sensors.end(), pairs_.sensors.begin(), pairs_.sensors.end());
     out.filtered += pairs_.filtered;
+    return complete_;
 }
 
 }  // namespace cyclone::detail

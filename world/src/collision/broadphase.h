@@ -109,11 +109,14 @@ public:
     /// Refits one object in `tree` after its box moved.
     void refit(fcl::CollisionObjectd *object, Tree tree);
     /// Appends every pair of overlapping AABBs with at least one awake member to
-    /// `out.contacts`, or, with a `filter`, each where the filter says. When no tree has
-    /// changed since the last call (and invalidate() was not called), the pairs (and their
-    /// order) are the same: they are given again without walking the trees. Without a
-    /// filter nothing is asked per pair.
-    void findPairs(BroadphasePairs &out, const PairFilter *filter);
+    /// `out.contacts`, or, with a `filter`, each where the filter says, at most `limit` of
+    /// them (contacts and sensor pairs together): the walk stops at the limit, so the pairs
+    /// kept are the first ones of the trees' fixed order. Returns false when pairs were
+    /// left out. When no tree has changed since the last call (and invalidate() was not
+    /// called, and the filter and limit are the same), the pairs (and their order) are the
+    /// same: they are given again without walking the trees. Without a filter nothing is
+    /// asked per pair.
+    bool findPairs(BroadphasePairs &out, const PairFilter *filter, std::size_t limit);
     /// The next findPairs() walks the trees: what a filter says of some pair changed.
     void invalidate() { changed_ = true; }
     /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
@@ -122,6 +125,9 @@ public:
     /// Appends the body index of every object, in any tree, whose box overlaps `box`
     /// (continuous collision's candidates along a sweep).
     void overlapping(const fcl::AABBd &box, std::vector<std::uint32_t> &out);
+    /// Counts the changes to the trees (objects placed, moved or refitted): a walk of a
+    /// tree is invalid once it changes.
+    std::uint64_t changes() const { return changes_; }
 
 private:
     fcl::DynamicAABBTreeCollisionManagerd awake_;
@@ -131,6 +137,9 @@ private:
     BroadphasePairs pairs_;  ///< What findPairs() found when it last walked the trees.
     bool changed_ = true;               ///< Whether a tree changed since then.
     const PairFilter *lastFilter_ = nullptr;  ///< The filter of that walk.
+    std::uint64_t changes_ = 0;         ///< See changes().
+    std::size_t limit_ = 0;             ///< The limit of that walk.
+    bool complete_ = true;              ///< Whether that walk found every pair.
 
     fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree);
 };

@@ -89,14 +89,14 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
     for (std::uint32_t index : bodies.simulated) place(index);
     for (std::uint32_t index : bodies.moving) place(index);
     world.broadphase.refitAwake(movedObjects_);
-    found_.clear();
-    const bool filtering = bodies.filtering();
-    world.broadphase.findPairs(found_, filtering ? &bodies : nullptr);
 
     // Planes stay out of the trees: test each awake body's AABB against each plane (and,
     // for sensors, each moving kinematic body's). The half-space is the compiled one (unit
     // normal, offset along it, as FCL has it), placed by the plane body's pose as the
-    // narrowphase places it.
+    // narrowphase places it. They are found first, so that the pair budget never drops a
+    // body's floor, and listed after the trees'.
+    planePairs_.clear();
+    const bool filtering = bodies.filtering();
     for (std::uint32_t plane : bodies.planes) {
         const CollisionShape &p = *bodies[plane].shape;
         const Matrix4 pose = bodies[plane].body.getTransform();
@@ -112,22 +112,34 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
             const BodyRecord &r = bodies[index];
             if (!r.object || !below(r)) continue;
             if (!filtering) {
-                found_.contacts.push_back({plane, index});
+                planePairs_.contacts.push_back({plane, index});
                 continue;
             }
             switch (bodies.classify(plane, index)) {
-                case PairKind::Contact: found_.contacts.push_back({plane, index}); break;
-                case PairKind::Sensor: found_.sensors.push_back({plane, index}); break;
-                case PairKind::Filtered: ++found_.filtered; break;
+                case PairKind::Contact: planePairs_.contacts.push_back({plane, index}); break;
+                case PairKind::Sensor: planePairs_.sensors.push_back({plane, index}); break;
+                case PairKind::Filtered: ++planePairs_.filtered; break;
             }
         }
         if (bodies.sensorCount == 0) continue;
         for (std::uint32_t index : bodies.moving) {
             const BodyRecord &r = bodies[index];
             if (r.object && below(r) && bodies.classify(plane, index) == PairKind::Sensor)
-                found_.sensors.push_back({plane, index});
+                planePairs_.sensors.push_back({plane, index});
         }
     }
+
+    // The trees' pairs, within what the budget leaves (WorldSettings::maxPairs).
+    found_.clear();
+    const std::size_t budget = static_cast<std::size_t>(settings.maxPairs);
+    const std::size_t planeCount = planePairs_.contacts.size() + planePairs_.sensors.size();
+    const std::size_t treeBudget = budget > planeCount ? budget - planeCount : 0;
+    const bool complete = world.broadphase.findPairs(found_, filtering ? &bodies : nullptr, treeBudget);
+    found_.contacts.insert(found_.contacts.end(), planePairs_.contacts.begin(), planePairs_.contacts.end());
+    found_.sensors.insert(found_.sensors.end(), planePairs_.sensors.begin(), planePairs_.sensors.end());
+    found_.filtered += planePairs_.filtered;
+    if (found_.contacts.size() > budget) found_.contacts.resize(budget);  // more plane pairs than the budget
+    if (!complete || planeCount > budget) world.stats.errors |= StepError::PairBudgetExceeded;
     world.stats.broadphasePairs = static_cast<int>(found_.contacts.size());
     world.stats.filteredPairs = found_.filtered;
 }

@@ -71,6 +71,7 @@ private:
     std::uint64_t anchorsIssued_ = 0;
     std::vector<fcl::CollisionObjectd *> movedObjects_;  ///< Objects whose fat box moved.
     BroadphasePairs found_;  ///< The step's pairs: candidate contacts, sensor pairs, the filtered count.
+    BroadphasePairs planePairs_;  ///< This step's body-plane pairs, found before the trees'.
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
     std::vector<std::uint32_t> candidateSlots_;
     std::vector<Manifold> fresh_;

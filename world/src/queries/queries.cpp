@@ -99,7 +99,16 @@ bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter)
     if (!considered || !(filter.layers >> r.layer & 1u)) return false;
     const BodyId id = bodies.idOf(index);
     if (filter.ignore && *filter.ignore == id) return false;
-    return !filter.accept || filter.accept(id);
+    if (!filter.accept) return true;
+    // The query walks the broadphase trees and the body records: an accept() that adds,
+    // removes or moves a body pulls them from under the walk (QueryFilter forbids it).
+    const std::uint64_t changes = broadphase.changes();
+    const std::size_t records = bodies.size(), live = bodies.order.size();
+    const bool accepted = filter.accept(id);
+    if (broadphase.changes() != changes || bodies.size() != records || bodies.order.size() != live)
+        refuse("World query", "filter.accept", "changed the world during the query (a body was added, removed, moved "
+                                               "or woken); a QueryFilter::accept must only read");
+    return accepted;
 }
 
 std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direction, real maxDistance,

@@ -95,6 +95,7 @@ private:
     std::vector<Vector3> predictedW_;
     std::vector<real> linearFactor_;   ///< damping^h of each simulated body.
     std::vector<real> angularFactor_;
+    std::vector<char> overflowed_;     ///< Simulated bodies whose penetration push overflowed this sub-step (isolated).
 };
 
 }  // namespace cyclone::detail

@@ -19,6 +19,19 @@ DepthFrame depthFrame(const RigidBody &a, const RigidBody &b, const Vector3 &nor
             (a.getPosition() - b.getPosition()).dot(normal)};
 }
 
+// Gives body `index` the solver's change of velocity and rotation. A change that is not
+// finite (the solve overflowed for this body) isolates the body, as a non-finite state
+// does, so that the rest of the world steps on.
+void changeVelocities(WorldState &world, std::uint32_t index, const Vector3 &dv, const Vector3 &dw) {
+    RigidBody &body = world.bodies[index].body;
+    if (!(body.getVelocity() + dv).allFinite() || !(body.getRotation() + dw).allFinite()) {
+        world.isolate(index);
+        return;
+    }
+    body.addVelocity(dv);
+    body.addRotation(dw);
+}
+
 }  // namespace
 
 void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubstep) {
@@ -143,12 +156,16 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         BodyRecord &r = bodies[bodies.simulated[k]];
         if (r.isolated) continue;
         const SolverBody &sb = bodies_[k + 1];
-        if (linearFactor_[k] > 0) r.body.addVelocity((toVector3(sb.v) - predictedV_[k]) / linearFactor_[k]);
-        if (!(angularFactor_[k] > 0)) continue;
-        Vector3 dw = toVector3(sb.w) - predictedW_[k];
-        if (conserving && !firstSubstep && !r.body.hasIsotropicInertia())
-            dw = r.body.getInverseInertiaTensorWorld() * sb.invInertia.inverse() * dw;
-        r.body.addRotation(dw / angularFactor_[k]);
+        const Vector3 dv =
+            linearFactor_[k] > 0 ? Vector3((toVector3(sb.v) - predictedV_[k]) / linearFactor_[k]) : Vector3::Zero();
+        Vector3 dw = Vector3::Zero();
+        if (angularFactor_[k] > 0) {
+            dw = toVector3(sb.w) - predictedW_[k];
+            if (conserving && !firstSubstep && !r.body.hasIsotropicInertia())
+                dw = r.body.getInverseInertiaTensorWorld() * sb.invInertia.inverse() * dw;
+            dw /= angularFactor_[k];
+        }
+        changeVelocities(world, bodies.simulated[k], dv, dw);
     }
 }
 
@@ -222,8 +239,8 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
         for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
             BodyRecord &r = bodies[bodies.simulated[k]];
             if (r.isolated) continue;
-            r.body.addVelocity(toVector3(bodies_[k + 1].v) - r.body.getVelocity());
-            r.body.addRotation(toVector3(bodies_[k + 1].w) - r.body.getRotation());
+            changeVelocities(world, bodies.simulated[k], toVector3(bodies_[k + 1].v) - r.body.getVelocity(),
+                             toVector3(bodies_[k + 1].w) - r.body.getRotation());
         }
         stats.positionIterations += settings.positionIterations;
         return;
@@ -255,6 +272,7 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
         if (it == 0 && !pushed[0] && !pushed[1] && !pushed[seam]) return;  // nothing penetrates beyond what is allowed
     }
     stats.positionIterations += settings.positionIterations;
+    overflowed_.assign(bodies.simulated.size(), 0);
     world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         SolverBody &sb = bodies_[k + 1];
@@ -264,11 +282,18 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
         Quaternion q = r.body.getOrientation();
         const Quaternion spin(0, pw.x() * h, pw.y() * h, pw.z() * h);
         q.coeffs() += 0.5 * (spin * q).coeffs();
-        r.body.setPosition(r.body.getPosition() + pv * h);
-        r.body.setOrientation(q);
+        const Vector3 position = r.body.getPosition() + pv * h;
         sb.pv = Lanes{};
         sb.pw = Lanes{};
+        if (!position.allFinite() || !q.coeffs().allFinite()) {
+            overflowed_[k] = 1;  // isolated below: isolation is not for worker threads
+            return;
+        }
+        r.body.setPosition(position);
+        r.body.setOrientation(q);
     });
+    for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
+        if (overflowed_[k]) world.isolate(bodies.simulated[k]);
 }
 
 void ConstraintSolver::applyRestitution(WorldState &world) {
@@ -284,8 +309,8 @@ void ConstraintSolver::applyRestitution(WorldState &world) {
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         if (r.isolated) continue;
-        r.body.addVelocity(toVector3(bodies_[k + 1].v) - r.body.getVelocity());
-        r.body.addRotation(toVector3(bodies_[k + 1].w) - r.body.getRotation());
+        changeVelocities(world, bodies.simulated[k], toVector3(bodies_[k + 1].v) - r.body.getVelocity(),
+                         toVector3(bodies_[k + 1].w) - r.body.getRotation());
     }
 }
 

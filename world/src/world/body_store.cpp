@@ -17,15 +17,24 @@ const BodyRecord &BodyStore::record(BodyId id, const char *function) const {
     return const_cast<BodyStore *>(this)->record(id, function);
 }
 
-BodyRecord &BodyStore::dynamicRecord(BodyId id, const char *function) {
+BodyRecord &BodyStore::changeableRecord(BodyId id, const char *function) {
     BodyRecord &r = record(id, function);
+    if (r.isolated)
+        refuse(function, "id",
+               "names a body isolated for a non-finite state (see StepStats::isolatedBodies), which is never "
+               "simulated again; remove it and add a new one");
+    return r;
+}
+
+BodyRecord &BodyStore::dynamicRecord(BodyId id, const char *function) {
+    BodyRecord &r = changeableRecord(id, function);
     if (r.kinematic) refuse(function, "id", "names a kinematic body, which moves only at the velocity it is given");
     if (r.immovable) refuse(function, "id", "names a static body, which never moves");
     return r;
 }
 
 BodyRecord &BodyStore::movableRecord(BodyId id, const char *function) {
-    BodyRecord &r = record(id, function);
+    BodyRecord &r = changeableRecord(id, function);
     if (r.immovable && !r.kinematic) refuse(function, "id", "names a static body, which never moves");
     return r;
 }

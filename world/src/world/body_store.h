@@ -126,9 +126,13 @@ struct BodyStore final : PairFilter {
     /// The body `id` names; refused with `function`'s name when it names none.
     BodyRecord &record(BodyId id, const char *function);
     const BodyRecord &record(BodyId id, const char *function) const;
-    /// The same, and refused when the body is static or kinematic.
+    /// The same, and refused when the body is isolated (non-finite state): every call
+    /// that would change it refuses it, so that none succeeds without effect.
+    BodyRecord &changeableRecord(BodyId id, const char *function);
+    /// The same (isolated bodies refused), and refused when the body is static or kinematic.
     BodyRecord &dynamicRecord(BodyId id, const char *function);
-    /// The same, and refused when the body is static (dynamic and kinematic bodies pass).
+    /// The same (isolated bodies refused), and refused when the body is static (dynamic
+    /// and kinematic bodies pass).
     BodyRecord &movableRecord(BodyId id, const char *function);
     /// Puts the body into `awake` or takes it out, as its state now says.
     void updateAwakeList(std::uint32_t index);

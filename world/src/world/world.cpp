@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "collision/time_of_impact.h"
+#include "world/mass_range.h"
 #include "world/validation.h"
 #include "world/world_impl.h"
 
@@ -79,6 +80,7 @@ void validateSettings(const char *function, const WorldSettings &s) {
     const int integrator = static_cast<int>(s.integrator), solver = static_cast<int>(s.contactSolver);
     if (solver < 0 || solver > static_cast<int>(ContactSolverType::SplitImpulse))
         refuse(function, "contactSolver", "is not a ContactSolverType, got " + std::to_string(solver));
+    if (s.maxPairs < 1) refuse(function, "maxPairs", "must be >= 1, got " + std::to_string(s.maxPairs));
     if (s.threads < 1 || s.threads > 64)
         refuse(function, "threads", "must be in [1, 64], got " + std::to_string(s.threads));
     if (s.integrator != Integrator::NewtonEuler && s.integrator != Integrator::NewtonEulerGyroscopic &&
@@ -124,9 +126,8 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
         return body;
     }
     body.setDamping(s.linearDamping, s.angularDamping);
-    requirePositive(function, "mass", s.mass);
-    if (!std::isfinite(1 / s.mass)) refuse(function, "mass", "is too small to invert, got " + show(s.mass));
     const Matrix3 inertia = s.inertia ? *s.inertia : Matrix3(shape.unitInertia() * s.mass);
+    requireSolvableMass(function, s.mass, inertia, boundingRadius(s.shape, shape));
     try {
         body.setInertiaTensor(inertia);
     } catch (const std::invalid_argument &) {
@@ -359,7 +360,7 @@ const Material &World::material(BodyId id) const { return impl_->bodies.record(i
 void World::setPosition(BodyId id, const Vector3 &position) {
     static const char *function = "World::setPosition";
     Impl &w = *impl_;
-    detail::BodyRecord &r = w.bodies.record(id, function);
+    detail::BodyRecord &r = w.bodies.changeableRecord(id, function);
     detail::requirePlace(function, "position", position);
     if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their offset");
     r.body.setPosition(position);
@@ -369,7 +370,7 @@ void World::setPosition(BodyId id, const Vector3 &position) {
 void World::setOrientation(BodyId id, const Quaternion &orientation) {
     static const char *function = "World::setOrientation";
     Impl &w = *impl_;
-    detail::BodyRecord &r = w.bodies.record(id, function);
+    detail::BodyRecord &r = w.bodies.changeableRecord(id, function);
     detail::requireFinite(function, "orientation", orientation);
     if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their normal");
     r.body.setOrientation(orientation);

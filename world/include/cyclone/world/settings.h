@@ -132,6 +132,12 @@ struct WorldSettings {
     /// Stacks then hold at any mass ratio and do not lean; off, every pass is plain
     /// Gauss-Seidel.
     bool shockPropagation = true;
+    /// Most pairs of overlapping broadphase boxes a step keeps, in [1, 2^31 - 1]; beyond
+    /// it the step drops the rest and says so (StepStats::errors, PairBudgetExceeded).
+    /// Each pair kept while touching costs about 8.7 KB until its bodies part (a pile of
+    /// 300 unit boxes spawned at one point: 45,150 pairs, 394 MB; docs/hostile_input.md),
+    /// so the default, 65,536 (as Jolt's samples' body pairs), bounds them near 0.6 GB.
+    int maxPairs = 65536;
     /// Threads that run a step, the calling thread included, in [1, 64]. The contact
     /// solver shares its work among them; the results are the same whatever the count
     /// (docs/solver.md, "Threads"). 1 starts no thread.
@@ -174,6 +180,20 @@ struct Material {
     real spinningFriction = 0.005;
 };
 
+/// Smallest mass of a dynamic body, kg; also the smallest principal moment of inertia
+/// over the squared bounding radius R (the farthest point of the shape from its origin).
+/// Why: a contact's effective inverse mass along a row is at most
+/// k = sum over its two bodies of 1/m + R^2 / I_min <= 4e100, and the solver inverts
+/// 3 x 3 blocks of such rows (friction and twist) by cofactors, whose determinant is a sum
+/// of six products of three k: 6 (4e100)^3 = 4e302 stays below the largest double
+/// (1.8e308) with room for rounding. Below the range, 1 / m or its products overflow and
+/// the solve turns NaN (a 1e-155 kg body once froze every step).
+inline constexpr real kMinMass = 1e-100;
+/// Largest mass of a dynamic body, kg; also the largest principal moment of inertia over
+/// R^2. Why: the blocks' determinants shrink as (1/m)^3, and below 1e-300 they leave the
+/// normal doubles (2.2e-308), so that friction would silently vanish.
+inline constexpr real kMaxMass = 1e100;
+
 /// Settings of a body to add to a World.
 struct BodySettings {
     /// Unique within the world when not empty; used in reports and scene files.
@@ -186,11 +206,13 @@ struct BodySettings {
     /// The older spelling of `motion = Motion::Static`: true with `motion` left Dynamic
     /// means Static; true with `motion = Motion::Kinematic` is refused as contradictory.
     bool isStatic = false;
-    /// Mass of a dynamic body, kg, finite, > 0.
+    /// Mass of a dynamic body, kg, in [kMinMass, kMaxMass] = [1e-100, 1e100].
     real mass = 1;
     /// Body-space inertia tensor (about the centre of mass, in the shape frame's axes),
-    /// kg m^2, symmetric positive definite; empty means computed from the shape and the
-    /// mass.
+    /// kg m^2, symmetric positive definite, each principal moment over R^2 (R: the shape's
+    /// farthest point from its origin, m) in [kMinMass, kMaxMass]; empty means computed
+    /// from the shape and the mass (then checked the same way: a unit cube's moments are
+    /// m/6 and R^2 = 3/4, so its mass must be at least 4.5e-100 kg).
     std::optional<Matrix3> inertia;
     /// World-space position of the centre of mass (the shape's origin; for a compound,
     /// the origin of the frame its children are placed in, and the centre of mass lies

@@ -33,8 +33,19 @@ struct StageTimes {
     SolveTimes solveParts;   ///< Where the solve stage's time went (the rest: restitution, storing impulses).
 };
 
+/// What kept the last step from being the step it should have been (bit flags, as
+/// Jolt's EPhysicsUpdateError): the step still ran, degraded as each flag says.
+enum StepError : unsigned {
+    /// More pairs of overlapping boxes than WorldSettings::maxPairs: the broadphase kept
+    /// the first maxPairs of its fixed order (body-plane pairs first) and dropped the rest,
+    /// whose bodies then pass through each other this step. Raise maxPairs, or spawn fewer
+    /// bodies in one place.
+    PairBudgetExceeded = 1u << 0,
+};
+
 /// Counters of the last step.
 struct StepStats {
+    unsigned errors = 0;        ///< StepError flags of the step; 0 when it ran as it should.
     int bodies = 0;             ///< Bodies in the world (static and dynamic).
     int awakeBodies = 0;        ///< Dynamic bodies awake after the step.
     int integratedBodies = 0;   ///< Dynamic bodies integrated during the step.

@@ -21,6 +21,13 @@
 /// Errors: bad input throws cyclone::InvalidArgument naming the function, the field and
 /// the value, and changes nothing.
 ///
+/// Isolated bodies: a body whose state becomes non-finite (or that the solver cannot
+/// move) during a step is isolated: out of collision, the solve and queries for good
+/// (StepStats::isolatedBodies). It can still be read and removed; every call that would
+/// change it (setPosition, setOrientation, setVelocity, setRotation, applyImpulse,
+/// addForce..., setAwake, setCanSleep) throws InvalidArgument. To bring it back, remove
+/// it and add a new body with a reset state.
+///
 /// Threads: a World is not thread-safe; its const calls may run concurrently with each
 /// other, but not with a non-const call such as step().
 #pragma once
@@ -285,7 +292,27 @@ public:
 
 private:
     struct Impl;
-    std::unique_ptr<Impl> impl_;
+    /// The World's state, checked at every use: a call on a moved-from World throws
+    /// InvalidArgument (function "World", field "this") instead of reaching a null state.
+    class State {
+    public:
+        State();
+        ~State();
+        State(State &&) noexcept;
+        State &operator=(State &&) noexcept;
+        State &operator=(std::unique_ptr<Impl> impl);
+        Impl *operator->() const { return get(); }
+        Impl &operator*() const { return *get(); }
+
+    private:
+        Impl *get() const {
+            if (!impl_) throwMovedFrom();
+            return impl_.get();
+        }
+        [[noreturn]] static void throwMovedFrom();
+        std::unique_ptr<Impl> impl_;
+    };
+    State impl_;
 };
 
 }  // namespace cyclone

@@ -1,0 +1,37 @@
+#include "world/mass_range.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <sstream>
+
+#include "cyclone/world/settings.h"
+#include "world/validation.h"
+
+namespace cyclone::detail {
+
+void requireSolvableMass(const char *function, real mass, const Matrix3 &inertia, real boundingRadius) {
+    requirePositive(function, "mass", mass);
+    if (!(mass >= kMinMass && mass <= kMaxMass))
+        refuse(function, "mass", "must be in [1e-100, 1e100] kg (the solver's range), got " + show(mass));
+    if (!inertia.allFinite() || !(boundingRadius > 0)) return;  // the tensor's own check refuses it
+    // The moments are scaled before the eigen-solve so that tensors near the ends of the
+    // double range are not squared out of it.
+    const real scale = inertia.cwiseAbs().maxCoeff();
+    if (!(scale > 0)) return;
+    const Eigen::SelfAdjointEigenSolver<Matrix3> eigen(inertia / scale, Eigen::EigenvaluesOnly);
+    const Vector3 moments = eigen.eigenvalues();
+    if (!(moments.minCoeff() > 0)) return;  // not positive definite: refused as such
+    // Divided step by step: R^2 alone may leave the double range for extreme shapes.
+    const real lowest = moments.minCoeff() * scale / boundingRadius / boundingRadius;
+    const real highest = moments.maxCoeff() * scale / boundingRadius / boundingRadius;
+    if (lowest >= kMinMass && highest <= kMaxMass) return;
+    std::ostringstream shown;
+    shown.precision(3);
+    shown << "[" << inertia.row(0) << "; " << inertia.row(1) << "; " << inertia.row(2) << "]";
+    refuse(function, "inertia",
+           "gives principal moments over the squared bounding radius (R = " + show(boundingRadius) + " m) from " +
+               show(lowest) + " to " + show(highest) + " kg; the solver's range is [1e-100, 1e100] kg, got " +
+               shown.str());
+}
+
+}  // namespace cyclone::detail
