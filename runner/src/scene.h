@@ -17,10 +17,8 @@ namespace cyclone::scene {
 inline constexpr std::int64_t kMaxSteps = 100000000;
 /// Largest number of bodies in a scene.
 inline constexpr std::size_t kMaxBodies = 1000000;
-/// Largest magnitude of a coordinate or a size, m. Collision detection (FCL's AABB trees)
-/// fails beyond about 1e150 m, where volumes overflow; a body further out than this has
-/// blown up, whatever its numbers say.
-inline constexpr double kMaxCoordinate = 1e30;
+// kMaxCoordinate, the largest coordinate or size a scene may give: the World's
+// (cyclone/world/settings.h).
 
 /// A body of the scene, in scene order.
 struct SceneBody {

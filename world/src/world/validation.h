@@ -2,6 +2,7 @@
 #pragma once
 
 #include "cyclone/detail/validation.h"
+#include "cyclone/world/settings.h"
 
 namespace cyclone::detail {
 

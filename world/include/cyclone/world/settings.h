@@ -180,6 +180,13 @@ struct Material {
     real spinningFriction = 0.005;
 };
 
+/// Largest magnitude of a coordinate or a size the World and the scene runner accept, m;
+/// a body that flies beyond it is isolated. FCL's AABB trees fail on larger numbers.
+/// Contacts are lost well before that: at 1e13 m from the origin a ball and a crate still
+/// rest on a static floor, at 1e14 m they fall through it (issue 34's finding, not yet
+/// fixed; docs/hostile_input.md).
+inline constexpr real kMaxCoordinate = 1e30;
+
 /// Smallest mass of a dynamic body, kg; also the smallest principal moment of inertia
 /// over the squared bounding radius R (the farthest point of the shape from its origin).
 /// Why: a contact's effective inverse mass along a row is at most
