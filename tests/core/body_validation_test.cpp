@@ -40,7 +40,7 @@ std::vector<BadTensor> badTensors() {
         {"Infinite", rows(inf, 0, 0, 0, 2, 0, 0, 0, 2), "inf"},
         {"MinusInfinite", rows(2, 0, 0, 0, 2, 0, 0, 0, -inf), "-inf"},
         {"NotSymmetric", rows(1, 0.375, 0, 0, 1, 0, 0, 0, 1), "0.375"},
-        {"SlightlyNotSymmetric", rows(2, 0, 0, 1e-6, 2, 0, 0, 0, 2), "e-07"},
+        {"SlightlyNotSymmetric", rows(2, 0, 0, 1e-6, 2, 0, 0, 0, 2), "1e-06"},
         // The second row is twice the first: rank 2.
         {"Singular", rows(1.75, 3.5, 0, 3.5, 7, 0, 0, 0, 1), "1.75"},
         {"SingularDiagonal", rows(1.25, 0, 0, 0, 0, 0, 0, 0, 1.25), "1.25"},
@@ -138,67 +138,67 @@ std::vector<Refusal> refusals() {
 
     // Position and orientation.
     add("SetPositionNaN", [](RigidBody &b) { b.setPosition(Vector3(nan, 0, 0)); }, "setPosition", "position",
-        "(nan, 0, 0)");
+        "[nan, 0, 0]");
     add("SetPositionInfinite", [](RigidBody &b) { b.setPosition(Vector3(0, inf, 0)); }, "setPosition",
-        "position", "(0, inf, 0)");
+        "position", "[0, inf, 0]");
     add("SetPositionComponentsNaN", [](RigidBody &b) { b.setPosition(1, nan, 3); }, "setPosition", "position",
-        "(1, nan, 3)");
+        "[1, nan, 3]");
     add("SetPositionComponentsMinusInfinite", [](RigidBody &b) { b.setPosition(1, 2, -inf); }, "setPosition",
-        "position", "(1, 2, -inf)");
+        "position", "[1, 2, -inf]");
     add("SetOrientationNaN", [](RigidBody &b) { b.setOrientation(Quaternion(nan, 0, 0, 0)); }, "setOrientation",
-        "orientation", "(nan, 0, 0, 0)");
+        "orientation", "[nan, 0, 0, 0]");
     add("SetOrientationInfinite", [](RigidBody &b) { b.setOrientation(Quaternion(1, inf, 0, 0)); },
-        "setOrientation", "orientation", "(1, inf, 0, 0)");
+        "setOrientation", "orientation", "[1, inf, 0, 0]");
     add("SetOrientationComponentsNaN", [](RigidBody &b) { b.setOrientation(1, 0, 0, nan); }, "setOrientation",
-        "orientation", "(1, 0, 0, nan)");
+        "orientation", "[1, 0, 0, nan]");
     add("SetOrientationComponentsMinusInfinite", [](RigidBody &b) { b.setOrientation(1, 0, -inf, 0); },
-        "setOrientation", "orientation", "(1, 0, -inf, 0)");
+        "setOrientation", "orientation", "[1, 0, -inf, 0]");
 
     // Velocity, rotation and constant acceleration.
     add("SetVelocityNaN", [](RigidBody &b) { b.setVelocity(Vector3(0, 0, nan)); }, "setVelocity", "velocity",
-        "(0, 0, nan)");
+        "[0, 0, nan]");
     add("SetVelocityComponentsInfinite", [](RigidBody &b) { b.setVelocity(inf, 0, 0); }, "setVelocity",
-        "velocity", "(inf, 0, 0)");
+        "velocity", "[inf, 0, 0]");
     add("AddVelocityNaN", [](RigidBody &b) { b.addVelocity(Vector3(nan, 1, 1)); }, "addVelocity", "deltaVelocity",
-        "(nan, 1, 1)");
+        "[nan, 1, 1]");
     add("AddVelocityMinusInfinite", [](RigidBody &b) { b.addVelocity(Vector3(1, -inf, 1)); }, "addVelocity",
-        "deltaVelocity", "(1, -inf, 1)");
+        "deltaVelocity", "[1, -inf, 1]");
     add("SetRotationNaN", [](RigidBody &b) { b.setRotation(Vector3(0, nan, 0)); }, "setRotation", "rotation",
-        "(0, nan, 0)");
+        "[0, nan, 0]");
     add("SetRotationComponentsInfinite", [](RigidBody &b) { b.setRotation(0, 0, inf); }, "setRotation",
-        "rotation", "(0, 0, inf)");
+        "rotation", "[0, 0, inf]");
     add("AddRotationNaN", [](RigidBody &b) { b.addRotation(Vector3(1, 1, nan)); }, "addRotation", "deltaRotation",
-        "(1, 1, nan)");
+        "[1, 1, nan]");
     add("AddRotationInfinite", [](RigidBody &b) { b.addRotation(Vector3(inf, 1, 1)); }, "addRotation",
-        "deltaRotation", "(inf, 1, 1)");
+        "deltaRotation", "[inf, 1, 1]");
     add("SetAccelerationNaN", [](RigidBody &b) { b.setAcceleration(Vector3(nan, nan, nan)); }, "setAcceleration",
-        "acceleration", "(nan, nan, nan)");
+        "acceleration", "[nan, nan, nan]");
     add("SetAccelerationComponentsMinusInfinite", [](RigidBody &b) { b.setAcceleration(0, -inf, 0); },
-        "setAcceleration", "acceleration", "(0, -inf, 0)");
+        "setAcceleration", "acceleration", "[0, -inf, 0]");
 
     // Forces and torques; on a sleeping body a refused call must not wake it either.
     for (const bool asleep : {false, true}) {
         const std::string suffix = asleep ? "Asleep" : "";
         add("AddForceNaN" + suffix, [](RigidBody &b) { b.addForce(Vector3(0, nan, 0)); }, "addForce", "force",
-            "(0, nan, 0)", asleep);
+            "[0, nan, 0]", asleep);
         add("AddForceInfinite" + suffix, [](RigidBody &b) { b.addForce(Vector3(inf, 0, 0)); }, "addForce", "force",
-            "(inf, 0, 0)", asleep);
+            "[inf, 0, 0]", asleep);
         add("AddForceAtPointForceNaN" + suffix,
             [](RigidBody &b) { b.addForceAtPoint(Vector3(nan, 0, 0), Vector3(1, 2, 3)); }, "addForceAtPoint",
-            "force", "(nan, 0, 0)", asleep);
+            "force", "[nan, 0, 0]", asleep);
         add("AddForceAtPointPointInfinite" + suffix,
             [](RigidBody &b) { b.addForceAtPoint(Vector3(1, 0, 0), Vector3(1, -inf, 3)); }, "addForceAtPoint",
-            "point", "(1, -inf, 3)", asleep);
+            "point", "[1, -inf, 3]", asleep);
         add("AddForceAtBodyPointForceInfinite" + suffix,
             [](RigidBody &b) { b.addForceAtBodyPoint(Vector3(0, 0, inf), Vector3(1, 2, 3)); },
-            "addForceAtBodyPoint", "force", "(0, 0, inf)", asleep);
+            "addForceAtBodyPoint", "force", "[0, 0, inf]", asleep);
         add("AddForceAtBodyPointPointNaN" + suffix,
             [](RigidBody &b) { b.addForceAtBodyPoint(Vector3(1, 0, 0), Vector3(nan, 2, 3)); },
-            "addForceAtBodyPoint", "point", "(nan, 2, 3)", asleep);
+            "addForceAtBodyPoint", "point", "[nan, 2, 3]", asleep);
         add("AddTorqueNaN" + suffix, [](RigidBody &b) { b.addTorque(Vector3(0, 0, nan)); }, "addTorque", "torque",
-            "(0, 0, nan)", asleep);
+            "[0, 0, nan]", asleep);
         add("AddTorqueMinusInfinite" + suffix, [](RigidBody &b) { b.addTorque(Vector3(-inf, 0, 0)); }, "addTorque",
-            "torque", "(-inf, 0, 0)", asleep);
+            "torque", "[-inf, 0, 0]", asleep);
     }
 
     // Sleep threshold: finite and > 0.
