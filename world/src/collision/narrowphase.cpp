@@ -149,6 +149,17 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     return appended;
 }
 
+// The manifold of two convex shapes along `normal` (A to B): their supporting features
+// clipped against each other, reduced to at most four points.
+int clipAlong(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out) {
+    SupportFeature fa, fb;
+    pair.a.supportingFeature(pair.poseA, normal, -1, fa);
+    pair.b.supportingFeature(pair.poseB, -normal, -1, fb);
+    PointSet points;
+    clipFeatures(pair, normal, fa, fb, points);
+    return appendReduced(points, normal, out);
+}
+
 // Convex shapes FCL found apart: a speculative manifold when they are closer than
 // `reach`, along the line between their nearest points (fcl::distance), clipped from the
 // features that face each other along it.
@@ -170,13 +181,7 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
     if (!(between.norm() > kMinNormalLength)) return 0;
     const Vector3 normal = between.normalized();
-    const Pair pair{a, poseA, -1, b, poseB, -1, reach};
-    SupportFeature fa, fb;
-    a.supportingFeature(poseA, normal, -1, fa);
-    b.supportingFeature(poseB, -normal, -1, fb);
-    PointSet points;
-    clipFeatures(pair, normal, fa, fb, points);
-    return appendReduced(points, normal, out);
+    return clipAlong(Pair{a, poseA, -1, b, poseB, -1, reach}, normal, out);
 }
 
 // The pairs with a test of their own, which FCL would only have told touch: the
@@ -208,12 +213,7 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
         real overlap = 0;
         if (!boxBoxAxis(a.shape().halfExtents, poseA, b.shape().halfExtents, poseB, normal, overlap, reach))
             return 0;
-        SupportFeature fa, fb;
-        a.supportingFeature(poseA, normal, -1, fa);
-        b.supportingFeature(poseB, -normal, -1, fb);
-        PointSet points;
-        clipFeatures(pair, normal, fa, fb, points);
-        return appendReduced(points, normal, out);
+        return clipAlong(pair, normal, out);
     }
     if (typeA == ShapeType::Sphere || typeB == ShapeType::Sphere) {
         const bool sphereIsA = typeA == ShapeType::Sphere;

@@ -16,24 +16,6 @@ using detail::Tree;
 
 namespace {
 
-real boundingRadius(const Shape &shape, const detail::CollisionShape &compiled) {
-    switch (shape.type) {
-        case ShapeType::Box: return shape.halfExtents.norm();
-        case ShapeType::Sphere: return shape.radius;
-        case ShapeType::Capsule: return shape.radius + shape.length / 2;
-        case ShapeType::Cylinder: return std::hypot(shape.radius, shape.length / 2);
-        case ShapeType::Convex:
-        case ShapeType::Mesh: {
-            real r = 0;
-            for (const Vector3 &v : compiled.vertices()) r = std::max(r, v.norm());
-            return r;
-        }
-        case ShapeType::Compound: return compiled.boundingRadius();
-        case ShapeType::Plane: break;
-    }
-    return 0;
-}
-
 // m v.v + w.(I w), never negative, and infinite only when the energy is: m v.v as
 // (sqrt(m) |v|)^2, w.(I w) as |D^-1/2 L^-1 P w|^2 from the LDLT of the inverse inertia (the
 // tensor itself, inverted back, is lost for masses beyond about 1e100 kg).
@@ -127,7 +109,7 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
     }
     body.setDamping(s.linearDamping, s.angularDamping);
     const Matrix3 inertia = s.inertia ? *s.inertia : Matrix3(shape.unitInertia() * s.mass);
-    requireSolvableMass(function, s.mass, inertia, boundingRadius(s.shape, shape));
+    requireSolvableMass(function, s.mass, inertia, shape.boundingRadius());
     try {
         body.setInertiaTensor(inertia);
     } catch (const std::invalid_argument &) {
@@ -194,7 +176,7 @@ BodyId World::addBody(const BodySettings &settings) {
     } catch (const InvalidArgument &e) {
         throw InvalidArgument(function, e.field(), e.problem());
     }
-    if (!(boundingRadius(settings.shape, *shape) <= detail::kMaxCoordinate))
+    if (!(shape->boundingRadius() <= detail::kMaxCoordinate))
         detail::refuse(function, "shape", "must fit within 1e30 m of its origin");
     if (settings.layer < 0 || settings.layer > 31)
         detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
@@ -230,7 +212,7 @@ BodyId World::addBody(const BodySettings &settings) {
     r.solverIndex = 0;
     r.awakeSlot = -1;
     r.rank = w.bodies.nextRank++;
-    r.boundingRadius = boundingRadius(settings.shape, *shape);
+    r.boundingRadius = shape->boundingRadius();
     r.layer = settings.layer;
     r.collidesWith = settings.collidesWith;
     if (r.layer != 0 || r.collidesWith != kAllLayers) ++w.bodies.filteredCount;
