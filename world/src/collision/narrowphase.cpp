@@ -168,8 +168,8 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     // fcl::distance costs as much as the contact test: pairs that close less than this in
     // a step (0.3 m/s at 60 Hz) go without, and enter each other at most that far (plus
     // what gravity adds within the step) before their contact acts, m.
-    constexpr real kMinReach = 0.005;
-    if (!(reach >= kMinReach)) return 0;
+    constexpr real kMinDistanceReach = 0.005;
+    if (!(reach >= kMinDistanceReach)) return 0;
     static const fcl::DistanceRequestd request = [] {
         fcl::DistanceRequestd r(true);
         r.gjk_solver_type = fcl::GST_LIBCCD;

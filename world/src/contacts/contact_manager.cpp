@@ -246,23 +246,17 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
     if (narrowphase.reach > 0 && n > 0) {
         // Shapes apart that cannot close the gap along their normal in this step, or
         // would pass by each other, have no contact yet.
-        bool apart = false;
-        const auto unreachable = [&](const Manifold &m) {
+        // The time of impact is found once per pair, and only if some manifold needs it.
+        int meet = -1;
+        const auto noContactYet = [&](const Manifold &m) {
             real deepest = -std::numeric_limits<real>::infinity();
             for (int k = 0; k < m.count; ++k) deepest = std::max(deepest, m.points[k].depth);
-            if (!(deepest < 0)) return false;
-            apart = true;
-            return -deepest > closing(a, b, m.normal, dt);
+            if (!(deepest < 0)) return false;  // touching: a contact
+            if (-deepest > closing(a, b, m.normal, dt)) return true;
+            if (meet < 0) meet = meetWithinStep(a, b, dt) ? 1 : 0;
+            return meet == 0;
         };
-        fresh_.erase(std::remove_if(fresh_.begin(), fresh_.end(), unreachable), fresh_.end());
-        if (apart && !fresh_.empty() && !meetWithinStep(a, b, dt)) {
-            const auto isApart = [](const Manifold &m) {
-                for (int k = 0; k < m.count; ++k)
-                    if (m.points[k].depth >= 0) return false;
-                return true;
-            };
-            fresh_.erase(std::remove_if(fresh_.begin(), fresh_.end(), isApart), fresh_.end());
-        }
+        fresh_.erase(std::remove_if(fresh_.begin(), fresh_.end(), noContactYet), fresh_.end());
         n = static_cast<int>(fresh_.size());
     }
     ++world.stats.pairsTested;
