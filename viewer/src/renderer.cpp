@@ -180,6 +180,9 @@ void Renderer::beginFrame(int width, int height, const Eigen::Matrix4f &viewProj
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDisable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+    culling_ = false;
     // Solids a little behind their depth, so that the lines on their edges win.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1, 1);
@@ -190,8 +193,16 @@ void Renderer::beginFrame(int width, int height, const Eigen::Matrix4f &viewProj
     glUniform3f(meshSky_, kSkyColor.r, kSkyColor.g, kSkyColor.b);
 }
 
-void Renderer::drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &color) {
+void Renderer::drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &color, bool closed) {
     if (mesh.indexCount() == 0) return;
+    if (closed != culling_) {
+        if (closed) {
+            glEnable(GL_CULL_FACE);
+        } else {
+            glDisable(GL_CULL_FACE);
+        }
+        culling_ = closed;
+    }
     glUseProgram(meshProgram_);
     glUniformMatrix4fv(meshModel_, 1, GL_FALSE, model);
     glUniform3f(meshColor_, color.r, color.g, color.b);

@@ -53,7 +53,10 @@ public:
     /// draws that follow.
     void beginFrame(int width, int height, const Eigen::Matrix4f &viewProjection, const Eigen::Vector3f &eye);
     /// Draws `mesh` placed by `model` (column-major 4x4, body to world) in `color`, lit.
-    void drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &color);
+    /// A `closed` mesh (a solid's surface, counter-clockwise from outside) has its back
+    /// faces culled: they are hidden anyway, and not rasterizing them is most of the
+    /// saving on a software renderer. Open meshes and planes are drawn on both sides.
+    void drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &color, bool closed);
     /// Draws line segments (pairs of vertices); `onTop` draws them over everything.
     void drawLines(const std::vector<LineVertex> &vertices, bool onTop);
 
@@ -64,6 +67,7 @@ private:
     GLint lineViewProjection_ = -1;
     GLuint lineArray_ = 0, lineBuffer_ = 0;
     std::size_t lineCapacity_ = 0;
+    bool culling_ = false;  // whether GL_CULL_FACE is on
     Eigen::Matrix4f viewProjection_ = Eigen::Matrix4f::Identity();
     Eigen::Vector3f eye_ = Eigen::Vector3f::Zero();
 };

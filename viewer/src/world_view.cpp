@@ -69,7 +69,8 @@ void WorldView::draw(Renderer &renderer, const Session &session, const ViewOptio
         stepper.glTransform(id, model);
         if (!std::isfinite(model[12]) || !std::isfinite(model[13]) || !std::isfinite(model[14])) continue;
         if (options.solids || plane) {
-            renderer.drawMesh(meshOf(world, id), model, plane ? kGroundColor : stateColor(session.state(id)));
+            const bool closed = !plane && shape.type != ShapeType::Mesh;
+            renderer.drawMesh(meshOf(world, id), model, plane ? kGroundColor : stateColor(session.state(id)), closed);
         }
         const Eigen::Map<const Eigen::Matrix4f> pose(model);
         if (options.solids && options.edges && shape.type == ShapeType::Box) {
