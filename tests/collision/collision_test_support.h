@@ -18,6 +18,9 @@ using detail::Manifold;
 
 constexpr real kPi = 3.14159265358979323846;
 
+/// Straight down: the normal the tests expect for a shape resting on one below it.
+inline const Vector3 kDown = -Vector3::UnitY();
+
 inline Matrix4 pose(const Vector3 &position, const Quaternion &orientation = Quaternion::Identity()) {
     Matrix4 m = Matrix4::Identity();
     m.linear() = orientation.toRotationMatrix();

@@ -14,7 +14,6 @@
 namespace cyclone::test {
 namespace {
 
-const Vector3 kDown = -Vector3::UnitY();
 constexpr real kDepth = 0.05;
 // libccd's MPR (capsule/cylinder sides, convex-convex without a supporting face) gives
 // normals and depths that are close, not exact: within about a degree and a few %.

@@ -17,7 +17,6 @@ namespace cyclone::test {
 namespace {
 
 const Shape kUnitBox = Shape::box(Vector3(0.5, 0.5, 0.5));
-const Vector3 kDown = -Vector3::UnitY();
 const real kH = std::sqrt(0.5);
 
 std::vector<Manifold> viaFcl(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b,

@@ -14,14 +14,8 @@ namespace {
 
 using cyclone::GyroscopicStep;
 
-Matrix3 diag(real a, real b, real c) { return Vector3(a, b, c).asDiagonal(); }
 
-real kineticEnergy(const RigidBody &body) {
-    const Vector3 w = body.getRotation();
-    return 0.5 * w.dot(body.getInertiaTensorWorld() * w);
-}
 
-Vector3 angularMomentum(const RigidBody &body) { return body.getInertiaTensorWorld() * body.getRotation(); }
 
 // I = diag(1, 2, 3), w = (1, 1, 0), h = 0.1, body frame = world frame.
 // I w = (1, 2, 0); w x I w = (0, 0, 1); residual f = h w x I w = (0, 0, 0.1).

@@ -10,9 +10,7 @@
 namespace cyclone_test {
 namespace {
 
-const real kHalfSqrt2 = std::sqrt(0.5);
 
-Matrix3 diag(real a, real b, real c) { return Vector3(a, b, c).asDiagonal(); }
 
 // --- Linear motion -----------------------------------------------------------------------
 

@@ -15,7 +15,6 @@ namespace {
 
 using cyclone::RotationStep;
 
-constexpr real kPi = 3.14159265358979323846;
 
 // The box of the Dzhanibekov scene, 0.1 x 0.4 x 0.9 m and 1 kg: I = m (b^2 + c^2) / 12, ...
 Vector3 boxInertia() { return Vector3(0.16 + 0.81, 0.01 + 0.81, 0.01 + 0.16) / 12; }
@@ -28,12 +27,7 @@ RigidBody spinningBody(const Vector3 &principal, const Vector3 &rotation) {
     return body;
 }
 
-Vector3 angularMomentum(const RigidBody &body) { return body.getInertiaTensorWorld() * body.getRotation(); }
 
-real kineticEnergy(const RigidBody &body) {
-    const Vector3 w = body.getRotation();
-    return 0.5 * w.dot(body.getInertiaTensorWorld() * w);
-}
 
 struct Drift {
     real momentum = 0;  // max |L - L0| / |L0|

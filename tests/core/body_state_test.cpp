@@ -11,8 +11,6 @@
 namespace cyclone_test {
 namespace {
 
-const real kPi = 3.14159265358979323846;
-const real kHalfSqrt2 = std::sqrt(0.5);
 
 // +90 degrees about z: body x -> world y, body y -> world -x.
 Quaternion quarterTurnZ() { return Quaternion(kHalfSqrt2, 0, 0, kHalfSqrt2); }
@@ -21,7 +19,6 @@ Quaternion quarterTurnZ() { return Quaternion(kHalfSqrt2, 0, 0, kHalfSqrt2); }
 // R = [0 0 1; 1 0 0; 0 1 0] with exact entries.
 Quaternion axisCycle() { return Quaternion(0.5, 0.5, 0.5, 0.5); }
 
-Matrix3 diag(real a, real b, real c) { return Vector3(a, b, c).asDiagonal(); }
 
 TEST(RigidBodyDefaults, UnitBodyAtRestAtTheOrigin) {
     const RigidBody body;

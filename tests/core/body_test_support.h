@@ -22,6 +22,22 @@ using cyclone::real;
 using cyclone::RigidBody;
 using cyclone::Vector3;
 
+/// Pi and sqrt(1/2), the cosine of a quarter turn's half angle.
+inline constexpr real kPi = 3.14159265358979323846;
+inline const real kHalfSqrt2 = std::sqrt(0.5);
+
+/// The diagonal matrix diag(a, b, c).
+inline Matrix3 diag(real a, real b, real c) { return Vector3(a, b, c).asDiagonal(); }
+
+/// Rotational kinetic energy w . I w / 2, J.
+inline real kineticEnergy(const RigidBody &body) {
+    const Vector3 w = body.getRotation();
+    return 0.5 * w.dot(body.getInertiaTensorWorld() * w);
+}
+
+/// World angular momentum I w, N m s.
+inline Vector3 angularMomentum(const RigidBody &body) { return body.getInertiaTensorWorld() * body.getRotation(); }
+
 /// Coefficient-wise |actual - expected| <= tolerance, with both matrices in the message.
 template <typename A, typename B>
 ::testing::AssertionResult near(const A &actual, const B &expected, real tolerance = 1e-12) {

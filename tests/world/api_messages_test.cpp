@@ -9,7 +9,6 @@
 namespace cyclone::test {
 namespace {
 
-const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Runs `call`, which must throw InvalidArgument from `function` about `field` with `shown`
 // (the value) in its message.

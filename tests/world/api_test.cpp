@@ -7,7 +7,6 @@
 namespace cyclone::test {
 namespace {
 
-const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 BodySettings validBox() {
     BodySettings s;

@@ -7,7 +7,6 @@
 namespace cyclone::test {
 namespace {
 
-constexpr double kG = 9.81;
 
 int count(const std::vector<BodyId> &ids, BodyId id) {
     return static_cast<int>(std::count(ids.begin(), ids.end(), id));

@@ -18,7 +18,6 @@
 namespace cyclone::test {
 namespace {
 
-constexpr double kG = 9.81;
 
 struct Bounds {
     double settledDepth;
@@ -73,12 +72,6 @@ void expectWithin(const Measured &m, const Bounds &b, const std::string &what) {
     EXPECT_LE(m.energy, b.energy) << what;
 }
 
-WorldSettings awake() {
-    WorldSettings settings;
-    settings.sleep = false;
-    return settings;
-}
-
 // A column of boxes of half size `half` and the given masses, bottom first, each placed
 // 0.1 mm into the one below so that every contact exists from the first step (the
 // narrowphase reports overlapping shapes only).
@@ -107,7 +100,7 @@ double sum(const std::vector<double> &values) {
 TEST(Stability, MassRatiosStacked) {
     for (double ratio : {100.0, 1000.0}) {
         const std::vector<double> masses{1, ratio, 1};
-        WorldFixture f(awake());
+        WorldFixture f(noSleep());
         f.ground();
         const Measured m = run(f, column(f, 0.5, masses), 5, kDt);
         expectWithin(m, restingBounds(f.world.settings(), kDt, sum(masses)), "1:" + std::to_string(ratio) + ":1");
@@ -122,7 +115,7 @@ TEST(Stability, SmallAndLargeBoxesRest) {
     for (double size : {0.01, 10.0}) {
         const double mass = 1000 * size * size * size;
         const std::vector<double> masses(3, mass);
-        WorldFixture f(awake());
+        WorldFixture f(noSleep());
         f.ground();
         const Measured m = run(f, column(f, size / 2, masses), 3, kDt);
         Bounds b = restingBounds(f.world.settings(), kDt, sum(masses));
@@ -139,7 +132,7 @@ TEST(Stability, SmallAndLargeBoxesRest) {
 TEST(Stability, PyramidTenKilometresAway) {
     std::vector<Measured> results;
     for (const Vector3 &base : {Vector3(0, 0, 0), Vector3(1e4, 0, -1e4)}) {
-        WorldFixture f(awake());
+        WorldFixture f(noSleep());
         BodySettings ground;
         ground.isStatic = true;
         ground.shape = Shape::box(Vector3(10, 0.5, 10));
@@ -166,7 +159,7 @@ TEST(Stability, PyramidTenKilometresAway) {
 TEST(Stability, StepsFromMillisecondToFifteenHertz) {
     for (double dt : {1.0 / 1000, 1.0 / 240, 1.0 / 60, 1.0 / 30, 1.0 / 15}) {
         const std::vector<double> masses{1, 1, 1};
-        WorldFixture f(awake());
+        WorldFixture f(noSleep());
         f.ground();
         const Measured m = run(f, column(f, 0.5, masses), 3, dt);
         expectWithin(m, restingBounds(f.world.settings(), dt, sum(masses)), "dt " + std::to_string(dt));
@@ -177,7 +170,7 @@ TEST(Stability, StepsFromMillisecondToFifteenHertz) {
 // (restitution 0): the energy of the fall is lost, not gained.
 TEST(Stability, DropNeverGainsEnergyAtAnyStep) {
     for (double dt : {1.0 / 1000, 1.0 / 60, 1.0 / 15}) {
-        WorldFixture f(awake());
+        WorldFixture f(noSleep());
         f.ground();
         const BodyId box = f.box(Vector3(0, 1.5, 0));
         double highest = 0;
@@ -197,7 +190,7 @@ TEST(Stability, DropNeverGainsEnergyAtAnyStep) {
 // tolerance), with ccd or without; its kinetic energy does not grow.
 TEST(Stability, FastSphereAgainstThinWall) {
     for (bool ccd : {false, true}) {
-        WorldSettings settings = awake();
+        WorldSettings settings = noSleep();
         settings.gravity = Vector3::Zero();
         WorldFixture f(settings);
         f.staticBox(Vector3::Zero(), Vector3(0.05, 2, 2));
@@ -224,7 +217,7 @@ TEST(Stability, FastSphereAgainstThinWall) {
 // (the seed keeps world w, the gyroscopic step keeps the energy or lowers it).
 TEST(Stability, ThinPlateSpunFastNeverGainsEnergy) {
     for (Integrator integrator : {Integrator::NewtonEuler, Integrator::NewtonEulerGyroscopic}) {
-        WorldSettings settings = awake();
+        WorldSettings settings = noSleep();
         settings.gravity = Vector3::Zero();
         settings.integrator = integrator;
         WorldFixture f(settings);
@@ -246,7 +239,7 @@ TEST(Stability, ThinPlateSpunFastNeverGainsEnergy) {
 // slop and a sub-step of its resting height).
 TEST(Stability, ThinPlateSpinningOnTheGroundNeverGainsEnergy) {
     for (Integrator integrator : {Integrator::NewtonEuler, Integrator::NewtonEulerGyroscopic}) {
-        WorldSettings settings = awake();
+        WorldSettings settings = noSleep();
         settings.integrator = integrator;
         WorldFixture f(settings);
         f.ground();
@@ -274,7 +267,7 @@ TEST(Stability, ThinPlateSpinningOnTheGroundNeverGainsEnergy) {
 // chain settles where each spring carries the weight below it: stretches 3, 2 and 1
 // times m g / k.
 TEST(Stability, StiffSpringChain) {
-    WorldSettings settings = awake();
+    WorldSettings settings = noSleep();
     settings.integrator = Integrator::NewtonEulerImplicit;
     WorldFixture f(settings);
     const double k = std::pow(10 / kDt, 2);

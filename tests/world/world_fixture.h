@@ -3,18 +3,34 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "cyclone/world.h"
 
 namespace cyclone::test {
 
 inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kDt = 1.0 / 60.0;
+/// Standard gravity, m/s^2 (the World's default gravity is (0, -kG, 0)).
+inline constexpr double kG = 9.81;
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// The default settings with sleep off: what a test of per-step work wants.
 inline WorldSettings noSleep() {
     WorldSettings settings;
     settings.sleep = false;
     return settings;
+}
+
+/// Adds a static body of `shape` at `position` on collision layer `layer`.
+inline BodyId addStatic(World &world, const Shape &shape, const Vector3 &position, int layer = 0) {
+    BodySettings s;
+    s.isStatic = true;
+    s.shape = shape;
+    s.position = position;
+    s.layer = layer;
+    return world.addBody(s);
 }
 
 struct WorldFixture {

@@ -8,7 +8,6 @@
 namespace cyclone::test {
 namespace {
 
-constexpr real kG = 9.81;
 
 BodySettings sensorBox(const Vector3 &position, const Vector3 &half) {
     BodySettings s;

@@ -10,14 +10,6 @@
 namespace cyclone::test {
 namespace {
 
-constexpr real kG = 9.81;
-
-WorldSettings awake() {
-    WorldSettings s;
-    s.sleep = false;
-    return s;
-}
-
 BodyId addBox(World &world, const Vector3 &position, const Vector3 &half, real mass, std::uint32_t collidesWith = 0) {
     BodySettings s;
     s.shape = Shape::box(half);
@@ -42,7 +34,7 @@ struct PendulumRun {
 };
 
 PendulumRun runPendulum(real dt) {
-    World world(awake());
+    World world(noSleep());
     const real length = 1;
     const real r = 0.05;
     const real th0 = 10 * kPi / 180;
@@ -110,7 +102,7 @@ INSTANTIATE_TEST_SUITE_P(StepSizes, Pendulum, ::testing::Values(1.0 / 60, 1.0 / 
 // door reaches 1 rad after 1/3 s and must stop there (overshoot <= 0.02 rad), and never
 // pass it or leave it afterwards.
 TEST(Hinge, DoorSwungIntoItsLimitStopsThere) {
-    World world(awake());
+    World world(noSleep());
     const BodyId door = addBox(world, Vector3(0.5, 1, 0), Vector3(0.5, 1, 0.05), 20);
     world.setRotation(door, Vector3(0, 3, 0));
     world.setVelocity(door, Vector3(0, 0, -1.5));  // the centre's speed about the hinge, 3 rad/s x 0.5 m
@@ -138,7 +130,7 @@ TEST(Hinge, DoorSwungIntoItsLimitStopsThere) {
 // accelerates at tau / I. The plate (half extents 0.5, 0.5, 0.1 m, 1 kg) turns about z
 // through its centre: I_z = m (0.5^2 + 0.5^2) / 3 = 1/6 kg m^2.
 TEST(Hinge, MotorReachesItsSpeed) {
-    World world(awake());
+    World world(noSleep());
     const BodyId wheel = addBox(world, Vector3(0, 5, 0), Vector3(0.5, 0.5, 0.1), 1);
     JointSettings j;
     j.type = JointType::Hinge;
@@ -155,7 +147,7 @@ TEST(Hinge, MotorReachesItsSpeed) {
 }
 
 TEST(Hinge, MotorLimitedByItsTorqueAcceleratesAtTorqueOverInertia) {
-    World world(awake());
+    World world(noSleep());
     const BodyId wheel = addBox(world, Vector3(0, 5, 0), Vector3(0.5, 0.5, 0.1), 1);
     JointSettings j;
     j.type = JointType::Hinge;
@@ -174,7 +166,7 @@ TEST(Hinge, MotorLimitedByItsTorqueAcceleratesAtTorqueOverInertia) {
 // the limit after 1/8 s and must stop within 1.5 cm past it, while gravity (across the axis)
 // is held by the slider.
 TEST(Slider, StopsAtItsLimit) {
-    World world(awake());
+    World world(noSleep());
     const BodyId box = addBox(world, Vector3(0, 3, 0), Vector3(0.2, 0.2, 0.2), 5);
     world.setVelocity(box, Vector3(4, 0, 0));
     JointSettings j;
@@ -198,7 +190,7 @@ TEST(Slider, StopsAtItsLimit) {
 // A slider motor (1 m/s, 100 N) pushes a 5 kg box along the axis against nothing: at most
 // 100 N / 5 kg = 20 m/s^2, so 1 m/s is reached in 0.05 s and kept.
 TEST(Slider, MotorReachesItsSpeed) {
-    World world(awake());
+    World world(noSleep());
     const BodyId box = addBox(world, Vector3(0, 3, 0), Vector3(0.2, 0.2, 0.2), 5);
     JointSettings j;
     j.type = JointType::Slider;
@@ -218,7 +210,7 @@ TEST(Slider, MotorReachesItsSpeed) {
 // falls freely for 1 m, then the rope catches it. The rope never stretches more than 1 %,
 // and it pushes nothing while slack (the first 1 m is free fall: y = 9 - g t^2 / 2).
 TEST(Distance, RopeCatchesAndNeverStretchesMoreThanOnePercent) {
-    World world(awake());
+    World world(noSleep());
     BodySettings s;
     s.shape = Shape::sphere(0.1);
     s.mass = 10;
@@ -255,7 +247,7 @@ TEST(Distance, RopeCatchesAndNeverStretchesMoreThanOnePercent) {
 TEST(Breaking, BreaksWhenTheLoadExceedsTheThresholdAndNotBelow) {
     const real weight = 2 * kG;
     for (const real factor : {1.05, 0.95}) {
-        World world(awake());
+        World world(noSleep());
         const BodyId box = addBox(world, Vector3(0, 5, 0), Vector3(0.2, 0.2, 0.2), 2);
         JointSettings j;
         j.type = JointType::Ball;
@@ -284,7 +276,7 @@ TEST(Breaking, BreaksWhenTheLoadExceedsTheThresholdAndNotBelow) {
 // --- API ------------------------------------------------------------------------------------
 
 TEST(JointApi, BadInputIsRefusedAndNothingChanges) {
-    World world(awake());
+    World world(noSleep());
     const BodyId a = addBox(world, Vector3(0, 1, 0), Vector3(0.5, 0.5, 0.5), 1);
     BodySettings ground;
     ground.isStatic = true;
@@ -416,7 +408,7 @@ TEST(JointApi, JoinedBodiesSleepTogetherAndWakeEachOther) {
 // Joined bodies do not collide unless collideConnected: two overlapping boxes.
 TEST(JointApi, JoinedBodiesCollideOnlyWhenAskedTo) {
     for (const bool collide : {false, true}) {
-        WorldSettings settings = awake();
+        WorldSettings settings = noSleep();
         settings.gravity = Vector3::Zero();
         World world(settings);
         const BodyId a = addBox(world, Vector3(0, 0, 0), Vector3(0.5, 0.5, 0.5), 1, kAllLayers);
@@ -434,7 +426,7 @@ TEST(JointApi, JoinedBodiesCollideOnlyWhenAskedTo) {
 
 // A scene without joints does no joint work: no joint, no row, in any step.
 TEST(JointApi, AWorldWithoutJointsSolvesNone) {
-    World world(awake());
+    World world(noSleep());
     const BodyId a = addBox(world, Vector3(0, 5, 0), Vector3(0.2, 0.2, 0.2), 1);
     world.step(kDt);
     EXPECT_EQ(world.stats().joints, 0);
@@ -456,7 +448,7 @@ TEST(JointApi, AWorldWithoutJointsSolvesNone) {
 TEST(JointApi, ChainIsThreadCountIndependent) {
     std::vector<Vector3> positions[2];
     for (int threads = 1; threads <= 2; ++threads) {
-        WorldSettings settings = awake();
+        WorldSettings settings = noSleep();
         settings.threads = threads;
         World world(settings);
         const Chain chain(world, 10, 0.5, 100, true);

@@ -8,14 +8,6 @@
 namespace cyclone::test {
 namespace {
 
-void addStatic(World &world, const Shape &shape, const Vector3 &position) {
-    BodySettings s;
-    s.isStatic = true;
-    s.shape = shape;
-    s.position = position;
-    world.addBody(s);
-}
-
 // The capsule (radius 0.3 m, 1 m between its end centres: 1.6 m tall) stands with its
 // centre 0.8 m above what it stands on, and stops 0.3 m before a wall, both up to its
 // 5 mm skin (character::CharacterSettings).

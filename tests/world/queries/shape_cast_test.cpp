@@ -11,15 +11,6 @@ namespace {
 // The cast leaves the shapes apart by at most 0.1 mm (World::shapeCast).
 constexpr real kTolerance = 1e-4;
 
-BodyId addStatic(World &world, const Shape &shape, const Vector3 &position, int layer = 0) {
-    BodySettings s;
-    s.isStatic = true;
-    s.shape = shape;
-    s.position = position;
-    s.layer = layer;
-    return world.addBody(s);
-}
-
 TEST(ShapeCast, SphereAgainstBoxFace) {
     // A 0.5 m sphere from the origin along +x by 10 m meets the face x = 4 of a 2 m cube
     // centred at x = 5 when its centre reaches x = 4 - 0.5 = 3.5: 3.5 m, fraction 0.35,

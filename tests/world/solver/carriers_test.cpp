@@ -28,14 +28,8 @@ void expectInelasticHeadOn(WorldFixture &f, real y) {
     EXPECT_LE(0.5 * 10 * vh * vh + 0.5 * vl * vl, 20.0);
 }
 
-WorldSettings awake() {
-    WorldSettings settings;
-    settings.sleep = false;
-    return settings;
-}
-
 TEST(Support, HeadOnWithoutGravityConservesMomentum) {
-    WorldSettings settings = awake();
+    WorldSettings settings = noSleep();
     settings.gravity = Vector3::Zero();
     WorldFixture f(settings);
     expectInelasticHeadOn(f, 0);
@@ -45,7 +39,7 @@ TEST(Support, HeadOnWithoutGravityConservesMomentum) {
 // level of the contact graph) and their contact is a side contact, so neither carries
 // the other and the horizontal momentum is exactly that of the plain passes.
 TEST(Support, SideContactOnTheFloorConservesMomentum) {
-    WorldFixture f(awake());
+    WorldFixture f(noSleep());
     f.ground(0);
     expectInelasticHeadOn(f, 0.4999);
 }
@@ -54,7 +48,7 @@ TEST(Support, SideContactOnTheFloorConservesMomentum) {
 // pushed into the ground or out from under, and the heavy box comes to rest on it at
 // y = 1.5 (within the slop and the first contact's depth) without moving sideways.
 TEST(Support, HeavyBoxDroppedOnLightBoxComesToRest) {
-    WorldFixture f(awake());
+    WorldFixture f(noSleep());
     f.ground();
     const BodyId light = f.box(Vector3(0, 0.4999, 0), Vector3::Constant(0.5), 1);
     const BodyId heavy = f.box(Vector3(0, 1.75, 0), Vector3::Constant(0.5), 100);

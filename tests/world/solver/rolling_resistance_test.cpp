@@ -7,7 +7,6 @@
 namespace cyclone::test {
 namespace {
 
-constexpr real kG = 9.81;
 
 struct Resistance {
     real rolling = 0;
