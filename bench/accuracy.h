@@ -42,7 +42,7 @@ struct Row {
     std::string key;
     std::string measure;
     Config config;
-    double wallMsPerSimSecond = 0;
+    double cpuMsPerSimSecond = 0;
     double error = 0;
 };
 
@@ -54,7 +54,7 @@ struct Measure {
 
 struct Outcome {
     double simulatedSeconds = 0;
-    double wallSeconds = 0;
+    double cpuSeconds = 0;  // the stepping's, on the process's CPU clock
     std::vector<Measure> measures;
 };
 
@@ -73,7 +73,7 @@ WorldSettings worldSettings(const Config &c, bool gravity = true);
 /// `c`'s fields copied onto settings made elsewhere (a scene file's).
 void applyConfig(const Config &c, WorldSettings &s);
 int stepsFor(double seconds, double dt);
-/// Times `steps` calls of `step`, calling `after` (not timed) after each; seconds.
+/// The CPU time of `steps` calls of `step`, calling `after` (not timed) after each; s.
 double timed(int steps, const std::function<void()> &step, const std::function<void(int)> &after);
 BodyId addGround(World &world, double friction);
 

@@ -58,7 +58,7 @@ Outcome drops(const Config &c) {
     double ballDepth = 0, crateDepth = 0, boxDepth = 0;
     const int steps = stepsFor(3, c.dt);
     Outcome o;
-    o.wallSeconds = timed(steps, [&] { world.step(c.dt); }, [&](int) {
+    o.cpuSeconds = timed(steps, [&] { world.step(c.dt); }, [&](int) {
         ballDepth = std::max(ballDepth, 0.25 - world.body(ball).getPosition().y());
         crateDepth = std::max(crateDepth, 0.5 - world.body(crate).getPosition().y());
         boxDepth = std::max(boxDepth, (world.body(base).getPosition().y() + 0.5) -
@@ -83,7 +83,7 @@ Outcome chain(const std::string &file, const Config &c) {
     double gap = 0;
     const int steps = stepsFor(10, c.dt);
     Outcome o;
-    o.wallSeconds = timed(steps, [&] { world.step(c.dt); }, [&](int) {
+    o.cpuSeconds = timed(steps, [&] { world.step(c.dt); }, [&](int) {
         for (const JointId &j : built.joints) gap = std::max(gap, double(world.jointState(j).error));
     });
     o.simulatedSeconds = steps * c.dt;
@@ -142,7 +142,7 @@ Outcome pendulum(const Config &c) {
     std::vector<double> crossings;
     const int steps = stepsFor(10, c.dt);
     Outcome o;
-    o.wallSeconds = timed(steps, [&] { world.step(c.dt); }, [&](int i) {
+    o.cpuSeconds = timed(steps, [&] { world.step(c.dt); }, [&](int i) {
         const double x = body.getPosition().x() - pivot.x();
         if (previousX > 0 && x <= 0) crossings.push_back((i + previousX / (previousX - x)) * c.dt);
         previousX = x;
@@ -188,7 +188,7 @@ Outcome rollingResistance(const Config &c) {
     const int settle = stepsFor(0.25, c.dt), measured = stepsFor(2, c.dt);
     double vStart = 0;
     Outcome o;
-    o.wallSeconds = timed(settle + measured, [&] { world.step(c.dt); }, [&](int i) {
+    o.cpuSeconds = timed(settle + measured, [&] { world.step(c.dt); }, [&](int i) {
         if (i == settle - 1) vStart = world.body(ball).getVelocity().x();
     });
     o.simulatedSeconds = (settle + measured) * c.dt;

@@ -21,7 +21,7 @@ const Row *lookup(const std::vector<Row> &rows, const std::string &scene, const 
 }
 
 std::string value(const Row *r) { return r ? number(r->error, 3) : "n/a"; }
-std::string cost(const Row *r) { return r ? number(r->wallMsPerSimSecond, 2) + " ms" : "n/a"; }
+std::string cost(const Row *r) { return r ? number(r->cpuMsPerSimSecond, 2) + " ms" : "n/a"; }
 
 }  // namespace
 
@@ -36,7 +36,7 @@ void writeSummary(std::ostream &md, const std::vector<Row> &rows) {
                       explicitSprings = "newton-euler (explicit springs)",
                       noSpeculative = "newton-euler (no speculative contacts)";
     md << "\n## Which setting to pick\n\n"
-       << "Figures at 1/60 s steps, 4 sub-steps and 3 iterations unless said; cost is wall time per simulated "
+       << "Figures at 1/60 s steps, 4 sub-steps and 3 iterations unless said; cost is CPU time per simulated "
        << "second.\n\n"
        << "| you simulate | pick | why (measured below) |\n|---|---|---|\n";
     md << "| most scenes: stacks, sliding, rolling, bouncing, thrown things | the defaults (`newton-euler`, 4 "
