@@ -123,6 +123,7 @@ std::string writePlot(const std::string &plotsDir, const std::string &outDir, co
        << "set xlabel 'CPU time per simulated second (ms)'\n"
        << "set ylabel \"" << measure << "\"\n"
        << "set logscale xy\nset format y '10^{%L}'\nset grid\nset key outside below left maxcols 2 noenhanced\n"
+       << (zeros ? "set yrange [3e-11:*]\n" : "")
        << "plot ";
     for (std::size_t i = 0; i < order.size(); ++i) {
         if (i) gp << ", \\\n     ";

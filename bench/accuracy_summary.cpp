@@ -49,7 +49,7 @@ void writeSummary(std::ostream &md, const std::vector<Row> &rows) {
        << cost(at("sliding-box", "distance", ne, 4, dt, 10)) << "); resting pyramid top box "
        << value(at("resting-pyramid", "drift", ne)) << " m from its start after 5 s |\n";
     const auto mm = [](const Row *r) { return r ? number(1000 * r->error, 3) + " mm" : std::string("n/a"); };
-    const auto percent = [](const Row *r) { return r ? number(100 * r->error, 2) + " %" : std::string("n/a"); };
+    const auto percent = [](const Row *r) { return r ? number(100 * r->error, 3) + " %" : std::string("n/a"); };
     md << "| things that land fast: drops, thrown objects, debris | speculative contacts on (the default) | deepest "
        << "penetration on landing (ball from 5 m, crate from 10 m, box onto a box from 6 m): "
        << mm(at("drops", "ball", ne)) << ", " << mm(at("drops", "crate", ne)) << ", " << mm(at("drops", "box-on-box", ne))
