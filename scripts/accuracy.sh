@@ -41,8 +41,11 @@ launcher=()
 if command -v ccache >/dev/null; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
+# Only what cyclone-accuracy links is configured and built: no tests, examples, viewer,
+# install rules or Bullet comparison.
 cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DCYCLONE_BUILD_BENCH=ON \
-  -DCYCLONE_BUILD_TESTS=OFF -DCYCLONE_BUILD_EXAMPLES=OFF ${launcher[@]+"${launcher[@]}"} >/dev/null
+  -DCYCLONE_BUILD_TESTS=OFF -DCYCLONE_BUILD_EXAMPLES=OFF -DCYCLONE_BUILD_VIEWER=OFF -DCYCLONE_INSTALL=OFF \
+  -DCYCLONE_BENCH_BULLET=OFF ${launcher[@]+"${launcher[@]}"} >/dev/null
 cmake --build "$build_dir" --parallel "$(nproc 2>/dev/null || echo 2)" --target cyclone-accuracy
 
 out=$root/docs/accuracy

@@ -109,6 +109,37 @@ TEST(SpeculativeContact, BallPassingCloseByIsNotSlowed) {
     EXPECT_EQ(f.world.body(ball).getVelocity(), Vector3(10, 0, 0));
 }
 
+// A ball 0.25 m in radius flies straight down at 10 m/s without gravity, its lowest point
+// 5 cm above the ground at the start of a 1/60 s step. In that step it moves
+// 10 / 60 = 166.7 mm. With speculative contacts (the default) the pair is within reach and
+// the contact closes the 5 cm gap and no more: the ball ends the step on the surface.
+// Switched off, the ball is 5 cm away, beyond speculativeDistance (2 cm), so the step has
+// no contact and the ball ends it 166.7 - 50 = 116.7 mm inside the ground.
+real depthAfterOneStep(bool speculative) {
+    WorldSettings settings = noSleep();
+    settings.gravity = Vector3::Zero();
+    settings.speculativeContacts = speculative;
+    WorldFixture f(settings);
+    f.ground();
+    const real radius = 0.25;
+    BodySettings s;
+    s.shape = Shape::sphere(radius);
+    s.position = Vector3(0, radius + 0.05, 0);
+    s.velocity = Vector3(0, -10, 0);
+    s.mass = 1;
+    s.linearDamping = 1;
+    const BodyId ball = f.world.addBody(s);
+    f.world.step(kDt);
+    return radius - f.world.body(ball).getPosition().y();
+}
+
+TEST(SpeculativeContact, OnByDefault) { EXPECT_TRUE(WorldSettings().speculativeContacts); }
+
+TEST(SpeculativeContact, SwitchedOffALandingBodySinksItsStepsFall) {
+    EXPECT_LE(depthAfterOneStep(true), kDeepestAllowed);
+    EXPECT_NEAR(depthAfterOneStep(false), 10.0 / 60.0 - 0.05, 1e-9);
+}
+
 TEST(SpeculativeContact, BounceKeepsItsRestitution) {
     // A ball of restitution 0.5 dropped from h = 1 m lands at v = sqrt(2 g h) and leaves
     // at 0.5 v, so it rises to 0.25 h. The contact acts in the step of the impact, a gap

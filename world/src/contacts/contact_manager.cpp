@@ -82,7 +82,7 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
     const auto place = [&](std::uint32_t index) {
         BodyRecord &r = bodies[index];
         if (!r.object) return;
-        const real reach = stepReach(r, dt);
+        const real reach = settings.speculativeContacts ? stepReach(r, dt) : 0;
         if (r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0))
             movedObjects_.push_back(r.object.get());
     };
@@ -240,7 +240,7 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
     fresh_.clear();
     NarrowphaseSettings narrowphase;
     narrowphase.speculativeDistance = settings.speculativeDistance;
-    const real reach = relativeReach(a, b, dt);
+    const real reach = settings.speculativeContacts ? relativeReach(a, b, dt) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     int n = collide(*a.shape, poseA, *b.shape, poseB, narrowphase, fresh_);
     if (narrowphase.reach > 0 && n > 0) {

@@ -115,6 +115,12 @@ struct WorldSettings {
     /// (whatever this distance), so that a landing body stops at the surface in the step
     /// of the impact; meshes get none (BodySettings::ccd covers them).
     real speculativeDistance = 0.02;
+    /// Speculative contacts from the bodies' speeds (above): on, a pair that can meet
+    /// within the step gets a contact that lets it close the gap and no more; off, only
+    /// shapes that overlap or lie within speculativeDistance get contacts, so a landing
+    /// body sinks up to v dt into the surface before the contact acts (for comparison;
+    /// docs/accuracy/README.md measures both).
+    bool speculativeContacts = true;
     /// A touching pair whose bodies moved less than this relative to each other since its
     /// last narrowphase keeps its manifold (depths refreshed from the anchors), and a
     /// manifold keeps its solver Jacobians while neither body moved more than this since
