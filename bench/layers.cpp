@@ -61,6 +61,10 @@ int run(int argc, char **argv) {
             return 2;
         }
     }
+    if (name.rfind("pyramid", 0) != 0) {
+        std::fprintf(stderr, "cyclone-layers: --scene must be a pyramid (pyramid10 ... pyramid100), got %s\n", name.c_str());
+        return 2;
+    }
     bench::Scene scene = bench::makeScene(name);
     scene.world.substeps = substeps;
     scene.world.velocityIterations = iterations;
