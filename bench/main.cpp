@@ -61,6 +61,7 @@ struct Options {
     int steps = 600;
     int repeats = 1;
     int substeps = kDefaultSubsteps;
+    bool worldDefaults = false;  // --defaults: cyclone at WorldSettings' sub-steps and passes
     int threads = 1;
     int seed = 0;
     std::string csv;
@@ -383,8 +384,8 @@ void writeCsv(std::ofstream &out, const std::vector<Row> &rows) {
 // --- Command line ------------------------------------------------------------------------
 
 void printUsage(std::ostream &out) {
-    out << "usage: cyclone-bench [--scene NAME]... [--steps N] [--repeat R] [--substeps S] [--threads T]\n"
-           "                     [--seed N] [--engine cyclone|bullet|both] [--csv FILE] [--in-process] [--list]\n"
+    out << "usage: cyclone-bench [--scene NAME]... [--steps N] [--repeat R] [--substeps S] [--defaults]\n"
+           "                     [--threads T] [--seed N] [--engine cyclone|bullet|both] [--csv FILE] [--in-process] [--list]\n"
            "  --scene NAME   run only this scene (repeatable, or comma-separated); default: all\n"
            "  --steps N      steps of 1/60 s per run, N >= 1; default 600 (10 s)\n"
            "  --repeat R     run each scene and engine R times and keep each step's fastest time\n"
@@ -392,7 +393,9 @@ void printUsage(std::ostream &out) {
            "  --substeps S   spread cyclone's velocity passes per frame over S sub-steps (S divides\n"
            "                 them; Bullet always takes one step); default "
         << kDefaultSubsteps << "\n"
-        << "  --threads T    threads of cyclone's step, 1 to 64 (WorldSettings::threads; Bullet\n"
+        << "  --defaults     cyclone at WorldSettings' default sub-steps and velocity passes (4 x 3)\n"
+           "                 instead of the scene's 1 x 10; Bullet keeps its 10 iterations\n"
+           "  --threads T    threads of cyclone's step, 1 to 64 (WorldSettings::threads; Bullet\n"
            "                 always uses one); default 1\n"
            "  --seed N       mixed1000's shapes, sizes and orientations from seed N, to see how far\n"
            "                 its results spread (the pile is chaotic); default 0, the tables' scene\n"
@@ -466,6 +469,8 @@ bool parseOptions(int argc, char **argv, Options &options, bool &listOnly) {
                 return false;
             }
             options.substeps = static_cast<int>(substeps);
+        } else if (arg == "--defaults") {
+            options.worldDefaults = true;
         } else if (arg == "--threads") {
             if (!intValue("--threads", 1, 64, options.threads)) return false;
         } else if (arg == "--seed") {
@@ -542,8 +547,11 @@ int run(int argc, char **argv) {
               << "- both engines: " << kVelocityPassesPerFrame
               << " contact-solver velocity passes per frame, friction 0.6, restitution 0 unless a scene says "
                  "otherwise\n"
-              << "- cyclone: WorldSettings defaults except sleep, " << options.substeps << " sub-step(s) x "
-              << kVelocityPassesPerFrame / options.substeps << " velocity iterations, "
+              << "- cyclone: WorldSettings defaults except sleep, "
+              << (options.worldDefaults ? WorldSettings().substeps : options.substeps) << " sub-step(s) x "
+              << (options.worldDefaults ? WorldSettings().velocityIterations
+                                        : kVelocityPassesPerFrame / options.substeps)
+              << " velocity iterations, "
               << WorldSettings().positionIterations << " position iterations per sub-step, " << options.threads
               << " thread(s)\n";
     if (options.seed != 0) std::cout << "- mixed1000 from seed " << options.seed << " (--seed), not the tables' scene\n";
@@ -558,7 +566,12 @@ int run(int argc, char **argv) {
     std::vector<Row> rows;
     for (const std::string &sceneName : options.scenes) {
         Scene scene = makeScene(sceneName, static_cast<std::uint64_t>(options.seed));
-        splitSubsteps(scene, options.substeps);
+        if (options.worldDefaults) {
+            scene.world.substeps = WorldSettings().substeps;
+            scene.world.velocityIterations = WorldSettings().velocityIterations;
+        } else {
+            splitSubsteps(scene, options.substeps);
+        }
         scene.world.threads = options.threads;
         const std::vector<RunResult> results = measure(scene, options.engines, options);
         for (std::size_t e = 0; e < results.size(); ++e) rows.push_back(Row{sceneName, options.engines[e], results[e]});

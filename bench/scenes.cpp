@@ -109,33 +109,36 @@ Scene pyramid(int base) {
     return scene;
 }
 
-// 1000 bodies, one in five of each kind, dropped from a 10 x 10 x 10 grid with random
-// orientations into a 10 m x 10 m box with 6 m walls.
-Scene mixed(std::uint64_t seed) {
+// columns x rows x layers bodies, one in five of each kind, dropped from a grid 0.95 m
+// apart with random orientations into a walled box of columns x rows metres with 6 m
+// walls (mixed1000: 10 x 10 x 10 into 10 m x 10 m; mixed5000: 25 x 20 x 10 into
+// 25 m x 20 m, the same pile per square metre).
+Scene mixed(std::uint64_t seed, int columns, int rows, int layers) {
     Scene scene;
-    scene.name = "mixed1000";
+    const int count = columns * rows * layers;
+    scene.name = "mixed" + std::to_string(count);
     scene.world = worldSettings(true);
-    scene.description =
-        "1000 boxes, spheres, capsules, cylinders and convex hulls (1 kg, 0.5-0.8 m across) falling into a "
-        "10 m x 10 m walled box, sleep on";
+    scene.description = std::to_string(count) +
+                        " boxes, spheres, capsules, cylinders and convex hulls (1 kg, 0.5-0.8 m across) falling into a " +
+                        std::to_string(columns) + " m x " + std::to_string(rows) + " m walled box, sleep on";
     scene.bodies.push_back(ground());
-    const real inner = 5, thickness = 0.25, height = 3;
-    scene.bodies.push_back(staticBody("wall_x-", Shape::box(Vector3(thickness, height, inner + 2 * thickness)),
-                                      Vector3(-inner - thickness, height, 0)));
-    scene.bodies.push_back(staticBody("wall_x+", Shape::box(Vector3(thickness, height, inner + 2 * thickness)),
-                                      Vector3(inner + thickness, height, 0)));
-    scene.bodies.push_back(staticBody("wall_z-", Shape::box(Vector3(inner, height, thickness)),
-                                      Vector3(0, height, -inner - thickness)));
-    scene.bodies.push_back(staticBody("wall_z+", Shape::box(Vector3(inner, height, thickness)),
-                                      Vector3(0, height, inner + thickness)));
+    const real innerX = columns / 2.0, innerZ = rows / 2.0, thickness = 0.25, height = 3;
+    scene.bodies.push_back(staticBody("wall_x-", Shape::box(Vector3(thickness, height, innerZ + 2 * thickness)),
+                                      Vector3(-innerX - thickness, height, 0)));
+    scene.bodies.push_back(staticBody("wall_x+", Shape::box(Vector3(thickness, height, innerZ + 2 * thickness)),
+                                      Vector3(innerX + thickness, height, 0)));
+    scene.bodies.push_back(staticBody("wall_z-", Shape::box(Vector3(innerX, height, thickness)),
+                                      Vector3(0, height, -innerZ - thickness)));
+    scene.bodies.push_back(staticBody("wall_z+", Shape::box(Vector3(innerX, height, thickness)),
+                                      Vector3(0, height, innerZ + thickness)));
 
     Random random(0x5EEDC1C10E5ull ^ seed);
     std::vector<std::vector<Vector3>> rocks;
     for (int i = 0; i < 5; ++i) rocks.push_back(rockPoints(random, 0.3));
     int index = 0;
-    for (int layer = 0; layer < 10; ++layer) {
-        for (int row = 0; row < 10; ++row) {
-            for (int column = 0; column < 10; ++column, ++index) {
+    for (int layer = 0; layer < layers; ++layer) {
+        for (int row = 0; row < rows; ++row) {
+            for (int column = 0; column < columns; ++column, ++index) {
                 Shape shape;
                 switch (index % 5) {
                 case 0:
@@ -147,7 +150,8 @@ Scene mixed(std::uint64_t seed) {
                 case 3: shape = Shape::cylinder(random.uniform(0.25, 0.3), random.uniform(0.4, 0.6)); break;
                 default: shape = Shape::convex(rocks[static_cast<std::size_t>(index / 5 % 5)]); break;
                 }
-                const Vector3 position((column - 4.5) * 0.95, 1 + layer, (row - 4.5) * 0.95);
+                const Vector3 position((column - (columns - 1) / 2.0) * 0.95, 1 + layer,
+                                       (row - (rows - 1) / 2.0) * 0.95);
                 BodySettings body = dynamicBody("body" + std::to_string(index), std::move(shape), position);
                 body.orientation = random.orientation();
                 scene.bodies.push_back(std::move(body));
@@ -206,14 +210,18 @@ Scene sphereAlone() {
 }  // namespace
 
 std::vector<std::string> sceneNames() {
-    return {"pyramid10", "pyramid20", "pyramid40", "mixed1000", "sleeping1000", "sphere_alone"};
+    return {"pyramid10", "pyramid20",    "pyramid40",    "pyramid60",
+            "pyramid100", "mixed1000", "mixed5000", "sleeping1000", "sphere_alone"};
 }
 
 Scene makeScene(const std::string &name, std::uint64_t seed) {
     if (name == "pyramid10") return pyramid(10);
     if (name == "pyramid20") return pyramid(20);
     if (name == "pyramid40") return pyramid(40);
-    if (name == "mixed1000") return mixed(seed);
+    if (name == "pyramid60") return pyramid(60);
+    if (name == "pyramid100") return pyramid(100);
+    if (name == "mixed1000") return mixed(seed, 10, 10, 10);
+    if (name == "mixed5000") return mixed(seed, 25, 20, 10);
     if (name == "sleeping1000") return sleeping();
     if (name == "sphere_alone") return sphereAlone();
     throw std::invalid_argument("makeScene: name \"" + name + "\" is not a scene (see --list)");
