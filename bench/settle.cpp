@@ -2,7 +2,8 @@
 // scenes (mixed1000 over several seeds) or scene files and prints, per run, the deepest
 // contact of any step (with the step and the shapes of the two bodies there), the
 // deepest contact of the last step in which some body was awake (at rest, when the run
-// falls asleep), and the step after which every dynamic body sleeps.
+// falls asleep; with the shapes there when some body is still awake at the end), and the
+// time after which every dynamic body sleeps.
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -39,6 +40,7 @@ struct Outcome {
     int deepestStep = -1;
     std::string deepestShapes;
     real deepestAtRest = 0;
+    std::string restShapes;  ///< At the last step, when some body is still awake then.
     int allAsleepStep = -1;
 };
 
@@ -51,6 +53,16 @@ std::string shapesAt(const World &world, const Vector3 &point) {
     return names;
 }
 
+// The shape types of the bodies at the deepest contact of the last step.
+std::string deepestShapes(const World &world) {
+    DeepestContact deepest;
+    DebugDrawOptions options;
+    options.shapes = false;
+    options.contacts = true;
+    world.debugDraw(deepest, options);
+    return deepest.deepest >= 0 ? shapesAt(world, deepest.where) : "";
+}
+
 Outcome settle(World &world, int steps, real dt) {
     Outcome outcome;
     real lastAwakeDeepest = 0;
@@ -60,12 +72,7 @@ Outcome settle(World &world, int steps, real dt) {
         if (stats.maxPenetration > outcome.deepestEver) {
             outcome.deepestEver = stats.maxPenetration;
             outcome.deepestStep = step;
-            DeepestContact deepest;
-            DebugDrawOptions options;
-            options.shapes = false;
-            options.contacts = true;
-            world.debugDraw(deepest, options);
-            outcome.deepestShapes = deepest.deepest >= 0 ? shapesAt(world, deepest.where) : "";
+            outcome.deepestShapes = deepestShapes(world);
         }
         if (stats.awakeBodies > 0) {
             lastAwakeDeepest = stats.maxPenetration;
@@ -75,12 +82,13 @@ Outcome settle(World &world, int steps, real dt) {
         }
     }
     outcome.deepestAtRest = lastAwakeDeepest;
+    if (world.stats().awakeBodies > 0) outcome.restShapes = deepestShapes(world);
     return outcome;
 }
 
 void print(const std::string &run, const Outcome &o, real dt) {
-    std::printf("| %s | %.2f | %d | %s | %.2f | %s |\n", run.c_str(), o.deepestEver * 1000, o.deepestStep,
-                o.deepestShapes.c_str(), o.deepestAtRest * 1000,
+    std::printf("| %s | %.2f | %d | %s | %.2f | %s | %s |\n", run.c_str(), o.deepestEver * 1000, o.deepestStep,
+                o.deepestShapes.c_str(), o.deepestAtRest * 1000, o.restShapes.c_str(),
                 o.allAsleepStep < 0 ? "never" : (std::to_string(o.allAsleepStep * dt) + " s").c_str());
 }
 
@@ -110,8 +118,9 @@ int run(int argc, char **argv) {
     }
     if (scenes.empty() && files.empty()) scenes.push_back("mixed1000");
     constexpr real dt = 1.0 / 60;
-    std::printf("| run | deepest ever mm | at step | shapes there | deepest at rest mm | all asleep after |\n"
-                "|---|--:|--:|---|--:|--:|\n");
+    std::printf("| run | deepest ever mm | at step | shapes there | deepest at rest mm | shapes there, if awake "
+                "at the end | all asleep after |\n"
+                "|---|--:|--:|---|--:|---|--:|\n");
     for (const std::string &name : scenes) {
         for (int seed = firstSeed; seed <= lastSeed; ++seed) {
             const Scene scene = makeScene(name, static_cast<std::uint64_t>(seed));
