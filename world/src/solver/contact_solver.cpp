@@ -118,16 +118,6 @@ struct PairVelocities {
     }
 };
 
-// One pass over one manifold's rows: friction, then the normal rows (the ones that must
-// hold have the last word), each solved against the velocities the rows before it left,
-// as Gauss-Seidel does. The bodies' velocities are read once: the friction rows' and the
-// points' normal velocities all at the start, and each impulse then updates the normal
-// velocities of the points after it through the manifold's couplings. The impulses reach
-// the bodies together at the end. The numbers are those of solving row after row on the
-// bodies' velocities, but a row waits only for a few scalar products, not for the
-// bodies' velocities to be updated and dotted again.
-//
-// kCount is the manifold's count: its loops unroll and the velocities stay in registers.
 // A patch's twist held at its limit, `excess` (N m s) short of the block's solution: the
 // tangent impulses become the block's solution with the twist's change fixed where it is
 // held. With the block inverse [[A, b], [b^T, c]] (tangents, twist: k[0], k[1], k[3] are
@@ -142,6 +132,16 @@ CYCLONE_INLINE void twistHeld(const real k[6], real excess, real &tangent0, real
     tangent1 += k[4] / k[5] * excess;
 }
 
+// One pass over one manifold's rows: friction, then the normal rows (the ones that must
+// hold have the last word), each solved against the velocities the rows before it left,
+// as Gauss-Seidel does. The bodies' velocities are read once: the friction rows' and the
+// points' normal velocities all at the start, and each impulse then updates the normal
+// velocities of the points after it through the manifold's couplings. The impulses reach
+// the bodies together at the end. The numbers are those of solving row after row on the
+// bodies' velocities, but a row waits only for a few scalar products, not for the
+// bodies' velocities to be updated and dotted again.
+//
+// kCount is the manifold's count: its loops unroll and the velocities stay in registers.
 template <int kCount>
 struct ManifoldSweep {
     PairVelocities &vel;
