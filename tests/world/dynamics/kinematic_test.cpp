@@ -40,28 +40,66 @@ TEST(Kinematic, PlatformCarriesACrateWithinTheSlipFrictionAllows) {
     }
 }
 
-// A disc turning at 1 rad/s; a crate at r = 1.5 m needs omega^2 r = 1.5 m/s^2 of
-// friction, well within mu g = 5.9: it turns with the disc at its angular speed.
-// Catching up, it slips (1.5 m/s)^2 / (2 mu g) = 0.19 m along the tangent (its radius
-// changes by 0.012 m). Its radius is not kept exactly: within a step the solver matches
-// the crate's velocity to the disc's surface velocity at the step's start, and the crate
-// then moves straight along that tangent, so each step multiplies its radius by
-// sqrt(1 + (omega dt)^2): after n steps r = 1.5 (1 + (omega dt)^2)^(n/2), 1.538 m at 3 s
-// (0.8 % a second at 60 Hz; docs/kinematic.md).
+// A disc turning at omega = 1 rad/s; a crate at r = 1.5 m needs omega^2 r = 1.5 m/s^2 of
+// friction, well within mu g = 5.9. The crate starts with the disc's motion there
+// (velocity omega x r, rotation omega), so it never slips. Each step the disc turns
+// theta = omega dt and the point under the crate goes along the chord of its arc; the
+// contact's rows see the disc's surface velocity at mid-step, which points along that
+// chord, so the crate moves straight along it and lands on the circle: it overshoots the
+// chord's length 2 r sin(theta / 2) by r (theta - 2 sin(theta / 2)), which puts it
+// r theta^4 / 48 (2.4e-9 m) further out a step. After 3 s the crate keeps r = 1.5 m (within
+// the solver's convergence, 1 mm allowed; moving along the tangent instead, each step
+// would multiply r by sqrt(1 + theta^2), 1.538 m at 3 s), it has gone round the same
+// 3 rad as the disc, at omega r = 1.5 m/s and omega = 1 rad/s.
 TEST(Kinematic, TurntableTurnsACrateAtItsRadiusAndAngularSpeed) {
+    for (int substeps : {1, 4}) {
+        WorldSettings settings;
+        settings.substeps = substeps;
+        WorldFixture f(settings);
+        const BodyId disc =
+            f.world.addBody(kinematicBox(Vector3::Zero(), Vector3(3, 0.25, 3), Vector3::Zero(), Vector3(0, 1, 0)));
+        BodySettings s;
+        s.shape = Shape::box(Vector3(0.25, 0.5, 0.25));
+        s.position = Vector3(1.5, 0.75, 0);
+        s.velocity = Vector3(0, 1, 0).cross(s.position);  // (0, 0, -1.5)
+        s.rotation = Vector3(0, 1, 0);
+        const BodyId crate = f.world.addBody(s);
+        f.simulate(3.0);
+        const Vector3 p = f.position(crate);
+        EXPECT_NEAR(std::hypot(p.x(), p.z()), 1.5, 0.001) << substeps;
+        // Turning about +y takes +x towards -z: the polar angle atan2(-z, x).
+        EXPECT_NEAR(std::atan2(-p.z(), p.x()), 3.0, 0.005) << substeps;
+        EXPECT_NEAR(f.world.body(crate).getVelocity().norm(), 1.5, 0.005) << substeps << ": omega r";
+        EXPECT_NEAR(f.world.body(crate).getRotation().y(), 1.0, 0.01) << substeps;
+        // The disc turned exactly 3 rad.
+        const Quaternion expected(Eigen::AngleAxis<real>(3.0, Vector3::UnitY()));
+        EXPECT_NEAR(f.world.body(disc).getOrientation().angularDistance(expected), 0, 1e-9);
+    }
+}
+
+// The same disc under a 0.5 m cube at rest at r = 1.5 m (low enough not to tip: it would
+// take mu g > g (half width / half height) = g). Friction brings it to omega r = 1.5 m/s
+// within 1.5 / (mu g) = 0.25 s, while it slips (1.5 m/s)^2 / (2 mu g) = 0.19 m behind the
+// disc's point it started on: it then lags the disc by 0.19 / 1.5 = 0.127 rad. The slip
+// moves it outward by less than sliding 0.19 m along the tangent would, sqrt(1.5^2 +
+// 0.19^2) - 1.5 = 0.012 m. Once it turns with the disc its radius stays: from 1 s to 3 s
+// it changes by under 1 mm (moving along the tangent, it would grow by 0.8 % a second,
+// 24 mm).
+TEST(Kinematic, TurntableKeepsTheRadiusACrateCaughtUpAt) {
     WorldFixture f;
-    const BodyId disc = f.world.addBody(kinematicBox(Vector3::Zero(), Vector3(3, 0.25, 3), Vector3::Zero(), Vector3(0, 1, 0)));
-    const BodyId crate = f.box(Vector3(1.5, 0.75, 0), Vector3(0.25, 0.5, 0.25));
-    f.simulate(3.0);
-    const Vector3 p = f.position(crate);
-    const double radius = std::hypot(p.x(), p.z());
-    const double drifted = 1.5 * std::pow(1 + kDt * kDt, 180 / 2.0);
-    EXPECT_NEAR(radius, drifted, 0.012);
-    EXPECT_NEAR(f.world.body(crate).getVelocity().norm(), 1.0 * radius, 0.005) << "omega r";
-    EXPECT_NEAR(f.world.body(crate).getRotation().y(), 1.0, 0.02);
-    // The disc turned exactly 3 rad.
-    const Quaternion expected(Eigen::AngleAxis<real>(3.0, Vector3::UnitY()));
-    EXPECT_NEAR(f.world.body(disc).getOrientation().angularDistance(expected), 0, 1e-9);
+    f.world.addBody(kinematicBox(Vector3::Zero(), Vector3(3, 0.25, 3), Vector3::Zero(), Vector3(0, 1, 0)));
+    const BodyId crate = f.box(Vector3(1.5, 0.5, 0), Vector3(0.25, 0.25, 0.25));
+    const auto radius = [&] { return std::hypot(f.position(crate).x(), f.position(crate).z()); };
+    f.simulate(1.0);
+    const double caughtUp = radius();
+    EXPECT_GE(caughtUp, 1.5 - 0.001);
+    EXPECT_LE(caughtUp, 1.512);
+    f.simulate(2.0);
+    EXPECT_NEAR(radius(), caughtUp, 0.001);
+    const double slip = 1.5 * 1.5 / (2 * 0.6 * 9.81);
+    EXPECT_NEAR(std::atan2(-f.position(crate).z(), f.position(crate).x()), 3.0 - slip / 1.5, 0.01);
+    EXPECT_NEAR(f.world.body(crate).getVelocity().norm(), 1.0 * radius(), 0.005) << "omega r";
+    EXPECT_NEAR(f.world.body(crate).getRotation().y(), 1.0, 0.01);
 }
 
 // A wall at 2 m/s meets a 1 kg box at rest on the ground: the box is pushed ahead at the

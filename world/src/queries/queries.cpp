@@ -85,6 +85,19 @@ struct OverlapWalk {
     }
 };
 
+// Calls visit(root) for each broadphase tree that may hold a body the filter considers,
+// and test(plane) for each plane when static bodies are considered. A moving kinematic
+// body is in the awake tree, a still one in the static tree; a sleeping tree holds only
+// dynamic bodies.
+template <class Visit, class Test>
+void visitTrees(const detail::WorldState &w, const QueryFilter &filter, const Visit &visit, const Test &test) {
+    if (filter.dynamicBodies || filter.kinematicBodies) visit(w.broadphase.root(detail::Tree::Awake));
+    if (filter.dynamicBodies) visit(w.broadphase.root(detail::Tree::Asleep));
+    if (filter.staticBodies || filter.kinematicBodies) visit(w.broadphase.root(detail::Tree::Static));
+    if (filter.staticBodies)
+        for (std::uint32_t plane : w.bodies.planes) test(plane);
+}
+
 Quaternion unitOrIdentity(const Quaternion &q) {
     const real length = q.norm();
     return length > 0 ? Quaternion(q.coeffs() / length) : Quaternion::Identity();
@@ -124,14 +137,7 @@ std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direc
 
     const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
     RayWalk<decltype(accepts)> walk{w.bodies, accepts, {origin, direction / length, maxDistance}, false, 0, {}};
-    if (filter.dynamicBodies) {
-        walk.walk(w.broadphase.root(detail::Tree::Awake));
-        walk.walk(w.broadphase.root(detail::Tree::Asleep));
-    }
-    if (filter.staticBodies) {
-        walk.walk(w.broadphase.root(detail::Tree::Static));
-        for (std::uint32_t plane : w.bodies.planes) walk.test(plane);
-    }
+    visitTrees(w, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
     if (!walk.found) return std::nullopt;
     RayHit hit;
     hit.body = w.bodies.idOf(walk.body);
@@ -169,14 +175,7 @@ std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Qu
         if (detail::intersects(*compiled, pose, *r.shape, r.body.getTransform())) out.push_back(w.bodies.idOf(index));
     };
     OverlapWalk<decltype(test)> walk{query.getAABB(), test};
-    if (filter.dynamicBodies) {
-        walk.visit(w.broadphase.root(detail::Tree::Awake));
-        walk.visit(w.broadphase.root(detail::Tree::Asleep));
-    }
-    if (filter.staticBodies) {
-        walk.visit(w.broadphase.root(detail::Tree::Static));
-        for (std::uint32_t plane : w.bodies.planes) test(plane);
-    }
+    visitTrees(w, filter, [&](const Node *root) { walk.visit(root); }, test);
     std::sort(out.begin(), out.end(), [](const BodyId &x, const BodyId &y) { return x.index < y.index; });
     return out.size();
 }
@@ -223,14 +222,7 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
         hit = candidate;
     };
     OverlapWalk<decltype(test)> walk{swept, test};
-    if (filter.dynamicBodies || filter.kinematicBodies) {
-        walk.visit(w.broadphase.root(detail::Tree::Awake));
-        walk.visit(w.broadphase.root(detail::Tree::Asleep));
-    }
-    if (filter.staticBodies || filter.kinematicBodies) {
-        walk.visit(w.broadphase.root(detail::Tree::Static));
-        for (std::uint32_t plane : w.bodies.planes) test(plane);
-    }
+    visitTrees(w, filter, [&](const Node *root) { walk.visit(root); }, test);
     if (!found) return std::nullopt;
     ShapeCastHit result;
     result.body = w.bodies.idOf(best);

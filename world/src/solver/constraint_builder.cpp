@@ -29,6 +29,19 @@ bool stillStamped(const StampedBody &stamped, const BodyRecord &r, real toleranc
     return movedLess(shift, r.body.getOrientation() * stamped.orientation.conjugate(), r.boundingRadius, tolerance);
 }
 
+// A moving kinematic body's turn over half the step, |w| dt / 2 about w, into `turn`;
+// false when it does not turn. Its side of a contact's rows, with lever arms turned by
+// it, sees the velocity its surface point has at mid-step: along the chord of the point's
+// arc over the step, so that a body its friction carries lands where the point lands
+// (docs/kinematic.md).
+bool midStepTurn(const RigidBody &body, real dt, Matrix3 &turn) {
+    const Vector3 w = body.getRotation();
+    const real speed = w.norm();
+    if (!(speed > 0)) return false;
+    turn = Eigen::AngleAxis<real>(0.5 * speed * dt, w / speed).toRotationMatrix();
+    return true;
+}
+
 void stampBody(StampedBody &stamped, const BodyRecord &r) {
     stamped.movable = r.simulated || r.moving;
     stamped.position = r.body.getPosition();
@@ -247,7 +260,7 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     // Jacobians and effective masses are made once per step, at the step's poses, unless
     // the slot's still hold (jacobian_stamp.h).
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
-        prepareManifold(bodies, s);
+        prepareManifold(bodies, s, h * settings.substeps);
         JacobianStamp &stamp = stamps_[s];
         if (support && stamp.carrier != manifolds_[s].carrier) {
             prepareCarriedMasses(bodies_, manifolds_[s]);
@@ -272,7 +285,7 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     }
 }
 
-void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s) {
+void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, real dt) {
     SolverManifold &m = manifolds_[s];
     const SlotBodies records = slotBodies_[s];
     const RigidBody &a = bodies[records.a].body;
@@ -284,13 +297,18 @@ void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s) {
     const SolverBody &sb = bodies_[m.b];
     if (!stamps_[s].kept) {
         prepareDirections(m);
+        const int simulated = static_cast<int>(bodies.simulated.size());
+        LeverTurns turns;
+        if (m.a > simulated) turns.any |= midStepTurn(a, dt, turns.a);
+        if (m.b > simulated) turns.any |= midStepTurn(b, dt, turns.b);
         Vector3 points[kMaxManifoldPoints];
         for (int i = 0; i < m.count; ++i) {
             const SolverPoint &p = m.points[i];
             points[i] = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
-            prepareRows(sa, sb, points[i] - a.getPosition(), points[i] - b.getPosition(), m, m.points[i]);
+            prepareRows(sa, sb, turns.leverA(points[i] - a.getPosition()), turns.leverB(points[i] - b.getPosition()), m,
+                        m.points[i]);
         }
-        prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m);
+        prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m, turns);
         prepareCouplings(sa, sb, m);
     }
     for (int i = 0; i < m.count; ++i) {

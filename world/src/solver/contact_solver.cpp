@@ -118,6 +118,20 @@ struct PairVelocities {
     }
 };
 
+// A patch's twist held at its limit, `excess` (N m s) short of the block's solution: the
+// tangent impulses become the block's solution with the twist's change fixed where it is
+// held. With the block inverse [[A, b], [b^T, c]] (tangents, twist: k[0], k[1], k[3] are
+// A, k[2], k[4] are b, k[5] is c), fixing the twist's change at d2 gives the tangents
+// -(A - b b^T / c) v_t + (b / c) d2, which is the free solution plus (b / c) times the
+// twist's shortfall. Without it the tangents would leave to the twist a turn about the
+// body's centre that the twist cannot stop: the legs of a table whose turn the block
+// gives to each leg's twist, held at a small limit, would let the table turn for ever
+// (docs/compound.md).
+CYCLONE_INLINE void twistHeld(const real k[6], real excess, real &tangent0, real &tangent1) {
+    tangent0 += k[2] / k[5] * excess;
+    tangent1 += k[4] / k[5] * excess;
+}
+
 // One pass over one manifold's rows: friction, then the normal rows (the ones that must
 // hold have the last word), each solved against the velocities the rows before it left,
 // as Gauss-Seidel does. The bodies' velocities are read once: the friction rows' and the
@@ -153,9 +167,10 @@ struct ManifoldSweep {
     }
 
     // The patch's friction: the tangents and the twist solved together (the impulses that
-    // stop the patch sliding and turning at once), then the tangents limited by the
-    // points' summed normal impulse to Coulomb's cone (not a box: friction is isotropic in
-    // the contact plane) and the twist by the same sum times the twist radius.
+    // stop the patch sliding and turning at once), then the twist limited by the points'
+    // summed normal impulse times the twist radius (the tangents taking what it could not:
+    // twistHeld) and the tangents by the same sum to Coulomb's cone (not a box: friction
+    // is isotropic in the contact plane).
     CYCLONE_INLINE void friction() {
         if (m.friction <= 0) return;
         SolverRow &row0 = m.frictionRow[0];
@@ -173,6 +188,14 @@ struct ManifoldSweep {
         const real old1 = row1.impulse;
         real new0 = old0 - (k[0] * v0 + k[1] * v1 + k[2] * v2);
         real new1 = old1 - (k[1] * v0 + k[3] * v1 + k[4] * v2);
+        const real old2 = twist.impulse;
+        real new2 = old2;
+        if (turns) {
+            const real twistLimit = limit * m.twistRadius;
+            const real free2 = old2 - (k[2] * v0 + k[4] * v1 + k[5] * v2);
+            new2 = std::clamp(free2, -twistLimit, twistLimit);
+            if (new2 != free2 && k[5] > 0) twistHeld(k, new2 - free2, new0, new1);  // a singular block's inverse is all zeros
+        }
         const real magnitude2 = new0 * new0 + new1 * new1;
         if (magnitude2 > limit * limit) {
             const real scale = limit / std::sqrt(magnitude2);
@@ -183,14 +206,8 @@ struct ManifoldSweep {
         row1.impulse = new1;
         const real change0 = new0 - old0;
         const real change1 = new1 - old1;
-        real change2 = 0;
-        if (turns) {
-            const real old2 = twist.impulse;
-            const real twistLimit = limit * m.twistRadius;
-            const real new2 = std::clamp(old2 - (k[2] * v0 + k[4] * v1 + k[5] * v2), -twistLimit, twistLimit);
-            twist.impulse = new2;
-            change2 = new2 - old2;
-        }
+        twist.impulse = new2;
+        const real change2 = new2 - old2;
         couple(couplings.friction[0], change0);
         couple(couplings.friction[1], change1);
         couple(couplings.friction[2], change2);
@@ -349,7 +366,7 @@ void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &
 
 CYCLONE_SIMD_CLONES
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
-                         const Vector3 &positionB, SolverManifold &m) {
+                         const Vector3 &positionB, SolverManifold &m, const LeverTurns &turns) {
     Vector3 centre = Vector3::Zero();
     for (int i = 0; i < m.count; ++i) centre += points[i];
     if (m.count > 0) centre /= m.count;
@@ -358,7 +375,7 @@ void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3
     real radius = 0;
     for (int i = 0; i < m.count; ++i) radius += (points[i] - centre).norm();
     m.twistRadius = m.count > 1 ? radius / m.count : 0;
-    const RowFrame frame(a, b, centre - positionA, centre - positionB);
+    const RowFrame frame(a, b, turns.leverA(centre - positionA), turns.leverB(centre - positionB));
     frame.fillJacobianOnly(m.direction[1], m.frictionRow[0]);
     frame.fillJacobianOnly(m.direction[2], m.frictionRow[1]);
     fillTwistRow(frame.inertiaA, frame.inertiaB, m.direction[0], m.twist);

@@ -214,11 +214,22 @@ real normalVelocity(const SolverBody &a, const SolverBody &b, const SolverManifo
 /// Fills the Jacobian terms and effective mass of one point's normal row.
 void prepareRows(const SolverBody &a, const SolverBody &b, const Vector3 &rA, const Vector3 &rB,
                  const SolverManifold &m, SolverPoint &p);
+/// The turns that take each side's lever arms from the step's start to mid-step: a moving
+/// kinematic body's surface point, moving at its velocity there, goes straight along the
+/// chord of its arc over the step (docs/kinematic.md). Identity for any other body.
+struct LeverTurns {
+    Matrix3 a = Matrix3::Identity();
+    Matrix3 b = Matrix3::Identity();
+    bool any = false;  ///< Whether either is not the identity.
+    Vector3 leverA(const Vector3 &r) const { return any ? Vector3(a * r) : r; }
+    Vector3 leverB(const Vector3 &r) const { return any ? Vector3(b * r) : r; }
+};
+
 /// Fills the manifold's patch friction from its contact points (world space, `count`
 /// of them) and the bodies' centres of mass: the twist radius, the friction rows at the
 /// points' centre, the twist row and frictionInverse.
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
-                         const Vector3 &positionB, SolverManifold &m);
+                         const Vector3 &positionB, SolverManifold &m, const LeverTurns &turns = LeverTurns());
 
 /// Fills the manifold's couplings from its rows (after prepareRows and
 /// prepareFrictionRows), and its supported couplings with the same.

@@ -1,7 +1,8 @@
 // A contact patch's friction for four manifolds in lanes (simd/batch4.h), as
 // ManifoldSweep::friction (contact_solver.cpp) solves it for one: the tangents and the
-// twist as a block through its inverse, the tangents then limited to the cone of the
-// points' summed normal impulse and the twist to the same sum times the twist radius.
+// twist as a block through its inverse, the twist limited to the points' summed normal
+// impulse times the twist radius (the tangents then taking what it could not), the
+// tangents to the cone of that sum.
 // Shared by the batched velocity pass (velocity_pass.cpp) and the batched carrier pass
 // (carrier_pass.cpp).
 #pragma once
@@ -37,13 +38,25 @@ CYCLONE_INLINE void solveWideFriction(const Lanes &v0, const Lanes &v1, const La
     const Lanes old0 = rows.tangent0, old1 = rows.tangent1, old2 = rows.twist;
     Lanes new0 = old0 - (k[0] * v0 + k[1] * v1 + k[2] * spin);
     Lanes new1 = old1 - (k[1] * v0 + k[3] * v1 + k[4] * spin);
+    const Lanes twistLimit = limit * twistRadius;
+    const Lanes free2 = old2 - (k[2] * v0 + k[4] * v1 + k[5] * spin);
+    Lanes new2 = free2 < -twistLimit ? -twistLimit : free2 > twistLimit ? twistLimit : free2;
+    // A twist held at its limit: the tangents take the block's solution with the twist's
+    // change fixed there (twistHeld in contact_solver.cpp).
+    const LaneMask held = (free2 != new2) & (k[5] > zero);  // a singular block's inverse is all zeros
+    if (anyLane(held)) {
+        const Lanes excess = held ? new2 - free2 : zero;
+        const Lanes diagonal = held ? k[5] : one;
+        new0 += k[2] / diagonal * excess;
+        new1 += k[4] / diagonal * excess;
+    }
     const Lanes magnitude2 = new0 * new0 + new1 * new1;
     const LaneMask outside = magnitude2 > limit * limit;
     // Resting contacts stick: their lanes are all inside the cone, and the root and the
     // division (some 40 cycles on the chain to the normal rows) are skipped.
     if (anyLane(outside)) {
         const Lanes rooted = outside ? magnitude2 : one;  // lanes inside the cone take no root (theirs may be 0)
-        Lanes length;
+        Lanes length{};
         sqrtLanes(rooted, length);
         const Lanes scale = outside ? limit / length : one;
         new0 *= scale;
@@ -51,9 +64,6 @@ CYCLONE_INLINE void solveWideFriction(const Lanes &v0, const Lanes &v1, const La
     }
     new0 = rubs ? new0 : old0;
     new1 = rubs ? new1 : old1;
-    const Lanes twistLimit = limit * twistRadius;
-    Lanes new2 = old2 - (k[2] * v0 + k[4] * v1 + k[5] * spin);
-    new2 = new2 < -twistLimit ? -twistLimit : new2 > twistLimit ? twistLimit : new2;
     new2 = (rubs & turns) ? new2 : old2;
     rows.tangent0 = new0;
     rows.tangent1 = new1;
