@@ -174,9 +174,12 @@ real heightError(const Track &t, real rest) {
     for (real y : t.height) e = std::max(e, std::abs(y - rest));
     return e;
 }
-real verticalSpeed(const Track &t) {
+// From step `from` on: a body put down exactly touching a floor starts with the
+// gravity of its first sub-steps (up to g dt = 0.16 m/s) before its contact holds it, on
+// a plane as on a mesh.
+real verticalSpeed(const Track &t, std::size_t from = 0) {
     real e = 0;
-    for (real v : t.verticalSpeed) e = std::max(e, std::abs(v));
+    for (std::size_t i = from; i < t.verticalSpeed.size(); ++i) e = std::max(e, std::abs(t.verticalSpeed[i]));
     return e;
 }
 
@@ -185,11 +188,12 @@ const Shape kPlaneFloor = Shape::plane(Vector3::UnitY(), 0);
 TEST(MeshContact, SphereRollsAcrossAMeshFloorWithoutBumps) {
     // A ball rolling at 1.08 m/s across the floor diagonally crosses a dozen inner edges
     // and vertices in 6 s. On a flat floor its centre stays at its radius and it never
-    // moves up or down: the bounds are 1 mm and 0.01 m/s.
+    // moves up or down: the bounds are 1 mm and 0.01 m/s (the speed from the
+    // first quarter second on, the start being the same on a plane: see below).
     const Track track = crossFloor(gridFloor(true), Shape::sphere(0.25), Quaternion::Identity(), 0.25,
                                    Vector3(1.0, 0, 0.4), true, 0.6, 6.0);
     EXPECT_LE(heightError(track, 0.25), 0.001);
-    EXPECT_LE(verticalSpeed(track), 0.01);
+    EXPECT_LE(verticalSpeed(track, 15), 0.01);
     // It did cross the floor: 1.08 m/s for 6 s, less what rolling resistance takes.
     EXPECT_GT(track.travelled, 5);
 }
@@ -223,7 +227,7 @@ TEST(MeshContact, BoxAndCapsuleSlideAcrossAMeshFloorWithoutBumps) {
         const Quaternion q = r.shape.type == ShapeType::Capsule ? alongPath : Quaternion::Identity();
         const Track track = crossFloor(gridFloor(true), r.shape, q, r.restHeight, v, false, 0.1, 3.0);
         EXPECT_LE(heightError(track, r.restHeight), 0.001);
-        EXPECT_LE(verticalSpeed(track), 0.01);
+        EXPECT_LE(verticalSpeed(track, 15), 0.01);
         EXPECT_GT(track.travelled, 7);
     }
 }
