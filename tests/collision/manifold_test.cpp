@@ -234,6 +234,33 @@ TEST(Manifold, MeshFloorGivesOneManifoldWhereverABoxOrSphereIs) {
     }
 }
 
+TEST(Manifold, MeshCollidesOnBothSidesUnlessOneIsSolid) {
+    // The floor's triangles wound facing down. Two-sided (the default), a unit box 0.01 m
+    // into it from above is pushed up (normal A to B: -y) and one from below is pushed
+    // down, each 0.01 deep at its four corners. One-sided with the solid behind the
+    // winding's side (Front: the solid above), the box from above is inside the solid
+    // and pushed out downwards, through the floor: its top must clear y = 0, 0.99 m.
+    const std::vector<Vector3> corners{Vector3(-5, 0, -5), Vector3(5, 0, -5), Vector3(5, 0, 5), Vector3(-5, 0, 5)};
+    const std::vector<std::array<int, 3>> down{{0, 1, 2}, {0, 2, 3}};
+    struct Case {
+        MeshSides sides;
+        real y;
+        Vector3 normal;
+        real depth;
+    };
+    for (const Case &c : {Case{MeshSides::Both, 0.49, Vector3(0, -1, 0), 0.01},
+                          Case{MeshSides::Both, -0.49, Vector3(0, 1, 0), 0.01},
+                          Case{MeshSides::Front, 0.49, Vector3(0, 1, 0), 0.99}}) {
+        SCOPED_TRACE("y = " + std::to_string(c.y));
+        const std::vector<Manifold> out =
+            collide(kBox, pose(Vector3(0.1, c.y, 0.2)), Shape::mesh(corners, down, c.sides), Matrix4::Identity());
+        ASSERT_EQ(out.size(), 1u);
+        EXPECT_LT((out[0].normal - c.normal).norm(), 1e-9);
+        ASSERT_EQ(out[0].count, 4);
+        for (int i = 0; i < 4; ++i) EXPECT_NEAR(out[0].points[i].depth, c.depth, 1e-9);
+    }
+}
+
 TEST(Manifold, MeshFloorAndWallGiveTwoManifolds) {
     // The floor plus a wall x = 1 facing -x (its triangles share the floor's corner
     // vertices 1 and 2). A box at x = 0.55 sinks 0.05 into the wall and 0.05 into the floor:

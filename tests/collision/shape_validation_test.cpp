@@ -160,6 +160,11 @@ TEST(ShapeValidation, MeshVerticesAndTriangles) {
     std::vector<Vector3> bad = square;
     bad[3][0] = kNan;
     refusal(Shape::mesh(bad, {{0, 2, 1}}), "shape.vertices[3][0]");
+
+    for (MeshSides sides : {MeshSides::Both, MeshSides::Front, MeshSides::Back})
+        EXPECT_NO_THROW(detail::compileShape(Shape::mesh(square, {{0, 2, 1}}, sides)));
+    EXPECT_EQ(refusal(Shape::mesh(square, {{0, 2, 1}}, static_cast<MeshSides>(7)), "shape.sides"),
+              "must be MeshSides::Both, Front or Back, got 7");
 }
 
 TEST(ShapeValidation, OnlyTheFieldsOfTheTypeAreRead) {

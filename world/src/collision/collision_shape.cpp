@@ -15,6 +15,7 @@
 
 #include "collision/broadphase.h"
 #include "collision/convex_hull.h"
+#include "collision/mesh_features.h"
 #include "cyclone/world/error.h"
 
 namespace cyclone::detail {
@@ -167,6 +168,8 @@ void compileMesh(const Shape &shape, std::vector<Vector3> &vertices, std::vector
                  std::vector<Vector3> &normals, std::shared_ptr<fcl::CollisionGeometryd> &geometry) {
     for (size_t i = 0; i < shape.vertices.size(); ++i) requireFinite(index("shape.vertices", i), shape.vertices[i]);
     if (shape.triangles.empty()) refuse("shape.triangles", "must not be empty");
+    if (shape.sides != MeshSides::Both && shape.sides != MeshSides::Front && shape.sides != MeshSides::Back)
+        refuse("shape.sides", "must be MeshSides::Both, Front or Back, got " + std::to_string(static_cast<int>(shape.sides)));
     const int count = static_cast<int>(shape.vertices.size());
     for (size_t t = 0; t < shape.triangles.size(); ++t) {
         const std::array<int, 3> &triangle = shape.triangles[t];
@@ -327,6 +330,7 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
         }
         case ShapeType::Mesh:
             compileMesh(shape, c.vertices_, c.faces_, c.faceNormals_, c.geometry_);
+            c.activeFeatures_ = meshActiveFeatures(c.vertices_, c.faces_, c.faceNormals_);
             break;
         case ShapeType::Compound:
             compileCompound(shape, c);

@@ -4,6 +4,7 @@
 
 #include <fcl/fcl.h>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -60,6 +61,9 @@ public:
     const std::vector<std::vector<int>> &faces() const { return faces_; }
     /// Outward unit normal of each face, shape frame.
     const std::vector<Vector3> &faceNormals() const { return faceNormals_; }
+    /// Mesh: each triangle's active edges and vertices (mesh_features.h), the corners of
+    /// its surface; contacts on the others take the triangle's normal.
+    const std::vector<std::uint8_t> &activeFeatures() const { return activeFeatures_; }
     /// Plane: outward unit normal, shape frame (the solid is normal.x <= planeOffset()).
     const Vector3 &planeNormal() const { return planeNormal_; }
     /// Plane: distance of the surface from the frame origin along planeNormal(), m
@@ -95,6 +99,7 @@ private:
     std::vector<Vector3> vertices_;
     std::vector<std::vector<int>> faces_;
     std::vector<Vector3> faceNormals_;
+    std::vector<std::uint8_t> activeFeatures_;
     Vector3 planeNormal_ = Vector3::UnitY();
     real planeOffset_ = 0;
     std::vector<CompoundPart> parts_;

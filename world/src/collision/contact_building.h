@@ -87,10 +87,10 @@ inline Vector3 polygonNormal(const SupportFeature &f) {
     return length > 0 ? Vector3(sum / length) : Vector3::Zero();
 }
 
-// Which normals a contact may take. Against a mesh triangle (one-sided: shapes are
-// pushed out to the side its counter-clockwise winding faces) a normal must not push
-// the shape through the triangle: n.front >= 0, `front` being the triangle's normal
-// turned into a normal from A to B. Other pairs take any direction.
+// Which normals a contact may take. Against a mesh triangle (which pushes a shape out
+// to one side, mesh_contacts.cpp) a normal must not push the shape through the
+// triangle: n.front >= 0, `front` being the triangle's normal towards that side turned
+// into a normal from A to B. Other pairs take any direction.
 struct NormalRule {
     bool oneSided = false;
     Vector3 front = Vector3::Zero();

@@ -3,13 +3,7 @@
 // (manifold_clipping.cpp). Box-box, sphere pairs, capsule pairs (round_pairs.cpp) and
 // planes have tests of their own.
 //
-// Meshes give one FCL contact per triangle. Triangles are one-sided, as Jolt's are by
-// default: a shape is only pushed out to the side a triangle's counter-clockwise winding
-// faces, never through it. A contact whose normal is its triangle's normal is a face
-// contact and claims the triangle's vertices; an edge or vertex contact on vertices that
-// face contacts already claimed is an internal edge of a surface (two triangles of a
-// floor) and is dropped, as in Jolt's InternalEdgeRemovingCollector. The remaining
-// contacts are merged into one manifold per normal.
+// Meshes give one FCL contact per triangle; mesh_contacts.cpp builds their manifolds.
 //
 // Everything here lives in fixed-size arrays on the stack; only FCL allocates (see
 // shape_contact.cpp for which of its calls still do).
@@ -21,6 +15,7 @@
 #include "collision/box_box.h"
 #include "collision/broadphase.h"
 #include "collision/contact_building.h"
+#include "collision/mesh_contacts.h"
 #include "collision/round_pairs.h"
 #include "collision/shape_contact.h"
 #include "collision/sphere_pairs.h"
@@ -40,115 +35,6 @@ bool exactInFcl(ShapeType a, ShapeType b) {
     if (a == ShapeType::Sphere) std::swap(a, b);
     if (b == ShapeType::Sphere) return a != ShapeType::Convex;
     return a == ShapeType::Box && b == ShapeType::Box;
-}
-
-// One contact reported by FCL, oriented from A to B.
-struct RawContact {
-    Vector3 normal;
-    real depth;
-    int triangleA;
-    int triangleB;
-};
-
-struct MeshContact {
-    Vector3 normal;
-    real depth;
-    int triangleA;
-    int triangleB;
-    bool face;
-    bool kept;
-};
-
-int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
-                 real speculative, const RawContact *raw, int rawCount, std::vector<Manifold> &out) {
-    // The mesh whose triangles claim vertices: B when it is a mesh, else A.
-    const bool meshIsB = b.shape().type == ShapeType::Mesh;
-    const CollisionShape &mesh = meshIsB ? b : a;
-    const Matrix4 &meshPose = meshIsB ? poseB : poseA;
-    const int triangles = static_cast<int>(mesh.faces().size());
-    // FCL's normals against triangles, even its exact sphere-triangle ones, describe
-    // the triangle alone; refinement finds each triangle's own best normal.
-    const bool refine = true;
-
-    MeshContact contacts[kMaxFclContacts];
-    int count = 0;
-    for (int i = 0; i < rawCount; ++i) {
-        const int triangle = meshIsB ? raw[i].triangleB : raw[i].triangleA;
-        if (triangle < 0 || triangle >= triangles) continue;
-        const Pair pair{a, poseA, raw[i].triangleA, b, poseB, raw[i].triangleB, speculative};
-        const Vector3 triangleNormal = meshPose.linear() * mesh.faceNormals()[triangle];
-        NormalRule rule;
-        rule.oneSided = true;
-        rule.front = meshIsB ? Vector3(-triangleNormal) : triangleNormal;
-        MeshContact &c = contacts[count];
-        SupportFeature fa, fb;
-        c.normal = chooseNormal(pair, raw[i].normal, rule, refine, fa, fb, c.depth);
-        if (!(c.depth > -speculative)) continue;
-        c.triangleA = raw[i].triangleA;
-        c.triangleB = raw[i].triangleB;
-        c.face = c.normal.dot(rule.front) > kFaceCosine;
-        c.kept = true;
-        ++count;
-    }
-
-    // Face contacts first, then the rest deepest first, as Jolt orders them.
-    std::sort(contacts, contacts + count, [](const MeshContact &x, const MeshContact &y) {
-        return x.face != y.face ? x.face : x.depth > y.depth;
-    });
-    int claimed[3 * kMaxFclContacts];
-    int claimedCount = 0;
-    auto isClaimed = [&](int vertex) { return std::find(claimed, claimed + claimedCount, vertex) != claimed + claimedCount; };
-    for (int i = 0; i < count; ++i) {
-        MeshContact &c = contacts[i];
-        const std::vector<int> &t = mesh.faces()[meshIsB ? c.triangleB : c.triangleA];
-        if (!c.face) {
-            // The triangle's feature touching the other shape: its vertices furthest
-            // towards that shape.
-            const Vector3 towards = meshPose.linear().transpose() * (meshIsB ? Vector3(-c.normal) : c.normal);
-            real top = -1e300;
-            for (int k = 0; k < 3; ++k) top = std::max(top, mesh.vertices()[t[k]].dot(towards));
-            bool covered = true;
-            for (int k = 0; k < 3; ++k)
-                if (mesh.vertices()[t[k]].dot(towards) > top - kPointTolerance && !isClaimed(t[k])) covered = false;
-            if (covered) {
-                c.kept = false;
-                continue;
-            }
-        }
-        for (int k = 0; k < 3; ++k)
-            if (!isClaimed(t[k])) claimed[claimedCount++] = t[k];
-    }
-
-    // One manifold per normal: the clipped points of all its triangles, reduced once so
-    // that the points where triangles split a face do not crowd out its corners.
-    int appended = 0;
-    for (int i = 0; i < count; ++i) {
-        if (!contacts[i].kept) continue;
-        const Vector3 normal = contacts[i].normal;
-        PointSet points;
-        for (int j = i; j < count; ++j) {
-            MeshContact &c = contacts[j];
-            if (!c.kept || c.normal.dot(normal) < kMergeCosine) continue;
-            c.kept = false;
-            if (points.count + kMaxClipped > kMaxMerged) {
-                // Rarely many triangles: keep the best four so far and go on.
-                Manifold partial;
-                reduce(points.points, points.count, normal, partial);
-                points.count = 0;
-                for (int k = 0; k < partial.count; ++k)
-                    points.add(partial.points[k].pointA, partial.points[k].pointB, partial.points[k].depth);
-            }
-            // Clipped along the manifold's normal, so that every point's depth is
-            // measured along the normal the manifold reports.
-            const Pair pair{a, poseA, c.triangleA, b, poseB, c.triangleB, speculative};
-            SupportFeature fa, fb;
-            a.supportingFeature(poseA, normal, c.triangleA, fa);
-            b.supportingFeature(poseB, -normal, c.triangleB, fb);
-            clipFeatures(pair, normal, fa, fb, points);
-        }
-        appended += appendReduced(points, normal, out);
-    }
-    return appended;
 }
 
 // The manifold of two convex shapes along `normal` (A to B): their supporting features
@@ -356,13 +242,15 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
         r.triangleB = static_cast<int>(swapped ? contact.b1 : contact.b2);
     }
     const real speculative = std::max(settings.speculativeDistance, settings.reach);
+    const bool withPlane = typeA == ShapeType::Plane || typeB == ShapeType::Plane;
+    if (withMesh && !withPlane)
+        return meshContacts(a, poseA, b, poseB, settings.speculativeDistance, settings.reach, raw, rawCount, out);
     if (rawCount == 0) return withMesh ? 0 : apartContact(a, poseA, b, poseB, settings.reach, out);
 
-    if (typeA == ShapeType::Plane || typeB == ShapeType::Plane) {
+    if (withPlane) {
         const Pair pair{a, poseA, raw[0].triangleA, b, poseB, raw[0].triangleB, speculative};
         return planeContact(pair, typeA == ShapeType::Plane, out);
     }
-    if (withMesh) return meshContacts(a, poseA, b, poseB, settings.speculativeDistance, raw, rawCount, out);
 
     // Convex pairs touch along one normal; FCL's extra box-box points are rebuilt by
     // clipping from its deepest contact.

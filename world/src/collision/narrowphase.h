@@ -31,8 +31,7 @@ struct NarrowphaseSettings {
     real speculativeDistance = 0.02;
     /// Shapes apart by less than this still get a manifold, its points' depths down to
     /// -reach (a speculative contact: the solver lets them close the gap and no more), m,
-    /// >= 0. 0: only shapes that overlap or touch. Meshes get none (continuous collision
-    /// covers them).
+    /// >= 0. 0: only shapes that overlap or touch.
     real reach = 0;
     /// Test every pair with FCL, even the pairs that have a test of their own (box-box,
     /// sphere-sphere, sphere-box, sphere-capsule, capsule-capsule, capsule-box, a plane
@@ -47,8 +46,9 @@ struct NarrowphaseSettings {
 /// solid shape have tests of their own; every other pair goes through FCL's contact test
 /// (GST_LIBCCD, through collideShapes), and so does every pair with `settings.forceFcl`.
 /// Normals point from A to B whatever order FCL used internally; near-zero normals are
-/// dropped. Mesh triangles are one-sided: a shape is pushed out to the side their
-/// counter-clockwise winding faces. A compound is tested child by child (each child pair
+/// dropped. A mesh pushes a shape out to the side of each triangle that Shape::sides
+/// allows (both sides: the side the shape's centre is on), and contacts on its inner
+/// edges take the face normal (mesh_contacts.h). A compound is tested child by child (each child pair
 /// whose boxes, widened by the speculative distance, overlap), and its manifolds name
 /// the children (Manifold::childA, childB). Allocates nothing once `out` has grown, except
 /// inside FCL for box-box pairs forced through it and for meshes.

@@ -49,9 +49,10 @@ Shape Shape::plane(const Vector3 &normal, real offset) {
     return shape;
 }
 
-Shape Shape::mesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles) {
+Shape Shape::mesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles, MeshSides sides) {
     Shape shape;
     shape.type = ShapeType::Mesh;
+    shape.sides = sides;
     shape.vertices = std::move(vertices);
     shape.triangles = std::move(triangles);
     return shape;

@@ -113,7 +113,7 @@ struct WorldSettings {
     /// support without a contact appearing suddenly, m, >= 0. Bodies that move also get
     /// speculative contacts with what they can reach within the step at their speeds
     /// (whatever this distance), so that a landing body stops at the surface in the step
-    /// of the impact; meshes get none (BodySettings::ccd covers them).
+    /// of the impact (meshes too, triangle by triangle).
     real speculativeDistance = 0.02;
     /// Speculative contacts from the bodies' speeds (above): on, a pair that can meet
     /// within the step gets a contact that lets it close the gap and no more; off, only

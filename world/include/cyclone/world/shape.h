@@ -22,6 +22,13 @@ enum class ShapeType {
     Compound,  ///< Shape::compound: convex children, each placed in the body's frame.
 };
 
+/// Which sides of a mesh's triangles collide, and so where its solid lies.
+enum class MeshSides {
+    Both,   ///< Two-sided (the default): a thin surface; a shape is pushed out to the side its centre is on.
+    Front,  ///< One-sided: the solid lies behind the side the counter-clockwise winding faces; shapes are pushed out to the front.
+    Back,   ///< One-sided: the solid lies in front of the counter-clockwise side; shapes are pushed out to the back.
+};
+
 struct CompoundChild;
 
 /// A collision shape in the body's own frame; the body's position is the frame's origin.
@@ -34,6 +41,7 @@ struct Shape {
     real length = 1.0;  ///< Capsule: length of the cylindrical part (>= 0); cylinder: total length (> 0); m, along local z.
     std::vector<Vector3> vertices;               ///< Convex: points whose hull is the shape; mesh: vertices; m.
     std::vector<std::array<int, 3>> triangles;   ///< Mesh: vertex indices of each triangle.
+    MeshSides sides = MeshSides::Both;           ///< Mesh: which sides of its triangles collide.
     Vector3 normal = Vector3::UnitY();           ///< Plane: outward normal (any length > 0).
     real offset = 0;  ///< Plane: the solid is normal.x <= offset with the normal as given (distance offset/|normal| along it), m.
     /// Compound: the children, at least one, each a box, sphere, capsule, cylinder or convex hull.
@@ -58,8 +66,11 @@ struct Shape {
     /// body's origin along the unit normal.
     static Shape plane(const Vector3 &normal, real offset);
     /// A triangle mesh for static bodies (m, finite): each triangle three distinct vertex
-    /// indices of non-zero area, at least one triangle. Both sides of a triangle collide.
-    static Shape mesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles);
+    /// indices of non-zero area, at least one triangle. `sides` says which sides of the
+    /// triangles collide: both by default (a thin surface, whatever the winding), or one,
+    /// with the solid behind it (MeshSides).
+    static Shape mesh(std::vector<Vector3> vertices, std::vector<std::array<int, 3>> triangles,
+                      MeshSides sides = MeshSides::Both);
     /// A body made of convex children (box, sphere, capsule, cylinder or convex; at least
     /// one), each placed in the compound's frame. The children's mass is spread at one
     /// density: the centre of mass and inertia follow from their volumes and places
