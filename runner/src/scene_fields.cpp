@@ -29,6 +29,8 @@ const Names kJointFields = {"name", "type", "a", "b", "anchor", "anchor_b", "axi
                                 "min_distance", "max_distance", "stiffness", "damping", "break_force",
                                 "collide_connected"};
 const Names kMotorFields = {"speed", "max_force"};
+// The joint types without an axis: one given to them is ignored, and said so.
+const Names kJointTypesWithoutAxis = {"ball", "fixed", "distance"};
 
 struct Variant {
     const char *name;  // a shape's type or an event's action
@@ -187,8 +189,12 @@ std::vector<SceneWarning> unknownFields(const json &document) {
     });
     forEach(document, "joints", [&](const json &joint, const std::string &path) {
         checker.check(joint, path, kJointFields);
-        if (joint.is_object() && joint.contains("motor")) {
-            checker.check(joint.at("motor"), memberPath(path, "motor"), kMotorFields);
+        if (!joint.is_object()) return;
+        if (joint.contains("motor")) checker.check(joint.at("motor"), memberPath(path, "motor"), kMotorFields);
+        const auto type = joint.find("type");
+        if (joint.contains("axis") && type != joint.end() && type->is_string() && among(*type, kJointTypesWithoutAxis)) {
+            checker.warnings.push_back({memberPath(path, "axis"), "ignored for a " + type->get<std::string>() +
+                                                                      " joint (only hinge and slider joints have an axis)"});
         }
     });
     forEach(document, "events", [&](const json &event, const std::string &path) { checker.event(event, path); });

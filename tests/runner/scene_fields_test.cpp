@@ -3,6 +3,8 @@
 // Every field of the format's second version is known, used or not.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "runner_test_support.h"
 #include "scene_fields.h"
 #include "scene_loader.h"
@@ -92,6 +94,37 @@ TEST(SceneFields, EveryFieldOfTheContractIsKnown) {
                    {"step": 2, "apply_impulse": "c", "impulse": [0, 1, 0], "point": [6, 1, 0]},
                    {"step": 3, "set_awake": "c", "awake": false}, {"step": 4, "remove_joint": "j"}]})");
     EXPECT_TRUE(warnings.empty()) << warnings.size() << " warnings, the first " << warnings.front().path;
+}
+
+// An axis means something to hinges and sliders only: on a ball, fixed or distance joint
+// it would be dropped without a word, so each one is warned about at its place, and the
+// scene still runs (the contract gives the axis to hinges and sliders; it refuses only
+// what cannot run).
+const char *const kAxisScene = R"({"bodies": [
+    {"name": "p", "shape": {"type": "sphere", "radius": 0.1}, "position": [0, 1, 0]},
+    {"name": "q", "shape": {"type": "sphere", "radius": 0.1}, "position": [0, 2, 0]}],
+  "joints": [
+    {"name": "ball", "type": "ball", "a": "p", "b": null, "anchor": [0, 1.5, 0], "axis": [0, 1, 0]},
+    {"name": "hinge", "type": "hinge", "a": "q", "b": "p", "anchor": [0, 1.5, 0], "axis": [0, 0, 1]},
+    {"name": "fixed", "type": "fixed", "a": "q", "b": "p", "anchor": [0, 1.5, 0], "axis": [1, 0, 0]},
+    {"name": "rope", "type": "distance", "a": "q", "b": null, "anchor": [0, 2, 0], "anchor_b": [0, 3, 0],
+     "axis": [0, 0, 0]}]})";
+
+TEST(SceneFields, AnAxisOnAJointWithoutOneIsWarnedAbout) {
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"joints[0].axis", "ignored for a ball joint (only hinge and slider joints have an axis)"},
+        {"joints[2].axis", "ignored for a fixed joint (only hinge and slider joints have an axis)"},
+        {"joints[3].axis", "ignored for a distance joint (only hinge and slider joints have an axis)"},
+    };
+    EXPECT_EQ(warningsOf(kAxisScene), expected);
+
+    TempDir dir;
+    const std::string scene = dir.file("axis.json");
+    writeText(scene, kAxisScene);
+    const Process p = runWorld({"run", scene, "--steps", "2", "--quiet", "--summary", dir.file("s.json")}, dir);
+    EXPECT_EQ(p.status, 0) << p.err;
+    EXPECT_EQ(p.err.rfind(scene + ": joints[0].axis: ignored for a ball joint", 0), 0u) << p.err;
+    EXPECT_EQ(std::count(p.err.begin(), p.err.end(), '\n'), 3) << p.err;
 }
 
 TEST(SceneFields, CompoundChildrenAreChecked) {

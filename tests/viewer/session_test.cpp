@@ -1,7 +1,8 @@
 // The viewer's Session without a window: scene events at their steps, restart, the mouse's
-// grab spring, the ball shot from the camera and the states that colour bodies.
+// grab (a mouse joint), the ball shot from the camera and the states that colour bodies.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -39,6 +40,8 @@ BodyId bodyNamed(const Session &session, const std::string &name) {
     EXPECT_TRUE(id.has_value()) << name;
     return id.value_or(BodyId());
 }
+
+constexpr real kPiSquared = 9.8696044010893586188;
 
 void runSteps(Session &session, int steps) {
     for (int i = 0; i < steps; ++i) session.singleStep();
@@ -86,7 +89,7 @@ TEST(ViewerSession, AdvanceRunsWholeStepsAndSingleStepExactlyOne) {
     EXPECT_EQ(session.stepper().totalSteps(), before + 1);
 }
 
-TEST(ViewerSession, TheGrabSpringLiftsABodyAndLetsItFall) {
+TEST(ViewerSession, TheGrabLiftsABodyAndLetsItFall) {
     const SceneFile file("grab", kBoxOnGround);
     Session session(file.path());
     const BodyId box = bodyNamed(session, "box");
@@ -97,14 +100,25 @@ TEST(ViewerSession, TheGrabSpringLiftsABodyAndLetsItFall) {
     EXPECT_EQ(session.grabbed()->body, box);
     EXPECT_NEAR(session.grabbed()->target.y(), 1.0, 1e-9) << "held where the ray met the top face";
 
+    const JointId joint = session.grabbed()->joint;
+    ASSERT_TRUE(session.world().contains(joint));
+    EXPECT_EQ(session.world().jointSettings(joint).type, JointType::Mouse);
+
     session.moveGrab(Vector3(0, 3, 0));
     runSteps(session, 180);
-    // Hanging from its top face's centre on a spring of omega 12 rad/s: the spring
-    // stretches g / omega^2 = 0.07 m, so the centre settles near 3 - 0.07 - 0.5 = 2.43 m.
-    EXPECT_NEAR(session.world().body(box).getPosition().y(), 2.43, 0.1);
+    // Hanging from its top face's centre on the grab's pull of 5 Hz (omega = 10 pi rad/s,
+    // the stiffness m omega^2): the pull stretches g / omega^2 = 9.9 mm under the weight,
+    // so the centre settles at 3 - 0.0099 - 0.5 = 2.4901 m (the oscillation, damped at
+    // zeta omega = 22 /s, is gone after 3 s).
+    EXPECT_NEAR(session.world().body(box).getPosition().y(), 3 - 9.81 / (100 * kPiSquared) - 0.5, 1e-4);
+    EXPECT_NEAR(session.world().body(box).getPosition().x(), 0, 1e-6);
+
+    session.moveGrab(Vector3(0, std::nan(""), 0));  // refused by the World: the target stays
+    EXPECT_EQ(session.grabbed()->target, Vector3(0, 3, 0));
 
     session.release();
     EXPECT_FALSE(session.grabbed().has_value());
+    EXPECT_FALSE(session.world().contains(joint));
     runSteps(session, 120);
     EXPECT_NEAR(session.world().body(box).getPosition().y(), 0.5, 0.02) << "fell back to the ground";
 }

@@ -14,10 +14,12 @@ namespace cyclone::viewer {
 
 namespace {
 
-// The grab spring pulls like a critically damped oscillator of this angular frequency
-// (rad/s) whatever the mass held: stiff enough to lift a box, soft enough for the
-// explicit spring integration (omega h well below 2 at 4 sub-steps of 1/60 s).
-constexpr real kGrabOmega = 12;
+// The grab's mouse joint pulls at this frequency (Hz) and damping ratio whatever the mass
+// held (JointPull), with at most this many times the held body's weight: enough to lift
+// a ragdoll by its hand, not enough to fling a light body through a wall.
+constexpr real kGrabFrequency = 5;
+constexpr real kGrabDampingRatio = 0.7;
+constexpr real kGrabWeights = 100;
 
 std::string readFile(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
@@ -52,7 +54,6 @@ Session::Session(const std::string &path) : path_(path) {
 void Session::build() {
     stepper_.reset();
     grab_.reset();
-    grabSpring_.reset();
     built_ = std::make_unique<scene::SceneWorld>(scene::buildWorld(scene_));
     FixedStepSettings steps;
     steps.stepSeconds = scene_.dt;
@@ -85,26 +86,8 @@ void Session::applyEvents(std::int64_t step) {
     }
 }
 
-void Session::updateGrabSpring() {
-    if (grabSpring_) world().removeSpring(*grabSpring_);
-    grabSpring_.reset();
-    if (!grab_) return;
-    const real mass = world().body(grab_->body).getMass();
-    SpringSettings spring;
-    spring.a = grab_->body;
-    spring.aPoint = grab_->localPoint;
-    spring.bPoint = grab_->target;
-    spring.stiffness = mass * kGrabOmega * kGrabOmega;
-    spring.damping = 2 * mass * kGrabOmega;
-    spring.restLength = 0;
-    grabSpring_ = world().addSpring(spring);
-}
-
 int Session::advance(real frameSeconds) {
-    return stepper_->advance(frameSeconds, [&](real) {
-        applyEvents(static_cast<std::int64_t>(stepper_->totalSteps()));
-        updateGrabSpring();
-    });
+    return stepper_->advance(frameSeconds, [&](real) { applyEvents(static_cast<std::int64_t>(stepper_->totalSteps())); });
 }
 
 void Session::singleStep() {
@@ -122,17 +105,34 @@ bool Session::grab(const Vector3 &origin, const Vector3 &direction) {
     held.body = hit->body;
     held.localPoint = world().body(hit->body).getPointInLocalSpace(hit->point);
     held.target = hit->point;
+    JointSettings mouse;
+    mouse.type = JointType::Mouse;
+    mouse.a = hit->body;
+    mouse.anchor = hit->point;
+    JointPull pull;
+    pull.frequency = kGrabFrequency;
+    pull.dampingRatio = kGrabDampingRatio;
+    pull.maxForce = kGrabWeights * world().body(hit->body).getMass() * world().settings().gravity.norm();
+    // Without gravity, a weight means nothing: the pull is then unbounded.
+    if (!(pull.maxForce > 0)) pull.maxForce = std::numeric_limits<real>::infinity();
+    mouse.pull = pull;
+    held.joint = world().addJoint(mouse);
     grab_ = held;
     return true;
 }
 
 void Session::moveGrab(const Vector3 &target) {
-    if (grab_ && target.allFinite()) grab_->target = target;
+    if (!grab_ || !world().contains(grab_->joint)) return;
+    try {
+        world().setMouseTarget(grab_->joint, target);
+        grab_->target = target;
+    } catch (const InvalidArgument &) {
+        // A cursor ray gone far or non-finite: the target stays where it was.
+    }
 }
 
 void Session::release() {
-    if (grabSpring_ && world().contains(grab_->body)) world().removeSpring(*grabSpring_);
-    grabSpring_.reset();
+    if (grab_ && world().contains(grab_->joint)) world().removeJoint(grab_->joint);
     grab_.reset();
 }
 

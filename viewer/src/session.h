@@ -1,6 +1,6 @@
 // A scene being watched: the scene file, its World and the FixedStepper that runs it live,
 // with the scene's scripted events, and what the user does to it (restart, drag a body
-// with a spring, shoot a ball). No window or GL here: tests use it as it is.
+// with a mouse joint, shoot a ball). No window or GL here: tests use it as it is.
 #pragma once
 
 #include <cstdint>
@@ -26,10 +26,12 @@ enum class BodyState {
     Sensor,     ///< Reports what overlaps it, pushes nothing (whatever its motion).
 };
 
-/// A body held by the mouse: a spring from a point of the body to a world point that the
-/// cursor moves.
+/// A body held by the mouse: a mouse joint (JointType::Mouse) pulls a point of the body
+/// to a world point that the cursor moves.
 struct Grab {
     BodyId body;
+    /// The mouse joint that pulls it.
+    JointId joint;
     /// The point held, in the body's space, m.
     Vector3 localPoint = Vector3::Zero();
     /// Where the cursor pulls it, world space, m.
@@ -66,9 +68,8 @@ public:
     void restart();
 
     /// Runs the steps that `frameSeconds` of simulated time complete (FixedStepper::advance),
-    /// applying the scene's events due at each step and the grab's spring. Returns the
-    /// number of steps run. An event the World refuses is skipped and kept in
-    /// lastProblem().
+    /// applying the scene's events due at each step. Returns the number of steps run. An
+    /// event the World refuses is skipped and kept in lastProblem().
     int advance(real frameSeconds);
     /// Runs exactly one step.
     void singleStep();
@@ -80,9 +81,9 @@ public:
     void setSettings(const WorldSettings &settings);
 
     /// Holds the dynamic body the ray from `origin` along `direction` meets first, at the
-    /// point met; returns false (nothing held) when it meets none.
+    /// point met, with a mouse joint; returns false (nothing held) when it meets none.
     bool grab(const Vector3 &origin, const Vector3 &direction);
-    /// Moves the point the held body is pulled to, m.
+    /// Moves the point the held body is pulled to (World::setMouseTarget), m.
     void moveGrab(const Vector3 &target);
     /// Lets the held body go.
     void release();
@@ -94,8 +95,8 @@ public:
 
     /// The state a body's colour shows.
     BodyState state(BodyId id) const;
-    /// The scene's springs whose bodies are all still in the World, as world-space end
-    /// points (pairs), for drawing.
+    /// The scene's springs whose bodies are all still in the World, and the grab's pull
+    /// from the held point to its target, as world-space end points (pairs), for drawing.
     std::vector<Vector3> springLines() const;
     /// The last thing that went wrong while running (a refused event), or "".
     const std::string &lastProblem() const { return problem_; }
@@ -103,7 +104,6 @@ public:
 private:
     void build();
     void applyEvents(std::int64_t step);
-    void updateGrabSpring();
 
     std::string path_;
     scene::Scene scene_;
@@ -113,7 +113,6 @@ private:
     std::size_t nextEvent_ = 0;
     std::vector<bool> present_;            ///< By scene body: not removed by an event.
     std::optional<Grab> grab_;
-    std::optional<SpringId> grabSpring_;
     std::string problem_;
 };
 

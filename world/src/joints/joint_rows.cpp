@@ -140,7 +140,8 @@ void JointSet::measure(const BodyStore &bodies, const JointRecord &j, real *erro
     *position = 0;
     switch (j.settings.type) {
         case JointType::Ball:
-        case JointType::Fixed: *error = gap.norm(); break;
+        case JointType::Fixed:
+        case JointType::Mouse: *error = gap.norm(); break;
         case JointType::Hinge:
             *error = gap.norm();
             *position = hingeAngle(f, j);
@@ -166,6 +167,7 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
     rows_.clear();
     equality_.clear();
     bounded_.clear();
+    pulls_.clear();
     for (std::uint32_t index = 0; index < records.size(); ++index) {
         const JointRecord &j = records[index];
         if (!j.alive) continue;
@@ -257,10 +259,31 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
                 }
                 break;
             }
+            case JointType::Mouse: {
+                // A spring only: nothing to project.
+                if (positions) break;
+                const real maxImpulse = s.pull.value_or(JointPull()).maxForce * h;
+                for (int k = 0; k < 3; ++k) {
+                    JointRow &r = make.linear(k, Vector3::Unit(k));
+                    r.bound = RowBound::Pull;
+                    r.soft = true;
+                    r.maxImpulse = maxImpulse;
+                }
+                break;
+            }
         }
         // Effective masses, softness, M^-1 J^T.
         const SolverBody &sa = solverBodies[a];
         const SolverBody &sb = solverBodies[b];
+        real stiffness = s.stiffness;
+        real damping = s.damping;
+        if (s.type == JointType::Mouse && sa.invMass > 0) {
+            const JointPull pull = s.pull.value_or(JointPull());
+            const real mass = 1 / sa.invMass;
+            const real omega = 2 * M_PI * pull.frequency;
+            stiffness = mass * omega * omega;
+            damping = 2 * mass * pull.dampingRatio * omega;
+        }
         for (std::size_t k = first; k < rows_.size(); ++k) {
             JointRow &r = rows_[k];
             r.mLinA = sa.invMass * r.linA;
@@ -270,8 +293,8 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
             const real k0 = r.linA.dot(r.mLinA) + r.angA.dot(r.mAngA) + r.linB.dot(r.mLinB) + r.angB.dot(r.mAngB);
             if (r.soft) {
                 // Catto's soft constraint: the spring and damper over a sub-step, implicitly.
-                const real hk = h * s.stiffness;
-                const real denominator = h * (s.damping + hk);
+                const real hk = h * stiffness;
+                const real denominator = h * (damping + hk);
                 r.gamma = denominator > 0 ? 1 / denominator : 0;
                 r.bias = r.error * hk * r.gamma;
             }
@@ -282,7 +305,8 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
             if (!r.soft && r.bound == RowBound::Upper) r.bias = std::min(r.error, real(0)) / h;
             if (!positions && settings.warmStarting) r.impulse = j.impulse[r.slot];
             if (positions || r.bound == RowBound::Equality) equality_.push_back(static_cast<int>(k));
-            else bounded_.push_back(static_cast<int>(k));
+            else if (r.bound != RowBound::Pull) bounded_.push_back(static_cast<int>(k));
+            else if (r.slot == 0) pulls_.push_back({static_cast<int>(k), Matrix3::Zero()});
         }
     }
 }

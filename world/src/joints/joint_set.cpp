@@ -57,7 +57,8 @@ JointId JointSet::add(const BodyStore &bodies, const JointSettings &s) {
     j.alive = true;
     j.settings = s;
     const RigidBody &a = bodies[s.a.index].body;
-    const Vector3 anchorB = s.type == JointType::Distance && s.anchorB ? *s.anchorB : s.anchor;
+    const bool twoPoints = s.type == JointType::Distance || s.type == JointType::Mouse;
+    const Vector3 anchorB = twoPoints && s.anchorB ? *s.anchorB : s.anchor;
     j.localA = a.getPointInLocalSpace(s.anchor);
     j.axisA = a.getDirectionInLocalSpace(s.axis);
     Quaternion qb = Quaternion::Identity();
@@ -165,29 +166,53 @@ void JointSet::factorise(const std::vector<SolverBody> &solverBodies) {
 // back part of what it did: a door's limit row alone sees the door's inertia about its
 // centre, but the hinge makes it turn about its edge. Its mass is therefore the one it has
 // with the equality rows held, 1 / (k_bb - k_be K^-1 k_eb) (the Schur complement), with
-// which one pass stops a limit exactly.
+// which one pass stops a limit exactly. A pull block's 3x3 mass is held the same way.
 void JointSet::constrainBoundedMasses(const std::vector<SolverBody> &solverBodies) {
-    const int n = static_cast<int>(equality_.size());
-    if (n == 0 || !factorised_ || bounded_.empty()) return;
+    const bool held = !equality_.empty() && factorised_;
     for (const int k : bounded_) {
         JointRow &r = rows_[k];
-        rhs_.setZero(n);
-        bool coupled = false;
-        for (int side = 0; side < 2; ++side) {
-            const int body = side == 0 ? r.a : r.b;
-            if (body == 0 || !(solverBodies[body].invMass > 0)) continue;
-            for (const int e : rowsOfBody_[body]) {
-                rhs_[e / 2] += coupling(rows_[equality_[e / 2]], e % 2, r, side);
-                coupled = true;
-            }
-        }
-        if (!coupled) continue;
+        if (!held || !solveCoupling(solverBodies, r)) continue;
         const real k0 = r.mass > 0 ? 1 / r.mass - r.gamma : 0;
-        delta_ = ldlt_.solve(rhs_);
-        const real held = k0 - rhs_.dot(delta_);
-        // A row the equality rows fix entirely (held ~ 0) keeps its free mass.
-        if (held > 1e-9 * k0 && std::isfinite(held)) r.mass = 1 / (held + r.gamma);
+        const real schur = k0 - rhs_.dot(delta_);
+        // A row the equality rows fix entirely (schur ~ 0) keeps its free mass.
+        if (schur > 1e-9 * k0 && std::isfinite(schur)) r.mass = 1 / (schur + r.gamma);
     }
+    for (PullBlock &p : pulls_) {
+        const JointRow *r = &rows_[p.row];
+        Matrix3 k;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) k(i, j) = coupling(r[i], 0, r[j], 0);
+        if (held) {
+            // The rows' couplings to the equality rows, and K^-1 of them, column by column.
+            Eigen::Matrix<real, Eigen::Dynamic, 3> coupled(equality_.size(), 3), solved(equality_.size(), 3);
+            bool any = false;
+            for (int i = 0; i < 3; ++i) {
+                any = solveCoupling(solverBodies, r[i]) || any;
+                coupled.col(i) = rhs_;
+                solved.col(i) = delta_;
+            }
+            const Matrix3 schur = k - coupled.transpose() * solved;
+            if (any && schur.allFinite() && schur.trace() > 1e-9 * k.trace()) k = schur;
+        }
+        k.diagonal().array() += r[0].gamma;
+        p.mass = k.inverse();
+    }
+}
+
+bool JointSet::solveCoupling(const std::vector<SolverBody> &solverBodies, const JointRow &r) {
+    rhs_.setZero(static_cast<Eigen::Index>(equality_.size()));
+    bool coupled = false;
+    for (int side = 0; side < 2; ++side) {
+        const int body = side == 0 ? r.a : r.b;
+        if (body == 0 || !(solverBodies[body].invMass > 0)) continue;
+        for (const int e : rowsOfBody_[body]) {
+            rhs_[e / 2] += coupling(rows_[equality_[e / 2]], e % 2, r, side);
+            coupled = true;
+        }
+    }
+    if (coupled) delta_ = ldlt_.solve(rhs_);
+    else delta_.setZero(rhs_.size());
+    return coupled;
 }
 
 void JointSet::warmStart(std::vector<SolverBody> &solverBodies) const {
@@ -209,6 +234,7 @@ void JointSet::solveVelocities(std::vector<SolverBody> &solverBodies) {
         }
         apply(r, r.impulse - old, solverBodies);
     }
+    if (!pulls_.empty()) solvePulls(solverBodies);
     const int n = static_cast<int>(equality_.size());
     if (n == 0) return;
     if (!factorised_) {
@@ -228,6 +254,27 @@ void JointSet::solveVelocities(std::vector<SolverBody> &solverBodies) {
         if (!std::isfinite(delta_[i])) continue;
         r.impulse += delta_[i];
         apply(r, delta_[i], solverBodies);
+    }
+}
+
+// Catto's soft step for the three rows at once: the impulse that makes J v + bias +
+// gamma lambda vanish, the accumulated impulse's length then clamped to maxForce h (so the
+// pull's force is bounded whatever its direction, not component by component).
+void JointSet::solvePulls(std::vector<SolverBody> &solverBodies) {
+    for (const PullBlock &p : pulls_) {
+        JointRow *r = &rows_[p.row];
+        Vector3 old, residual;
+        for (int i = 0; i < 3; ++i) {
+            old[i] = r[i].impulse;
+            residual[i] = rate(r[i], solverBodies) + r[i].bias + r[i].gamma * old[i];
+        }
+        Vector3 impulse = old - p.mass * residual;
+        const real length = impulse.norm();
+        if (length > r[0].maxImpulse) impulse *= r[0].maxImpulse / length;
+        for (int i = 0; i < 3; ++i) {
+            r[i].impulse = impulse[i];
+            apply(r[i], impulse[i] - old[i], solverBodies);
+        }
     }
 }
 

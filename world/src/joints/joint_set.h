@@ -13,6 +13,9 @@
 // impulses. Drift is removed after each sub-step's integration by a Newton projection of
 // the positions onto the equality rows (and the violated limits), with the same
 // factorisation at the new poses: it moves positions only, so it adds no kinetic energy.
+// A mouse joint's three rows are a soft spring bounded as a whole (the length of their
+// impulse): they are solved together, as one 3x3 block, between the bounded rows and the
+// direct block.
 #pragma once
 
 #include <Eigen/SparseCholesky>
@@ -61,6 +64,7 @@ enum class RowBound : std::uint8_t {
     Lower,     ///< >= 0: keeps the value above a lower limit.
     Upper,     ///< <= 0: keeps the value below an upper limit.
     Motor,     ///< |impulse| <= maxImpulse: drives the rate to `target`.
+    Pull,      ///< One of a mouse joint's three soft rows, whose impulse's length is <= maxImpulse.
 };
 
 /// One scalar constraint row of a joint during a sub-step.
@@ -77,7 +81,7 @@ struct JointRow {
     Vector3 mLinB = Vector3::Zero(), mAngB = Vector3::Zero();
     real error = 0;        ///< C: the constraint's position error (value - limit), m or rad.
     real target = 0;       ///< Motor rows: the rate the motor drives to.
-    real maxImpulse = 0;   ///< Motor rows: largest |impulse| per sub-step, N s.
+    real maxImpulse = 0;   ///< Motor and pull rows: largest |impulse| per sub-step, N s.
     real mass = 0;         ///< 1 / (J M^-1 J^T + gamma), kg.
     real gamma = 0;        ///< Soft rows: the softness (Catto's), 1/kg.
     real bias = 0;         ///< Soft rows: the spring's velocity bias, m/s.
@@ -138,13 +142,25 @@ private:
     void makeRows(const WorldState &world, const std::vector<SolverBody> &solverBodies, real h, bool positions);
     /// Factorises J M^-1 J^T of the equality rows (equality_).
     void factorise(const std::vector<SolverBody> &solverBodies);
-    /// Gives each bounded row its effective mass with the equality rows held.
+    /// Gives each bounded row and pull block its effective mass with the equality rows held.
     void constrainBoundedMasses(const std::vector<SolverBody> &solverBodies);
+    /// K^-1 k_e,row into delta_ (k_e,row: the row's couplings to the equality rows, into
+    /// rhs_); false when the row shares no body with them.
+    bool solveCoupling(const std::vector<SolverBody> &solverBodies, const JointRow &row);
+    /// One velocity pass over the pull blocks.
+    void solvePulls(std::vector<SolverBody> &solverBodies);
+
+    /// A mouse joint's three rows during a sub-step, solved as one block.
+    struct PullBlock {
+        int row = 0;                     ///< The first of its three consecutive rows.
+        Matrix3 mass = Matrix3::Zero();  ///< (K + gamma)^-1 of the three, the equality rows held, kg.
+    };
 
     std::unordered_map<std::uint64_t, int> excluded_;  ///< Joined pairs that do not collide: joints per pair.
     std::vector<JointRow> rows_;
     std::vector<int> equality_;            ///< Rows of the direct block, in row order.
-    std::vector<int> bounded_;             ///< The other rows, in row order.
+    std::vector<int> bounded_;             ///< The other rows but the pulls', in row order.
+    std::vector<PullBlock> pulls_;         ///< Mouse joints' rows, in row order.
     std::vector<Vector3> moves_;           ///< Scratch of correctPositions: each solver body's move and turn.
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<real>> ldlt_;
     bool factorised_ = false;

@@ -15,6 +15,7 @@ const char *typeName(JointType type) {
         case JointType::Fixed: return "Fixed";
         case JointType::Slider: return "Slider";
         case JointType::Distance: return "Distance";
+        case JointType::Mouse: return "Mouse";
     }
     return "?";
 }
@@ -28,7 +29,7 @@ void requireThreshold(const char *function, const char *field, real value) {
 Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
     static const char *function = "World::addJoint";
     if (s.type != JointType::Ball && s.type != JointType::Hinge && s.type != JointType::Fixed &&
-        s.type != JointType::Slider && s.type != JointType::Distance)
+        s.type != JointType::Slider && s.type != JointType::Distance && s.type != JointType::Mouse)
         detail::refuse(function, "type", "is not a JointType, got " + std::to_string(static_cast<int>(s.type)));
     const std::string type = typeName(s.type);
     const detail::BodyRecord &a = w.bodies.record(s.a, function);
@@ -39,9 +40,26 @@ Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
     detail::requirePlace(function, "anchor", s.anchor);
     const bool axial = s.type == JointType::Hinge || s.type == JointType::Slider;
     const bool distance = s.type == JointType::Distance;
+    const bool mouse = s.type == JointType::Mouse;
     if (s.anchorB) {
-        if (!distance) detail::refuse(function, "anchorB", "only distance joints have a second anchor (" + type + " joint)");
+        if (!distance && !mouse)
+            detail::refuse(function, "anchorB",
+                           "only distance joints (the second anchor) and mouse joints (the target) have it (" + type + " joint)");
         detail::requirePlace(function, "anchorB", *s.anchorB);
+    }
+    if (mouse) {
+        if (s.b) detail::refuse(function, "b", "must be empty: a mouse joint pulls a towards a world point");
+        if (a.immovable) detail::refuse(function, "a", "must be dynamic: a mouse joint pulls it");
+    }
+    if (s.pull) {
+        if (!mouse) detail::refuse(function, "pull", "only mouse joints have it (" + type + " joint)");
+        const JointPull &p = *s.pull;
+        if (!(p.frequency > 0) || !std::isfinite(p.frequency))
+            detail::refuse(function, "pull.frequency", "must be finite and > 0, got " + detail::show(p.frequency));
+        if (!(p.dampingRatio >= 0) || !std::isfinite(p.dampingRatio))
+            detail::refuse(function, "pull.dampingRatio", "must be finite and >= 0, got " + detail::show(p.dampingRatio));
+        if (!(p.maxForce > 0))
+            detail::refuse(function, "pull.maxForce", "must be > 0 (infinity: no limit), got " + detail::show(p.maxForce));
     }
     Vector3 axis = s.axis;
     if (axial) {
@@ -153,6 +171,18 @@ void World::setMotorSpeed(JointId id, real speed) {
     if (!j.settings.motor) detail::refuse(function, "id", "names a joint without a motor");
     if (!std::isfinite(speed)) detail::refuse(function, "speed", "must be finite, got " + detail::show(speed));
     j.settings.motor->speed = speed;
+    wakeJoined(w, j.settings.a, j.settings.b);
+}
+
+void World::setMouseTarget(JointId id, const Vector3 &target) {
+    static const char *function = "World::setMouseTarget";
+    Impl &w = *impl_;
+    detail::JointRecord &j = jointRecord(w, id, function);
+    if (j.settings.type != JointType::Mouse) detail::refuse(function, "id", "names a joint that is not a mouse joint");
+    detail::requirePlace(function, "target", target);
+    if (j.localB == target) return;
+    j.localB = target;
+    j.settings.anchorB = target;
     wakeJoined(w, j.settings.a, j.settings.b);
 }
 

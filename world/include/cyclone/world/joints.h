@@ -1,6 +1,7 @@
 /// \file
 /// Joints: ball-and-socket, hinge, fixed, slider and distance constraints between two
-/// bodies, or a body and the world, solved with the contacts (World::addJoint).
+/// bodies, or a body and the world, and the mouse joint that drags a body to a moving
+/// point, solved with the contacts (World::addJoint).
 #pragma once
 
 #include <cstdint>
@@ -24,6 +25,10 @@ enum class JointType {
     Slider,
     /// The anchors stay between `minDistance` and `maxDistance` apart (a rope, or a rod when equal).
     Distance,
+    /// a's anchor is pulled towards a world point, the target, which the caller moves
+    /// (World::setMouseTarget), by a damped spring whose force is at most
+    /// `JointPull::maxForce`: how a mouse drags a body. Only a: `b` must be empty.
+    Mouse,
 };
 
 /// A hinge's angle or a slider's offset range, from the pose at creation.
@@ -43,6 +48,19 @@ struct JointMotor {
     real maxForce = 0;
 };
 
+/// How a mouse joint pulls its anchor to the target: as a damped spring of frequency
+/// `frequency` would pull a body of a's mass held at its centre of mass (stiffness
+/// m (2 pi f)^2, damping 2 m zeta (2 pi f)), its force clamped to `maxForce`. The spring
+/// is solved implicitly, so no frequency is too stiff for the step.
+struct JointPull {
+    /// Natural frequency, Hz, finite, > 0.
+    real frequency = 5;
+    /// Damping ratio, finite, >= 0 (1: critical, no overshoot; 0: none).
+    real dampingRatio = 0.7;
+    /// Largest force of the pull, N, > 0 (infinity: no limit).
+    real maxForce = std::numeric_limits<real>::infinity();
+};
+
 /// What World::addJoint needs. Positions and the axis are world space at creation: each
 /// body keeps them in its own frame from then on.
 ///
@@ -52,15 +70,16 @@ struct JointMotor {
 struct JointSettings {
     /// What the joint keeps.
     JointType type = JointType::Ball;
-    /// First body; dynamic or kinematic or static, but one of the two must be dynamic.
+    /// First body; dynamic or kinematic or static, but one of the two must be dynamic
+    /// (mouse joints: `a` is).
     BodyId a;
-    /// Second body, different from `a`; empty joins `a` to the world.
+    /// Second body, different from `a`; empty joins `a` to the world (mouse joints: empty).
     std::optional<BodyId> b;
     /// Where the joint sits, world space at creation, m (finite, within 1e30 m of the
     /// origin). Distance joints: the anchor on `a`.
     Vector3 anchor = Vector3::Zero();
-    /// Distance joints only: the anchor on `b` (or in the world), world space at
-    /// creation, m; empty means `anchor`.
+    /// Distance joints: the anchor on `b` (or in the world), world space at creation, m;
+    /// mouse joints: the target, world space, m. Empty means `anchor`. Other types have none.
     std::optional<Vector3> anchorB;
     /// Hinge and slider: the axis, world space at creation, finite, not zero (normalised).
     Vector3 axis = Vector3::UnitY();
@@ -79,6 +98,9 @@ struct JointSettings {
     real stiffness = 0;
     /// Distance joints with stiffness: damping of that spring, N s/m, finite, >= 0.
     real damping = 0;
+    /// Mouse joints: how the anchor is pulled; empty means JointPull's defaults. Other
+    /// types have none.
+    std::optional<JointPull> pull;
     /// The joint breaks (is removed and reported in WorldEvents::jointsBroken) in a step
     /// whose mean force exceeds this, N, > 0 (infinity: never).
     real breakForce = std::numeric_limits<real>::infinity();
@@ -110,7 +132,7 @@ struct JointState {
     Vector3 torque = Vector3::Zero();
     /// How far the joint is from what it keeps now, m: the gap between the anchors (ball,
     /// hinge, fixed), their distance across the axis (slider), or how far their distance
-    /// is outside [min, max] (distance).
+    /// is outside [min, max] (distance), or the anchor's distance from the target (mouse).
     real error = 0;
     /// Hinge: a's angle about the axis relative to b since creation, rad, in (-pi, pi];
     /// slider: a's offset along the axis, m; others: 0.

@@ -10,8 +10,8 @@
 /// its velocity (setVelocity, setRotation) or applies a force, torque or impulse
 /// (applyImpulse, addForce, addForceAtPoint, addTorque) wakes it and its sleeping island;
 /// so do setAwake(id, true), setCanSleep(id, false), setSettings (every body), adding a
-/// spring or a joint (its bodies), setting a joint's motor speed (its bodies), and
-/// removing a spring, a joint or a body (the bodies it joined or touched);
+/// spring or a joint (its bodies), setting a joint's motor speed or a new mouse target
+/// (its bodies), and removing a spring, a joint or a body (the bodies it joined or touched);
 /// setCollisionFilter and setPairCollision wake as they say. Sensors wake nothing.
 /// During a step, an awake body that touches a sleeping one, or is joined to it by a
 /// spring or a joint, wakes it (and its island) from the next step on; a joint that
@@ -226,6 +226,10 @@ public:
     /// wakes the joint's dynamic bodies. Throws InvalidArgument on a stale handle, a joint
     /// without a motor, or a non-finite speed.
     void setMotorSpeed(JointId id, real speed);
+    /// Moves a mouse joint's target (world space, m, finite, within 1e30 m of the origin);
+    /// a new target wakes the body it pulls. Throws InvalidArgument on a stale handle, a
+    /// joint that is not a mouse joint, or a target out of range.
+    void setMouseTarget(JointId id, const Vector3 &target);
 
     // --- Stepping -----------------------------------------------------------------------
 
