@@ -20,11 +20,11 @@ bool sameBits(const V &x, const V &y) {
 
 // Every shape type on a mesh floor: a stack of boxes, a pile of mixed shapes thrown in
 // with spin, a spring, and a ball that falls on a sleeping stack later.
-struct Scene {
+struct DeterminismScene {
     World world;
     std::vector<BodyId> ids;
 
-    Scene() {
+    DeterminismScene() {
         BodySettings floor;
         floor.isStatic = true;
         floor.shape = Shape::mesh({Vector3(-20, 0, -20), Vector3(20, 0, -20), Vector3(20, 0, 20), Vector3(-20, 0, 20)},
@@ -78,7 +78,7 @@ struct Scene {
     }
 };
 
-::testing::AssertionResult sameState(const Scene &x, const Scene &y) {
+::testing::AssertionResult sameState(const DeterminismScene &x, const DeterminismScene &y) {
     if (x.ids.size() != y.ids.size()) return ::testing::AssertionFailure() << "different body counts";
     for (std::size_t i = 0; i < x.ids.size(); ++i) {
         const RigidBody &a = x.world.body(x.ids[i]);
@@ -108,7 +108,7 @@ struct Scene {
 }
 
 TEST(Determinism, TwoWorldsSteppedInTurnsAreBitIdentical) {
-    Scene x, y;
+    DeterminismScene x, y;
     int begins = 0, sleeps = 0, wakes = 0;
     for (int i = 0; i < 480; ++i) {
         x.step(i);
@@ -128,7 +128,7 @@ TEST(Determinism, TwoWorldsSteppedInTurnsAreBitIdentical) {
 TEST(Determinism, AWorldBuiltLaterRunsTheSame) {
     std::vector<std::vector<real>> first;
     auto run = [](std::vector<std::vector<real>> *record, const std::vector<std::vector<real>> *check) {
-        Scene s;
+        DeterminismScene s;
         for (int i = 0; i < 300; ++i) {
             s.step(i);
             std::vector<real> state;

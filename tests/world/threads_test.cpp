@@ -26,11 +26,11 @@ bool sameBits(const RigidBody &x, const RigidBody &y) {
 
 // A 16-box-wide pyramid (136 boxes, some 270 manifolds), with spheres, capsules and boxes
 // thrown onto it with spin and a spring on one of them; sleep on.
-struct Scene {
+struct ThreadedScene {
     std::unique_ptr<World> world;
     std::vector<BodyId> ids;
 
-    explicit Scene(int threads) {
+    explicit ThreadedScene(int threads) {
         WorldSettings settings;
         settings.threads = threads;
         world = std::make_unique<World>(settings);
@@ -68,7 +68,7 @@ struct Scene {
     }
 };
 
-::testing::AssertionResult sameState(const Scene &x, const Scene &y) {
+::testing::AssertionResult sameState(const ThreadedScene &x, const ThreadedScene &y) {
     for (std::size_t i = 0; i < x.ids.size(); ++i)
         if (!sameBits(x.world->body(x.ids[i]), y.world->body(y.ids[i])))
             return ::testing::AssertionFailure() << "body " << i << " differs";
@@ -76,7 +76,7 @@ struct Scene {
 }
 
 TEST(Threads, OneTwoAndThreeThreadsGiveBitIdenticalStates) {
-    Scene one(1), two(2), three(3);
+    ThreadedScene one(1), two(2), three(3);
     int mostManifolds = 0;
     for (int i = 0; i < 240; ++i) {
         one.world->step(kDt);
@@ -91,7 +91,7 @@ TEST(Threads, OneTwoAndThreeThreadsGiveBitIdenticalStates) {
 }
 
 TEST(Threads, ChangingTheCountBetweenStepsChangesNothing) {
-    Scene fixed(1), changed(1);
+    ThreadedScene fixed(1), changed(1);
     const int counts[] = {2, 1, 4, 2};
     for (int i = 0; i < 160; ++i) {
         if (i % 40 == 0) {

@@ -15,6 +15,7 @@ inline constexpr double kDt = 1.0 / 60.0;
 /// Standard gravity, m/s^2 (the World's default gravity is (0, -kG, 0)).
 inline constexpr double kG = 9.81;
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The default settings with sleep off: what a test of per-step work wants.
 inline WorldSettings noSleep() {

@@ -168,7 +168,7 @@ TEST(Hinge, MotorLimitedByItsTorqueAcceleratesAtTorqueOverInertia) {
 // 0.1 s on, while the arm rises to 1.5 rad (gravity's torque falling from 9.81 N m to
 // 9.81 cos 1.5 = 0.7 N m), its speed about the hinge stays within 1 % of 1 rad/s.
 TEST(Hinge, MotorHoldsItsSpeedAgainstALoadWithinOnePercent) {
-    World world(awake());
+    World world(noSleep());
     const BodyId arm = addBox(world, Vector3(0.5, 5, 0), Vector3(0.5, 0.05, 0.05), 2);
     JointSettings j;
     j.type = JointType::Hinge;
@@ -237,7 +237,7 @@ TEST(Slider, MotorReachesItsSpeed) {
 // reached after 1 / 10.2 = 0.098 s; from 0.1 s on it stays within 1 % of 1 m/s, and
 // after 1 s the box has risen 1 m less the 0.098 / 2 = 0.049 m the acceleration lost.
 TEST(Slider, MotorHoldsItsSpeedAgainstGravityWithinOnePercent) {
-    World world(awake());
+    World world(noSleep());
     const BodyId box = addBox(world, Vector3(0, 3, 0), Vector3(0.2, 0.2, 0.2), 5);
     JointSettings j;
     j.type = JointType::Slider;

@@ -39,7 +39,6 @@ struct KinematicScene {
     }
 };
 
-const real kInf = std::numeric_limits<real>::infinity();
 
 QueryFilter only(bool kinematic, bool dynamic, bool statics) {
     QueryFilter filter;

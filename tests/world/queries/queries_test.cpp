@@ -7,7 +7,6 @@
 namespace cyclone::test {
 namespace {
 
-const double kInf = std::numeric_limits<double>::infinity();
 
 Quaternion about(const Vector3 &axis, double degrees) {
     return Quaternion(Eigen::AngleAxis<real>(degrees * kPi / 180, axis.normalized()));

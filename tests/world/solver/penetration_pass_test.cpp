@@ -22,7 +22,7 @@ constexpr real kSlop = 0.005;
 constexpr real kRate = 12;  // penetrationRecovery 0.2 at 60 Hz, per second
 
 // The bodies, manifolds and frames of a scene, and one group of its manifolds.
-struct Scene {
+struct PenetrationScene {
     std::vector<SolverBody> bodies{1};
     std::vector<SolverManifold> manifolds;
     std::vector<detail::DepthFrame> frames;
@@ -58,8 +58,8 @@ struct Scene {
 };
 
 // A cube on the world, points `depth0` and `depth1` deep, alone in its group.
-Scene cubeOnWorld(real depth0, real depth1) {
-    Scene s;
+PenetrationScene cubeOnWorld(real depth0, real depth1) {
+    PenetrationScene s;
     s.addCube(0, depth0, depth1);
     s.group({0});
     return s;
@@ -67,8 +67,8 @@ Scene cubeOnWorld(real depth0, real depth1) {
 
 // A cube (body 2) carried by another (body 1, on the world), its points 0.02 and 0.01 m
 // deep as in the first test below, its manifold alone in its group.
-Scene carriedCube() {
-    Scene s;
+PenetrationScene carriedCube() {
+    PenetrationScene s;
     s.addCube(0, 0, 0);
     s.addCube(1, 0.02, 0.01);
     s.group({1});
@@ -83,7 +83,7 @@ Scene carriedCube() {
 // N s. The cube: pv_y = 0.072 + 0.0384 = 0.1104 m/s, pw_z = 6 * 0.5 * (0.072 - 0.0384) =
 // 0.1008 rad/s (rB x n is (0, 0, +-0.5)).
 TEST(PseudoPass, TargetsComeFromTheDepthBeyondWhatTheManifoldMayKeep) {
-    Scene s = cubeOnWorld(0.02, 0.01);
+    PenetrationScene s = cubeOnWorld(0.02, 0.01);
     EXPECT_TRUE(s.pass(false));
     EXPECT_NEAR(s.pv(1).y(), 0.1104, 1e-12);
     EXPECT_NEAR(s.pw(1).z(), 0.1008, 1e-12);
@@ -94,7 +94,7 @@ TEST(PseudoPass, TargetsComeFromTheDepthBeyondWhatTheManifoldMayKeep) {
 
 // Both points 3 mm deep, within the slop: nothing to push, and the pass says so.
 TEST(PseudoPass, ALevelContactWithinTheSlopIsLeftAlone) {
-    Scene s = cubeOnWorld(0.003, 0.003);
+    PenetrationScene s = cubeOnWorld(0.003, 0.003);
     EXPECT_FALSE(s.pass(false));
     EXPECT_EQ(s.pv(1), Vector3::Zero());
     EXPECT_EQ(s.pw(1), Vector3::Zero());
@@ -105,7 +105,7 @@ TEST(PseudoPass, ALevelContactWithinTheSlopIsLeftAlone) {
 // leaves the second point at -0.0024 m/s: that one has no target and no impulse, so it
 // does not pull back. pv_y = 0.0048 m/s, pw_z = 3 * 0.0048 = 0.0144 rad/s.
 TEST(PseudoPass, ATiltWithinTheSlopIsCorrected) {
-    Scene s = cubeOnWorld(0.004, 0.003);
+    PenetrationScene s = cubeOnWorld(0.004, 0.003);
     EXPECT_TRUE(s.pass(false));
     EXPECT_NEAR(s.pv(1).y(), 0.0048, 1e-12);
     EXPECT_NEAR(s.pw(1).z(), 0.0144, 1e-12);
@@ -115,14 +115,14 @@ TEST(PseudoPass, ATiltWithinTheSlopIsCorrected) {
 // the carrier stays where it is and the carried cube moves as it did on the immovable
 // world: the same numbers. Without, both move: the carrier down.
 TEST(PseudoPass, WithShockPropagationOnlyTheCarriedBodyMoves) {
-    Scene s = carriedCube();
+    PenetrationScene s = carriedCube();
     EXPECT_TRUE(s.pass(true));
     EXPECT_EQ(s.pv(1), Vector3::Zero());
     EXPECT_EQ(s.pw(1), Vector3::Zero());
     EXPECT_NEAR(s.pv(2).y(), 0.1104, 1e-12);
     EXPECT_NEAR(s.pw(2).z(), 0.1008, 1e-12);
 
-    Scene both = carriedCube();
+    PenetrationScene both = carriedCube();
     EXPECT_TRUE(both.pass(false));
     EXPECT_LT(both.pv(1).y(), 0);
     EXPECT_GT(both.pv(2).y(), 0);
@@ -135,7 +135,7 @@ TEST(PseudoPass, WithShockPropagationOnlyTheCarriedBodyMoves) {
 // rows or bodies would not.
 TEST(PseudoPass, EachLaneOfAGroupIsSolvedOnItsOwn) {
     const real scales[4] = {1, 2, 0.5, 3};
-    Scene s;
+    PenetrationScene s;
     for (real k : scales) s.addCube(0, kSlop + 0.015 * k, kSlop + 0.005 * k);
     s.group({3, 2, 1, 0});  // lanes in another order than the manifolds
     EXPECT_TRUE(s.pass(false));
