@@ -105,6 +105,9 @@ void Broadphase::flushTree(Tree tree) const {
     const std::size_t leaves = target.size();
     if (2 * waiting.size() < leaves) {
         for (fcl::CollisionObjectd *object : waiting) target.registerObject(object);
+        // FCL rebalances on an update: it measures the height (O(n)) and rebuilds the
+        // tree top-down when it is more than 10 levels above log2 n (else a few rotations).
+        target.update(waiting.back());
         insertedLeaves_ += waiting.size();
     } else {
         // The tree's leaves in its own order, then the arrivals in theirs: the rebuilt tree

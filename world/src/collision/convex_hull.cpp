@@ -128,8 +128,12 @@ std::vector<Vector3> spreadSubset(const std::vector<Vector3> &points, int count,
             return chosen;
         }
         const Vector3 next = points[far];
+        const bool first = chosen.empty();
         chosen.push_back(next);
-        for (size_t i = 0; i < points.size(); ++i) nearest[i] = std::min(nearest[i], (points[i] - next).squaredNorm());
+        for (size_t i = 0; i < points.size(); ++i) {
+            const real d = (points[i] - next).squaredNorm();
+            nearest[i] = first ? d : std::min(nearest[i], d);
+        }
     }
 }
 
