@@ -61,7 +61,7 @@ const char *const kHelpText =
     "\n"
     "A scene holds settings, bodies, springs and events: docs/scene-format.md is the\n"
     "contract. Events of step k act at the start of step k. Beyond the contract's checks,\n"
-    "coordinates and sizes must lie within 1e30 m, iterations and sub-steps within 1000,\n"
+    "coordinates and sizes must lie within 1e12 m, iterations and sub-steps within 1000,\n"
     "and the JSON may nest at most 64 levels. Output files are written whole or not at\n"
     "all. Progress goes to stderr only when stderr is a terminal.\n"
     "\n"
@@ -71,7 +71,7 @@ const char *const kHelpText =
     "     FILE: PATH: message (e.g. tower.json: bodies[3].mass: must be finite and > 0,\n"
     "     got -1), and no output file written\n"
     "  3  a body's state became NaN or infinite, or one more step would carry a body\n"
-    "     beyond 1e30 m: the run stops, stderr says where, and the summary (and trace)\n"
+    "     beyond 1e12 m: the run stops, stderr says where, and the summary (and trace)\n"
     "     are written with \"non_finite\": true\n";
 
 namespace {

@@ -85,13 +85,13 @@ real readNumber(const json &value, const std::string &path, Range range) {
         if (!(x >= 0 && x <= 1)) fail(path, "must be in [0, 1], got " + describe(value));
         break;
     case Range::Length:
-        if (!(std::abs(x) <= kMaxCoordinate)) fail(path, "must be finite and within ±1e30 m, got " + describe(value));
+        if (!(std::abs(x) <= kMaxCoordinate)) fail(path, "must be finite and within ±1e12 m, got " + describe(value));
         break;
     case Range::PositiveLength:
-        if (!(x > 0 && x <= kMaxCoordinate)) fail(path, "must be finite and > 0 (at most 1e30 m), got " + describe(value));
+        if (!(x > 0 && x <= kMaxCoordinate)) fail(path, "must be finite and > 0 (at most 1e12 m), got " + describe(value));
         break;
     case Range::NonNegativeLength:
-        if (!(x >= 0 && x <= kMaxCoordinate)) fail(path, "must be finite and >= 0 (at most 1e30 m), got " + describe(value));
+        if (!(x >= 0 && x <= kMaxCoordinate)) fail(path, "must be finite and >= 0 (at most 1e12 m), got " + describe(value));
         break;
     }
     return x;

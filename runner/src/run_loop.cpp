@@ -22,7 +22,7 @@ bool finite(const Vector3 &v) { return v.allFinite(); }
 // The first non-finite quantity of a body, or nullptr. A position beyond kMaxCoordinate
 // counts: collision detection cannot place the body any more.
 const char *nonFiniteQuantity(const RigidBody &body) {
-    if (!(body.getPosition().norm() <= kMaxCoordinate)) return "position (or one beyond 1e30 m)";
+    if (!(body.getPosition().norm() <= kMaxCoordinate)) return "position (or one beyond 1e12 m)";
     if (!body.getOrientation().coeffs().allFinite()) return "orientation";
     if (!finite(body.getVelocity())) return "velocity";
     if (!finite(body.getRotation())) return "rotation";
@@ -67,7 +67,7 @@ std::string leavesRange(const Scene &scene, const SceneWorld &built, const std::
             body.getPosition().norm() + (body.getVelocity().norm() + (gravity + springs[i]) * dt) * dt;
         if (!(reach <= kMaxCoordinate)) {
             return "body " + jsonQuoted(scene.bodies[i].settings.name) + " blew up: step " + std::to_string(step) +
-                   " would carry it beyond 1e30 m (counted as non-finite)";
+                   " would carry it beyond 1e12 m (counted as non-finite)";
         }
     }
     return "";

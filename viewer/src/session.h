@@ -21,7 +21,7 @@ enum class BodyState {
     Static,     ///< Never moves.
     Awake,      ///< Dynamic and simulated.
     Asleep,     ///< Dynamic and sleeping.
-    NonFinite,  ///< Isolated by the World: its state became non-finite or left the 1e30 m range.
+    NonFinite,  ///< Isolated by the World: its state became non-finite or left the 1e12 m range.
     Kinematic,  ///< Moved only at the velocity the scene sets.
     Sensor,     ///< Reports what overlaps it, pushes nothing (whatever its motion).
 };

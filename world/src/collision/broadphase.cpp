@@ -63,7 +63,7 @@ bool recordOther(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *dat
 
 Broadphase::Broadphase() : probe_(std::make_unique<BoxProbe>()) {}
 
-fcl::DynamicAABBTreeCollisionManagerd *Broadphase::manager(Tree tree) {
+fcl::DynamicAABBTreeCollisionManagerd *Broadphase::manager(Tree tree) const {
     switch (tree) {
         case Tree::Awake: return &awake_;
         case Tree::Asleep: return &asleep_;
@@ -77,21 +77,73 @@ void Broadphase::place(fcl::CollisionObjectd *object, Tree from, Tree to) {
     if (from == to) return;
     changed_ = true;
     ++changes_;
-    if (auto *source = manager(from)) source->unregisterObject(object);
-    if (auto *target = manager(to)) {
-        target->registerObject(object);
-        target->update(object);
+    if (auto *source = manager(from)) {
+        std::vector<fcl::CollisionObjectd *> &waiting = arrivals_[static_cast<int>(from) - 1];
+        if (!waiting.empty()) flushTree(from);
+        source->unregisterObject(object);
     }
+    if (to != Tree::None) {
+        arrivals_[static_cast<int>(to) - 1].push_back(object);
+        waiting_.store(true, std::memory_order_release);
+    }
+}
+
+void Broadphase::flush() const {
+    if (!waiting_.load(std::memory_order_acquire)) return;
+    const std::lock_guard<std::mutex> lock(flushing_);
+    if (!waiting_.load(std::memory_order_relaxed)) return;
+    rebuiltLeaves_ = 0;
+    insertedLeaves_ = 0;
+    for (Tree tree : {Tree::Awake, Tree::Asleep, Tree::Static}) flushTree(tree);
+    waiting_.store(false, std::memory_order_release);
+}
+
+void Broadphase::flushTree(Tree tree) const {
+    std::vector<fcl::CollisionObjectd *> &waiting = arrivals_[static_cast<int>(tree) - 1];
+    if (waiting.empty()) return;
+    fcl::DynamicAABBTreeCollisionManagerd &target = *manager(tree);
+    const std::size_t leaves = target.size();
+    if (2 * waiting.size() < leaves) {
+        for (fcl::CollisionObjectd *object : waiting) target.registerObject(object);
+        // FCL rebalances on an update: it measures the height (O(n)) and rebuilds the
+        // tree top-down when it is more than 10 levels above log2 n (else a few rotations).
+        target.update(waiting.back());
+        insertedLeaves_ += waiting.size();
+    } else {
+        // The tree's leaves in its own order, then the arrivals in theirs: the rebuilt tree
+        // depends on nothing but the calls made (not on addresses), so runs repeat.
+        std::vector<fcl::CollisionObjectd *> all;
+        all.reserve(leaves + waiting.size());
+        std::vector<const fcl::detail::NodeBase<fcl::AABBd> *> stack;
+        if (const auto *top = target.getTree().getRoot()) stack.push_back(top);
+        while (!stack.empty()) {
+            const auto *node = stack.back();
+            stack.pop_back();
+            if (node->isLeaf()) {
+                all.push_back(static_cast<fcl::CollisionObjectd *>(node->data));
+            } else {
+                stack.push_back(node->children[1]);
+                stack.push_back(node->children[0]);
+            }
+        }
+        all.insert(all.end(), waiting.begin(), waiting.end());
+        target.clear();
+        target.registerObjects(all);  // top-down build, median splits: O(n log n)
+        rebuiltLeaves_ += all.size();
+    }
+    waiting.clear();
 }
 
 void Broadphase::refitAwake(const std::vector<fcl::CollisionObjectd *> &moved) {
     if (moved.empty()) return;
+    flush();
     awake_.update(moved);
     changed_ = true;
     ++changes_;
 }
 
 void Broadphase::refit(fcl::CollisionObjectd *object, Tree tree) {
+    flush();
     if (auto *m = manager(tree)) {
         m->update(object);
         changed_ = true;
@@ -100,6 +152,7 @@ void Broadphase::refit(fcl::CollisionObjectd *object, Tree tree) {
 }
 
 const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
+    flush();
     switch (tree) {
         case Tree::Awake: return awake_.getTree().getRoot();
         case Tree::Asleep: return asleep_.getTree().getRoot();
@@ -113,6 +166,7 @@ bool Broadphase::findPairs(BroadphasePairs &out, const PairFilter *filter, std::
     // Resting bodies stay inside their fat boxes: most steps of a settled scene change no
     // tree, and the walk would find the same pairs in the same order.
     if (changed_ || filter != lastFilter_ || limit != limit_) {
+        flush();
         pairs_.clear();
         PairWalk walk{&pairs_, filter, limit};
         const auto record = filter ? recordFilteredPair : recordPair;
@@ -137,6 +191,7 @@ bool Broadphase::findPairs(BroadphasePairs &out, const PairFilter *filter, std::
 namespace cyclone::detail {
 
 void Broadphase::overlapping(const fcl::AABBd &box, std::vector<std::uint32_t> &out) {
+    flush();
     static_cast<BoxProbe *>(probe_.get())->setBox(box);
     ProbeQuery query{probe_.get(), &out};
     for (fcl::DynamicAABBTreeCollisionManagerd *tree : {&awake_, &asleep_, &static_})

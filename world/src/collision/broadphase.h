@@ -8,8 +8,10 @@
 
 #include <fcl/fcl.h>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace cyclone::detail {
@@ -102,8 +104,20 @@ public:
     Broadphase();
 
     /// Puts `object` (whose user data is its body index) into `tree`, moving it out of
-    /// the tree it was in.
+    /// the tree it was in. O(1) into a tree: the object waits in the tree's list of
+    /// arrivals until something reads the tree (flush()).
     void place(fcl::CollisionObjectd *object, Tree from, Tree to);
+    /// Inserts the arrivals waiting for each tree: one by one (FCL's insertion, which
+    /// descends the tree) while they are fewer than half the tree's leaves, else by
+    /// rebuilding the tree top-down from its leaves and the arrivals (O(n log n)). Adding
+    /// n bodies then costs O(n log n) whatever their places: inserted one by one, n boxes
+    /// at one point would chain into a tree n deep (each insertion descending all of it).
+    /// Called by every reader below; safe to call from concurrent const calls.
+    void flush() const;
+    /// Leaves the last flush() rebuilt (for tests: how much work arrivals cost).
+    std::uint64_t rebuiltLeaves() const { return rebuiltLeaves_; }
+    /// Leaves the last flush() inserted one by one.
+    std::uint64_t insertedLeaves() const { return insertedLeaves_; }
     /// Refits the awake tree after the objects in `moved` changed their AABBs.
     void refitAwake(const std::vector<fcl::CollisionObjectd *> &moved);
     /// Refits one object in `tree` after its box moved.
@@ -130,9 +144,16 @@ public:
     std::uint64_t changes() const { return changes_; }
 
 private:
-    fcl::DynamicAABBTreeCollisionManagerd awake_;
-    fcl::DynamicAABBTreeCollisionManagerd asleep_;
-    fcl::DynamicAABBTreeCollisionManagerd static_;
+    // Mutable: flush() inserts waiting arrivals on behalf of const readers (queries).
+    mutable fcl::DynamicAABBTreeCollisionManagerd awake_;
+    mutable fcl::DynamicAABBTreeCollisionManagerd asleep_;
+    mutable fcl::DynamicAABBTreeCollisionManagerd static_;
+    /// Objects placed in each tree (Awake, Asleep, Static) and not yet inserted.
+    mutable std::vector<fcl::CollisionObjectd *> arrivals_[3];
+    mutable std::atomic<bool> waiting_{false};  ///< Whether any arrivals_ is not empty.
+    mutable std::mutex flushing_;                ///< Held by the flush() that inserts them.
+    mutable std::uint64_t rebuiltLeaves_ = 0;    ///< See rebuiltLeaves().
+    mutable std::uint64_t insertedLeaves_ = 0;   ///< See insertedLeaves().
     std::unique_ptr<fcl::CollisionObjectd> probe_;  ///< Carries the box of overlapping().
     BroadphasePairs pairs_;  ///< What findPairs() found when it last walked the trees.
     bool changed_ = true;               ///< Whether a tree changed since then.
@@ -141,7 +162,8 @@ private:
     std::size_t limit_ = 0;             ///< The limit of that walk.
     bool complete_ = true;              ///< Whether that walk found every pair.
 
-    fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree);
+    fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree) const;
+    void flushTree(Tree tree) const;
 };
 
 /// The body index stored in a collision object's user data.

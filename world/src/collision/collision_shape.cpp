@@ -149,6 +149,15 @@ void compileConvex(const Shape &shape, std::vector<Vector3> &vertices, std::vect
     ConvexHull hull;
     if (!computeConvexHull(shape.vertices, hull))
         refuse("shape.vertices", "are all coplanar (or coincident): their hull has no volume");
+    if (hull.vertices.size() > static_cast<size_t>(kMaxHullVertices)) {
+        // Each step's support and clipping work grows with the vertex count: keep the hull
+        // of a well-spread subset of the corners (Shape::convex states the bound).
+        real cover = 0;
+        const std::vector<Vector3> corners = spreadSubset(hull.vertices, kMaxHullVertices, cover);
+        if (!computeConvexHull(corners, hull))
+            refuse("shape.vertices", "have more than " + std::to_string(kMaxHullVertices) +
+                                         " hull corners and no well-spread subset of them spans a volume");
+    }
     polyhedronMassProperties(hull.vertices, hull.faces, volume, inertia, centroid);
     if (!(volume > 0)) refuse("shape.vertices", "span no volume");
 

@@ -106,6 +106,37 @@ bool computeConvexHull(const std::vector<Vector3> &points, ConvexHull &hull) {
     return ok;
 }
 
+std::vector<Vector3> spreadSubset(const std::vector<Vector3> &points, int count, real &cover) {
+    cover = 0;
+    if (points.empty() || count <= 0) return {};
+    if (points.size() <= static_cast<size_t>(count)) return points;
+    Vector3 centroid = Vector3::Zero();
+    for (const Vector3 &p : points) centroid += p;
+    centroid /= static_cast<real>(points.size());
+    // nearest[i]: squared distance from point i to the nearest chosen point so far (to the
+    // centroid before the first is chosen, so that the first is the farthest from it).
+    std::vector<real> nearest(points.size());
+    for (size_t i = 0; i < points.size(); ++i) nearest[i] = (points[i] - centroid).squaredNorm();
+    std::vector<Vector3> chosen;
+    chosen.reserve(static_cast<size_t>(count));
+    for (;;) {
+        size_t far = 0;
+        for (size_t i = 1; i < points.size(); ++i)
+            if (nearest[i] > nearest[far]) far = i;
+        if (static_cast<int>(chosen.size()) == count) {
+            cover = std::sqrt(nearest[far]);
+            return chosen;
+        }
+        const Vector3 next = points[far];
+        const bool first = chosen.empty();
+        chosen.push_back(next);
+        for (size_t i = 0; i < points.size(); ++i) {
+            const real d = (points[i] - next).squaredNorm();
+            nearest[i] = first ? d : std::min(nearest[i], d);
+        }
+    }
+}
+
 void polyhedronMassProperties(const std::vector<Vector3> &vertices, const std::vector<std::vector<int>> &faces,
                               real &volume, Matrix3 &unitInertia, Vector3 &centroid) {
     // Each fan triangle (a, b, c) with the origin spans a signed tetrahedron whose

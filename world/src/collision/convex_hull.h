@@ -21,6 +21,13 @@ struct ConvexHull {
 /// span no volume: fewer than 4, or all (nearly) coplanar, relative to their extent.
 bool computeConvexHull(const std::vector<Vector3> &points, ConvexHull &hull);
 
+/// Farthest-point sampling: `count` of `points` (all when there are no more), the first
+/// the one farthest from their centroid, each next the one farthest from those already
+/// chosen (ties: the lowest index). `cover` gets the largest distance from any point to
+/// its nearest chosen one; the chosen points are pairwise at least `cover` apart, so no
+/// choice of `count` points covers them within less than cover / 2. O(points x count).
+std::vector<Vector3> spreadSubset(const std::vector<Vector3> &points, int count, real &cover);
+
 /// Volume (m^3), centroid (m) and inertia tensor of a unit-mass, uniform-density
 /// polyhedron about the frame origin (kg m^2), by decomposition into tetrahedra with
 /// apex at the origin. Faces must be counter-clockwise seen from outside.

@@ -28,7 +28,7 @@ void World::setFramePosition(BodyId id, const Vector3 &position) {
     detail::requirePlace(function, "position", position);
     const Vector3 centre = position + detail::frameToCentre(r.body, *r.shape);
     if (!centre.allFinite() || centre.cwiseAbs().maxCoeff() > detail::kMaxCoordinate)
-        detail::refuse(function, "position", "puts the centre of mass beyond 1e30 m, got " + detail::show(position));
+        detail::refuse(function, "position", "puts the centre of mass beyond 1e12 m, got " + detail::show(position));
     setPosition(id, centre);
 }
 

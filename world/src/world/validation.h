@@ -6,13 +6,13 @@
 
 namespace cyclone::detail {
 
-/// Coordinates beyond this are refused (and a body that flies beyond it is isolated):
-/// FCL's AABB tree fails on such numbers, m.
-inline constexpr real kMaxCoordinate = 1e30;
+/// Coordinates beyond this are refused (and a body that flies beyond it is isolated), m:
+/// cyclone::kMaxCoordinate says why.
+inline constexpr real kMaxCoordinate = cyclone::kMaxCoordinate;
 
 inline void requirePlace(const char *function, const char *field, const Vector3 &v) {
     if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kMaxCoordinate)
-        refuse(function, field, "must be finite and within 1e30 m of the origin, got " + show(v));
+        refuse(function, field, "must be finite and within 1e12 m of the origin, got " + show(v));
 }
 
 }  // namespace cyclone::detail

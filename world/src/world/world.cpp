@@ -177,7 +177,7 @@ BodyId World::addBody(const BodySettings &settings) {
         throw InvalidArgument(function, e.field(), e.problem());
     }
     if (!(shape->boundingRadius() <= detail::kMaxCoordinate))
-        detail::refuse(function, "shape", "must fit within 1e30 m of its origin");
+        detail::refuse(function, "shape", "must fit within 1e12 m of its origin");
     if (settings.layer < 0 || settings.layer > 31)
         detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
     RigidBody body = makeBody(function, settings, *shape, w.settings);

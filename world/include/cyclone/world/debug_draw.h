@@ -40,7 +40,7 @@ struct DebugDrawOptions {
     DebugColor asleep{0.35f, 0.45f, 0.9f, 1};
     /// Static bodies.
     DebugColor staticBody{0.65f, 0.65f, 0.65f, 1};
-    /// Bodies isolated because their state became non-finite (or beyond 1e30 m).
+    /// Bodies isolated because their state became non-finite (or beyond 1e12 m).
     DebugColor isolated{1, 0.1f, 0.1f, 1};
     /// Sensors (BodySettings::sensor), whatever their motion: translucent by default.
     DebugColor sensor{0.2f, 0.85f, 0.85f, 0.5f};

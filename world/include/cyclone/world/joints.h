@@ -75,7 +75,7 @@ struct JointSettings {
     BodyId a;
     /// Second body, different from `a`; empty joins `a` to the world (mouse joints: empty).
     std::optional<BodyId> b;
-    /// Where the joint sits, world space at creation, m (finite, within 1e30 m of the
+    /// Where the joint sits, world space at creation, m (finite, within 1e12 m of the
     /// origin). Distance joints: the anchor on `a`.
     Vector3 anchor = Vector3::Zero();
     /// Distance joints: the anchor on `b` (or in the world), world space at creation, m;

@@ -187,11 +187,12 @@ struct Material {
 };
 
 /// Largest magnitude of a coordinate or a size the World and the scene runner accept, m;
-/// a body that flies beyond it is isolated. FCL's AABB trees fail on larger numbers.
-/// Contacts are lost well before that: at 1e13 m from the origin a ball and a crate still
-/// rest on a static floor, at 1e14 m they fall through it (issue 34's finding, not yet
-/// fixed; docs/hostile_input.md).
-inline constexpr real kMaxCoordinate = 1e30;
+/// a body that flies beyond it is isolated (StepStats::isolatedBodies). Why 1e12: there
+/// the spacing of doubles is 2^-13 m = 1.2e-4 m, below the default penetration slop
+/// (2e-4 m) and far below the speculative distance and the broadphase margin (0.02 m), so
+/// contacts hold as at the origin; at 1e14 m (spacing 0.016 m) a ball and a crate fell
+/// through a static floor (docs/hostile_input.md).
+inline constexpr real kMaxCoordinate = 1e12;
 
 /// Smallest mass of a dynamic body, kg; also the smallest principal moment of inertia
 /// over the squared bounding radius R (the farthest point of the shape from its origin).
@@ -230,7 +231,7 @@ struct BodySettings {
     /// World-space position of the centre of mass (the shape's origin; for a compound,
     /// the origin of the frame its children are placed in, and the centre of mass lies
     /// where their masses put it), m, finite, each
-    /// coordinate within 1e30.
+    /// coordinate within 1e12 m.
     Vector3 position = Vector3::Zero();
     /// Orientation; normalised on add, (0,0,0,0) means identity.
     Quaternion orientation = Quaternion::Identity();

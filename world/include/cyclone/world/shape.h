@@ -31,6 +31,10 @@ enum class MeshSides {
 
 struct CompoundChild;
 
+/// Most corners a convex shape keeps (Shape::convex says how a larger hull is
+/// simplified); as Jolt's cap, since each contact test walks them.
+inline constexpr int kMaxHullVertices = 256;
+
 /// A collision shape in the body's own frame; the body's position is the frame's origin.
 /// Build one with the named constructors; only the fields of its type are read.
 struct Shape {
@@ -60,6 +64,15 @@ struct Shape {
     static Shape cylinder(real radius, real length);
     /// The convex hull of `points` (m, finite; at least 4 not all in one plane). The body's
     /// origin is the frame of the points, not necessarily the hull's centre of mass.
+    /// A hull of more than kMaxHullVertices corners is replaced by the hull of
+    /// kMaxHullVertices of them chosen by farthest-point sampling (the corner farthest from
+    /// the corners' centroid, then each time the corner farthest from those chosen): it
+    /// lies inside the true hull, and every corner of the true hull lies within r of a
+    /// chosen one, where r is at most twice the least r any choice of that many corners
+    /// could reach (the chosen ones are pairwise r apart). For corners on a sphere of
+    /// radius R, r <= 4 R / sqrt(kMaxHullVertices) = R / 4 (caps of chord radius r / 2
+    /// about the chosen corners do not overlap, and each has area pi (r / 2)^2).
+    /// Mass properties and collisions use the simplified hull.
     static Shape convex(std::vector<Vector3> points);
     /// A half-space for static bodies: the solid side is normal.x <= offset with the normal
     /// as given (any finite length > 0), so its surface lies offset/|normal| m from the

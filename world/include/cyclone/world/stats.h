@@ -72,7 +72,7 @@ struct StepStats {
     int gyroscopicBodies = 0;   ///< Bodies given the implicit gyroscopic step (anisotropic inertia only).
     int ccdSweeps = 0;          ///< ccd bodies that moved far enough this step to be swept.
     int ccdHits = 0;            ///< ccd bodies moved back to their time of impact.
-    int isolatedBodies = 0;     ///< Bodies isolated because their state became non-finite (or beyond 1e30 m).
+    int isolatedBodies = 0;     ///< Bodies isolated because their state became non-finite (or beyond 1e12 m).
     real maxPenetration = 0;    ///< Deepest contact of the step, m.
     StageTimes ms;              ///< Time per stage, ms.
 };

@@ -124,11 +124,11 @@ public:
 
     /// Moves the body's centre of mass (for a compound, not its frame: see
     /// setFramePosition()) to `position` (m, finite, each coordinate within
-    /// 1e30 of the origin); a plane is refused. Wakes the body and its island; a moved
+    /// 1e12 m of the origin); a plane is refused. Wakes the body and its island; a moved
     /// static body wakes the bodies touching it.
     void setPosition(BodyId id, const Vector3 &position);
     /// Moves the body so that the origin of its shape frame (framePosition()) lies at
-    /// `position` (m, finite, within 1e30 of the origin): setPosition() for a compound's
+    /// `position` (m, finite, within 1e12 m of the origin): setPosition() for a compound's
     /// frame. Wakes as setPosition() does.
     void setFramePosition(BodyId id, const Vector3 &position);
     /// Turns the body about its centre of mass to `orientation` (finite; normalised;
@@ -252,7 +252,7 @@ public:
 
     // --- Queries ------------------------------------------------------------------------
 
-    /// The closest body that the ray from `origin` (m, finite, within 1e30 of the origin)
+    /// The closest body that the ray from `origin` (m, finite, within 1e12 m of the origin)
     /// along `direction` (finite, not zero; normalised here) meets within `maxDistance`
     /// (m, > 0, may be infinite), among those `filter` accepts; none when it meets
     /// nothing. Exact for every shape type. A solid shape (or a plane's half-space) that
@@ -264,7 +264,7 @@ public:
                                   const QueryFilter &filter = QueryFilter()) const;
 
     /// The first body that `shape` (any shape but a plane or a mesh; a compound is placed
-    /// by its frame), placed at `position` (m, finite, within 1e30 of the origin) with
+    /// by its frame), placed at `position` (m, finite, within 1e12 m of the origin) with
     /// `orientation` (finite; normalised; (0,0,0,0) means identity) and moved by
     /// `translation` (m, finite, not zero) without turning, touches, among those `filter`
     /// accepts; none when it touches nothing on the way. The shapes are apart by at most
@@ -278,7 +278,7 @@ public:
                                           const QueryFilter &filter = QueryFilter()) const;
 
     /// The bodies whose shapes intersect (overlap or touch) `shape` placed at `position`
-    /// (m, finite, within 1e30 of the origin) with `orientation` (finite, normalised;
+    /// (m, finite, within 1e12 m of the origin) with `orientation` (finite, normalised;
     /// (0,0,0,0) means identity), among those `filter` accepts, written into `out`
     /// (cleared first) in increasing BodyId::index. Returns how many. `shape` is
     /// validated as for addBody(); a plane is refused (it is unbounded); a compound is
