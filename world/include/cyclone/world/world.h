@@ -226,7 +226,7 @@ public:
     /// wakes the joint's dynamic bodies. Throws InvalidArgument on a stale handle, a joint
     /// without a motor, or a non-finite speed.
     void setMotorSpeed(JointId id, real speed);
-    /// Moves a mouse joint's target (world space, m, finite, within 1e30 m of the origin);
+    /// Moves a mouse joint's target (world space, m, finite, within kMaxCoordinate = 1e12 m of the origin);
     /// a new target wakes the body it pulls. Throws InvalidArgument on a stale handle, a
     /// joint that is not a mouse joint, or a target out of range.
     void setMouseTarget(JointId id, const Vector3 &target);
