@@ -132,6 +132,16 @@ void addLimits(const JointLimits &limits, int slot, bool positions, const MakeRo
     }
 }
 
+// A motor's row in `slot`, made by `row` along the joint's free axis: it drives the
+// relative speed along it to the motor's, with at most maxForce over the sub-step `h`.
+template <class MakeRow>
+void addMotor(const JointMotor &motor, int slot, const MakeRow &row, real h) {
+    JointRow &r = row(slot);
+    r.bound = RowBound::Motor;
+    r.target = motor.speed;
+    r.maxImpulse = motor.maxForce * h;
+}
+
 }  // namespace
 
 void JointSet::measure(const BodyStore &bodies, const JointRecord &j, real *error, real *position) const {
@@ -206,12 +216,7 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
                 const real angle = hingeAngle(f, j);
                 const auto about = [&](int slot) -> JointRow & { return make.angular(slot, f.axis, angle); };
                 if (s.limits) addLimits(*s.limits, 5, positions, about, angle);
-                if (s.motor && !positions) {
-                    JointRow &r = about(7);
-                    r.bound = RowBound::Motor;
-                    r.target = s.motor->speed;
-                    r.maxImpulse = s.motor->maxForce * h;
-                }
+                if (s.motor && !positions) addMotor(*s.motor, 7, about, h);
                 break;
             }
             case JointType::Slider: {
@@ -223,12 +228,7 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
                 const real offset = (f.pa - f.pb).dot(f.axis);
                 const auto along = [&](int slot) -> JointRow & { return make.linear(slot, f.axis); };
                 if (s.limits) addLimits(*s.limits, 5, positions, along, offset);
-                if (s.motor && !positions) {
-                    JointRow &r = along(7);
-                    r.bound = RowBound::Motor;
-                    r.target = s.motor->speed;
-                    r.maxImpulse = s.motor->maxForce * h;
-                }
+                if (s.motor && !positions) addMotor(*s.motor, 7, along, h);
                 break;
             }
             case JointType::Distance: {
