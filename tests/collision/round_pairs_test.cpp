@@ -102,6 +102,19 @@ TEST(RoundPairs, DeepParallelCapsulesInAColumn) {
     expectContact(capsule, pose(Vector3::Zero(), zUp()), capsule, pose(Vector3(0.1, 0, 0), zUp()), e);
 }
 
+TEST(RoundPairs, EndCapOnACapsuleSide) {
+    // A (radius 0.25, length 1) standing at (0.2, 0.97, 0), its core y in [0.47, 1.47];
+    // B the same lying along x at the origin. The cores' closest points are A's lower end
+    // (0.2, 0.47, 0) and (0.2, 0, 0) on B's core, 0.47 apart: depth 0.5 - 0.47 = 0.03,
+    // normal -y, one point: the bottom of A's end cap (0.2, 0.22, 0) over B's top line.
+    const Shape capsule = Shape::capsule(0.25, 1);
+    Expected e;
+    e.normal = kDown;
+    e.depth = 0.03;
+    e.points.push_back(at(Vector3(0.2, 0.22, 0), Vector3(0.2, 0.25, 0)));
+    expectContact(capsule, pose(Vector3(0.2, 0.97, 0), zUp()), capsule, pose(Vector3::Zero(), zAlongX()), e);
+}
+
 // ---- capsule-box ----
 
 TEST(RoundPairs, CapsuleLyingOnABoxFaceGivesTheSegmentEnds) {
@@ -198,6 +211,20 @@ TEST(RoundPairs, DeepSphereOnACapsuleSide) {
     e.points.push_back(at(Vector3(-0.4, 0.2, 0), Vector3(0.25, 0.2, 0)));
     expectContact(Shape::sphere(0.5), pose(Vector3(0.1, 0.2, 0)), Shape::capsule(0.25, 1), pose(Vector3::Zero(), zUp()),
                   e);
+}
+
+TEST(RoundPairs, SphereOnACapsuleEndCapAtASlant) {
+    // Standing capsule (radius 0.25, length 1), core y in [-0.5, 0.5]; sphere (radius 0.1)
+    // at (0, 0.68, 0.24), beyond the core's top end (0, 0.5, 0), 0.3 from it along
+    // (0, 0.18, 0.24): depth 0.35 - 0.3 = 0.05 along n = -(0, 0.6, 0.8) (sphere to
+    // capsule). The points: the sphere's centre + 0.1 n = (0, 0.62, 0.16) and the end
+    // cap's surface end - 0.25 n = (0, 0.65, 0.2).
+    Expected e;
+    e.normal = Vector3(0, -0.6, -0.8);
+    e.depth = 0.05;
+    e.points.push_back(at(Vector3(0, 0.62, 0.16), Vector3(0, 0.65, 0.2)));
+    expectContact(Shape::sphere(0.1), pose(Vector3(0, 0.68, 0.24)), Shape::capsule(0.25, 1),
+                  pose(Vector3::Zero(), zUp()), e);
 }
 
 TEST(RoundPairs, SphereCentredOnACapsuleCoreIsPushedAcrossIt) {
