@@ -89,8 +89,8 @@ TEST(RagdollStairs, HoldsTogetherStaysOutOfTheStairsAndComesToRestOnThem) {
         if (s.type == JointType::Hinge && s.limits) hinges.push_back({j, *s.limits});
         if (s.type == JointType::Ball) ++balls;
     }
-    ASSERT_EQ(hinges.size(), 5u);  // elbows, knees, waist
-    ASSERT_EQ(balls, 5);           // shoulders, hips, neck
+    ASSERT_EQ(hinges.size(), 6u);  // elbows, knees, waist, neck
+    ASSERT_EQ(balls, 4);           // shoulders, hips
 
     // Stairs: how far a capsule is inside one (its radius less the distance from its
     // axis to the box), the deepest over the run.

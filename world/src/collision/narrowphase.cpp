@@ -1,6 +1,7 @@
 // Narrowphase: FCL says whether two shapes touch; the manifold is built here from the
 // normal of least overlap (contact_normal.cpp) and the features clipped along it
-// (manifold_clipping.cpp). Box-box, sphere pairs and planes have tests of their own.
+// (manifold_clipping.cpp). Box-box, sphere pairs, capsule pairs (round_pairs.cpp) and
+// planes have tests of their own.
 //
 // Meshes give one FCL contact per triangle; mesh_contacts.cpp builds their manifolds.
 //
@@ -15,6 +16,7 @@
 #include "collision/broadphase.h"
 #include "collision/contact_building.h"
 #include "collision/mesh_contacts.h"
+#include "collision/round_pairs.h"
 #include "collision/shape_contact.h"
 #include "collision/sphere_pairs.h"
 
@@ -70,6 +72,13 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     return clipAlong(Pair{a, poseA, -1, b, poseB, -1, reach}, normal, out);
 }
 
+// The ends of a capsule's segment (its local z axis, `length` long), world space.
+void capsuleEnds(const CollisionShape &capsule, const Matrix4 &pose, Vector3 &end0, Vector3 &end1) {
+    const Vector3 half = pose.linear().col(2) * (capsule.shape().length / 2);
+    end0 = pose.translation() - half;
+    end1 = pose.translation() + half;
+}
+
 // The pairs with a test of their own, which FCL would only have told touch: the
 // manifolds they append are the ones the FCL path builds (the same normal, by least
 // overlap, and the same clipping). Returns the number appended, or -1 for a pair that
@@ -114,7 +123,11 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
                                reach);
         else if (other.shape().type == ShapeType::Box)
             hit = sphereBox(sphere.shape().radius, centre, other.shape().halfExtents, otherPose, manifold, reach);
-        else
+        else if (other.shape().type == ShapeType::Capsule) {
+            Vector3 end0, end1;
+            capsuleEnds(other, otherPose, end0, end1);
+            hit = sphereCapsule(sphere.shape().radius, centre, other.shape().radius, end0, end1, manifold, reach);
+        } else
             return -1;
         if (!hit) return 0;
         if (!sphereIsA) {
@@ -124,6 +137,31 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
         }
         out.push_back(manifold);
         return 1;
+    }
+    if (typeA == ShapeType::Capsule || typeB == ShapeType::Capsule) {
+        const bool capsuleIsA = typeA == ShapeType::Capsule;
+        const CollisionShape &capsule = capsuleIsA ? a : b;
+        const CollisionShape &other = capsuleIsA ? b : a;
+        const Matrix4 &otherPose = capsuleIsA ? poseB : poseA;
+        Vector3 end0, end1;
+        capsuleEnds(capsule, capsuleIsA ? poseA : poseB, end0, end1);
+        // Found from the capsule (or A's capsule) to the other shape.
+        Vector3 normal;
+        real depth = 0;
+        bool hit = false;
+        if (other.shape().type == ShapeType::Capsule) {
+            Vector3 other0, other1;
+            capsuleEnds(other, otherPose, other0, other1);
+            hit = capsuleCapsuleNormal(capsule.shape().radius, end0, end1, other.shape().radius, other0, other1, normal,
+                                       depth, reach);
+        } else if (other.shape().type == ShapeType::Box) {
+            hit = capsuleBoxNormal(capsule.shape().radius, end0, end1, other.shape().halfExtents, otherPose, normal,
+                                   depth, reach);
+        } else {
+            return -1;
+        }
+        if (!hit) return 0;
+        return clipAlong(pair, capsuleIsA ? normal : Vector3(-normal), out);
     }
     return -1;
 }
