@@ -101,23 +101,22 @@ TEST(HostileAbuse, AStackHoldsAtLongSteps) {
     for (int i = 0; i < 5; ++i) EXPECT_NEAR(f.world.body(boxes[i]).getPosition().y(), 0.5 + i, 0.05) << "box " << i;
 }
 
-// 100 unit boxes spawned at one point, SoftStep solver. Each pair of them overlaps by up
+// 30 unit boxes spawned at one point, SoftStep solver. Each pair of them overlaps by up
 // to a metre, and each contact pushed its two boxes apart at up to maxPushVelocity =
-// 3 m/s: a box overlapping 99 others got many pushes at once and left the pile at up to
-// 70 m/s. A body's contacts now share its push-out speed, so no contact pushes faster
-// than 3 m/s over the larger of its bodies' contact counts. Nothing is then faster than
-// a fall from the pile's top gives (a pile of 100 unit boxes stands at most 100 m high
-// only as a tower; the test asks for the bound, 20 m/s, which a fall of
-// 20^2 / (2 g) = 20.4 m reaches).
+// 3 m/s: a box overlapping 29 others got their pushes at once and left the pile at
+// 29.7 m/s within a second (100 boxes: 70 m/s). A body's contacts now share its push-out
+// speed: no contact pushes faster than 3 m/s over the larger of its bodies' contact
+// counts, so a box's pushes add up to about 3 m/s at most. The bound asked is the
+// issue's, 20 m/s (a fall of 20^2 / (2 g) = 20.4 m, far above a pile of 30 unit boxes).
 TEST(HostileAbuse, SoftStepPushOutInADenseSpawnAddsNoSpeed) {
     WorldSettings settings = noSleep();
     settings.contactSolver = ContactSolverType::SoftStep;
     WorldFixture f(settings);
     f.ground();
     std::vector<BodyId> boxes;
-    for (int i = 0; i < 100; ++i) boxes.push_back(f.world.addBody(abuseBox(Vector3(0, 0.5, 0))));
+    for (int i = 0; i < 30; ++i) boxes.push_back(f.world.addBody(abuseBox(Vector3(0, 0.5, 0))));
     real fastest = 0;
-    for (int step = 0; step < 120; ++step) {
+    for (int step = 0; step < 60; ++step) {
         f.world.step(kDt);
         for (BodyId id : boxes) fastest = std::max(fastest, f.world.body(id).getVelocity().norm());
     }

@@ -19,8 +19,8 @@ constexpr real kContactKeepDistance = 0.002;
 // it is left out, so that resting bodies, which move less than kMinReach in a step, keep
 // exactly the contacts they touch and pay nothing more. Beyond it (dt > 45 ms at the
 // defaults) a body at rest in the air could fall through a floor in one step: a body
-// that touched nothing last step then reaches with its speed at the step's end, v + g dt
-// (stepFall). Bodies that touch something are left as they are: a stack's upper boxes
+// that touches nothing then reaches with its speed at the step's end, v + g dt
+// (stepFall), against immovable bodies. Bodies that touch something are left as they are: a stack's upper boxes
 // given speculative contacts with the floor under it sink into one another.
 constexpr real kMinReach = 0.001;  // m
 
@@ -30,7 +30,9 @@ Vector3 stepFall(const WorldSettings &settings, real dt) {
     return fall > settings.speculativeDistance ? Vector3(settings.gravity * dt) : Vector3(Vector3::Zero());
 }
 
-// Whether a dynamic body touched nothing at the end of the last step.
+// Whether a dynamic body touches nothing: none of its pairs has a manifold (last step's,
+// or this step's for the pairs the narrowphase has already been through, in its fixed
+// order).
 bool fallsFreely(const BodyRecord &r, const PairCache &pairs) {
     if (r.immovable) return false;
     for (std::uint32_t p : r.pairs)
