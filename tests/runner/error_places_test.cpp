@@ -103,6 +103,24 @@ TEST(ErrorPlaces, AnInertiaTheFileGivesIsStillItsOwnPlace) {
     EXPECT_EQ(error.path(), "bodies[0].inertia") << error.what();
 }
 
+// A 1 kg unit cube with inertia diag(1e-6) sank through the floor (the solver spins it
+// instead of holding it): its uniform moments are 1/6 kg m^2, and 1e-6 is 6e-6 of them,
+// below the 0.01 the World takes. The runner exits 2 naming the inertia, writing nothing.
+TEST(ErrorPlaces, AnInertiaFarBelowTheShapesExitsTwoAtTheInertia) {
+    TempDir dir;
+    const std::string scene = dir.file("spin.json");
+    writeText(scene, R"({"bodies": [
+        {"name": "g", "static": true, "shape": {"type": "plane", "normal": [0, 1, 0], "offset": 0}},
+        {"name": "b", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]},
+         "inertia": [[1e-6, 0, 0], [0, 1e-6, 0], [0, 0, 1e-6]], "position": [0, 0.5, 0]}]})");
+    const Process p = runWorld({"run", scene, "--summary", dir.file("s.json")}, dir);
+    EXPECT_EQ(p.status, 2);
+    EXPECT_EQ(lineCount(p.err), 1) << p.err;
+    EXPECT_EQ(p.err.rfind(scene + ": bodies[1].inertia: has a moment of 6e-06 times the shape's", 0), 0u) << p.err;
+    EXPECT_NE(p.err.find("from 0.01 times it up"), std::string::npos) << p.err;
+    EXPECT_FALSE(fs::exists(dir.file("s.json")));
+}
+
 // The issue's body that every step fails on (1e-155 kg with an explicit inertia, touching
 // the ground): the runner's line names the step (or, once the World refuses such a mass up
 // front, the mass), never "run" without a place.

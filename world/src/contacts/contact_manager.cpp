@@ -14,40 +14,67 @@ namespace {
 constexpr real kContactKeepDistance = 0.002;
 
 // Speculative contacts come from the velocities at the start of the step. The speed
-// gravity adds during the step is left out (it adds at most |g| dt^2 = 2.7 mm at 60 Hz
-// of fall before the contact acts), so that resting bodies, which move less than
-// kMinReach in a step, keep exactly the contacts they touch and pay nothing more.
+// gravity adds during the step moves a body at most |g| dt^2 farther (2.7 mm at 60 Hz):
+// while that is within the speculative distance, whose contacts every pair gets anyway,
+// it is left out, so that resting bodies, which move less than kMinReach in a step, keep
+// exactly the contacts they touch and pay nothing more. Beyond it (dt > 45 ms at the
+// defaults) a body at rest in the air could fall through a floor in one step: a body
+// that touches nothing then reaches with its speed at the step's end, v + g dt
+// (stepFall), against immovable bodies. Bodies that touch something are left as they are: a stack's upper boxes
+// given speculative contacts with the floor under it sink into one another.
 constexpr real kMinReach = 0.001;  // m
 
+// The speed gravity adds to a body falling freely over the step when it counts (above), m/s.
+Vector3 stepFall(const WorldSettings &settings, real dt) {
+    const real fall = settings.gravity.norm() * dt * dt;
+    return fall > settings.speculativeDistance ? Vector3(settings.gravity * dt) : Vector3(Vector3::Zero());
+}
+
+// Whether a dynamic body touches nothing: none of its pairs has a manifold (last step's,
+// or this step's for the pairs the narrowphase has already been through, in its fixed
+// order).
+bool fallsFreely(const BodyRecord &r, const PairCache &pairs) {
+    if (r.immovable) return false;
+    for (std::uint32_t p : r.pairs)
+        if (pairs[p].touching()) return false;
+    return true;
+}
+
+// The velocity a body reaches with over the step: its own, plus `fall` if dynamic (the
+// caller passes zero for a body that does not fall freely).
+Vector3 reachVelocity(const BodyRecord &r, const Vector3 &fall) {
+    return r.immovable ? r.body.getVelocity() : Vector3(r.body.getVelocity() + fall);
+}
+
 // How far any point of the body can move in a step of dt at its velocities, m.
-real stepReach(const BodyRecord &r, real dt) {
+real stepReach(const BodyRecord &r, real dt, const Vector3 &fall) {
     if (r.immovable && !r.moving) return 0;
-    const RigidBody &body = r.body;
-    return (body.getVelocity().norm() + body.getRotation().norm() * r.boundingRadius) * dt;
+    return (reachVelocity(r, fall).norm() + r.body.getRotation().norm() * r.boundingRadius) * dt;
 }
 
 // How far any point of A can move relative to any point of B in a step of dt, m: two
 // bodies falling together reach nothing of each other.
-real relativeReach(const BodyRecord &a, const BodyRecord &b, real dt) {
+real relativeReach(const BodyRecord &a, const BodyRecord &b, real dt, const Vector3 &fall) {
     const RigidBody &ba = a.body;
     const RigidBody &bb = b.body;
     const real turning = ba.getRotation().norm() * a.boundingRadius + bb.getRotation().norm() * b.boundingRadius;
-    return ((ba.getVelocity() - bb.getVelocity()).norm() + turning) * dt;
+    return ((ba.getVelocity() - bb.getVelocity()).norm() + fall.norm() + turning) * dt;
 }
 
 // How far A and B can close in on each other along `normal` (A to B) within dt, m.
-real closing(const BodyRecord &a, const BodyRecord &b, const Vector3 &normal, real dt) {
+real closing(const BodyRecord &a, const BodyRecord &b, const Vector3 &normal, real dt, const Vector3 &fall) {
     const RigidBody &ba = a.body;
     const RigidBody &bb = b.body;
-    const real linear = (ba.getVelocity() - bb.getVelocity()).dot(normal);
+    const real linear = (ba.getVelocity() - bb.getVelocity()).dot(normal) + std::abs(fall.dot(normal));
     const real turning = ba.getRotation().norm() * a.boundingRadius + bb.getRotation().norm() * b.boundingRadius;
     return (linear + turning) * dt;
 }
 
 // The body's pose after dt at its velocities (rotation at constant angular velocity).
-Matrix4 poseAfter(const RigidBody &body, real dt) {
+Matrix4 poseAfter(const BodyRecord &r, real dt, const Vector3 &fall) {
+    const RigidBody &body = r.body;
     Matrix4 pose = body.getTransform();
-    pose.translation() += body.getVelocity() * dt;
+    pose.translation() += reachVelocity(r, fall) * dt;
     const Vector3 turn = body.getRotation() * dt;
     const real angle = turn.norm();
     if (angle > 0) pose.linear() = Eigen::AngleAxis<real>(angle, turn / angle).toRotationMatrix() * pose.linear();
@@ -57,11 +84,11 @@ Matrix4 poseAfter(const RigidBody &body, real dt) {
 // Whether two shapes apart now touch at some time of the step when each moves at its
 // velocities: a speculative contact's normal is only that of their nearest features,
 // and a body passing by a corner would be stopped by it without this test.
-bool meetWithinStep(const BodyRecord &a, const BodyRecord &b, real dt) {
+bool meetWithinStep(const BodyRecord &a, const BodyRecord &b, real dt, const Vector3 &fall) {
     if (a.isPlane || b.isPlane) return true;  // a half-space's normal is exact: closing() is the test
     real t = 0;
-    return timeOfImpact(sweptShape(*a.shape), a.body.getTransform(), poseAfter(a.body, dt), sweptShape(*b.shape),
-                        b.body.getTransform(), poseAfter(b.body, dt), t) != Impact::None;
+    return timeOfImpact(sweptShape(*a.shape), a.body.getTransform(), poseAfter(a, dt, fall), sweptShape(*b.shape),
+                        b.body.getTransform(), poseAfter(b, dt, fall), t) != Impact::None;
 }
 
 // B's pose seen from A (the manifold-reuse test compares it with the last narrowphase's):
@@ -79,10 +106,13 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
     movedObjects_.clear();
     // A body's box reaches as far as the body can move in the step, so that a pair that
     // can meet within it is a candidate (and gets a speculative contact).
+    const Vector3 fall = stepFall(settings, dt);
+    const bool counted = fall.squaredNorm() > 0;
     const auto place = [&](std::uint32_t index) {
         BodyRecord &r = bodies[index];
         if (!r.object) return;
-        const real reach = settings.speculativeContacts ? stepReach(r, dt) : 0;
+        const bool falls = counted && fallsFreely(r, pairs);
+        const real reach = settings.speculativeContacts ? stepReach(r, dt, falls ? fall : Vector3(Vector3::Zero())) : 0;
         if (r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0))
             movedObjects_.push_back(r.object.get());
     };
@@ -240,7 +270,11 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
     fresh_.clear();
     NarrowphaseSettings narrowphase;
     narrowphase.speculativeDistance = settings.speculativeDistance;
-    const real reach = settings.speculativeContacts ? relativeReach(a, b, dt) : 0;
+    // The fall counts against a body that does not fall: two dynamic bodies fall together.
+    // The pair's own manifolds are last step's still: a body touching B does not fall.
+    Vector3 fall = a.immovable != b.immovable ? stepFall(settings, dt) : Vector3(Vector3::Zero());
+    if (fall.squaredNorm() > 0 && !fallsFreely(a.immovable ? b : a, pairs)) fall.setZero();
+    const real reach = settings.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     int n = collide(*a.shape, poseA, *b.shape, poseB, narrowphase, fresh_);
     if (narrowphase.reach > 0 && n > 0) {
@@ -252,8 +286,8 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
             real deepest = -std::numeric_limits<real>::infinity();
             for (int k = 0; k < m.count; ++k) deepest = std::max(deepest, m.points[k].depth);
             if (!(deepest < 0)) return false;  // touching: a contact
-            if (-deepest > closing(a, b, m.normal, dt)) return true;
-            if (meet < 0) meet = meetWithinStep(a, b, dt) ? 1 : 0;
+            if (-deepest > closing(a, b, m.normal, dt, fall)) return true;
+            if (meet < 0) meet = meetWithinStep(a, b, dt, fall) ? 1 : 0;
             return meet == 0;
         };
         fresh_.erase(std::remove_if(fresh_.begin(), fresh_.end(), noContactYet), fresh_.end());

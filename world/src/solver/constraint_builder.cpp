@@ -238,6 +238,15 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
                                                    settings.contactDampingRatio, h);
         soft_.slop = settings.penetrationSlop;
         soft_.maxPushVelocity = settings.maxPushVelocity;
+        // Each dynamic body's manifolds share its push-out speed (solveSoft).
+        std::vector<int> &shares = soft_.pushShares;
+        shares.assign(bodies_.size(), 0);
+        for (const SolverManifold &m : manifolds_) {
+            ++shares[m.a];
+            ++shares[m.b];
+        }
+        shares[0] = 1;
+        for (std::size_t k = n + 1; k < shares.size(); ++k) shares[k] = 1;
     }
     if (manifolds_.empty()) return;  // nothing below is read without contacts
     // The split reads the manifolds' bodies, the support their normals, and writes only

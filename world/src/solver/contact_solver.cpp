@@ -443,6 +443,10 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
         SolverManifold &m = manifolds[index];
         PairVelocities vel(bodies[m.a], bodies[m.b]);
         const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
+        // Without the share, a body overlapping many others (a dense spawn) gets each
+        // one's push at once and leaves the pile far faster than maxPushVelocity.
+        const real pushLimit =
+            settings.maxPushVelocity / std::max(settings.pushShares[m.a], settings.pushShares[m.b]);
         withCount(m.count, [&](auto count) __attribute__((always_inline)) {
             ManifoldSweep<count()> normals(vel, m);
             for (int k = 0; k < count(); ++k) {
@@ -455,8 +459,7 @@ void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &man
                 if (separation > 0) {
                     bias = separation * inverseH;  // speculative: close the gap, no more
                 } else if (useBias) {
-                    bias = std::max(soft.biasRate * std::min(separation + settings.slop, real(0)),
-                                    -settings.maxPushVelocity);
+                    bias = std::max(soft.biasRate * std::min(separation + settings.slop, real(0)), -pushLimit);
                     massScale = soft.massScale;
                     impulseScale = soft.impulseScale;
                 }

@@ -189,6 +189,9 @@ struct SoftStepSettings {
     Softness staticSoftness;   ///< For contacts with an immovable body.
     real slop = 0;             ///< Penetration left alone, m.
     real maxPushVelocity = 3;  ///< Fastest penetration recovery, m/s.
+    /// Per solver body, how many manifolds share its push-out (1 for immovable bodies):
+    /// a contact pushes its bodies apart at most maxPushVelocity over the larger share.
+    std::vector<int> pushShares;
 };
 
 /// One pass of the soft-step solver over the manifolds listed in `order`. With `useBias`

@@ -1,5 +1,6 @@
 #include "world/mass_range.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <sstream>
@@ -32,6 +33,27 @@ void requireSolvableMass(const char *function, real mass, const Matrix3 &inertia
            "gives principal moments over the squared bounding radius (R = " + show(boundingRadius) + " m) from " +
                show(lowest) + " to " + show(highest) + " kg; the solver's range is [1e-100, 1e100] kg, got " +
                shown.str());
+}
+
+void requireInertiaNearShape(const char *function, const Matrix3 &inertia, const Matrix3 &shapeInertia) {
+    // The smallest ratio of the two moments over all axes a: the smallest eigenvalue of
+    // the pencil inertia x = lambda shapeInertia x. Both are scaled by the shape's largest
+    // moment (the mass range keeps it a normal double), which leaves lambda as it is.
+    const real scale = shapeInertia.cwiseAbs().maxCoeff();
+    if (!(scale > 0) || !inertia.allFinite()) return;
+    const Matrix3 reference = shapeInertia / scale;
+    if (!(Eigen::LLT<Matrix3>(reference).info() == Eigen::Success)) return;
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix3> pencil(inertia / scale, reference, Eigen::EigenvaluesOnly);
+    if (pencil.info() != Eigen::Success) return;
+    const real lowest = pencil.eigenvalues().minCoeff();
+    if (lowest >= kMinInertiaFraction || !(lowest > 0)) return;  // not positive definite: refused as such
+    std::ostringstream shown;
+    shown.precision(3);
+    shown << "[" << inertia.row(0) << "; " << inertia.row(1) << "; " << inertia.row(2) << "]";
+    refuse(function, "inertia",
+           "has a moment of " + show(lowest) +
+               " times the shape's at uniform density about some axis; the solver holds contacts from " +
+               show(kMinInertiaFraction) + " times it up, got " + shown.str());
 }
 
 }  // namespace cyclone::detail

@@ -11,4 +11,13 @@ namespace cyclone::detail {
 /// bounding radius fall outside that range. `inertia` is the tensor the body would get.
 void requireSolvableMass(const char *function, real mass, const Matrix3 &inertia, real boundingRadius);
 
+/// Smallest fraction of the inertia a solid shape of uniform density would have that an
+/// explicit inertia may have along any axis (docs/hostile_input.md measures the range).
+inline constexpr real kMinInertiaFraction = 0.01;
+
+/// Refuses (InvalidArgument from `function`, field "inertia") an explicit inertia tensor
+/// with a moment about some axis below kMinInertiaFraction times that of `shapeInertia`
+/// (the shape's tensor at uniform density for the body's mass) about the same axis.
+void requireInertiaNearShape(const char *function, const Matrix3 &inertia, const Matrix3 &shapeInertia);
+
 }  // namespace cyclone::detail
