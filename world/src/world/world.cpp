@@ -92,7 +92,7 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
     requireNonNegative(function, "material.spinningFriction", s.material.spinningFriction);
 
     RigidBody body;
-    body.setSleepEpsilon(world.sleepEpsilon);
+    body.setSleepEpsilon(detail::sleepEpsilonFor(world.sleepEpsilon, shape.boundingRadius()));
     body.setMovingMotionCap(movingMotionCap(world.sleepDelay));
     body.setPosition(s.position);
     body.setOrientation(s.orientation);
@@ -147,7 +147,7 @@ void World::setSettings(const WorldSettings &settings) {
     impl_->settings = settings;
     for (std::uint32_t index : impl_->bodies.order) {
         detail::BodyRecord &r = impl_->bodies[index];
-        r.body.setSleepEpsilon(settings.sleepEpsilon);
+        r.body.setSleepEpsilon(detail::sleepEpsilonFor(settings.sleepEpsilon, r.boundingRadius));
         r.body.setMovingMotionCap(movingMotionCap(settings.sleepDelay));
         if (r.immovable) continue;
         r.body.setAcceleration(settings.gravity);
