@@ -46,20 +46,6 @@ struct BodyRecord {
     std::vector<std::uint32_t> keptApart;  ///< Bodies it never collides with (World::setPairCollision), any order.
 };
 
-/// Bodies whose bounding radius is below this have their sleep threshold scaled with
-/// their size, m: a 0.25 m ball and anything larger keep WorldSettings::sleepEpsilon.
-inline constexpr real kSleepScaleRadius = 0.25;
-
-/// A body's sleep threshold (RigidBody::setSleepEpsilon), (m/s)^2 + (rad/s)^2: the world's
-/// `epsilon`, times (R / kSleepScaleRadius)^2 below that radius, so that a small body
-/// must move as many of its own sizes per second as a 0.25 m ball to stay awake (a 5 cm
-/// box sliding at 5 cm/s, under the world threshold's 0.1 m/s, stays awake).
-inline real sleepEpsilonFor(real epsilon, real boundingRadius) {
-    if (!(boundingRadius < kSleepScaleRadius)) return epsilon;
-    const real scale = boundingRadius / kSleepScaleRadius;
-    return epsilon * scale * scale;
-}
-
 /// The offset from a body's shape frame to its centre of mass, world space, m: zero
 /// except for a compound, whose frame is where its children were placed.
 inline Vector3 frameToCentre(const RigidBody &body, const CollisionShape &shape) {
