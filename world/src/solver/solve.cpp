@@ -19,21 +19,6 @@ DepthFrame depthFrame(const RigidBody &a, const RigidBody &b, const Vector3 &nor
             (a.getPosition() - b.getPosition()).dot(normal)};
 }
 
-// The same for manifold `m` of bodies `a` and `b`, where a sphere's side reads its anchor
-// as its deepest point along the normal whichever way the sphere has turned since the
-// anchor was set: a point fixed on a rolling ball rises off the surface as the ball turns
-// (r (1 - cos(w t))), and depths read from it let the ball sink within the step (a 0.25 m
-// ball rolling at 4.3 m/s at 4 sub-steps sat 2.7 mm low). A sphere's manifold has one
-// point, on its surface: its anchor's length along itself is the radius.
-DepthFrame depthFrame(const BodyRecord &a, const BodyRecord &b, const SolverManifold &m) {
-    DepthFrame frame = depthFrame(a.body, b.body, m.normal);
-    if (m.count != 1) return frame;
-    const SolverPoint &p = m.points[0];
-    if (a.shape->shape().type == ShapeType::Sphere && p.localA.norm() > 0) frame.normalA = p.localA.normalized();
-    if (b.shape->shape().type == ShapeType::Sphere && p.localB.norm() > 0) frame.normalB = -p.localB.normalized();
-    return frame;
-}
-
 // Gives body `index` the solver's change of velocity and rotation. A change that is not
 // finite (the solve overflowed for this body) isolates the body, as a non-finite state
 // does, so that the rest of the world steps on.
@@ -103,7 +88,8 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
         SolverManifold &m = manifolds_[s];
         if (!firstSubstep) {
-            const DepthFrame frame = depthFrame(bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], m);
+            const DepthFrame frame =
+                depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body, m.normal);
             for (int i = 0; i < m.count; ++i) m.points[i].depth = frame.of(m.points[i]);
         }
         if (!split) return;
@@ -266,7 +252,8 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
     // sets each group's targets from its depths at the poses integration left.
     depthFrames_.resize(manifolds_.size());
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
-        depthFrames_[s] = depthFrame(bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], manifolds_[s]);
+        depthFrames_[s] = depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body,
+                                    manifolds_[s].normal);
     });
     const PseudoTargets targets{depthFrames_.data(), settings.penetrationSlop,
                                         settings.penetrationRecovery / h};

@@ -108,6 +108,7 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
 
     RigidBody body;
     body.setSleepEpsilon(sleepEpsilonFor(world.sleepEpsilon, shape.boundingRadius()));
+    body.setAwake(true);  // the motion average starts at twice this body's threshold
     body.setMovingMotionCap(movingMotionCap(world.sleepDelay));
     body.setPosition(s.position);
     body.setOrientation(s.orientation);
