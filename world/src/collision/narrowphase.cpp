@@ -87,7 +87,7 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
                   const NarrowphaseSettings &settings, std::vector<Manifold> &out) {
     const ShapeType typeA = a.shape().type;
     const ShapeType typeB = b.shape().type;
-    const real reach = settings.reach;
+    const real reach = std::max(settings.reach, settings.touchMargin);
     const Pair pair{a, poseA, -1, b, poseB, -1, std::max(settings.speculativeDistance, reach)};
     if (typeA == ShapeType::Plane || typeB == ShapeType::Plane) {
         // A solid shape's support point is exact: it touches the half-space when that

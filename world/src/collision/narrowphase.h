@@ -33,6 +33,12 @@ struct NarrowphaseSettings {
     /// -reach (a speculative contact: the solver lets them close the gap and no more), m,
     /// >= 0. 0: only shapes that overlap or touch.
     real reach = 0;
+    /// The pairs with a test of their own (box-box, sphere-sphere, sphere-box, a plane
+    /// against a solid shape) also give a manifold to shapes apart by up to this, m, >= 0:
+    /// shapes placed to touch are often apart by a rounding error, and without a contact
+    /// a resting body would fall into what it rests on for a whole step. Costs those
+    /// tests nothing; FCL's pairs and meshes do not use it.
+    real touchMargin = 0;
     /// Test every pair with FCL, even the pairs that have a test of their own (box-box,
     /// sphere-sphere, sphere-box, sphere-capsule, capsule-capsule, capsule-box, a plane
     /// against any solid shape); for comparing the two.

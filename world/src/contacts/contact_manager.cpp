@@ -276,6 +276,7 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
     if (fall.squaredNorm() > 0 && !fallsFreely(a.immovable ? b : a, pairs)) fall.setZero();
     const real reach = settings.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
+    narrowphase.touchMargin = settings.penetrationSlop;
     int n = collide(*a.shape, poseA, *b.shape, poseB, narrowphase, fresh_);
     if (narrowphase.reach > 0 && n > 0) {
         // Shapes apart that cannot close the gap along their normal in this step, or
@@ -285,7 +286,7 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
         const auto noContactYet = [&](const Manifold &m) {
             real deepest = -std::numeric_limits<real>::infinity();
             for (int k = 0; k < m.count; ++k) deepest = std::max(deepest, m.points[k].depth);
-            if (!(deepest < 0)) return false;  // touching: a contact
+            if (!(deepest < -narrowphase.touchMargin)) return false;  // touching: a contact
             if (-deepest > closing(a, b, m.normal, dt, fall)) return true;
             if (meet < 0) meet = meetWithinStep(a, b, dt, fall) ? 1 : 0;
             return meet == 0;

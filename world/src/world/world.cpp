@@ -72,6 +72,21 @@ void validateSettings(const char *function, const WorldSettings &s) {
         refuse(function, "explicitSpringLimit", "must be > 0, got " + show(s.explicitSpringLimit));
 }
 
+// Bodies whose bounding radius is below this have their sleep threshold scaled with their
+// size, m: a 0.25 m ball and anything larger keep WorldSettings::sleepEpsilon.
+constexpr real kSleepScaleRadius = 0.25;
+
+// A body's sleep threshold (RigidBody::setSleepEpsilon), (m/s)^2 + (rad/s)^2: the world's
+// `epsilon`, times (R / kSleepScaleRadius)^2 below that radius, so that a small body must
+// move as many of its own sizes per second as a 0.25 m ball to stay awake (a 5 cm box
+// sliding at 5 cm/s, under the world threshold's 0.1 m/s, stays awake). A plane (bounding
+// radius 0) keeps the world's.
+real sleepEpsilonFor(real epsilon, real boundingRadius) {
+    if (!(boundingRadius > 0 && boundingRadius < kSleepScaleRadius)) return epsilon;
+    const real scale = boundingRadius / kSleepScaleRadius;
+    return epsilon * scale * scale;
+}
+
 RotationStep rotationStep(const WorldSettings &s) {
     return s.integrator == Integrator::MomentumConserving ? RotationStep::MomentumConserving : RotationStep::Seed;
 }
@@ -92,7 +107,8 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
     requireNonNegative(function, "material.spinningFriction", s.material.spinningFriction);
 
     RigidBody body;
-    body.setSleepEpsilon(world.sleepEpsilon);
+    body.setSleepEpsilon(sleepEpsilonFor(world.sleepEpsilon, shape.boundingRadius()));
+    body.setAwake(true);  // the motion average starts at twice this body's threshold
     body.setMovingMotionCap(movingMotionCap(world.sleepDelay));
     body.setPosition(s.position);
     body.setOrientation(s.orientation);
@@ -148,7 +164,7 @@ void World::setSettings(const WorldSettings &settings) {
     impl_->settings = settings;
     for (std::uint32_t index : impl_->bodies.order) {
         detail::BodyRecord &r = impl_->bodies[index];
-        r.body.setSleepEpsilon(settings.sleepEpsilon);
+        r.body.setSleepEpsilon(sleepEpsilonFor(settings.sleepEpsilon, r.boundingRadius));
         r.body.setMovingMotionCap(movingMotionCap(settings.sleepDelay));
         if (r.immovable) continue;
         r.body.setAcceleration(settings.gravity);

@@ -76,7 +76,8 @@ struct WorldSettings {
     /// Whether bodies may fall asleep.
     bool sleep = true;
     /// Threshold of the motion average (v.v + w.w) below which an island may sleep,
-    /// (m/s)^2 + (rad/s)^2, > 0.
+    /// (m/s)^2 + (rad/s)^2, > 0. A body of bounding radius R under 0.25 m gets this times
+    /// (R / 0.25 m)^2, so that it must move as many of its sizes per second to stay awake.
     real sleepEpsilon = kDefaultSleepEpsilon;
     /// Longest time a body stays awake after it stops moving (its v.v + w.w drops below
     /// sleepEpsilon), s, in [0, log2(10) = 3.32]: while it moves, its motion average is
@@ -104,6 +105,9 @@ struct WorldSettings {
     /// Fastest speed at which penetration is pushed out, m/s, > 0.
     real maxPushVelocity = 3;
     /// Penetration the solver leaves alone so that resting contacts persist, m, >= 0.
+    /// Shapes apart by up to this also count as touching (box-box, the sphere pairs and
+    /// a plane against a solid shape), so that shapes placed to touch, which rounding
+    /// often leaves a hair apart, are in contact from the first step.
     real penetrationSlop = 0.0002;
     /// Fraction of the penetration beyond the slop removed per step, in (0, 1].
     real penetrationRecovery = 0.1;
