@@ -6,7 +6,7 @@
 //
 //   cyclone-layers [--scene pyramid60] [--steps N] [--substeps S] [--iterations I]
 //                  [--every K] [--layers L] [--positions P] [--reuse M] [--shock 0|1]
-//                  [--warm 0|1] [--recovery R] [--slop M] [--soft HZ]
+//                  [--warm 0|1] [--recovery R] [--slop M] [--soft HZ] [--velocities 0|1]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,6 +27,7 @@ int run(int argc, char **argv) {
     int steps = 600, substeps = 1, iterations = 10, every = 60, shownLayers = 12;
     WorldSettings knobs;
     double soft = 0;
+    bool velocities = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg, value;
         if (!bench::readOption("cyclone-layers", argc, argv, i, arg, value)) return 2;
@@ -54,6 +55,8 @@ int run(int argc, char **argv) {
             knobs.penetrationRecovery = std::atof(value.c_str());
         } else if (arg == "--slop") {
             knobs.penetrationSlop = std::atof(value.c_str());
+        } else if (arg == "--velocities") {
+            velocities = std::atoi(value.c_str()) != 0;
         } else if (arg == "--soft") {
             soft = std::atof(value.c_str());
         } else {
@@ -102,8 +105,10 @@ int run(int argc, char **argv) {
     std::printf("%s at %d x %d, layer worst displacement (mm)\nstep", name.c_str(), substeps, iterations);
     for (int layer : shown) std::printf(" %7s%d", "L", layer);
     std::printf("\n");
+    long carrierSweeps = 0;
     for (int s = 1; s <= steps; ++s) {
         world.step(1.0 / 60);
+        carrierSweeps += world.stats().carrierSweeps;
         std::fill(worst.begin(), worst.end(), 0.0);
         for (std::size_t b = 0; b < ids.size(); ++b) {
             const double d = (world.body(ids[b]).getPosition() - start[b]).norm();
@@ -122,9 +127,28 @@ int run(int argc, char **argv) {
             const Vector3 d = (top.getPosition() - start.back()) * 1e3;
             const Vector3 w = top.getRotation();
             std::printf("  top d (%.2f %.2f %.2f) mm w (%.4f %.4f %.4f)\n", d.x(), d.y(), d.z(), w.x(), w.y(), w.z());
+            if (velocities) {
+                // Per shown layer: the spread of the boxes' vertical velocities (mm/s) and
+                // their fastest turn (rad/s).
+                std::printf("  vy spread / max |w|");
+                for (int layer : shown) {
+                    double low = 1e9, high = -1e9, turn = 0;
+                    for (std::size_t b = 0; b < ids.size(); ++b) {
+                        if (layerOf[b] != layer) continue;
+                        const RigidBody &body = world.body(ids[b]);
+                        low = std::min(low, body.getVelocity().y());
+                        high = std::max(high, body.getVelocity().y());
+                        turn = std::max(turn, body.getRotation().norm());
+                    }
+                    std::printf(" %.2f/%.4f", (high - low) * 1e3, turn);
+                }
+                std::printf("\n");
+            }
             std::fflush(stdout);
         }
     }
+    std::printf("carrier sweeps per step (single runs, summed over sub-steps): %.0f\n",
+                static_cast<double>(carrierSweeps) / steps);
     std::printf("first step over 1 mm / 1 cm per layer (-1: never):\n");
     for (int layer = 0; layer < layers; ++layer) {
         const auto l = static_cast<std::size_t>(layer);

@@ -32,9 +32,17 @@ RunLanes laneRuns(const std::vector<SolverManifold> &manifolds, const CarrierRun
     return lanes;
 }
 
-// Copies each lane's contact `slot` into c, as its carried body takes it.
+// Copies each lane's contact `slot` into c, as its carried body takes it. With
+// `patchCentre`, every point's carrier share along the normal is that of the patch's
+// centre (the mean of the points'): the carrier taken as moving with its patch, its turn
+// across the patch left out. A box on two carriers whose tops move apart vertically must
+// turn to rest on both; taken with its carriers' turns, that turn reaches the next level
+// as a difference of vertical velocity, and a pyramid's layers hand such differences up
+// growing (docs/solver.md, "Taller pyramids"). Done for stacks of more than
+// kCarrierLevels levels only.
 CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
-                                const CarrierRuns &runs, const RunLanes &lanes, int slot, WideCarriedContact &c) {
+                                const CarrierRuns &runs, const RunLanes &lanes, int slot, bool patchCentre,
+                                WideCarriedContact &c) {
     static const SolverManifold none{};
     static const SolverPoint zeroPoint{};
     const SolverManifold *m[kWideLanes];
@@ -85,6 +93,15 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
         lanesOf([&](int k) { return p[k]->velocityBias; }, c.bias[i]);
         transpose(coupling[0]->normal[i], coupling[1]->normal[i], coupling[2]->normal[i], coupling[3]->normal[i],
                   c.normalCoupling[i]);
+    }
+    if (patchCentre) {
+        for (int k = 0; k < kWideLanes; ++k) {
+            const int count = m[k]->count;
+            if (count == 0) continue;
+            real sum = 0;
+            for (int i = 0; i < count; ++i) sum += c.carrier[i][k];
+            for (int i = 0; i < count; ++i) c.carrier[i][k] = sum / count;
+        }
     }
     for (int r = 0; r < 2; ++r) {
         const auto row = [&](int k) -> const SolverRow & { return m[k]->frictionRow[r]; };
@@ -223,7 +240,10 @@ void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     if (scratch.contacts.size() < static_cast<std::size_t>(lanes.slots))
         scratch.contacts.resize(std::max(lanes.slots, kCarriersMade));
     WideCarriedContact *contacts = scratch.contacts.data();
-    for (int slot = 0; slot < lanes.slots; ++slot) loadContact(bodies, manifolds, runs, lanes, slot, contacts[slot]);
+    const CarrierStop stop = carrierStop(static_cast<int>(runs.levelStart.size()) - 1);
+    for (int slot = 0; slot < lanes.slots; ++slot)
+        loadContact(bodies, manifolds, runs, lanes, slot, static_cast<int>(runs.levelStart.size()) - 1 > kCarrierLevels,
+                    contacts[slot]);
 
     CarriedBodies body;
     const SolverBody &b0 = bodies[lanes.body[0]], &b1 = bodies[lanes.body[1]], &b2 = bodies[lanes.body[2]],
@@ -236,7 +256,7 @@ void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     Lanes lever;
     dotLanes(contacts[0].points[0].rxd, contacts[0].points[0].rxd, lever);
     sqrtLanes(lever, lever);
-    const Lanes tolerance{kCarrierTolerance, kCarrierTolerance, kCarrierTolerance, kCarrierTolerance};
+    const Lanes tolerance{stop.tolerance, stop.tolerance, stop.tolerance, stop.tolerance};
     LaneMask active{};
     for (int k = 0; k < count; ++k) active[k] = -1;
 
@@ -245,7 +265,7 @@ void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     // contacts at once, in a cycle of two states that no one-sweep test ends: pyramid40's
     // runs of levels 20-39 swept 10.9-11.1 times on average, in one direction 8.8-9.6
     // (docs/solver.md, "Sweeps in one direction").
-    for (int sweep = 0; sweep < kCarrierSweeps && anyLane(active); ++sweep) {
+    for (int sweep = 0; sweep < stop.sweeps && anyLane(active); ++sweep) {
         for (int k = 0; k < count; ++k) scratch.sweeps += active[k] != 0;
         const CarriedBodies before = body;
         for (int slot = 0; slot < lanes.slots; ++slot) CarriedSweep(body, contacts[slot], active).solve(reverse);

@@ -1,8 +1,8 @@
 // The carrier pass's runs, four at a time.
 //
 // Design note. A run (CarrierRuns) sweeps one carried body against its carriers, which it
-// holds immovable, until a sweep changes the body's velocity by less than
-// kCarrierTolerance or for kCarrierSweeps sweeps. The runs of one level never carry one
+// holds immovable, until a sweep changes the body's velocity by less than a tolerance
+// or for a number of sweeps, both tighter for taller stacks (carrierStop). The runs of one level never carry one
 // another, so four of them are solved by the same instructions, one run per lane, as the
 // velocity passes solve four manifolds (velocity_pass.h): slot k of a group holds each lane's
 // k-th contact with a carrier. Because only the carried body moves, a run's rows cost

@@ -93,6 +93,31 @@ inline constexpr int kCarrierSweeps = 12;
 /// The carrier pass stops sweeping a contact once no impulse changes a relative
 /// velocity by more than this, m/s (10 s of such an error would move a body 0.1 mm).
 inline constexpr real kCarrierTolerance = 1e-5;
+/// Up to this many levels of carried bodies kCarrierTolerance and kCarrierSweeps hold.
+/// What a run leaves of its body's velocity relative to its carriers is the next level's
+/// carrier velocity, so the residuals add up with the stack's height, and Gauss-Seidel
+/// over a face's corners is far from rest when one sweep still changes it by the
+/// tolerance: taller stacks need a tighter stop (carrierStop).
+inline constexpr int kCarrierLevels = 20;
+
+/// The carrier pass's stopping test for a world whose tallest stack has `levels` levels
+/// of carried bodies: kCarrierTolerance and kCarrierSweeps up to kCarrierLevels levels;
+/// beyond, the tolerance times (kCarrierLevels / levels)^4 and the cap times
+/// levels / kCarrierLevels (the power chosen on the 60-level pyramid: docs/solver.md,
+/// "Taller pyramids").
+struct CarrierStop {
+    real tolerance = kCarrierTolerance;  ///< m/s
+    int sweeps = kCarrierSweeps;
+};
+
+inline CarrierStop carrierStop(int levels) {
+    CarrierStop stop;
+    if (levels <= kCarrierLevels) return stop;
+    const real ratio = real(kCarrierLevels) / levels;
+    stop.tolerance *= (ratio * ratio) * (ratio * ratio);
+    stop.sweeps = kCarrierSweeps * levels / kCarrierLevels;
+    return stop;
+}
 
 /// Friction acts on the manifold's contact patch as a whole, not point by point: two
 /// tangent rows at the centre of its points, limited together to the friction cone of the
