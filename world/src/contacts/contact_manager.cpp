@@ -181,7 +181,9 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // not depend on the thread count.
     const std::size_t count = stepPairs_.size();
     const std::size_t chunks = (count + Workers::kChunk - 1) / Workers::kChunk;
-    if (chunkFinds_.size() < chunks) chunkFinds_.resize(chunks);
+    // Room for one manifold per pair (convex pairs find at most one), so that a chunk's
+    // list is not grown by a few more touching pairs in a later step.
+    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     finds_.resize(count);
     world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
         std::vector<Manifold> &out = chunkFinds_[static_cast<std::size_t>(chunk)];
