@@ -297,8 +297,6 @@ std::string ratio(double ours, double theirs) {
 
 double asDouble(long long bytes) { return bytes < 0 ? kNaN : static_cast<double>(bytes); }
 
-double perBody(long long bytes, int bodies) { return bodies > 0 ? asDouble(bytes) / bodies : kNaN; }
-
 struct Row {
     std::string scene;
     std::string engine;
@@ -324,9 +322,8 @@ void printTable(const std::vector<Row> &rows, const std::vector<std::string> &sc
             std::cout << "| " << scene << " | " << row.engine << " | " << r.bodies << " | " << milliseconds(r.medianMs)
                       << " | " << milliseconds(r.p95Ms) << " | " << r.contactsLast << " | " << fixed(r.usPerContact, 3)
                       << " | " << mebibytes(r.peakHeapBytes) << " | " << mebibytes(r.peakRssBytes) << " | "
-                      << fixed(perBody(r.stateBytes, r.bodies), 0) << " | " << fixed(r.allocsPerStep, 2) << " | "
-                      << fixed(r.driftM * 100, 2) << " | "
-                      << fixed(r.penetrationM * 1000, 2) << " |\n";
+                      << fixed(asDouble(r.stateBytes) / r.bodies, 0) << " | " << fixed(r.allocsPerStep, 2) << " | "
+                      << fixed(r.driftM * 100, 2) << " | " << fixed(r.penetrationM * 1000, 2) << " |\n";
         }
         if (ours && bullet) {
             std::cout << "| " << scene << " | **ours/Bullet** | | **" << ratio(ours->medianMs, bullet->medianMs)
@@ -381,8 +378,8 @@ void writeCsv(std::ofstream &out, const std::vector<Row> &rows) {
         std::replace(error.begin(), error.end(), '"', '\'');
         std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.6f,%.6f,%.6f,%.6f,%d,%.6f,%lld,%lld,%lld,%.3f,%.9f,%.9f,\"%s\"\n",
                       row.scene.c_str(), row.engine.c_str(), r.bodies, r.steps, r.medianMs, r.p95Ms, r.meanMs,
-                      r.maxMs, r.contactsLast, r.usPerContact, r.peakHeapBytes, r.peakRssBytes, r.stateBytes, r.allocsPerStep,
-                      r.driftM, r.penetrationM, error.c_str());
+                      r.maxMs, r.contactsLast, r.usPerContact, r.peakHeapBytes, r.peakRssBytes, r.stateBytes,
+                      r.allocsPerStep, r.driftM, r.penetrationM, error.c_str());
         out << line;
     }
 }
@@ -547,8 +544,7 @@ int run(int argc, char **argv) {
                  "not in it\n"
               << "- peak RSS Δ: VmHWM at the end minus VmRSS at the start of the run (after clear_refs), everything "
                  "included\n"
-              << "- state B/body: heap the engine holds after the last step (counting allocator, the whole World or "
-                 "dynamics world with its bodies, shapes, pairs and caches) per body\n"
+              << "- state B/body: heap the engine holds after the last step (counting allocator), per body\n"
               << "- allocs/step: allocation calls per step over the second half of the run (steady state)\n"
               << "- deepest pen.: cyclone StepStats::maxPenetration; Bullet -min btManifoldPoint::getDistance over "
                  "all manifolds of the last step\n"
