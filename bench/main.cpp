@@ -47,6 +47,7 @@ struct RunResult {
     double usPerContact = kNaN;   // total step time / contactsTotal
     long long peakHeapBytes = -1;
     long long peakRssBytes = -1;  // -1: the kernel refused to reset the peak
+    long long stateBytes = -1;    // heap held by the engine after the last step (counted)
     double allocsPerStep = kNaN;  // over the second half of the run
     double driftM = kNaN;         // NaN: the scene tracks no body
     double penetrationM = kNaN;
@@ -142,6 +143,7 @@ Run runHere(const Scene &scene, const std::string &engineName, int steps) {
         if (scene.tracked >= 0) result.driftM = (engine->position(scene.tracked) - start).norm();
         result.penetrationM = engine->deepestPenetration();
         result.peakHeapBytes = allocCounters().peakBytes - heapBefore;
+        result.stateBytes = allocCounters().liveBytes - heapBefore;
         if (rssReset) result.peakRssBytes = procStatusBytes("VmHWM") - rssBefore;
         result.ok = true;
     } catch (const std::exception &e) {
@@ -303,8 +305,8 @@ struct Row {
 
 void printTable(const std::vector<Row> &rows, const std::vector<std::string> &sceneOrder) {
     std::cout << "| scene | engine | bodies | median ms | p95 ms | contacts | µs/contact | peak heap MiB | "
-                 "peak RSS Δ MiB | allocs/step | top-box drift cm | deepest pen. mm |\n"
-              << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+                 "peak RSS Δ MiB | state B/body | allocs/step | top-box drift cm | deepest pen. mm |\n"
+              << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const std::string &scene : sceneOrder) {
         const RunResult *ours = nullptr;
         const RunResult *bullet = nullptr;
@@ -313,15 +315,15 @@ void printTable(const std::vector<Row> &rows, const std::vector<std::string> &sc
             const RunResult &r = row.result;
             if (!r.ok) {
                 std::cout << "| " << scene << " | " << row.engine << " | " << r.bodies
-                          << " | failed (see below) | | | | | | | | |\n";
+                          << " | failed (see below) | | | | | | | | | |\n";
                 continue;
             }
             (row.engine == "cyclone" ? ours : bullet) = &r;
             std::cout << "| " << scene << " | " << row.engine << " | " << r.bodies << " | " << milliseconds(r.medianMs)
                       << " | " << milliseconds(r.p95Ms) << " | " << r.contactsLast << " | " << fixed(r.usPerContact, 3)
                       << " | " << mebibytes(r.peakHeapBytes) << " | " << mebibytes(r.peakRssBytes) << " | "
-                      << fixed(r.allocsPerStep, 2) << " | " << fixed(r.driftM * 100, 2) << " | "
-                      << fixed(r.penetrationM * 1000, 2) << " |\n";
+                      << fixed(asDouble(r.stateBytes) / r.bodies, 0) << " | " << fixed(r.allocsPerStep, 2) << " | "
+                      << fixed(r.driftM * 100, 2) << " | " << fixed(r.penetrationM * 1000, 2) << " |\n";
         }
         if (ours && bullet) {
             std::cout << "| " << scene << " | **ours/Bullet** | | **" << ratio(ours->medianMs, bullet->medianMs)
@@ -329,7 +331,8 @@ void printTable(const std::vector<Row> &rows, const std::vector<std::string> &sc
                       << ratio(ours->contactsLast, bullet->contactsLast) << " | "
                       << ratio(ours->usPerContact, bullet->usPerContact) << " | "
                       << ratio(asDouble(ours->peakHeapBytes), asDouble(bullet->peakHeapBytes)) << " | "
-                      << ratio(asDouble(ours->peakRssBytes), asDouble(bullet->peakRssBytes)) << " | | "
+                      << ratio(asDouble(ours->peakRssBytes), asDouble(bullet->peakRssBytes)) << " | "
+                      << ratio(asDouble(ours->stateBytes), asDouble(bullet->stateBytes)) << " | | "
                       << ratio(ours->driftM, bullet->driftM) << " | "
                       << ratio(ours->penetrationM, bullet->penetrationM) << " |\n";
         }
@@ -367,16 +370,16 @@ void printSleepingRatio(const std::vector<Row> &rows) {
 
 void writeCsv(std::ofstream &out, const std::vector<Row> &rows) {
     out << "scene,engine,bodies,steps,median_ms,p95_ms,mean_ms,max_ms,contacts_last,us_per_contact,"
-           "peak_heap_bytes,peak_rss_bytes,allocs_per_step,drift_m,penetration_m,error\n";
+           "peak_heap_bytes,peak_rss_bytes,state_bytes,allocs_per_step,drift_m,penetration_m,error\n";
     char line[1024];
     for (const Row &row : rows) {
         const RunResult &r = row.result;
         std::string error = r.error;
         std::replace(error.begin(), error.end(), '"', '\'');
-        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.6f,%.6f,%.6f,%.6f,%d,%.6f,%lld,%lld,%.3f,%.9f,%.9f,\"%s\"\n",
+        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.6f,%.6f,%.6f,%.6f,%d,%.6f,%lld,%lld,%lld,%.3f,%.9f,%.9f,\"%s\"\n",
                       row.scene.c_str(), row.engine.c_str(), r.bodies, r.steps, r.medianMs, r.p95Ms, r.meanMs,
-                      r.maxMs, r.contactsLast, r.usPerContact, r.peakHeapBytes, r.peakRssBytes, r.allocsPerStep,
-                      r.driftM, r.penetrationM, error.c_str());
+                      r.maxMs, r.contactsLast, r.usPerContact, r.peakHeapBytes, r.peakRssBytes, r.stateBytes,
+                      r.allocsPerStep, r.driftM, r.penetrationM, error.c_str());
         out << line;
     }
 }
@@ -541,6 +544,7 @@ int run(int argc, char **argv) {
                  "not in it\n"
               << "- peak RSS Δ: VmHWM at the end minus VmRSS at the start of the run (after clear_refs), everything "
                  "included\n"
+              << "- state B/body: heap the engine holds after the last step (counting allocator), per body\n"
               << "- allocs/step: allocation calls per step over the second half of the run (steady state)\n"
               << "- deepest pen.: cyclone StepStats::maxPenetration; Bullet -min btManifoldPoint::getDistance over "
                  "all manifolds of the last step\n"

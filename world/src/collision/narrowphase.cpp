@@ -53,7 +53,7 @@ int clipAlong(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &ou
 // features that face each other along it.
 int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
                  real reach, std::vector<Manifold> &out) {
-    // fcl::distance costs as much as the contact test: pairs that close less than this in
+    // The distance costs as much as the contact test: pairs that close less than this in
     // a step (0.3 m/s at 60 Hz) go without, and enter each other at most that far (plus
     // what gravity adds within the step) before their contact acts, m.
     constexpr real kMinDistanceReach = 0.005;
@@ -64,7 +64,7 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
         return r;
     }();
     fcl::DistanceResultd result;
-    const real distance = fcl::distance(a.geometry().get(), poseA, b.geometry().get(), poseB, request, result);
+    const real distance = distanceShapes(a.geometry().get(), poseA, b.geometry().get(), poseB, request, result);
     if (!(distance > 0 && distance < reach)) return 0;
     const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
     if (!(between.norm() > kMinNormalLength)) return 0;

@@ -99,22 +99,60 @@ constexpr bool hasOwnRoutine() {
     return (aSphere && !bConvex) || (bSphere && !aConvex);
 }
 
+// Whether the libccd solver measures the pair's distance with a routine of its own
+// (ShapeDistanceLibccdImpl's specialisations); the other pairs go through GJKDistance.
+template <class A, class B>
+constexpr bool hasOwnDistance() {
+    constexpr bool aSphere = std::is_same_v<A, fcl::Sphered>;
+    constexpr bool bSphere = std::is_same_v<B, fcl::Sphered>;
+    constexpr bool aCapsule = std::is_same_v<A, fcl::Capsuled>;
+    constexpr bool bCapsule = std::is_same_v<B, fcl::Capsuled>;
+    constexpr bool aConvex = std::is_same_v<A, fcl::Convexd>;
+    constexpr bool bConvex = std::is_same_v<B, fcl::Convexd>;
+    return (aCapsule && bCapsule) || (aSphere && !bConvex) || (bSphere && !aConvex);
+}
+
+// `contacts` null: only whether they touch (libccd's MPR intersection test, as FCL runs
+// it for a request without contacts).
 template <class A, class B>
 bool intersect(const A &a, const fcl::Transform3d &poseA, const B &b, const fcl::Transform3d &poseB,
-               const Solver &solver, ContactPoints &contacts) {
+               const Solver &solver, ContactPoints *contacts) {
     if constexpr (hasOwnRoutine<A, B>()) {
-        return solver.shapeIntersect(a, poseA, b, poseB, &contacts);
+        return solver.shapeIntersect(a, poseA, b, poseB, contacts);
     } else {
         CcdShape<A> ccdA(a, poseA);
         CcdShape<B> ccdB(b, poseB);
+        if (!contacts)
+            return fcl::detail::GJKCollide<double>(&ccdA.object, CcdShape<A>::support(), CcdShape<A>::center(),
+                                                   &ccdB.object, CcdShape<B>::support(), CcdShape<B>::center(),
+                                                   solver.max_collision_iterations, solver.collision_tolerance, nullptr,
+                                                   nullptr, nullptr);
         fcl::Vector3d point;
         fcl::Vector3d normal;
         double depth = 0;
         const bool touching = fcl::detail::GJKCollide<double>(
             &ccdA.object, CcdShape<A>::support(), CcdShape<A>::center(), &ccdB.object, CcdShape<B>::support(),
             CcdShape<B>::center(), solver.max_collision_iterations, solver.collision_tolerance, &point, &depth, &normal);
-        if (touching) contacts.emplace_back(normal, point, depth);
+        if (touching) contacts->emplace_back(normal, point, depth);
         return touching;
+    }
+}
+
+// The distance and nearest points of two shapes, as GJKSolver_libccd::shapeDistance
+// finds them.
+template <class A, class B>
+void measure(const A &a, const fcl::Transform3d &poseA, const B &b, const fcl::Transform3d &poseB,
+             const Solver &solver, double &distance, fcl::Vector3d &pointA, fcl::Vector3d &pointB) {
+    if constexpr (std::is_same_v<A, fcl::Halfspaced> || std::is_same_v<B, fcl::Halfspaced>) {
+        return;  // not measured here (isSolid)
+    } else if constexpr (hasOwnDistance<A, B>()) {
+        solver.shapeDistance(a, poseA, b, poseB, &distance, &pointA, &pointB);
+    } else {
+        CcdShape<A> ccdA(a, poseA);
+        CcdShape<B> ccdB(b, poseB);
+        fcl::detail::GJKDistance<double>(&ccdA.object, CcdShape<A>::support(), &ccdB.object, CcdShape<B>::support(),
+                                         solver.max_distance_iterations, solver.distance_tolerance, &distance, &pointA,
+                                         &pointB);
     }
 }
 
@@ -136,6 +174,11 @@ bool isShape(const fcl::CollisionGeometryd *g) {
     return withShape(g, [](const auto &) {});
 }
 
+// A shape that libccd measures distances to (a half-space is not one).
+bool isSolid(const fcl::CollisionGeometryd *g) {
+    return g->getNodeType() != fcl::GEOM_HALFSPACE && isShape(g);
+}
+
 }  // namespace
 
 std::size_t collideShapes(const fcl::CollisionGeometryd *a, const fcl::Transform3d &poseA,
@@ -150,9 +193,15 @@ std::size_t collideShapes(const fcl::CollisionGeometryd *a, const fcl::Transform
     contacts.clear();
     bool touching = false;
     withShape(a, [&](const auto &shapeA) {
-        withShape(b, [&](const auto &shapeB) { touching = intersect(shapeA, poseA, shapeB, poseB, solver, contacts); });
+        withShape(b, [&](const auto &shapeB) {
+            touching = intersect(shapeA, poseA, shapeB, poseB, solver, request.enable_contact ? &contacts : nullptr);
+        });
     });
     if (!touching || result.numContacts() >= request.num_max_contacts) return result.numContacts();
+    if (!request.enable_contact) {
+        result.addContact(fcl::Contactd(a, b, fcl::Contactd::NONE, fcl::Contactd::NONE));
+        return result.numContacts();
+    }
 
     // As leafTesting: when the contacts do not all fit, the deepest ones.
     const std::size_t room = request.num_max_contacts - result.numContacts();
@@ -168,6 +217,30 @@ std::size_t collideShapes(const fcl::CollisionGeometryd *a, const fcl::Transform
         result.addContact(fcl::Contactd(a, b, fcl::Contactd::NONE, fcl::Contactd::NONE, contacts[i].pos,
                                         contacts[i].normal, contacts[i].penetration_depth));
     return result.numContacts();
+}
+
+}  // namespace cyclone::detail
+
+namespace cyclone::detail {
+
+double distanceShapes(const fcl::CollisionGeometryd *a, const fcl::Transform3d &poseA,
+                      const fcl::CollisionGeometryd *b, const fcl::Transform3d &poseB,
+                      const fcl::DistanceRequestd &request, fcl::DistanceResultd &result) {
+    if (request.gjk_solver_type != fcl::GST_LIBCCD || request.enable_signed_distance || !isSolid(a) || !isSolid(b) ||
+        request.isSatisfied(result))
+        return fcl::distance(a, poseA, b, poseB, request, result);
+    // As fcl::distance sets up its solver for GST_LIBCCD, and as its traversal node
+    // records the answer.
+    Solver solver;
+    solver.distance_tolerance = request.distance_tolerance;
+    double distance = 0;
+    fcl::Vector3d pointA = fcl::Vector3d::Zero();
+    fcl::Vector3d pointB = fcl::Vector3d::Zero();
+    withShape(a, [&](const auto &shapeA) {
+        withShape(b, [&](const auto &shapeB) { measure(shapeA, poseA, shapeB, poseB, solver, distance, pointA, pointB); });
+    });
+    result.update(distance, a, b, fcl::DistanceResultd::NONE, fcl::DistanceResultd::NONE, pointA, pointB);
+    return result.min_distance;
 }
 
 }  // namespace cyclone::detail

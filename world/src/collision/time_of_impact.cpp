@@ -1,10 +1,13 @@
 // Time of impact between two shapes moving from one pose to another over a step, by
-// sampling and bisection with fcl::collide (why not fcl::continuousCollide: docs/solver.md).
+// sampling and bisection with FCL's contact test (collideShapes: fcl::collide without its
+// allocations; why not fcl::continuousCollide: docs/solver.md).
 #include "collision/time_of_impact.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "collision/shape_contact.h"
 
 namespace cyclone::detail {
 namespace {
@@ -25,13 +28,17 @@ bool anyPart(const SweptShape &shape, const Matrix4 &pose, Visit visit) {
 }
 
 bool overlap(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, const Matrix4 &poseB) {
-    fcl::CollisionRequestd request;
-    request.gjk_solver_type = fcl::GST_LIBCCD;
-    fcl::CollisionResultd result;
+    static const fcl::CollisionRequestd request = [] {
+        fcl::CollisionRequestd r;
+        r.gjk_solver_type = fcl::GST_LIBCCD;
+        return r;
+    }();
+    // Reused so that its contact vector keeps its capacity between calls.
+    static thread_local fcl::CollisionResultd result;
     return anyPart(a, poseA, [&](const fcl::CollisionGeometryd *ga, const Matrix4 &pa) {
         return anyPart(b, poseB, [&](const fcl::CollisionGeometryd *gb, const Matrix4 &pb) {
             result.clear();
-            return fcl::collide(ga, pa, gb, pb, request, result) > 0;
+            return collideShapes(ga, pa, gb, pb, request, result) > 0;
         });
     });
 }
@@ -101,7 +108,7 @@ bool separation(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, 
     const bool touching = anyPart(a, poseA, [&](const fcl::CollisionGeometryd *ga, const Matrix4 &pa) {
         return anyPart(b, poseB, [&](const fcl::CollisionGeometryd *gb, const Matrix4 &pb) {
             result.clear();
-            if (!(fcl::distance(ga, pa, gb, pb, request, result) > 0)) return true;
+            if (!(distanceShapes(ga, pa, gb, pb, request, result) > 0)) return true;
             const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
             const real gap = between.norm();
             if (!(gap > 0) || !between.allFinite()) return true;

@@ -204,13 +204,37 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         stepPairs_.push_back(p);
     }
 
-    // Pairs that hardly moved keep their manifolds, each on its own (in chunks at once);
-    // the others go through FCL, one after another.
-    pairReused_.assign(stepPairs_.size(), 0);
-    world.workers.forEach(stepPairs_.size(), [&](std::size_t k) { pairReused_[k] = reuseManifolds(world, stepPairs_[k]); });
-    for (std::size_t k = 0; k < stepPairs_.size(); ++k) {
-        if (pairReused_[k]) ++world.stats.pairsReused;
-        else testPair(world, stepPairs_[k], dt);
+    // Each pair on its own, in chunks shared between the threads: pairs that hardly moved
+    // keep their manifolds, the others go through the narrowphase, which writes what it
+    // finds into its chunk's list. The finds are then merged into the pairs one after
+    // another in the pairs' order (anchors are numbered in that order), so the results do
+    // not depend on the thread count.
+    const std::size_t count = stepPairs_.size();
+    const std::size_t chunks = (count + Workers::kChunk - 1) / Workers::kChunk;
+    // Room for one manifold per pair (convex pairs find at most one), so that a chunk's
+    // list is not grown by a few more touching pairs in a later step.
+    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
+    finds_.resize(count);
+    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
+        std::vector<Manifold> &out = chunkFinds_[static_cast<std::size_t>(chunk)];
+        out.clear();
+        const std::size_t end = std::min(count, std::size_t(chunk + 1) * Workers::kChunk);
+        for (std::size_t k = std::size_t(chunk) * Workers::kChunk; k < end; ++k) {
+            Find &find = finds_[k];
+            find.reused = reuseManifolds(world, stepPairs_[k]);
+            if (find.reused) continue;
+            find.first = static_cast<std::uint32_t>(out.size());
+            find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out));
+        }
+    });
+    for (std::size_t k = 0; k < count; ++k) {
+        const Find &find = finds_[k];
+        if (find.reused) {
+            ++world.stats.pairsReused;
+            continue;
+        }
+        const std::vector<Manifold> &out = chunkFinds_[k / Workers::kChunk];
+        mergeFinds(world, stepPairs_[k], out.data() + find.first, find.count);
     }
 
     touchingPairs.clear();
@@ -259,15 +283,13 @@ bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
     return true;
 }
 
-void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
+std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out) const {
     const BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
-    PairState &pair = pairs[p];
+    const PairState &pair = pairs[p];
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
-    const Matrix4 poseA = a.body.getTransform();
-    const Matrix4 poseB = b.body.getTransform();
-    fresh_.clear();
+    const std::size_t first = out.size();
     NarrowphaseSettings narrowphase;
     narrowphase.speculativeDistance = settings.speculativeDistance;
     // The fall counts against a body that does not fall: two dynamic bodies fall together.
@@ -277,7 +299,7 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
     const real reach = settings.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;
-    int n = collide(*a.shape, poseA, *b.shape, poseB, narrowphase, fresh_);
+    const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out);
     if (narrowphase.reach > 0 && n > 0) {
         // Shapes apart that cannot close the gap along their normal in this step, or
         // would pass by each other, have no contact yet.
@@ -291,9 +313,19 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
             if (meet < 0) meet = meetWithinStep(a, b, dt, fall) ? 1 : 0;
             return meet == 0;
         };
-        fresh_.erase(std::remove_if(fresh_.begin(), fresh_.end(), noContactYet), fresh_.end());
-        n = static_cast<int>(fresh_.size());
+        const auto from = out.begin() + static_cast<std::ptrdiff_t>(first);
+        out.erase(std::remove_if(from, out.end(), noContactYet), out.end());
     }
+    return out.size() - first;
+}
+
+void ContactManager::mergeFinds(WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n) {
+    const BodyStore &bodies = world.bodies;
+    PairState &pair = pairs[p];
+    const BodyRecord &a = bodies[pair.a];
+    const BodyRecord &b = bodies[pair.b];
+    const Matrix4 poseA = a.body.getTransform();
+    const Matrix4 poseB = b.body.getTransform();
     ++world.stats.pairsTested;
     pair.tested = true;
     pair.relativePose = relativePose(a.body, b.body);
@@ -308,26 +340,27 @@ void ContactManager::testPair(WorldState &world, std::uint32_t p, real dt) {
         return;
     }
     if (a.shape->isCompound() || b.shape->isCompound()) {
-        mergeByChildren(pair, poseA, poseB, matchDistance);
+        mergeByChildren(pair, found, n, poseA, poseB, matchDistance);
         return;
     }
     // At most four manifolds per pair (a mesh may report more normals).
-    const int kept = std::min(n, 4);
+    const std::size_t kept = std::min<std::size_t>(n, 4);
     pair.manifolds.resize(kept);
-    for (int k = 0; k < kept; ++k)
-        mergeManifold(pair.manifolds[k], fresh_[k], poseA, poseB, matchDistance, newAnchorsId());
+    for (std::size_t k = 0; k < kept; ++k)
+        mergeManifold(pair.manifolds[k], found[k], poseA, poseB, matchDistance, newAnchorsId());
 }
 
 // A compound's manifolds belong to pairs of children: each fresh one warm-starts from the
 // old one of the same children (the n-th of a child pair from its n-th, for a child on a
 // mesh with several normals), wherever it stood in the list.
-void ContactManager::mergeByChildren(PairState &pair, const Matrix4 &poseA, const Matrix4 &poseB, real matchDistance) {
+void ContactManager::mergeByChildren(PairState &pair, const Manifold *found, std::size_t n, const Matrix4 &poseA,
+                                     const Matrix4 &poseB, real matchDistance) {
     previous_.swap(pair.manifolds);
     previousUsed_.assign(previous_.size(), 0);
-    const std::size_t kept = std::min(fresh_.size(), kMaxCompoundManifolds);
+    const std::size_t kept = std::min(n, kMaxCompoundManifolds);
     pair.manifolds.resize(kept);
     for (std::size_t k = 0; k < kept; ++k) {
-        const Manifold &fresh = fresh_[k];
+        const Manifold &fresh = found[k];
         ManifoldState &state = pair.manifolds[k];
         state = ManifoldState();
         for (std::size_t j = 0; j < previous_.size(); ++j) {

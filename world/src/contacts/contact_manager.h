@@ -57,11 +57,15 @@ private:
     /// Refreshes pair p's manifolds from their anchors when its bodies hardly moved
     /// relative to each other since it was last tested; false: it must be tested.
     bool reuseManifolds(const WorldState &world, std::uint32_t p);
-    /// Runs the narrowphase on pair p and merges what it finds into the pair's manifolds.
-    void testPair(WorldState &world, std::uint32_t p, real dt);
-    /// Merges fresh_ into a pair with a compound, each manifold with the old one of its
+    /// Runs the narrowphase on pair p and appends the manifolds it finds to `out`;
+    /// returns how many. Changes nothing else (pairs are detected on several threads).
+    std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out) const;
+    /// Merges the `n` manifolds `found` for pair p into its manifolds.
+    void mergeFinds(WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n);
+    /// Merges `found` into a pair with a compound, each manifold with the old one of its
     /// children.
-    void mergeByChildren(PairState &pair, const Matrix4 &poseA, const Matrix4 &poseB, real matchDistance);
+    void mergeByChildren(PairState &pair, const Manifold *found, std::size_t n, const Matrix4 &poseA,
+                         const Matrix4 &poseB, real matchDistance);
 
     /// Most manifolds a pair with a compound keeps (one per touching pair of children,
     /// or more against a mesh).
@@ -74,11 +78,18 @@ private:
     BroadphasePairs planePairs_;  ///< This step's body-plane pairs, found before the trees'.
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
     std::vector<std::uint32_t> candidateSlots_;
-    std::vector<Manifold> fresh_;
+    /// What the narrowphase stage did with each entry of stepPairs_: kept its manifolds,
+    /// or found `count` manifolds from `first` on in its chunk's list of chunkFinds_.
+    struct Find {
+        bool reused = false;
+        std::uint32_t first = 0;
+        std::uint32_t count = 0;
+    };
+    std::vector<Find> finds_;
+    std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of Workers::kChunk step pairs.
     std::vector<ManifoldState> previous_;  ///< A compound pair's manifolds before the merge.
     std::vector<char> previousUsed_;       ///< Per entry of previous_: taken by a fresh one.
     std::vector<std::uint32_t> stepPairs_;  ///< Pair slots the broadphase reported this step.
-    std::vector<char> pairReused_;          ///< Per entry of stepPairs_.
     std::vector<ContactTrack> tracks_;      ///< By pair slot.
     /// Pair slots whose touching state may have changed since the last contact events:
     /// seen by the narrowphase or removed (reportContactEvents looks at these only).

@@ -11,6 +11,7 @@ void WorldState::step(real dt) {
     ++stepCount;
     events.openStep();
     StageTimes &ms = stats.ms;
+    workers.match(settings.threads);  // the narrowphase and the solver share their work
 
     {
         const StageTimer t(ms.forces);
@@ -28,7 +29,6 @@ void WorldState::step(real dt) {
     const real h = dt / settings.substeps;
     {
         const StageTimer t(ms.solveParts.setup);
-        workers.match(settings.threads);
         solver.prepare(*this, h);
     }
     ms.solve += ms.solveParts.setup;
