@@ -283,20 +283,25 @@ int App::run() {
         }
         carryOut(requests);
         simulate(options_.frames ? kHeadlessFrameSeconds : std::min(realSeconds, 0.25));
+        // The last frame is shown only now: its picture was handed to the renderer (glFlush)
+        // before this frame's simulation, so that a software renderer's threads draw it
+        // while this thread steps the World.
+        if (frame > 0) glfwSwapBuffers(window_);
         render();
+        glFlush();
         ++frame;
         if (options_.frames && frame == frames && !options_.screenshot.empty()) {
             int width = 0, height = 0;
             glfwGetFramebufferSize(window_, &width, &height);
             writeScreenshot(options_.screenshot, width, height);
         }
-        glfwSwapBuffers(window_);
         if (frame == kWarmUpFrames) {
             glFinish();
             warm = Clock::now();
             warmCpu = std::clock();
         }
     }
+    if (frame > 0) glfwSwapBuffers(window_);
     if (options_.benchmark && frame > kWarmUpFrames) {
         glFinish();
         const auto end = Clock::now();

@@ -256,6 +256,11 @@ TriangleMesh shapeMesh(const Shape &shape, const Vector3 &origin) {
     return mesh;
 }
 
+PlaneAxes planeAxes(const Shape &shape) {
+    const PlaneFrame f = planeFrame(shape);
+    return PlaneAxes{f.centre, f.u, f.v};
+}
+
 std::vector<Eigen::Vector3f> planeGridLines(const Shape &shape) {
     std::vector<Eigen::Vector3f> lines;
     if (shape.type != ShapeType::Plane) return lines;

@@ -36,6 +36,15 @@ inline constexpr float kGridSpacing = 1.0f;
 /// World::localCentreOfMass) is the body's origin.
 TriangleMesh shapeMesh(const Shape &shape, const Vector3 &origin = Vector3::Zero());
 
+/// A plane shape's surface point nearest its body's origin and two unit tangents, in the
+/// body's frame (the axes of shapeMesh()'s square and of its grid).
+struct PlaneAxes {
+    Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+    Eigen::Vector3f u = Eigen::Vector3f::UnitX();
+    Eigen::Vector3f v = Eigen::Vector3f::UnitZ();
+};
+PlaneAxes planeAxes(const Shape &shape);
+
 /// Grid lines on a plane shape's surface, kGridSpacing apart, within the square of
 /// shapeMesh(); pairs of end points in the body's frame, lifted 1 mm off the surface so
 /// that they are drawn over it.

@@ -13,7 +13,12 @@ namespace {
 // touch of distance fog towards the sky, so that depth reads without shadows. Lit per
 // vertex: Mesa's software renderer spends most of a frame shading fragments, and the
 // shapes' faces are flat or finely divided, so per-pixel lighting would look the same.
-const char *kMeshVertex = R"(#version 330 core
+// The vertex shader also hands on the fog and the position in the mesh's own frame, from
+// which two fragment shaders draw lines without line primitives (a software renderer sets
+// up and bins each line on its own, and the ground's grid crosses the whole picture):
+// EDGES darkens a band about one pixel wide along the border of each face of a unit cube
+// (a box scaled by its model matrix), GRID draws the lines of a plane's grid.
+const char *kMeshVertex = R"(
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 uniform mat4 model;
@@ -21,7 +26,14 @@ uniform mat4 viewProjection;
 uniform vec3 color;
 uniform vec3 eye;
 uniform vec3 sky;
+uniform vec3 gridOrigin;
+uniform vec3 gridU;
+uniform vec3 gridV;
 out vec3 shade;
+out float fog;
+out vec3 local;
+out vec3 across;
+out vec2 grid;
 void main() {
     vec4 p = model * vec4(position, 1.0);
     vec3 n = normalize(mat3(model) * normal);
@@ -31,19 +43,45 @@ void main() {
     vec3 fill = normalize(vec3(-0.6, 0.3, -0.4));
     float hemisphere = 0.5 + 0.5 * n.y;
     float light = 0.22 + 0.18 * hemisphere + 0.62 * max(dot(n, key), 0.0) + 0.18 * max(dot(n, fill), 0.0);
-    float fog = clamp((length(p.xyz - eye) - 60.0) / 140.0, 0.0, 0.7);
+    fog = clamp((length(p.xyz - eye) - 60.0) / 140.0, 0.0, 0.7);
     shade = mix(color * light, sky, fog);
+    local = position;
+    across = abs(normal);
+    grid = vec2(dot(position - gridOrigin, gridU), dot(position - gridOrigin, gridV));
     gl_Position = viewProjection * p;
 }
 )";
 
-const char *kMeshFragment = R"(#version 330 core
+const char *kMeshFragment = R"(
 in vec3 shade;
+in float fog;
+in vec3 local;
+in vec3 across;
+in vec2 grid;
+uniform vec3 lineColor;
+uniform vec3 sky;
 out vec4 fragment;
-void main() { fragment = vec4(shade, 1.0); }
+void main() {
+#if defined(EDGES)
+    // Pixels to the face's border along each axis in the face; the axis across the face
+    // (|local| = 1 all over it) is left out.
+    vec3 toBorder = (1.0 - abs(local)) / max(fwidth(local), vec3(1e-6)) + across * 1e6;
+    float cover = 1.0 - clamp(min(toBorder.x, min(toBorder.y, toBorder.z)) - 0.25, 0.0, 1.0);
+#elif defined(GRID)
+    // Pixels to the nearest grid line along each axis: a line one pixel wide, faded to
+    // its mean cover where the lines are closer than a few pixels (towards the horizon).
+    vec2 perPixel = max(fwidth(grid), vec2(1e-6));
+    vec2 toLine = abs(fract(grid + 0.5) - 0.5) / perPixel;
+    float cover = 1.0 - clamp(min(toLine.x, toLine.y), 0.0, 1.0);
+    cover = mix(cover, min(perPixel.x + perPixel.y, 1.0), smoothstep(0.2, 0.5, max(perPixel.x, perPixel.y)));
+#else
+    float cover = 0.0;
+#endif
+    fragment = vec4(mix(shade, mix(lineColor, sky, fog), cover), 1.0);
+}
 )";
 
-const char *kLineVertex = R"(#version 330 core
+const char *kLineVertex = R"(
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 color;
 uniform mat4 viewProjection;
@@ -54,15 +92,16 @@ void main() {
 }
 )";
 
-const char *kLineFragment = R"(#version 330 core
+const char *kLineFragment = R"(
 in vec3 lineColor;
 out vec4 fragment;
 void main() { fragment = vec4(lineColor, 1.0); }
 )";
 
-GLuint compile(GLenum type, const char *source) {
+GLuint compile(GLenum type, const char *source, const char *defines) {
     const GLuint shader = glCreateShader(type);
-    glShaderSource(shader, 1, &source, nullptr);
+    const char *parts[3] = {"#version 330 core\n", defines, source};
+    glShaderSource(shader, 3, parts, nullptr);
     glCompileShader(shader);
     GLint ok = GL_FALSE;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -75,9 +114,9 @@ GLuint compile(GLenum type, const char *source) {
     return shader;
 }
 
-GLuint link(const char *vertexSource, const char *fragmentSource) {
-    const GLuint vertex = compile(GL_VERTEX_SHADER, vertexSource);
-    const GLuint fragment = compile(GL_FRAGMENT_SHADER, fragmentSource);
+GLuint link(const char *vertexSource, const char *fragmentSource, const char *defines = "") {
+    const GLuint vertex = compile(GL_VERTEX_SHADER, vertexSource, defines);
+    const GLuint fragment = compile(GL_FRAGMENT_SHADER, fragmentSource, defines);
     const GLuint program = glCreateProgram();
     glAttachShader(program, vertex);
     glAttachShader(program, fragment);
@@ -148,13 +187,21 @@ void GpuMesh::release() {
 }
 
 Renderer::Renderer() {
-    meshProgram_ = link(kMeshVertex, kMeshFragment);
+    const char *defines[kSurfaces] = {"", "#define EDGES\n", "#define GRID\n"};
+    for (int i = 0; i < kSurfaces; ++i) {
+        MeshProgram &program = meshPrograms_[i];
+        program.id = link(kMeshVertex, kMeshFragment, defines[i]);
+        program.model = glGetUniformLocation(program.id, "model");
+        program.viewProjection = glGetUniformLocation(program.id, "viewProjection");
+        program.color = glGetUniformLocation(program.id, "color");
+        program.eye = glGetUniformLocation(program.id, "eye");
+        program.sky = glGetUniformLocation(program.id, "sky");
+        program.lineColor = glGetUniformLocation(program.id, "lineColor");
+        program.gridOrigin = glGetUniformLocation(program.id, "gridOrigin");
+        program.gridU = glGetUniformLocation(program.id, "gridU");
+        program.gridV = glGetUniformLocation(program.id, "gridV");
+    }
     lineProgram_ = link(kLineVertex, kLineFragment);
-    meshModel_ = glGetUniformLocation(meshProgram_, "model");
-    meshViewProjection_ = glGetUniformLocation(meshProgram_, "viewProjection");
-    meshColor_ = glGetUniformLocation(meshProgram_, "color");
-    meshEye_ = glGetUniformLocation(meshProgram_, "eye");
-    meshSky_ = glGetUniformLocation(meshProgram_, "sky");
     lineViewProjection_ = glGetUniformLocation(lineProgram_, "viewProjection");
     glGenVertexArrays(1, &lineArray_);
     glGenBuffers(1, &lineBuffer_);
@@ -169,7 +216,7 @@ Renderer::~Renderer() {
     glDeleteBuffers(1, &lineBuffer_);
     glDeleteVertexArrays(1, &lineArray_);
     glDeleteProgram(lineProgram_);
-    glDeleteProgram(meshProgram_);
+    for (const MeshProgram &program : meshPrograms_) glDeleteProgram(program.id);
 }
 
 void Renderer::beginFrame(int width, int height, const Eigen::Matrix4f &viewProjection, const Eigen::Vector3f &eye) {
@@ -186,14 +233,49 @@ void Renderer::beginFrame(int width, int height, const Eigen::Matrix4f &viewProj
     // Solids a little behind their depth, so that the lines on their edges win.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1, 1);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glUseProgram(meshProgram_);
-    glUniformMatrix4fv(meshViewProjection_, 1, GL_FALSE, viewProjection_.data());
-    glUniform3f(meshEye_, eye_.x(), eye_.y(), eye_.z());
-    glUniform3f(meshSky_, kSkyColor.r, kSkyColor.g, kSkyColor.b);
+    // The stencil is cleared with the depth although nothing uses it: the depth buffer
+    // holds depth and stencil in one word, and Mesa's software renderer fills whole words
+    // (a plain memset) instead of masking the stencil bits out of each one.
+    glClearStencil(0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    for (const MeshProgram &program : meshPrograms_) {
+        glUseProgram(program.id);
+        glUniformMatrix4fv(program.viewProjection, 1, GL_FALSE, viewProjection_.data());
+        glUniform3f(program.eye, eye_.x(), eye_.y(), eye_.z());
+        glUniform3f(program.sky, kSkyColor.r, kSkyColor.g, kSkyColor.b);
+    }
+    current_ = -1;
 }
 
 void Renderer::drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &color, bool closed) {
+    draw(Plain, mesh, model, color, closed);
+}
+
+void Renderer::drawBox(const GpuMesh &unitCube, const float model[16], const Rgb &color, const Rgb &edgeColor) {
+    const MeshProgram &program = use(Edges);
+    glUniform3f(program.lineColor, edgeColor.r, edgeColor.g, edgeColor.b);
+    draw(Edges, unitCube, model, color, true);
+}
+
+void Renderer::drawGround(const GpuMesh &mesh, const float model[16], const Rgb &color, const Rgb &gridColor,
+                          const GridAxes &grid) {
+    const MeshProgram &program = use(Grid);
+    glUniform3f(program.lineColor, gridColor.r, gridColor.g, gridColor.b);
+    glUniform3fv(program.gridOrigin, 1, grid.origin.data());
+    glUniform3fv(program.gridU, 1, grid.u.data());
+    glUniform3fv(program.gridV, 1, grid.v.data());
+    draw(Grid, mesh, model, color, false);
+}
+
+const Renderer::MeshProgram &Renderer::use(int surface) {
+    if (current_ != surface) {
+        glUseProgram(meshPrograms_[surface].id);
+        current_ = surface;
+    }
+    return meshPrograms_[surface];
+}
+
+void Renderer::draw(int surface, const GpuMesh &mesh, const float model[16], const Rgb &color, bool closed) {
     if (mesh.indexCount() == 0) return;
     if (closed != culling_) {
         if (closed) {
@@ -203,9 +285,9 @@ void Renderer::drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &c
         }
         culling_ = closed;
     }
-    glUseProgram(meshProgram_);
-    glUniformMatrix4fv(meshModel_, 1, GL_FALSE, model);
-    glUniform3f(meshColor_, color.r, color.g, color.b);
+    const MeshProgram &program = use(surface);
+    glUniformMatrix4fv(program.model, 1, GL_FALSE, model);
+    glUniform3f(program.color, color.r, color.g, color.b);
     glBindVertexArray(mesh.vertexArray());
     glDrawElements(GL_TRIANGLES, mesh.indexCount(), GL_UNSIGNED_INT, nullptr);
 }
@@ -213,6 +295,7 @@ void Renderer::drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &c
 void Renderer::drawLines(const std::vector<LineVertex> &vertices, bool onTop) {
     if (vertices.empty()) return;
     glUseProgram(lineProgram_);
+    current_ = -1;
     glUniformMatrix4fv(lineViewProjection_, 1, GL_FALSE, viewProjection_.data());
     glBindVertexArray(lineArray_);
     glBindBuffer(GL_ARRAY_BUFFER, lineBuffer_);

@@ -1,5 +1,6 @@
-// Drawing with OpenGL 3.3 core: lit solid meshes (one draw per body) and coloured lines
-// (debug drawing, grids, springs) batched into one draw per frame. Needs a current GL
+// Drawing with OpenGL 3.3 core: lit solid meshes (one draw per body; boxes with their
+// edges and planes with their grid drawn by the fragment shader) and coloured lines (debug
+// drawing, springs) batched into one draw per frame. Needs a current GL
 // context from construction to destruction.
 #pragma once
 
@@ -40,6 +41,15 @@ struct LineVertex {
     float color[3];
 };
 
+/// Where a plane's grid lines lie, in its body's frame: lines where the coordinates
+/// (p - origin) . u and (p - origin) . v are whole numbers (u and v are the tangents divided
+/// by the spacing of the lines).
+struct GridAxes {
+    Eigen::Vector3f origin = Eigen::Vector3f::Zero();
+    Eigen::Vector3f u = Eigen::Vector3f::UnitX();
+    Eigen::Vector3f v = Eigen::Vector3f::UnitZ();
+};
+
 /// The GL programs and per-frame state.
 class Renderer {
 public:
@@ -57,13 +67,30 @@ public:
     /// faces culled: they are hidden anyway, and not rasterizing them is most of the
     /// saving on a software renderer. Open meshes and planes are drawn on both sides.
     void drawMesh(const GpuMesh &mesh, const float model[16], const Rgb &color, bool closed);
+    /// Draws a box: `unitCube` (the box of half sizes 1) placed and scaled by `model`, lit,
+    /// with a band about a pixel wide in `edgeColor` along the border of each face.
+    void drawBox(const GpuMesh &unitCube, const float model[16], const Rgb &color, const Rgb &edgeColor);
+    /// Draws a plane's mesh, lit, on both sides, with grid lines one pixel wide in
+    /// `gridColor` where `grid` puts them.
+    void drawGround(const GpuMesh &mesh, const float model[16], const Rgb &color, const Rgb &gridColor,
+                    const GridAxes &grid);
     /// Draws line segments (pairs of vertices); `onTop` draws them over everything.
     void drawLines(const std::vector<LineVertex> &vertices, bool onTop);
 
 private:
-    GLuint meshProgram_ = 0;
+    /// The mesh shaders' variants: plain, box edges, plane grid.
+    enum Surface { Plain, Edges, Grid, kSurfaces };
+    struct MeshProgram {
+        GLuint id = 0;
+        GLint model = -1, viewProjection = -1, color = -1, eye = -1, sky = -1, lineColor = -1;
+        GLint gridOrigin = -1, gridU = -1, gridV = -1;
+    };
+    const MeshProgram &use(int surface);
+    void draw(int surface, const GpuMesh &mesh, const float model[16], const Rgb &color, bool closed);
+
+    MeshProgram meshPrograms_[kSurfaces];
+    int current_ = -1;  ///< The mesh program in use, -1 when none (or another program).
     GLuint lineProgram_ = 0;
-    GLint meshModel_ = -1, meshViewProjection_ = -1, meshColor_ = -1, meshEye_ = -1, meshSky_ = -1;
     GLint lineViewProjection_ = -1;
     GLuint lineArray_ = 0, lineBuffer_ = 0;
     std::size_t lineCapacity_ = 0;

@@ -11,23 +11,6 @@ void pushLine(std::vector<LineVertex> &out, const Eigen::Vector3f &from, const E
     out.push_back({{to.x(), to.y(), to.z()}, {c.r, c.g, c.b}});
 }
 
-// The 12 edges of a box of half sizes `h` placed by `pose`.
-void pushBoxEdges(std::vector<LineVertex> &out, const Eigen::Matrix4f &pose, const Eigen::Vector3f &h, const Rgb &c) {
-    for (int axis = 0; axis < 3; ++axis) {
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        for (float su : {-1.0f, 1.0f}) {
-            for (float sv : {-1.0f, 1.0f}) {
-                Eigen::Vector3f a, b;
-                a[axis] = -h[axis];
-                b[axis] = h[axis];
-                a[u] = b[u] = su * h[u];
-                a[v] = b[v] = sv * h[v];
-                pushLine(out, (pose * a.homogeneous()).head<3>(), (pose * b.homogeneous()).head<3>(), c);
-            }
-        }
-    }
-}
-
 // The World's debug drawing, collected as line vertices.
 class LineCollector : public DebugDraw {
 public:
@@ -53,7 +36,10 @@ const GpuMesh &WorldView::meshOf(const World &world, BodyId id) {
     return cached.mesh;
 }
 
-void WorldView::clear() { meshes_.clear(); }
+void WorldView::clear() {
+    meshes_.clear();
+    unitCube_ = GpuMesh();
+}
 
 void WorldView::draw(Renderer &renderer, const Session &session, const ViewOptions &options) {
     const World &world = session.world();
@@ -68,21 +54,22 @@ void WorldView::draw(Renderer &renderer, const Session &session, const ViewOptio
         float model[16];
         stepper.glTransform(id, model);
         if (!std::isfinite(model[12]) || !std::isfinite(model[13]) || !std::isfinite(model[14])) continue;
-        if (options.solids || plane) {
-            const bool closed = !plane && shape.type != ShapeType::Mesh;
-            renderer.drawMesh(meshOf(world, id), model, plane ? kGroundColor : stateColor(session.state(id)), closed);
-        }
-        const Eigen::Map<const Eigen::Matrix4f> pose(model);
-        if (options.solids && options.edges && shape.type == ShapeType::Box) {
-            const Rgb face = stateColor(session.state(id));
-            pushBoxEdges(lines_, pose, shape.halfExtents.cast<float>(), Rgb{face.r * 0.4f, face.g * 0.4f, face.b * 0.4f});
-        }
         if (plane) {
-            const std::vector<Eigen::Vector3f> grid = planeGridLines(shape);
-            for (std::size_t i = 0; i + 1 < grid.size(); i += 2) {
-                pushLine(lines_, (pose * grid[i].homogeneous()).head<3>(), (pose * grid[i + 1].homogeneous()).head<3>(),
-                         kGridColor);
+            const PlaneAxes axes = planeAxes(shape);
+            const GridAxes grid{axes.centre, axes.u / kGridSpacing, axes.v / kGridSpacing};
+            renderer.drawGround(meshOf(world, id), model, kGroundColor, kGridColor, grid);
+        } else if (options.solids && shape.type == ShapeType::Box) {
+            // Every box is drawn from the cube of half sizes 1, scaled by its model matrix.
+            if (unitCube_.indexCount() == 0) unitCube_ = GpuMesh(shapeMesh(Shape::box(Vector3::Ones())));
+            const Rgb face = stateColor(session.state(id));
+            const Rgb edge = options.edges ? Rgb{face.r * 0.4f, face.g * 0.4f, face.b * 0.4f} : face;
+            const Eigen::Vector3f h = shape.halfExtents.cast<float>();
+            for (int axis = 0; axis < 3; ++axis) {
+                for (int row = 0; row < 3; ++row) model[4 * axis + row] *= h[axis];
             }
+            renderer.drawBox(unitCube_, model, face, edge);
+        } else if (options.solids) {
+            renderer.drawMesh(meshOf(world, id), model, stateColor(session.state(id)), shape.type != ShapeType::Mesh);
         }
     }
     if (options.springs) {

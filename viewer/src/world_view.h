@@ -1,5 +1,5 @@
 // The picture of a Session's World: each body's shape as a lit mesh coloured by its state,
-// planes as grids, springs, and the World's own debug drawing (wireframes, contacts,
+// planes with a grid, springs, and the World's own debug drawing (wireframes, contacts,
 // broadphase boxes) on top.
 #pragma once
 
@@ -45,9 +45,10 @@ private:
     };
     const GpuMesh &meshOf(const World &world, BodyId id);
 
-    std::vector<CachedMesh> meshes_;  ///< By BodyId::index.
+    std::vector<CachedMesh> meshes_;  ///< By BodyId::index; boxes use unitCube_.
+    GpuMesh unitCube_;                ///< Every box's mesh: the cube of half sizes 1.
     std::vector<BodyId> ids_;
-    std::vector<LineVertex> lines_;     ///< Drawn with depth: grids and springs.
+    std::vector<LineVertex> lines_;     ///< Drawn with depth: springs.
     std::vector<LineVertex> overlay_;   ///< Drawn on top: the World's debug drawing.
 };
 
