@@ -261,22 +261,6 @@ PlaneAxes planeAxes(const Shape &shape) {
     return PlaneAxes{f.centre, f.u, f.v};
 }
 
-std::vector<Eigen::Vector3f> planeGridLines(const Shape &shape) {
-    std::vector<Eigen::Vector3f> lines;
-    if (shape.type != ShapeType::Plane) return lines;
-    const PlaneFrame f = planeFrame(shape);
-    const Eigen::Vector3f lift = 0.001f * f.normal;
-    const int count = static_cast<int>(kPlaneHalfSize / kGridSpacing);
-    for (int i = -count; i <= count; ++i) {
-        const float s = static_cast<float>(i) * kGridSpacing;
-        lines.push_back(f.centre + lift + s * f.u - kPlaneHalfSize * f.v);
-        lines.push_back(f.centre + lift + s * f.u + kPlaneHalfSize * f.v);
-        lines.push_back(f.centre + lift + s * f.v - kPlaneHalfSize * f.u);
-        lines.push_back(f.centre + lift + s * f.v + kPlaneHalfSize * f.u);
-    }
-    return lines;
-}
-
 Bounds bodyBounds(const World &world, BodyId id) {
     const Shape &shape = world.shape(id);
     const RigidBody &body = world.body(id);

@@ -45,11 +45,6 @@ struct PlaneAxes {
 };
 PlaneAxes planeAxes(const Shape &shape);
 
-/// Grid lines on a plane shape's surface, kGridSpacing apart, within the square of
-/// shapeMesh(); pairs of end points in the body's frame, lifted 1 mm off the surface so
-/// that they are drawn over it.
-std::vector<Eigen::Vector3f> planeGridLines(const Shape &shape);
-
 /// World-space bounds of a body's shape at its current pose; empty for a plane (it is
 /// unbounded).
 Bounds bodyBounds(const World &world, BodyId id);
