@@ -20,8 +20,9 @@ constexpr real kContactKeepDistance = 0.002;
 // exactly the contacts they touch and pay nothing more. Beyond it (dt > 45 ms at the
 // defaults) a body at rest in the air could fall through a floor in one step: a body
 // that touches nothing then reaches with its speed at the step's end, v + g dt
-// (stepFall), against immovable bodies. Bodies that touch something are left as they are: a stack's upper boxes
-// given speculative contacts with the floor under it sink into one another.
+// (stepFall), against immovable bodies. Bodies that touch something, or have another
+// dynamic body as a candidate, are left as they are: a stack's upper boxes given
+// speculative contacts with the floor under it sink into one another.
 constexpr real kMinReach = 0.001;  // m
 
 // The speed gravity adds to a body falling freely over the step when it counts (above), m/s.
@@ -30,13 +31,25 @@ Vector3 stepFall(const WorldSettings &settings, real dt) {
     return fall > settings.speculativeDistance ? Vector3(settings.gravity * dt) : Vector3(Vector3::Zero());
 }
 
-// Whether a dynamic body touches nothing: none of its pairs has a manifold (last step's,
-// or this step's for the pairs the narrowphase has already been through, in its fixed
-// order).
+// Whether a dynamic body touches nothing: none of its pairs has a manifold (last step's).
 bool fallsFreely(const BodyRecord &r, const PairCache &pairs) {
     if (r.immovable) return false;
     for (std::uint32_t p : r.pairs)
         if (pairs[p].touching()) return false;
+    return true;
+}
+
+// Whether a dynamic body falls freely in this step's narrowphase: it touched nothing last
+// step and no other dynamic body is a candidate with it now. A stack placed this step has
+// no manifold yet, but its boxes are each other's candidates, so none of them falls. The
+// answer depends only on last step's manifolds and this step's candidates, not on the
+// order in which the threads test the pairs.
+bool fallsFreelyNow(const BodyRecord &r, const BodyStore &bodies, const PairCache &pairs, std::uint64_t stepCount) {
+    if (!fallsFreely(r, pairs)) return false;
+    for (std::uint32_t p : r.pairs) {
+        const PairState &pair = pairs[p];
+        if (pair.lastSeen == stepCount && !bodies[pair.a].immovable && !bodies[pair.b].immovable) return false;
+    }
     return true;
 }
 
@@ -293,9 +306,8 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
     NarrowphaseSettings narrowphase;
     narrowphase.speculativeDistance = settings.speculativeDistance;
     // The fall counts against a body that does not fall: two dynamic bodies fall together.
-    // The pair's own manifolds are last step's still: a body touching B does not fall.
     Vector3 fall = a.immovable != b.immovable ? stepFall(settings, dt) : Vector3(Vector3::Zero());
-    if (fall.squaredNorm() > 0 && !fallsFreely(a.immovable ? b : a, pairs)) fall.setZero();
+    if (fall.squaredNorm() > 0 && !fallsFreelyNow(a.immovable ? b : a, bodies, pairs, world.stepCount)) fall.setZero();
     const real reach = settings.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;
