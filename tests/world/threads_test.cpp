@@ -3,7 +3,6 @@
 // large enough for the solver to split its passes in two halves (threads/partition.h).
 #include <atomic>
 #include <chrono>
-#include <cstring>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -16,13 +15,6 @@
 
 namespace cyclone::test {
 namespace {
-
-bool sameBits(const RigidBody &x, const RigidBody &y) {
-    const auto same = [](const auto &u, const auto &v) { return std::memcmp(u.data(), v.data(), sizeof(real) * u.size()) == 0; };
-    return same(x.getPosition(), y.getPosition()) && same(x.getOrientation().coeffs(), y.getOrientation().coeffs()) &&
-           same(x.getVelocity(), y.getVelocity()) && same(x.getRotation(), y.getRotation()) &&
-           x.getAwake() == y.getAwake();
-}
 
 // A 16-box-wide pyramid (136 boxes, some 270 manifolds), with spheres, capsules and boxes
 // thrown onto it with spin and a spring on one of them; sleep on.

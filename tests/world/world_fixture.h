@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "cyclone/world.h"
@@ -22,6 +23,15 @@ inline WorldSettings noSleep() {
     WorldSettings settings;
     settings.sleep = false;
     return settings;
+}
+
+/// Whether two bodies' positions, orientations, velocities and awake flags are the same
+/// to the bit: what the thread-count tests compare.
+inline bool sameBits(const RigidBody &x, const RigidBody &y) {
+    const auto same = [](const auto &u, const auto &v) { return std::memcmp(u.data(), v.data(), sizeof(real) * u.size()) == 0; };
+    return same(x.getPosition(), y.getPosition()) && same(x.getOrientation().coeffs(), y.getOrientation().coeffs()) &&
+           same(x.getVelocity(), y.getVelocity()) && same(x.getRotation(), y.getRotation()) &&
+           x.getAwake() == y.getAwake();
 }
 
 /// Adds a static body of `shape` at `position` on collision layer `layer`.

@@ -3,25 +3,16 @@
 // bit-identical states with 1, 2 and 3 threads.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <memory>
 #include <vector>
 
 #include "../mixed_pile.h"
+#include "world_fixture.h"
 
 namespace cyclone::test {
 namespace {
 
 constexpr real kPileStep = 1.0 / 60.0;
-
-bool samePileBits(const RigidBody &x, const RigidBody &y) {
-    const auto same = [](const auto &u, const auto &v) {
-        return std::memcmp(u.data(), v.data(), sizeof(real) * u.size()) == 0;
-    };
-    return same(x.getPosition(), y.getPosition()) && same(x.getOrientation().coeffs(), y.getOrientation().coeffs()) &&
-           same(x.getVelocity(), y.getVelocity()) && same(x.getRotation(), y.getRotation()) &&
-           x.getAwake() == y.getAwake();
-}
 
 struct ThreadedPile {
     std::unique_ptr<World> world;
@@ -50,8 +41,8 @@ TEST(NarrowphaseThreads, MixedPileIsBitIdenticalForOneTwoAndThreeThreads) {
         EXPECT_EQ(one.world->stats().contacts, three.world->stats().contacts) << "step " << step;
         for (std::size_t i = 0; i < one.ids.size(); ++i) {
             const RigidBody &body = one.world->body(one.ids[i]);
-            ASSERT_TRUE(samePileBits(body, two.world->body(two.ids[i]))) << "body " << i << ", step " << step;
-            ASSERT_TRUE(samePileBits(body, three.world->body(three.ids[i]))) << "body " << i << ", step " << step;
+            ASSERT_TRUE(sameBits(body, two.world->body(two.ids[i]))) << "body " << i << ", step " << step;
+            ASSERT_TRUE(sameBits(body, three.world->body(three.ids[i]))) << "body " << i << ", step " << step;
         }
     }
     // More than two chunks of 64 pairs went through the narrowphase in some step, so the
