@@ -24,7 +24,8 @@ const Names kBodyFields = {"name", "shape", "static", "mass", "inertia", "positi
                                "restitution", "can_sleep", "awake", "ccd", "motion", "layer", "collides_with",
                                "sensor", "rolling_friction", "spinning_friction"};
 const Names kChildFields = {"shape", "position", "orientation"};
-const Names kSpringFields = {"a", "a_point", "b", "b_point", "stiffness", "damping", "rest_length"};
+// A spring's "force" ("automatic" or "explicit") is the runner's own, beside the contract's.
+const Names kSpringFields = {"a", "a_point", "b", "b_point", "stiffness", "damping", "rest_length", "force"};
 const Names kJointFields = {"name", "type", "a", "b", "anchor", "anchor_b", "axis", "limits", "motor",
                                 "min_distance", "max_distance", "stiffness", "damping", "break_force",
                                 "collide_connected"};

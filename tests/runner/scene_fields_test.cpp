@@ -96,6 +96,16 @@ TEST(SceneFields, EveryFieldOfTheContractIsKnown) {
     EXPECT_TRUE(warnings.empty()) << warnings.size() << " warnings, the first " << warnings.front().path;
 }
 
+// A spring's "force", which the loader reads (scene_loader_test), is not reported as
+// unknown; a misspelt one is.
+TEST(SceneFields, ASpringsForceIsKnown) {
+    const std::string bodies = R"({"bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 1}}], "springs": [)";
+    EXPECT_TRUE(warningsOf(bodies + R"({"a": "b", "b": null, "force": "explicit"}]})").empty());
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"springs[0].froce", "unknown field; did you mean \"force\"?"}};
+    EXPECT_EQ(warningsOf(bodies + R"({"a": "b", "b": null, "froce": "explicit"}]})"), expected);
+}
+
 // An axis means something to hinges and sliders only: on a ball, fixed or distance joint
 // it would be dropped without a word, so each one is warned about at its place, and the
 // scene still runs (the contract gives the axis to hinges and sliders; it refuses only
