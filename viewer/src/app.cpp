@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 #include "screenshot.h"
 
@@ -257,6 +258,9 @@ int App::run() {
     const auto start = last;
     auto warm = last;
     std::clock_t warmCpu = std::clock();
+    // Each frame's wall-clock time after the warm-up, for --benchmark's 95th percentile.
+    std::vector<double> frameMs;
+    if (options_.benchmark) frameMs.reserve(static_cast<std::size_t>(std::max(frames, 0)));
     int frame = 0;
     while (!glfwWindowShouldClose(window_) && (!options_.frames || frame < frames)) {
         glfwPollEvents();
@@ -264,6 +268,7 @@ int App::run() {
         const double realSeconds = std::chrono::duration<double>(now - last).count();
         last = now;
         if (frame > 0) lastFrameMs = realSeconds * 1000;
+        if (options_.benchmark && frame > kWarmUpFrames) frameMs.push_back(lastFrameMs);
 
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -310,12 +315,16 @@ int App::run() {
         // Processor time of every thread of the viewer (Mesa renders on threads of its
         // own), which a busy machine does not inflate as it does the wall-clock time.
         const double cpuMs = 1000.0 * static_cast<double>(std::clock() - warmCpu) / CLOCKS_PER_SEC / (frame - kWarmUpFrames);
+        std::sort(frameMs.begin(), frameMs.end());
+        const double p95Ms = frameMs.empty() ? meanMs : frameMs[frameMs.size() * 95 / 100];
         int width = 0, height = 0;
         glfwGetFramebufferSize(window_, &width, &height);
         std::printf("cyclone-viewer: %s at %dx%d, %d frames after %d of warm-up: mean frame %.2f ms (%.1f fps), "
-                    "processor time %.2f ms a frame; warm-up frames %.2f ms; renderer %s\n",
+                    "95th percentile %.2f ms (%.1f fps), processor time %.2f ms a frame; warm-up frames %.2f ms; "
+                    "renderer %s\n",
                     session_->scene().name.c_str(), width, height, frame - kWarmUpFrames, kWarmUpFrames, meanMs,
-                    1000.0 / meanMs, cpuMs, warmUpMs, reinterpret_cast<const char *>(glGetString(GL_RENDERER)));
+                    1000.0 / meanMs, p95Ms, 1000.0 / p95Ms, cpuMs, warmUpMs,
+                    reinterpret_cast<const char *>(glGetString(GL_RENDERER)));
     } else if (options_.benchmark) {
         std::printf("cyclone-viewer: --benchmark needs more than %d frames (the first ones compile shaders)\n",
                     kWarmUpFrames);
