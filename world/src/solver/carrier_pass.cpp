@@ -240,10 +240,11 @@ void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     if (scratch.contacts.size() < static_cast<std::size_t>(lanes.slots))
         scratch.contacts.resize(std::max(lanes.slots, kCarriersMade));
     WideCarriedContact *contacts = scratch.contacts.data();
-    const CarrierStop stop = carrierStop(static_cast<int>(runs.levelStart.size()) - 1);
+    const int levels = static_cast<int>(runs.levelStart.size()) - 1;
+    const CarrierStop stop = carrierStop(levels);
+    const bool patchCentre = levels > kCarrierLevels;
     for (int slot = 0; slot < lanes.slots; ++slot)
-        loadContact(bodies, manifolds, runs, lanes, slot, static_cast<int>(runs.levelStart.size()) - 1 > kCarrierLevels,
-                    contacts[slot]);
+        loadContact(bodies, manifolds, runs, lanes, slot, patchCentre, contacts[slot]);
 
     CarriedBodies body;
     const SolverBody &b0 = bodies[lanes.body[0]], &b1 = bodies[lanes.body[1]], &b2 = bodies[lanes.body[2]],

@@ -2,10 +2,10 @@
 //
 // Design note. A run (CarrierRuns) sweeps one carried body against its carriers, which it
 // holds immovable, until a sweep changes the body's velocity by less than a tolerance
-// or for a number of sweeps, both tighter for taller stacks (carrierStop). The runs of one level never carry one
-// another, so four of them are solved by the same instructions, one run per lane, as the
-// velocity passes solve four manifolds (velocity_pass.h): slot k of a group holds each lane's
-// k-th contact with a carrier. Because only the carried body moves, a run's rows cost
+// or for a number of sweeps, both tighter for taller stacks (carrierStop). The runs of
+// one level never carry one another, so four of them are solved by the same
+// instructions, one run per lane, as the velocity passes solve four manifolds
+// (velocity_pass.h): slot k of a group holds each lane's k-th contact with a carrier. Because only the carried body moves, a run's rows cost
 // less than a velocity pass's:
 // - each row is written as the carried body takes it: along the normal when it is B,
 //   along the negated normal (its lever terms negated too) when it is A, so one formula
