@@ -4,11 +4,23 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <sstream>
+#include <string>
 
 #include "cyclone/world/settings.h"
 #include "world/validation.h"
 
 namespace cyclone::detail {
+namespace {
+
+// An inertia tensor as the refusals print it: its rows, three digits each.
+std::string showInertia(const Matrix3 &inertia) {
+    std::ostringstream shown;
+    shown.precision(3);
+    shown << "[" << inertia.row(0) << "; " << inertia.row(1) << "; " << inertia.row(2) << "]";
+    return shown.str();
+}
+
+}  // namespace
 
 void requireSolvableMass(const char *function, real mass, const Matrix3 &inertia, real boundingRadius) {
     requirePositive(function, "mass", mass);
@@ -26,13 +38,10 @@ void requireSolvableMass(const char *function, real mass, const Matrix3 &inertia
     const real lowest = moments.minCoeff() * scale / boundingRadius / boundingRadius;
     const real highest = moments.maxCoeff() * scale / boundingRadius / boundingRadius;
     if (lowest >= kMinMass && highest <= kMaxMass) return;
-    std::ostringstream shown;
-    shown.precision(3);
-    shown << "[" << inertia.row(0) << "; " << inertia.row(1) << "; " << inertia.row(2) << "]";
     refuse(function, "inertia",
            "gives principal moments over the squared bounding radius (R = " + show(boundingRadius) + " m) from " +
                show(lowest) + " to " + show(highest) + " kg; the solver's range is [1e-100, 1e100] kg, got " +
-               shown.str());
+               showInertia(inertia));
 }
 
 void requireInertiaNearShape(const char *function, const Matrix3 &inertia, const Matrix3 &shapeInertia) {
@@ -47,13 +56,10 @@ void requireInertiaNearShape(const char *function, const Matrix3 &inertia, const
     if (pencil.info() != Eigen::Success) return;
     const real lowest = pencil.eigenvalues().minCoeff();
     if (lowest >= kMinInertiaFraction || !(lowest > 0)) return;  // not positive definite: refused as such
-    std::ostringstream shown;
-    shown.precision(3);
-    shown << "[" << inertia.row(0) << "; " << inertia.row(1) << "; " << inertia.row(2) << "]";
     refuse(function, "inertia",
            "has a moment of " + show(lowest) +
                " times the shape's at uniform density about some axis; the solver holds contacts from " +
-               show(kMinInertiaFraction) + " times it up, got " + shown.str());
+               show(kMinInertiaFraction) + " times it up, got " + showInertia(inertia));
 }
 
 }  // namespace cyclone::detail
