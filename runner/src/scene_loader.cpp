@@ -145,7 +145,11 @@ WorldSettings readSettings(const json &value, const std::string &path, Scene &sc
         return [min](const json &v, const std::string &p) { return static_cast<int>(readInteger(v, p, min, kMaxIterations)); };
     };
     readOptional(value, path, "gravity", settings.gravity, [](const json &v, const std::string &p) { return readVector3(v, p); });
-    readOptional(value, path, "dt", scene.dt, [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); });
+    readOptional(value, path, "dt", scene.dt, [](const json &v, const std::string &p) {
+        const real dt = readNumber(v, p, Range::Positive);
+        if (dt > kMaxStep) fail(p, "must be at most 1 s (kMaxStep; a longer step lets a resting stack slide apart), got " + describe(v));
+        return dt;
+    });
     readOptional(value, path, "steps", scene.steps, [](const json &v, const std::string &p) { return readInteger(v, p, 0, kMaxSteps); });
     readOptional(value, path, "velocity_iterations", settings.velocityIterations, iterations(1));
     readOptional(value, path, "position_iterations", settings.positionIterations, iterations(0));

@@ -4,6 +4,8 @@
 // exactly the pairing intended here.
 #include "counting_allocator.h"
 
+#include <malloc.h>
+
 #include <atomic>
 #include <cstddef>
 #include <cstdlib>
@@ -11,9 +13,24 @@
 
 namespace {
 std::atomic<long> gAllocations{0};
+std::atomic<long> gLiveBytes{0};
+std::atomic<long> gPeakBytes{0};
+
+// Counts a block's usable size in or out of the live bytes, and raises the peak.
+[[maybe_unused]] void countBytes(void *p, long sign) {
+    if (!p) return;
+    const long live = gLiveBytes.fetch_add(sign * static_cast<long>(malloc_usable_size(p))) +
+                      sign * static_cast<long>(malloc_usable_size(p));
+    long peak = gPeakBytes.load();
+    while (live > peak && !gPeakBytes.compare_exchange_weak(peak, live)) {
+    }
+}
 }  // namespace
 
 long cyclone::test::allocationCount() { return gAllocations.load(); }
+long cyclone::test::liveBytes() { return gLiveBytes.load(); }
+long cyclone::test::peakBytes() { return gPeakBytes.load(); }
+void cyclone::test::resetPeakBytes() { gPeakBytes.store(gLiveBytes.load()); }
 
 #if !defined(__SANITIZE_ADDRESS__)
 #if defined(__GNUC__) && !defined(__clang__)
@@ -31,7 +48,13 @@ void *allocate(std::size_t size, std::size_t alignment) {
     } else if (posix_memalign(&p, alignment, size) != 0) {
         p = nullptr;
     }
+    countBytes(p, 1);
     return p;
+}
+
+void release(void *p) {
+    countBytes(p, -1);
+    std::free(p);
 }
 
 void *allocateOrThrow(std::size_t size, std::size_t alignment) {
@@ -49,14 +72,14 @@ void *operator new(std::size_t size, const std::nothrow_t &) noexcept { return a
 void *operator new[](std::size_t size, const std::nothrow_t &) noexcept { return allocate(size, kPlain); }
 void *operator new(std::size_t size, std::align_val_t a) { return allocateOrThrow(size, static_cast<std::size_t>(a)); }
 void *operator new[](std::size_t size, std::align_val_t a) { return allocateOrThrow(size, static_cast<std::size_t>(a)); }
-void operator delete(void *p) noexcept { std::free(p); }
-void operator delete[](void *p) noexcept { std::free(p); }
-void operator delete(void *p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void *p, std::size_t) noexcept { std::free(p); }
-void operator delete(void *p, const std::nothrow_t &) noexcept { std::free(p); }
-void operator delete[](void *p, const std::nothrow_t &) noexcept { std::free(p); }
-void operator delete(void *p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void *p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void *p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void *p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void *p) noexcept { release(p); }
+void operator delete[](void *p) noexcept { release(p); }
+void operator delete(void *p, std::size_t) noexcept { release(p); }
+void operator delete[](void *p, std::size_t) noexcept { release(p); }
+void operator delete(void *p, const std::nothrow_t &) noexcept { release(p); }
+void operator delete[](void *p, const std::nothrow_t &) noexcept { release(p); }
+void operator delete(void *p, std::align_val_t) noexcept { release(p); }
+void operator delete[](void *p, std::align_val_t) noexcept { release(p); }
+void operator delete(void *p, std::size_t, std::align_val_t) noexcept { release(p); }
+void operator delete[](void *p, std::size_t, std::align_val_t) noexcept { release(p); }
 #endif

@@ -16,4 +16,11 @@ inline constexpr bool kCountingAllocator = true;
 /// Calls to operator new (any form) since the program started.
 long allocationCount();
 
+/// Bytes allocated through operator new and not yet freed (malloc's usable sizes).
+long liveBytes();
+/// The most liveBytes() has been since the last resetPeakBytes() (or the start).
+long peakBytes();
+/// Starts a new peak from what is live now.
+void resetPeakBytes();
+
 }  // namespace cyclone::test

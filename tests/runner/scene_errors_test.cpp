@@ -115,6 +115,8 @@ const ErrorCase kErrors[] = {
     {"SettingsNotObject", R"({"settings": [], "bodies": []})", "settings", "must be an object"},
     {"ZeroDt", R"({"settings": {"dt": 0}, "bodies": []})", "settings.dt", "must be finite and > 0, got 0"},
     {"HugeDt", R"({"settings": {"dt": 1e400}, "bodies": []})", "settings.dt", "finite"},
+    // A 10 s step let a resting stack slide apart (kMaxStep = 1 s, world/settings.h).
+    {"LongDt", R"({"settings": {"dt": 10}, "bodies": []})", "settings.dt", "must be at most 1 s"},
     {"ExtremeSteps", R"({"settings": {"steps": 1000000000000}, "bodies": []})", "settings.steps", "[0, 100000000]"},
     {"StepsBeyondInt64", R"({"settings": {"steps": 99999999999999999999999}, "bodies": []})", "settings.steps",
      "[0, 100000000]"},
@@ -310,6 +312,7 @@ const UsageCase kUsage[] = {
     {"ZeroDt", {"run", "SCENE", "--dt", "0"}, "--dt needs a finite number"},
     {"NanDt", {"run", "SCENE", "--dt=nan"}, "--dt needs a finite number"},
     {"InfiniteDt", {"run", "SCENE", "--dt", "inf"}, "--dt needs a finite number"},
+    {"LongDt", {"run", "SCENE", "--dt", "1.5"}, "--dt needs a finite number of seconds in (0, 1]"},
     {"GivenTwice", {"run", "SCENE", "--steps", "1", "--steps", "2"}, "given twice"},
     {"SameOutputTwice", {"run", "SCENE", "--summary", "x", "--trace", "x"}, "same file"},
 };

@@ -15,7 +15,7 @@ namespace {
 constexpr real kStepTolerance = 1e-9;
 
 void validate(const char *function, const FixedStepSettings &s) {
-    if (!(std::isfinite(s.stepSeconds) && s.stepSeconds > 0 && s.stepSeconds <= 1))
+    if (!(std::isfinite(s.stepSeconds) && s.stepSeconds > 0 && s.stepSeconds <= kMaxStep))
         detail::refuse(function, "stepSeconds", "must be finite and in (0, 1], got " + detail::show(s.stepSeconds));
     if (s.maxStepsPerFrame < 1 || s.maxStepsPerFrame > 1000)
         detail::refuse(function, "maxStepsPerFrame",

@@ -575,7 +575,10 @@ void World::removeSpring(SpringId id) {
 // --- Stepping ---------------------------------------------------------------------------
 
 void World::step(real dt) {
-    if (!std::isfinite(dt) || !(dt > 0)) detail::refuse("World::step", "dt", "must be finite and > 0, got " + detail::show(dt));
+    if (!(dt > 0 && dt <= kMaxStep))
+        detail::refuse("World::step", "dt",
+                       "must be finite and in (0, 1] s (kMaxStep; take a longer span as several steps), got " +
+                           detail::show(dt));
     impl_->step(dt);
 }
 

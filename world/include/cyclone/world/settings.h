@@ -144,9 +144,10 @@ struct WorldSettings {
     bool shockPropagation = true;
     /// Most pairs of overlapping broadphase boxes a step keeps, in [1, 2^31 - 1]; beyond
     /// it the step drops the rest and says so (StepStats::errors, PairBudgetExceeded).
-    /// Each pair kept while touching costs about 8.7 KB until its bodies part (a pile of
-    /// 300 unit boxes spawned at one point: 45,150 pairs, 394 MB; docs/hostile_input.md),
-    /// so the default, 65,536 (as Jolt's samples' body pairs), bounds them near 0.6 GB.
+    /// Each pair kept while touching costs about 4.9 KB, up to 9.4 KB in a pile at one
+    /// point, whose manifolds the passes cannot group (docs/hostile_input.md, "Bytes per
+    /// pair and per contact"), so the default, 65,536 (as Jolt's samples' body pairs),
+    /// bounds them near 0.6 GB; 24 GB would hold about 2.5 million.
     int maxPairs = 65536;
     /// Threads that run a step, the calling thread included, in [1, 64]. The contact
     /// solver shares its work among them; the results are the same whatever the count
@@ -197,6 +198,16 @@ struct Material {
 /// contacts hold as at the origin; at 1e14 m (spacing 0.016 m) a ball and a crate fell
 /// through a static floor (docs/hostile_input.md).
 inline constexpr real kMaxCoordinate = 1e12;
+
+/// Longest step World::step takes, s (FixedStepper's stepSeconds has the same bound).
+/// Why 1 s: a stack of five unit boxes with sleep off holds for 2,000 s at dt = 1 and 2 s
+/// (each box within 1 cm of its place at the end), creeps 7 cm at 3 s, and its top box
+/// slides off at 5 s (after 500 s) and 10 s (after 170 s): a body that touches
+/// something when the step begins gets no speculative contact for the fall the step
+/// brings, so a long step drops it through what it slides onto (docs/hostile_input.md).
+/// Box2D and Jolt leave the step to the caller and expect about 1/60 s; longer spans are
+/// taken as several steps (FixedStepper).
+inline constexpr real kMaxStep = 1;
 
 /// Smallest mass of a dynamic body, kg; also the smallest principal moment of inertia
 /// over the squared bounding radius R (the farthest point of the shape from its origin).

@@ -233,7 +233,7 @@ public:
 
     // --- Stepping -----------------------------------------------------------------------
 
-    /// Advances the world by dt seconds (finite, > 0; 1/60 is typical). Use a fixed dt
+    /// Advances the world by dt seconds (in (0, kMaxStep] = (0, 1]; 1/60 is typical). Use a fixed dt
     /// (FixedStepper does it for a game loop): results depend on it, and a fixed one
     /// keeps runs reproducible.
     void step(real dt);
