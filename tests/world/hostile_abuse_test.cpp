@@ -90,8 +90,9 @@ TEST(HostileAbuse, ALongStepDoesNotDropABodyThroughTheFloor) {
 }
 
 // Five unit boxes stacked on the floor, stepped 2,000 s at dt = kMaxStep = 1 s with sleep
-// off: the stack holds (each box within 5 cm of 0.5 + i at the end; measured 5 mm for the
-// top box). The fall is counted only for bodies touching nothing: counted for the upper
+// off: the stack holds. Each box ends within 5 cm of its height 0.5 + i, and within 10 cm
+// of the stack's axis across it: a fifth of the 0.5 m its centre would have to move to
+// leave the box under it (at dt = 5 s the top box did, after 500 s). The fall is counted only for bodies touching nothing: counted for the upper
 // boxes too, it gave them speculative contacts with the floor that took the stack's
 // carriers away, and the stack sank into itself.
 TEST(HostileAbuse, AStackHoldsAtTheLongestStep) {
@@ -103,7 +104,7 @@ TEST(HostileAbuse, AStackHoldsAtTheLongestStep) {
     for (int i = 0; i < 5; ++i) {
         const Vector3 p = f.world.body(boxes[i]).getPosition();
         EXPECT_NEAR(p.y(), 0.5 + i, 0.05) << "box " << i;
-        EXPECT_LT(Vector3(p.x(), 0, p.z()).norm(), 0.05) << "box " << i;
+        EXPECT_LT(Vector3(p.x(), 0, p.z()).norm(), 0.1) << "box " << i;
     }
 }
 
