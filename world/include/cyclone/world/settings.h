@@ -200,13 +200,13 @@ struct Material {
 inline constexpr real kMaxCoordinate = 1e12;
 
 /// Longest step World::step takes, s (FixedStepper's stepSeconds has the same bound).
-/// Why 1 s: a stack of five unit boxes with sleep off holds for 2,000 s at dt = 1 and 2 s
-/// (each box within 1 cm of its place at the end), creeps 7 cm at 3 s, and its top box
-/// slides off at 5 s (after 500 s) and 10 s (after 170 s): a body that touches
+/// Why 1 s: a stack of five unit boxes with sleep off stays on for 2,000 s at dt = 1 and
+/// 2 s (creeping sideways 4-5 cm per 1,000 s; at 0.25 s and below it does not creep), and
+/// its top box slides off at 5 s (after 500 s) and 10 s (after 170 s): a body that touches
 /// something when the step begins gets no speculative contact for the fall the step
 /// brings, so a long step drops it through what it slides onto (docs/hostile_input.md).
-/// Box2D and Jolt leave the step to the caller and expect about 1/60 s; longer spans are
-/// taken as several steps (FixedStepper).
+/// A longer span is taken as several steps (FixedStepper), as Jolt has the caller split a
+/// long update into collision steps.
 inline constexpr real kMaxStep = 1;
 
 /// Smallest mass of a dynamic body, kg; also the smallest principal moment of inertia
