@@ -1,19 +1,35 @@
 #include "dynamics/step_plan.h"
 
+#include <cmath>
+
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
 namespace {
 
-// Whether the body touches something: a manifold with any body (static ones too).
-bool touches(const BodyRecord &r, const PairCache &pairs) {
-    for (std::uint32_t p : r.pairs)
-        if (pairs[p].touching()) return true;
-    return false;
+// Whether the body rests on warm contacts: it touches something (a manifold with any
+// body, static ones too), and each of its manifolds carried a normal impulse last step,
+// which warm-starts it. A contact without one must build its whole impulse within the
+// step: a box with a twelfth of its shape's inertia, placed on the floor, sank 1.5 mm in
+// its first step at one sub-step of 12 passes and 0.5 mm at four of 3.
+bool restsOnWarmContacts(const BodyRecord &r, const PairCache &pairs) {
+    bool touches = false;
+    for (std::uint32_t p : r.pairs) {
+        for (const ManifoldState &m : pairs[p].manifolds) {
+            bool warm = false;
+            for (int i = 0; i < m.count; ++i) warm |= m.points[i].normalImpulse > 0;
+            if (!warm) return false;
+            touches = true;
+        }
+    }
+    return touches;
 }
 
 StepPlan plan(int substeps, int iterations, const WorldSettings &settings) {
-    return {substeps, iterations, real(settings.substeps) / substeps};
+    const real r = settings.penetrationRecovery;
+    const real ratio = real(settings.substeps) / substeps;
+    const real recovery = substeps == settings.substeps ? r : 1 - std::pow(1 - r, ratio);
+    return {substeps, iterations, ratio, recovery};
 }
 
 }  // namespace
@@ -39,7 +55,7 @@ StepPlan planStep(const WorldState &world, real dt) {
         if (r.isolated) continue;
         const RigidBody &body = r.body;
         const real reach = (body.getVelocity().norm() + body.getRotation().norm() * r.boundingRadius) * dt;
-        if (reach >= kRestingReach || !touches(r, pairs)) return full;
+        if (reach >= kRestingReach || !restsOnWarmContacts(r, pairs)) return full;
     }
     // The same velocity passes per step, rounded up.
     const int passes = settings.velocityIterations * settings.substeps;

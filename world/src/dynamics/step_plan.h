@@ -6,9 +6,9 @@
 // springs stay stable. A body at rest on its contacts gains nothing from them that the
 // same number of velocity passes in one sub-step does not give, and each sub-step costs
 // its warm start, carrier pass, penetration pass and integration again. So a step in
-// which every awake body touches something and moves less than kRestingReach takes
-// restingSubsteps sub-steps with the same velocity passes in all (docs/solver.md,
-// "Resting steps").
+// which every awake body rests on contacts warm from the last step and moves less than
+// kRestingReach takes restingSubsteps sub-steps with the same velocity passes in all
+// (docs/solver.md, "Resting steps").
 #pragma once
 
 #include "cyclone/world/world.h"
@@ -29,6 +29,11 @@ struct StepPlan {
     /// sub-step of dt / settings.substeps, and a step of other sub-steps scales its warm
     /// start by this (1 when the step takes settings.substeps: nothing changes).
     real warmScale = 1;
+    /// The fraction of a contact's penetration beyond the slop removed per sub-step:
+    /// settings.penetrationRecovery r, or, in a step of fewer sub-steps, what
+    /// settings.substeps / substeps sub-steps remove together, 1 - (1 - r)^that, so that a
+    /// body held a little too deep (a pass that does not converge) sinks no deeper.
+    real recovery = 0;
 };
 
 /// The plan of the step of `dt` about to be solved: called after the narrowphase (it

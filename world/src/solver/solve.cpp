@@ -257,7 +257,7 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
                                     manifolds_[s].normal);
     });
     const PseudoTargets targets{depthFrames_.data(), settings.penetrationSlop,
-                                        settings.penetrationRecovery / h};
+                                        world.plan.recovery / h};
     const int seam = SolverPartition::kSeam;
     const int last = settings.positionIterations - 1;
     for (int it = 0; it <= last; ++it) {

@@ -24,6 +24,7 @@ void WorldState::step(real dt) {
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
     if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(*this); }
     plan = planStep(*this, dt);
+    stats.substeps = plan.substeps;
     { const StageTimer t(ms.manifolds); solver.build(*this); }
     { const StageTimer t(ms.islands); islands.build(*this); }
 
