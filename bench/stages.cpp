@@ -2,7 +2,10 @@
 // and prints the median milliseconds of every stage (StepStats::ms) and of the solve
 // stage's parts (StageTimes::solveParts), over the steps after the first second.
 //
-//   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T]
+//   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T] [--defaults]
+//                  [--substeps S] [--iterations N] [--positions N]
+// --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
+// benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
@@ -45,8 +48,14 @@ int run(int argc, char **argv) {
     std::vector<std::string> scenes;
     int steps = 600;
     int threads = 1;
+    bool worldDefaults = false;
+    int substeps = 0, iterations = 0, positions = -1;  // 0 / -1: the scene's own
     for (int i = 1; i < argc; ++i) {
         std::string arg, value;
+        if (std::string(argv[i]) == "--defaults") {
+            worldDefaults = true;
+            continue;
+        }
         if (!bench::readOption("cyclone-stages", argc, argv, i, arg, value)) return 2;
         if (arg == "--scene") {
             for (const std::string &name : bench::splitSceneList(value)) scenes.push_back(name);
@@ -54,6 +63,12 @@ int run(int argc, char **argv) {
             steps = std::atoi(value.c_str());
         } else if (arg == "--threads") {
             threads = std::atoi(value.c_str());
+        } else if (arg == "--substeps") {
+            substeps = std::atoi(value.c_str());
+        } else if (arg == "--iterations") {
+            iterations = std::atoi(value.c_str());
+        } else if (arg == "--positions") {
+            positions = std::atoi(value.c_str());
         } else {
             std::fprintf(stderr, "cyclone-stages: unknown option %s\n", arg.c_str());
             return 2;
@@ -74,6 +89,14 @@ int run(int argc, char **argv) {
     std::printf("\n");
     for (bench::Scene &scene : built) {
         scene.world.threads = threads;
+        if (worldDefaults) {
+            scene.world.substeps = WorldSettings().substeps;
+            scene.world.velocityIterations = WorldSettings().velocityIterations;
+            scene.world.positionIterations = WorldSettings().positionIterations;
+        }
+        if (substeps > 0) scene.world.substeps = substeps;
+        if (iterations > 0) scene.world.velocityIterations = iterations;
+        if (positions >= 0) scene.world.positionIterations = positions;
         World world(scene.world);
         for (const BodySettings &body : scene.bodies) world.addBody(body);
         std::vector<StageTimes> times;

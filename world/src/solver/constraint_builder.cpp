@@ -141,15 +141,16 @@ void ConstraintSolver::addSolverManifold(WorldState &world, const ManifoldKey &k
     sm.carrier = Carrier::None;
     sm.count = m.count;
     const bool warm = world.settings.warmStarting;
-    sm.frictionRow[0].impulse = warm ? m.frictionImpulse.dot(sm.tangent[0]) : 0;
-    sm.frictionRow[1].impulse = warm ? m.frictionImpulse.dot(sm.tangent[1]) : 0;
-    sm.twist.impulse = warm ? m.twistImpulse : 0;
+    const real scale = world.plan.warmScale;  // stored per default sub-step (step_plan.h)
+    sm.frictionRow[0].impulse = warm ? m.frictionImpulse.dot(sm.tangent[0]) * scale : 0;
+    sm.frictionRow[1].impulse = warm ? m.frictionImpulse.dot(sm.tangent[1]) * scale : 0;
+    sm.twist.impulse = warm ? m.twistImpulse * scale : 0;
     for (int i = 0; i < m.count; ++i) {
         const PersistentPoint &src = m.points[i];
         SolverPoint &dst = sm.points[sm.order[i]];
         dst.localA = src.localA;
         dst.localB = src.localB;
-        dst.normal.impulse = warm ? src.normalImpulse : 0;
+        dst.normal.impulse = warm ? src.normalImpulse * scale : 0;
         dst.velocityBias = 0;
         dst.depth = src.depth;
         dst.approachSpeed = 0;
@@ -269,7 +270,7 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     // Jacobians and effective masses are made once per step, at the step's poses, unless
     // the slot's still hold (jacobian_stamp.h).
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
-        prepareManifold(bodies, s, h * settings.substeps);
+        prepareManifold(bodies, s, h * world.plan.substeps);
         JacobianStamp &stamp = stamps_[s];
         if (support && stamp.carrier != manifolds_[s].carrier) {
             prepareCarriedMasses(bodies_, manifolds_[s]);

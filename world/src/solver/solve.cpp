@@ -59,7 +59,7 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
             continue;
         }
         if (gyroscopic && firstSubstep && !r.body.hasIsotropicInertia()) {
-            r.body.applyGyroscopicStep(GyroscopicStep::Midpoint, h * settings.substeps);
+            r.body.applyGyroscopicStep(GyroscopicStep::Midpoint, h * world.plan.substeps);
             ++stats.gyroscopicBodies;
         }
         const Vector3 a = r.body.getAcceleration() + r.body.getAccumulatedForce() * sb.invMass;
@@ -120,26 +120,27 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         if (split) loadVelocityPasses(world);
         else if (settings.warmStarting) warmStart(world);
         beginResistance(manifolds_, resistance_);
-        for (int it = 0; it < settings.velocityIterations; ++it) {
+        const int passes = world.plan.velocityIterations;
+        for (int it = 0; it < passes; ++it) {
             if (split) solveVelocityPass(world, (it & 1) != 0);
             else solveSoft(bodies_, manifolds_, solveOrder_, h, true, soft_);
             solveResistance(bodies_, resistance_);
             if (joints) world.joints.solveVelocities(bodies_);
         }
         if (split) storeVelocityPasses(world);
-        stats.velocityIterations += settings.velocityIterations;
+        stats.velocityIterations += passes;
         // The carrier pass comes after the velocity passes, never instead of one: alone,
         // it would let no body push the bodies carrying it.
         if (split && settings.shockPropagation) {
             const StageTimer timed(stats.ms.solveParts.carrier);
             // A run sweeps its points in one direction: the other one next step, so that
             // no point of a face takes the larger share step after step (carrier_pass.h).
-            solveCarrierPass(world, ((settings.velocityIterations & 1) != 0) != ((world.stepCount & 1) != 0));
+            solveCarrierPass(world, ((passes & 1) != 0) != ((world.stepCount & 1) != 0));
             // The carrier pass moved joined bodies too: the joints have the last word.
             if (joints) world.joints.solveVelocities(bodies_);
         }
     } else if (joints) {
-        for (int it = 0; it < settings.velocityIterations; ++it) world.joints.solveVelocities(bodies_);
+        for (int it = 0; it < world.plan.velocityIterations; ++it) world.joints.solveVelocities(bodies_);
     }
     if (joints) world.joints.storeImpulses();
 
@@ -256,7 +257,7 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
                                     manifolds_[s].normal);
     });
     const PseudoTargets targets{depthFrames_.data(), settings.penetrationSlop,
-                                        settings.penetrationRecovery / h};
+                                        world.plan.recovery / h};
     const int seam = SolverPartition::kSeam;
     const int last = settings.positionIterations - 1;
     for (int it = 0; it <= last; ++it) {
@@ -315,15 +316,16 @@ void ConstraintSolver::applyRestitution(WorldState &world) {
 }
 
 void ConstraintSolver::storeImpulses(WorldState &world) {
+    const real scale = 1 / world.plan.warmScale;  // stored per default sub-step (step_plan.h)
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
         const SolverManifold &m = manifolds_[s];
         PairState &pair = world.contacts.pairs[sources_[s].pair];
         const std::size_t k = sources_[s].index;
         if (!pair.alive || k >= pair.manifolds.size()) return;  // a body was isolated
         ManifoldState &state = pair.manifolds[k];
-        for (int i = 0; i < m.count; ++i) state.points[i].normalImpulse = m.points[m.order[i]].normal.impulse;
-        state.frictionImpulse = m.frictionRow[0].impulse * m.tangent[0] + m.frictionRow[1].impulse * m.tangent[1];
-        state.twistImpulse = m.twist.impulse;
+        for (int i = 0; i < m.count; ++i) state.points[i].normalImpulse = m.points[m.order[i]].normal.impulse * scale;
+        state.frictionImpulse = (m.frictionRow[0].impulse * m.tangent[0] + m.frictionRow[1].impulse * m.tangent[1]) * scale;
+        state.twistImpulse = m.twist.impulse * scale;
     });
 }
 

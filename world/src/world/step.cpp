@@ -23,16 +23,18 @@ void WorldState::step(real dt) {
     { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
     if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(*this); }
+    plan = planStep(*this, dt);
+    stats.substeps = plan.substeps;
     { const StageTimer t(ms.manifolds); solver.build(*this); }
     { const StageTimer t(ms.islands); islands.build(*this); }
 
-    const real h = dt / settings.substeps;
+    const real h = dt / plan.substeps;
     {
         const StageTimer t(ms.solveParts.setup);
         solver.prepare(*this, h);
     }
     ms.solve += ms.solveParts.setup;
-    for (int substep = 0; substep < settings.substeps; ++substep) {
+    for (int substep = 0; substep < plan.substeps; ++substep) {
         const bool first = substep == 0;
         { const StageTimer t(ms.forces); integration.addSubstepForces(*this, h, first); }
         {

@@ -47,6 +47,9 @@ void validateSettings(const char *function, const WorldSettings &s) {
         refuse(function, "positionIterations", "must be in [0, 10000], got " + std::to_string(s.positionIterations));
     if (s.substeps < 1 || s.substeps > 1000)
         refuse(function, "substeps", "must be in [1, 1000], got " + std::to_string(s.substeps));
+    if (s.restingSubsteps < 0 || s.restingSubsteps > s.substeps)
+        refuse(function, "restingSubsteps",
+               "must be in [0, substeps = " + std::to_string(s.substeps) + "], got " + std::to_string(s.restingSubsteps));
     requirePositive(function, "sleepEpsilon", s.sleepEpsilon);
     if (!(s.sleepDelay >= 0 && s.sleepDelay <= kMaxSleepDelay))
         refuse(function, "sleepDelay", "must be in [0, log2(10) = 3.32], got " + show(s.sleepDelay));

@@ -16,6 +16,7 @@
 #include "dynamics/integration.h"
 #include "dynamics/islands.h"
 #include "dynamics/kinematic_bodies.h"
+#include "dynamics/step_plan.h"
 #include "dynamics/springs.h"
 #include "joints/joint_set.h"
 #include "solver/constraint_solver.h"
@@ -44,6 +45,7 @@ struct WorldState {
     Workers workers;
     StepStats stats;
     std::uint64_t stepCount = 0;
+    StepPlan plan;  ///< This step's sub-steps and velocity passes (dynamics/step_plan.h).
 
     explicit WorldState(const WorldSettings &s) : settings(s) {}
 

@@ -63,6 +63,7 @@ struct StepStats {
     int resistanceRows = 0;     ///< Rolling and spinning resistance rows (2 rolling per point or line contact, 1 spinning per point contact, where the pair's lengths are > 0).
     int restitutionContacts = 0;///< Points that bounce this step.
     int islands = 0;            ///< Islands of awake dynamic bodies.
+    int substeps = 0;           ///< Sub-steps taken: WorldSettings::substeps, or restingSubsteps in a step where every awake body rests.
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
     int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
     int carrierSweeps = 0;      ///< Sweeps the carrier pass gave bodies resting on others, one body's sweep each (summed over sub-steps; 0 without shock propagation).

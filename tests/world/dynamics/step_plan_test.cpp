@@ -1,0 +1,141 @@
+// Resting steps (WorldSettings::restingSubsteps, dynamics/step_plan.h): a step in which
+// every awake body touches something, on contacts that carried a normal impulse last step,
+// and moves less than 1 mm takes restingSubsteps sub-steps with the same velocity passes in
+// all; any other step takes `substeps`.
+#include <gtest/gtest.h>
+
+#include "../world_fixture.h"
+
+namespace cyclone::test {
+namespace {
+
+// The defaults: 4 sub-steps of 3 velocity passes, 1 sub-step when resting, so a resting
+// step runs 3 * 4 / 1 = 12 velocity passes in its one sub-step, as many as a full step.
+constexpr int kPassesPerStep = 12;
+
+TEST(RestingStep, ABoxAtRestOnTheGroundTakesOneSubstepWithEveryPass) {
+    WorldFixture f(noSleep());
+    f.ground();
+    const BodyId box = f.box(Vector3(0, 0.5, 0));  // touching the plane from the first step
+    // Its contact has no warm start in the first step: every sub-step.
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().substeps, 4);
+    for (int i = 1; i < 60; ++i) {
+        f.world.step(kDt);
+        ASSERT_EQ(f.world.stats().substeps, 1) << "step " << i;
+        ASSERT_EQ(f.world.stats().velocityIterations, kPassesPerStep) << "step " << i;
+    }
+    // At rest it stays: within 0.1 mm of where it was put (the slop is 0.2 mm).
+    EXPECT_NEAR(f.position(box).y(), 0.5, 1e-4);
+    EXPECT_NEAR(f.position(box).x(), 0, 1e-6);
+}
+
+TEST(RestingStep, AFallingBodyTakesEverySubstep) {
+    WorldFixture f(noSleep());
+    f.ground();
+    f.box(Vector3(0, 3, 0));  // at rest but touching nothing: it falls
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().substeps, 4);
+    // 0.5 s later it falls at g t = 4.9 m/s: 8 cm a step.
+    f.simulate(0.5);
+    EXPECT_EQ(f.world.stats().substeps, 4);
+}
+
+TEST(RestingStep, ABodySlidingFasterThanAMillimetreAStepTakesEverySubstep) {
+    WorldFixture f(noSleep());
+    f.ground();
+    const BodyId box = f.box(Vector3(0, 0.5, 0));
+    f.simulate(2 * kDt);
+    ASSERT_EQ(f.world.stats().substeps, 1);
+    // 0.1 m/s over 1/60 s is 1.7 mm: more than the 1 mm a resting body may move.
+    f.world.setVelocity(box, Vector3(0.1, 0, 0));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().substeps, 4);
+    EXPECT_EQ(f.world.stats().velocityIterations, kPassesPerStep);
+    // 0.03 m/s is 0.5 mm a step: resting again.
+    f.world.setVelocity(box, Vector3(0.03, 0, 0));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().substeps, 1);
+}
+
+TEST(RestingStep, OneMovingBodyAnywhereKeepsEverySubstep) {
+    WorldFixture f(noSleep());
+    f.ground();
+    f.box(Vector3(0, 0.5, 0));
+    f.box(Vector3(10, 0.5, 0));
+    f.simulate(2 * kDt);
+    ASSERT_EQ(f.world.stats().substeps, 1);
+    f.sphere(Vector3(-10, 5, 0));  // falls, far from both boxes
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().substeps, 4);
+}
+
+TEST(RestingStep, ZeroOrAllSubstepsTurnsItOff) {
+    for (const int resting : {0, 4}) {
+        WorldSettings s = noSleep();
+        s.restingSubsteps = resting;
+        WorldFixture f(s);
+        f.ground();
+        f.box(Vector3(0, 0.5, 0));
+        f.simulate(3 * kDt);
+        EXPECT_EQ(f.world.stats().substeps, 4) << "restingSubsteps " << resting;
+    }
+}
+
+TEST(RestingStep, TwoRestingSubstepsShareThePasses) {
+    WorldSettings s = noSleep();
+    s.restingSubsteps = 2;
+    WorldFixture f(s);
+    f.ground();
+    f.box(Vector3(0, 0.5, 0));
+    f.simulate(2 * kDt);
+    EXPECT_EQ(f.world.stats().substeps, 2);
+    // 3 * 4 passes over 2 sub-steps: 6 each.
+    EXPECT_EQ(f.world.stats().velocityIterations, kPassesPerStep);
+}
+
+TEST(RestingStep, JointsKeepEverySubstep) {
+    WorldFixture f(noSleep());
+    f.ground();
+    const BodyId a = f.box(Vector3(0, 0.5, 0));
+    const BodyId b = f.box(Vector3(1.05, 0.5, 0));
+    JointSettings j;
+    j.type = JointType::Ball;
+    j.a = a;
+    j.b = b;
+    j.anchor = Vector3(0.525, 0.5, 0);
+    f.world.addJoint(j);
+    f.simulate(3 * kDt);
+    EXPECT_EQ(f.world.stats().substeps, 4);
+}
+
+TEST(RestingStep, LongStepsKeepEverySubstep) {
+    // One sub-step of 1/20 s lets gravity move a body |g| h^2 = 9.81 / 400 = 24.5 mm, more
+    // than the 20 mm speculative distance: the step keeps its 4 sub-steps. At 1/30 s,
+    // 10.9 mm: resting.
+    WorldFixture f(noSleep());
+    f.ground();
+    f.box(Vector3(0, 0.5, 0));
+    f.world.step(1.0 / 30);  // cold contact: every sub-step
+    f.world.step(1.0 / 30);
+    EXPECT_EQ(f.world.stats().substeps, 1);
+    f.world.step(1.0 / 20);
+    EXPECT_EQ(f.world.stats().substeps, 4);
+}
+
+TEST(RestingStep, ACountBeyondTheSubstepsIsRefused) {
+    for (const int resting : {-1, 5}) {
+        WorldSettings s;
+        s.restingSubsteps = resting;
+        try {
+            World world(s);
+            FAIL() << "accepted restingSubsteps " << resting;
+        } catch (const InvalidArgument &e) {
+            EXPECT_EQ(e.field(), "restingSubsteps") << e.what();
+            EXPECT_NE(std::string(e.what()).find(std::to_string(resting)), std::string::npos) << e.what();
+        }
+    }
+}
+
+}  // namespace
+}  // namespace cyclone::test

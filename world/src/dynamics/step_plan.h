@@ -1,0 +1,43 @@
+// The sub-steps a step takes: WorldSettings::substeps, or restingSubsteps when every
+// awake body rests on what it touches.
+//
+// Sub-steps buy accuracy for what moves: a landing body meets its contact within a
+// fraction of the step, a fast turn is integrated in small pieces, stiff joints and
+// springs stay stable. A body at rest on its contacts gains nothing from them that the
+// same number of velocity passes in one sub-step does not give, and each sub-step costs
+// its warm start, carrier pass, penetration pass and integration again. So a step in
+// which every awake body rests on contacts warm from the last step and moves less than
+// kRestingReach takes restingSubsteps sub-steps with the same velocity passes in all
+// (docs/solver.md, "Resting steps").
+#pragma once
+
+#include "cyclone/world/world.h"
+
+namespace cyclone::detail {
+
+struct WorldState;
+
+/// How far (m) a body may move in a step, at its velocity and turn, and still count as
+/// resting: the reach below which its contacts count it as still (contact_manager.cpp).
+inline constexpr real kRestingReach = 0.001;
+
+/// The sub-steps and velocity passes of one step.
+struct StepPlan {
+    int substeps = 1;
+    int velocityIterations = 1;
+    /// settings.substeps / substeps: the accumulated impulses are stored as those of a
+    /// sub-step of dt / settings.substeps, and a step of other sub-steps scales its warm
+    /// start by this (1 when the step takes settings.substeps: nothing changes).
+    real warmScale = 1;
+    /// The fraction of a contact's penetration beyond the slop removed per sub-step:
+    /// settings.penetrationRecovery r, or, in a step of fewer sub-steps, what
+    /// settings.substeps / substeps sub-steps remove together, 1 - (1 - r)^that, so that a
+    /// body held a little too deep (a pass that does not converge) sinks no deeper.
+    real recovery = 0;
+};
+
+/// The plan of the step of `dt` about to be solved: called after the narrowphase (it
+/// reads which bodies touch something) and before the solver's manifolds are built.
+StepPlan planStep(const WorldState &world, real dt);
+
+}  // namespace cyclone::detail
