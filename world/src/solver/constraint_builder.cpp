@@ -90,8 +90,9 @@ void ConstraintSolver::build(WorldState &world) {
         ++world.stats.manifolds;
         world.stats.contacts += m.count;
         for (int i = 0; i < m.count; ++i) world.stats.maxPenetration = std::max(world.stats.maxPenetration, m.points[i].depth);
-        roundDepths_.add(s, manifolds_.size(), bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], contacts,
-                         sources_[s], m.normal);
+        if (bodies.roundCount > 0)
+            roundDepths_.add(s, manifolds_.size(), bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], contacts,
+                             sources_[s], m.normal);
     }
 }
 

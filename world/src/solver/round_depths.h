@@ -2,14 +2,15 @@
 // reads a manifold's depths from its anchors at the bodies' current poses (DepthFrame),
 // each anchor a point fixed on its body. On a rolling ball, capsule or cylinder that
 // point turns away from the contact with the body, r (1 - cos a) after a turn by a
-// (0.6 mm per sub-step for a 0.25 m ball at 4.3 m/s and 60 Hz x 4), while the surface's
+// (0.65 mm per sub-step for a 0.25 m ball at 4.3 m/s and 60 Hz x 4), while the surface's
 // deepest point stays below the core: the depths read too shallow and the body sank
 // through the later sub-steps. The round side's share of the depth is corrected by
 // roundDepthChange (collision/round_side.h), the same for every point of the manifold,
 // so it goes into the frame's offset (docs/solver.md, "Round bodies").
 //
 // Design note. Only manifolds with a round side are listed, once per step; a step
-// without any (a box pile) keeps the list empty and reads nothing more per sub-step.
+// without any keeps the list empty and reads nothing more per sub-step, and a world
+// without round bodies (BodyStore::roundCount, a box pile) does not look.
 #pragma once
 
 #include <cstdint>
