@@ -43,9 +43,12 @@ struct BallOnGround {
 // energy at mu_r m g w = mu_r m g v / r, so (m + I / r^2) v dv/dt = -mu_r m g v / r:
 // a = mu_r g / (1.4 r). With mu_r = 1 cm, r = 0.25 m: 0.2803 m/s^2; from 2 m/s, v(2 s) =
 // 1.439 m/s, stopped after 2 / a = 7.14 s and 7.14 m.
-// At 120 Hz the rate holds to 1 %. At 60 Hz a rolling ball's contact point moves on it
-// by more than the warm start's matching allows, so the first sub-step of a step has no
-// normal impulse to scale the limit (rolling_resistance.h): the rate is lower, never higher.
+// The rows' limit is the normal impulse the contact held when the sub-step began (its warm
+// start, rolling_resistance.h): m g h in every sub-step once the ball rests on the plane,
+// so the rate holds to 1 % at 120 Hz and at 60 Hz. At 60 Hz the contact point moves
+// 3.3 cm a step on both bodies, beyond the 2.5 cm within which an anchor matches; the
+// point keeps its impulse because it stays below the ball's centre (pair_cache.h), and
+// without that every step's first sub-step would have no limit (the rate 3/4 of this).
 TEST(RollingResistance, ABallRollingDeceleratesAtMuRGOverOnePointFourR) {
     const real a = 0.01 * kG / (1.4 * 0.25);
     {
@@ -65,8 +68,7 @@ TEST(RollingResistance, ABallRollingDeceleratesAtMuRGOverOnePointFourR) {
         s.roll(2);
         s.f.simulate(2, kDt);
         const real measured = (2 - s.f.world.body(s.ball).getVelocity().x()) / 2;
-        EXPECT_LE(measured, 1.01 * a);
-        EXPECT_GE(measured, 0.85 * a);
+        EXPECT_NEAR(measured, a, 0.01 * a);
     }
 }
 

@@ -117,9 +117,11 @@ void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &ou
 /// appended (0 when there are no points).
 int appendReduced(const PointSet &points, const Vector3 &n, std::vector<Manifold> &out);
 
-/// Builds the contact points of features fa (A's along n) and fb (B's along -n).
+/// Builds the contact points of features fa (A's along n) and fb (B's along -n). When
+/// clipping leaves none (the features do not overlap along n), the shapes' nearest points
+/// along n, unless `pointIfApart` is false.
 void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, const SupportFeature &fb,
-                  PointSet &out);
+                  PointSet &out, bool pointIfApart = true);
 
 /// A plane against anything: exact normal, every incident point measured to the plane.
 int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out);

@@ -220,7 +220,7 @@ bool overlapAlong(const SupportFeature &fa, const SupportFeature &fb, const Vect
 }
 
 void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, const SupportFeature &fb,
-                  PointSet &out) {
+                  PointSet &out, bool pointIfApart) {
     const int before = out.count;
     if (fa.count <= 1 || fb.count <= 1) {
         pointContact(pair, n, fb.count == 1 && fa.count != 1, out);
@@ -247,7 +247,7 @@ void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, 
         for (int i = 0; i < count; ++i)
             addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, pair.speculative, out);
     }
-    if (out.count == before) pointContact(pair, n, false, out);
+    if (out.count == before && pointIfApart) pointContact(pair, n, false, out);
 }
 
 // A plane against anything: exact normal, every incident point measured to the plane.

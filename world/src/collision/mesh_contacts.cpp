@@ -188,17 +188,29 @@ void addTrianglesWithinReach(const MeshPair &m, real reach, real speculative, co
 }
 
 // Contact c's points clipped along `normal`, no deeper than its cap, added to `points`.
+//
+// Along its face normal a triangle holds only what lies over it. When a face contact's
+// features do not overlap along the normal (a shape beside the triangle, within reach of
+// it or touching its edge), clipping falls back to the shapes' nearest points along the
+// normal: a vertex of the triangle and the point the normal's overlap puts under it,
+// nowhere on the shape, at the overlap's depth rather than the gap. A capsule rolling on
+// its side 2 cm beside a vertex, 1 mm above it, met such a point at depth 0 and bumped 6
+// mm; with a speculative inner edge's contact it met one 8 cm apart but 2 m from its
+// centre, where its turning closed the gap within a step, and jumped 8 cm. Such a contact
+// gives no point: the triangle the shape lies over, in the same plane, holds it. Edge and
+// vertex contacts keep the fallback (docs/meshes.md).
 void clipContact(const MeshPair &m, const MeshContact &c, const Vector3 &normal, real speculative, PointSet &points) {
     const Pair pair = m.pair(c.triangle, speculative);
     SupportFeature fa, fb;
     m.a.supportingFeature(m.poseA, normal, pair.triangleA, fa);
     m.b.supportingFeature(m.poseB, -normal, pair.triangleB, fb);
+    const bool pointIfApart = !c.face;
     if (!(c.cap < std::numeric_limits<real>::infinity())) {
-        clipFeatures(pair, normal, fa, fb, points);
+        clipFeatures(pair, normal, fa, fb, points, pointIfApart);
         return;
     }
     PointSet clipped;
-    clipFeatures(pair, normal, fa, fb, clipped);
+    clipFeatures(pair, normal, fa, fb, clipped, pointIfApart);
     for (int k = 0; k < clipped.count; ++k) {
         const PointSet::Point &p = clipped.points[k];
         if (p.depth <= c.cap) {

@@ -352,21 +352,22 @@ void ContactManager::mergeFinds(WorldState &world, std::uint32_t p, const Manifo
         return;
     }
     if (a.shape->isCompound() || b.shape->isCompound()) {
-        mergeByChildren(pair, found, n, poseA, poseB, matchDistance);
+        mergeByChildren(pair, found, n, poseA, poseB, *a.shape, *b.shape, matchDistance);
         return;
     }
     // At most four manifolds per pair (a mesh may report more normals).
     const std::size_t kept = std::min<std::size_t>(n, 4);
     pair.manifolds.resize(kept);
     for (std::size_t k = 0; k < kept; ++k)
-        mergeManifold(pair.manifolds[k], found[k], poseA, poseB, matchDistance, newAnchorsId());
+        mergeManifold(pair.manifolds[k], found[k], poseA, poseB, *a.shape, *b.shape, matchDistance, newAnchorsId());
 }
 
 // A compound's manifolds belong to pairs of children: each fresh one warm-starts from the
 // old one of the same children (the n-th of a child pair from its n-th, for a child on a
 // mesh with several normals), wherever it stood in the list.
 void ContactManager::mergeByChildren(PairState &pair, const Manifold *found, std::size_t n, const Matrix4 &poseA,
-                                     const Matrix4 &poseB, real matchDistance) {
+                                     const Matrix4 &poseB, const CollisionShape &shapeA, const CollisionShape &shapeB,
+                                     real matchDistance) {
     previous_.swap(pair.manifolds);
     previousUsed_.assign(previous_.size(), 0);
     const std::size_t kept = std::min(n, kMaxCompoundManifolds);
@@ -381,7 +382,7 @@ void ContactManager::mergeByChildren(PairState &pair, const Manifold *found, std
             state = previous_[j];
             break;
         }
-        mergeManifold(state, fresh, poseA, poseB, matchDistance, newAnchorsId());
+        mergeManifold(state, fresh, poseA, poseB, shapeA, shapeB, matchDistance, newAnchorsId());
     }
     previous_.clear();
 }

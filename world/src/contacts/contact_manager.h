@@ -65,7 +65,8 @@ private:
     /// Merges `found` into a pair with a compound, each manifold with the old one of its
     /// children.
     void mergeByChildren(PairState &pair, const Manifold *found, std::size_t n, const Matrix4 &poseA,
-                         const Matrix4 &poseB, real matchDistance);
+                         const Matrix4 &poseB, const CollisionShape &shapeA, const CollisionShape &shapeB,
+                         real matchDistance);
 
     /// Most manifolds a pair with a compound keeps (one per touching pair of children,
     /// or more against a mesh).

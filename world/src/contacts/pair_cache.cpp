@@ -1,6 +1,9 @@
 #include "contacts/pair_cache.h"
 
 #include <algorithm>
+#include <limits>
+
+#include "collision/round_side.h"
 
 namespace cyclone::detail {
 namespace {
@@ -13,6 +16,13 @@ std::size_t hash(std::uint64_t key) {
     key *= 0x94d049bb133111ebULL;
     key ^= key >> 31;
     return static_cast<std::size_t>(key);
+}
+
+// The squared distance between the points of a round core below two anchors (infinite
+// when the side is not round).
+real coreDistance2(const RoundCore &core, const Vector3 &a, const Vector3 &b) {
+    if (core.radius == 0) return std::numeric_limits<real>::infinity();
+    return (nearestCorePoint(core, a) - nearestCorePoint(core, b)).squaredNorm();
 }
 
 }  // namespace
@@ -139,7 +149,8 @@ void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA,
 }
 
 void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,
-                   real matchDistance, std::uint64_t anchorsId) {
+                   const CollisionShape &shapeA, const CollisionShape &shapeB, real matchDistance,
+                   std::uint64_t anchorsId) {
     ManifoldState old = state;
     state.anchorsId = anchorsId;
     const bool sameNormal = old.count > 0 && old.normal.dot(fresh.normal) > 0.95;
@@ -155,6 +166,9 @@ void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &p
     state.localNormal = poseA.linear().transpose() * fresh.normal;
     state.count = fresh.count;
     const real match2 = matchDistance * matchDistance;
+    const RoundCore coreA = sameNormal ? roundSideAt(shapeA, fresh.childA, state.localNormal) : RoundCore();
+    const RoundCore coreB =
+        sameNormal ? roundSideAt(shapeB, fresh.childB, -(poseB.linear().transpose() * fresh.normal)) : RoundCore();
     for (int i = 0; i < fresh.count; ++i) {
         PersistentPoint &p = state.points[i];
         p.localA = poseA.inverse() * fresh.points[i].pointA;
@@ -165,7 +179,9 @@ void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &p
         if (!sameNormal) continue;
         real best = match2;
         for (int j = 0; j < old.count; ++j) {
-            const real d2 = (old.points[j].localA - p.localA).squaredNorm();
+            const real d2 = std::min({(old.points[j].localA - p.localA).squaredNorm(),
+                                      coreDistance2(coreA, old.points[j].localA, p.localA),
+                                      coreDistance2(coreB, old.points[j].localB, p.localB)});
             if (d2 < best) {
                 best = d2;
                 p.normalImpulse = old.points[j].normalImpulse;

@@ -109,9 +109,13 @@ void keepNearPoints(std::vector<ManifoldState> &manifolds, const Matrix4 &poseA,
                     std::uint64_t &anchorsIssued);
 
 /// Replaces `state` with `fresh`, carrying each old point's impulses to the new point
-/// whose anchor on A lies within `matchDistance` (warm starting). The new anchors are
-/// numbered `anchorsId`. `state` must be the manifold of the same children (or of none).
+/// whose anchor on A lies within `matchDistance` (warm starting), or, on a side that is
+/// round there (collision/round_side.h; shapeA and shapeB are the bodies' shapes), whose
+/// anchor lies over the same point of the core: a rolling body's contact point moves on
+/// both bodies, but stays below the same point of its core. The new anchors are numbered
+/// `anchorsId`. `state` must be the manifold of the same children (or of none).
 void mergeManifold(ManifoldState &state, const Manifold &fresh, const Matrix4 &poseA, const Matrix4 &poseB,
-                   real matchDistance, std::uint64_t anchorsId);
+                   const CollisionShape &shapeA, const CollisionShape &shapeB, real matchDistance,
+                   std::uint64_t anchorsId);
 
 }  // namespace cyclone::detail

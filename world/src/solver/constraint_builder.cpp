@@ -84,10 +84,15 @@ void ConstraintSolver::build(WorldState &world) {
     stamps_.resize(keys_.size());
     // Slot by slot: the slots are written in memory order.
     world.workers.forEach(keys_.size(), [&](std::size_t s) { addSolverManifold(world, keys_[keyOfSlot_[s]], s); });
-    for (const SolverManifold &m : manifolds_) {
+    roundDepths_.clear();
+    for (std::size_t s = 0; s < manifolds_.size(); ++s) {
+        const SolverManifold &m = manifolds_[s];
         ++world.stats.manifolds;
         world.stats.contacts += m.count;
         for (int i = 0; i < m.count; ++i) world.stats.maxPenetration = std::max(world.stats.maxPenetration, m.points[i].depth);
+        if (bodies.roundCount > 0)
+            roundDepths_.add(s, manifolds_.size(), bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], contacts,
+                             sources_[s], m.normal);
     }
 }
 

@@ -15,6 +15,7 @@
 #include "solver/manifold_order.h"
 #include "solver/penetration_pass.h"
 #include "solver/rolling_resistance.h"
+#include "solver/round_depths.h"
 #include "solver/threads/carrier_threads.h"
 #include "solver/threads/partition.h"
 #include "solver/velocity_pass.h"
@@ -87,6 +88,7 @@ private:
     std::vector<ResistanceRow> resistance_;  ///< Rolling and spinning rows, in solve order (rolling_resistance.h).
     std::vector<Vector3> positions_;         ///< Position of each solver body (entry 0 unused).
     std::vector<DepthFrame> depthFrames_;    ///< Each slot's, for penetration recovery.
+    RoundDepths roundDepths_;                ///< The slots with a round side (round_depths.h).
     CarrierScratch carrierScratch_;
     CarrierRuns carrierRuns_;
     CarrierThreads carrierThreads_;

@@ -88,8 +88,8 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
         SolverManifold &m = manifolds_[s];
         if (!firstSubstep) {
-            const DepthFrame frame =
-                depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body, m.normal);
+            DepthFrame frame = depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body, m.normal);
+            if (!roundDepths_.empty()) frame.offset += roundDepths_.change(s, frame);
             for (int i = 0; i < m.count; ++i) m.points[i].depth = frame.of(m.points[i]);
         }
         if (!split) return;
@@ -255,6 +255,7 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
         depthFrames_[s] = depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body,
                                     manifolds_[s].normal);
+        if (!roundDepths_.empty()) depthFrames_[s].offset += roundDepths_.change(s, depthFrames_[s]);
     });
     const PseudoTargets targets{depthFrames_.data(), settings.penetrationSlop,
                                         world.plan.recovery / h};

@@ -75,6 +75,9 @@ struct BodyStore final : PairFilter {
     int filteredCount = 0;
     /// Live sensors.
     int sensorCount = 0;
+    /// Live bodies whose shape may be round (collision/round_side.h): while there are
+    /// none, the solver lists no round sides (solver/round_depths.h).
+    int roundCount = 0;
     /// Pairs kept apart by World::setPairCollision.
     int keptApartCount = 0;
     int isolatedCount = 0;  ///< Live bodies isolated for a non-finite state.

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "collision/round_side.h"
 #include "collision/time_of_impact.h"
 #include "world/mass_range.h"
 #include "world/validation.h"
@@ -238,6 +239,7 @@ BodyId World::addBody(const BodySettings &settings) {
     if (r.layer != 0 || r.collidesWith != kAllLayers) ++w.bodies.filteredCount;
     r.sensor = settings.sensor;
     w.bodies.sensorCount += r.sensor;
+    w.bodies.roundCount += detail::mayBeRound(*shape);
     w.bodies.order.push_back(index);
     if (!r.name.empty()) w.bodies.names.emplace(r.name, index);
 
@@ -299,6 +301,7 @@ void World::removeBody(BodyId id) {
     r.kinematic = false;
     r.moving = false;
     if (r.layer != 0 || r.collidesWith != kAllLayers) --w.bodies.filteredCount;
+    w.bodies.roundCount -= detail::mayBeRound(*r.shape);
     r.layer = 0;
     r.collidesWith = kAllLayers;
     if (r.isPlane) w.bodies.planes.erase(std::find(w.bodies.planes.begin(), w.bodies.planes.end(), index));
