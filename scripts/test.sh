@@ -4,7 +4,7 @@
 #
 #   bash scripts/test.sh [--sanitize] [--build-dir DIR] [-- CMAKE_ARGS...]
 #
-#   --sanitize       Debug build (-O1) with AddressSanitizer + UBSan in build-asan/;
+#   --sanitize       Debug build (-Og) with AddressSanitizer + UBSan in build-asan/;
 #                    any sanitizer report fails the run.
 #   --build-dir DIR  build directory (default build/, or build-asan/ with --sanitize;
 #                    a relative DIR is taken from the current directory).
@@ -46,10 +46,11 @@ bash "$root/scripts/deps.sh"
 cmake_args=(-DCYCLONE_BUILD_TESTS=ON)
 if [[ $sanitize == true ]]; then
   build_dir=${build_dir:-$root/build-asan}
-  # -O1 keeps the instrumented suite fast while the stack traces stay readable; -g1 keeps
-  # the line tables and function names that the sanitizers' stack traces print and leaves
-  # out the variables and types a debugger would need (a third of the build's time).
-  cmake_args+=(-DCMAKE_BUILD_TYPE=Debug -DCYCLONE_SANITIZE=ON "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1")
+  # -Og optimises what does not slow the compiler down: the instrumented build takes about
+  # 40 % less processor time than at -O1 and the suite about 7 % more (docs/ci.md). -g1
+  # keeps the line tables and function names that the sanitizers' stack traces print and
+  # leaves out the variables and types a debugger would need (a third of the build's time).
+  cmake_args+=(-DCMAKE_BUILD_TYPE=Debug -DCYCLONE_SANITIZE=ON "-DCMAKE_CXX_FLAGS_DEBUG=-Og -g1")
   # Any report is fatal; ours come last so that they win over the caller's.
   export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}halt_on_error=1:abort_on_error=1:detect_leaks=1"
   export UBSAN_OPTIONS="${UBSAN_OPTIONS:+$UBSAN_OPTIONS:}halt_on_error=1:print_stacktrace=1"
