@@ -6,6 +6,8 @@
 //                  [--substeps S] [--iterations N] [--positions N]
 // --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
 // benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
+// The last column counts the steps (of all, the first second included) that took fewer
+// sub-steps than the settings' (resting steps, StepStats::substeps).
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
@@ -84,8 +86,8 @@ int run(int argc, char **argv) {
 
     std::printf("| scene |");
     for (const Column &c : kColumns) std::printf(" %s |", c.name);
-    std::printf("\n|---|");
-    for (std::size_t k = 0; k < std::size(kColumns); ++k) std::printf("--:|");
+    std::printf(" resting steps |\n|---|");
+    for (std::size_t k = 0; k <= std::size(kColumns); ++k) std::printf("--:|");
     std::printf("\n");
     for (bench::Scene &scene : built) {
         scene.world.threads = threads;
@@ -100,8 +102,10 @@ int run(int argc, char **argv) {
         World world(scene.world);
         for (const BodySettings &body : scene.bodies) world.addBody(body);
         std::vector<StageTimes> times;
+        int resting = 0;
         for (int i = 0; i < steps; ++i) {
             world.step(1.0 / 60);
+            if (world.stats().substeps < scene.world.substeps) ++resting;
             if (i >= 60) times.push_back(world.stats().ms);
         }
         std::printf("| %s |", scene.name.c_str());
@@ -110,7 +114,7 @@ int run(int argc, char **argv) {
             for (const StageTimes &t : times) values.push_back(c.read(t));
             std::printf(" %.3f |", bench::median(values));
         }
-        std::printf("\n");
+        std::printf(" %d / %d |\n", resting, steps);
     }
     return 0;
 }

@@ -1,7 +1,9 @@
 // Resting steps (WorldSettings::restingSubsteps, dynamics/step_plan.h): a step in which
-// every awake body touches something, on contacts that carried a normal impulse last step,
-// and moves less than 1 mm takes restingSubsteps sub-steps with the same velocity passes in
+// every awake body touches something, on contacts solved last step of which at least one
+// carried a normal impulse, and moves less than 1 mm takes restingSubsteps sub-steps with the same velocity passes in
 // all; any other step takes `substeps`.
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "../world_fixture.h"
@@ -28,6 +30,44 @@ TEST(RestingStep, ABoxAtRestOnTheGroundTakesOneSubstepWithEveryPass) {
     // At rest it stays: within 0.1 mm of where it was put (the slop is 0.2 mm).
     EXPECT_NEAR(f.position(box).y(), 0.5, 1e-4);
     EXPECT_NEAR(f.position(box).x(), 0, 1e-6);
+}
+
+TEST(RestingStep, ASideContactThatCarriesNothingStillRests) {
+    // Two boxes side by side on the ground, their faces touching at x = 0.5: with gravity
+    // alone nothing pushes one box into the other, so the side contact needs no impulse
+    // (its relative normal velocity stays 0 and its depth within the slop). Each box rests
+    // on the ground's warm contact; the unloaded side contact, solved every step, must not
+    // keep the step on 4 sub-steps (as a pyramid's unloaded supports did).
+    WorldFixture f(noSleep());
+    f.ground();
+    const BodyId a = f.box(Vector3(0, 0.5, 0));
+    const BodyId b = f.box(Vector3(1, 0.5, 0));
+    f.world.step(kDt);  // new contacts: every sub-step
+    EXPECT_EQ(f.world.stats().substeps, 4);
+    for (int i = 1; i < 60; ++i) {
+        f.world.step(kDt);
+        ASSERT_EQ(f.world.stats().substeps, 1) << "step " << i;
+    }
+    // Within 0.1 mm of where they were put (the slop is 0.2 mm).
+    EXPECT_NEAR(f.position(a).y(), 0.5, 1e-4);
+    EXPECT_NEAR(f.position(b).y(), 0.5, 1e-4);
+    EXPECT_NEAR(f.position(b).x() - f.position(a).x(), 1, 1e-4);
+}
+
+TEST(RestingStep, ANewContactTakesEverySubstepOnce) {
+    // A static wall put against the side of a resting box: the box still rests on the
+    // ground's warm contact, but its contact with the wall was not solved last step, so the
+    // step takes every sub-step; the next step, every contact solved, it rests again.
+    WorldFixture f(noSleep());
+    f.ground();
+    f.box(Vector3(0, 0.5, 0));
+    f.simulate(3 * kDt);
+    ASSERT_EQ(f.world.stats().substeps, 1);
+    f.staticBox(Vector3(1, 0.5, 0), Vector3(0.5, 0.5, 0.5));
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().substeps, 4);
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().substeps, 1);
 }
 
 TEST(RestingStep, AFallingBodyTakesEverySubstep) {
@@ -121,6 +161,49 @@ TEST(RestingStep, LongStepsKeepEverySubstep) {
     EXPECT_EQ(f.world.stats().substeps, 1);
     f.world.step(1.0 / 20);
     EXPECT_EQ(f.world.stats().substeps, 4);
+}
+
+// A pyramid of boxes 1.05 m apart, each on two boxes below (the benchmark's), base 16:
+// 136 boxes and some 270 manifolds, enough for the solver to split its passes in two
+// halves on two threads (threads/partition.h).
+std::vector<BodyId> restingPyramid(World &world) {
+    std::vector<BodyId> ids;
+    BodySettings floor;
+    floor.isStatic = true;
+    floor.shape = Shape::plane(Vector3::UnitY(), 0);
+    ids.push_back(world.addBody(floor));
+    constexpr int kBase = 16;
+    for (int row = 0; row < kBase; ++row) {
+        for (int i = 0; i < kBase - row; ++i) {
+            BodySettings box;
+            box.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
+            box.position = Vector3(1.05 * (i - 0.5 * (kBase - 1 - row)), 0.5 + row, 0);
+            ids.push_back(world.addBody(box));
+        }
+    }
+    return ids;
+}
+
+TEST(RestingStep, OneAndTwoThreadsGiveBitIdenticalRestingSteps) {
+    // The resting decision reads only the pairs' last solve, which every thread count makes
+    // alike: the states stay bit-identical, and the pyramid, at rest from the start, takes
+    // resting steps once its contacts are warm: every step but the first, which takes all
+    // four sub-steps on new contacts.
+    WorldSettings one = noSleep(), two = noSleep();
+    two.threads = 2;
+    World a(one), b(two);
+    const std::vector<BodyId> ids = restingPyramid(a);
+    restingPyramid(b);
+    int resting = 0;
+    constexpr int kSteps = 60;
+    for (int step = 0; step < kSteps; ++step) {
+        a.step(kDt);
+        b.step(kDt);
+        ASSERT_EQ(a.stats().substeps, b.stats().substeps) << "step " << step;
+        resting += a.stats().substeps == 1;
+        for (BodyId id : ids) ASSERT_TRUE(sameBits(a.body(id), b.body(id))) << "step " << step;
+    }
+    EXPECT_EQ(resting, kSteps - 1);
 }
 
 TEST(RestingStep, ACountBeyondTheSubstepsIsRefused) {

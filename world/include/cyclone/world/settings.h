@@ -74,8 +74,8 @@ struct WorldSettings {
     /// Sub-steps per step, >= 1: each repeats solve and integrate with dt / substeps.
     int substeps = 4;
     /// Sub-steps of a step in which every awake body rests (touches something, each of its
-    /// contacts carried a normal impulse last step, and it moves less than 1 mm in the
-    /// step), in [0, substeps]: that step takes the same velocity
+    /// contacts was solved last step and one at least carried a normal impulse, and it
+    /// moves less than 1 mm in the step), in [0, substeps]: that step takes the same velocity
     /// passes in all, velocityIterations * substeps / restingSubsteps per sub-step
     /// (rounded up), and costs a carrier pass, a penetration pass and an integration per
     /// sub-step less. Only for SplitImpulse, without joints, springs or moving kinematic
