@@ -47,7 +47,7 @@ cmake_args=(-DCYCLONE_BUILD_TESTS=ON)
 if [[ $sanitize == true ]]; then
   build_dir=${build_dir:-$root/build-asan}
   # -Og optimises what does not slow the compiler down: the instrumented build takes about
-  # 40 % less processor time than at -O1 and the suite about 7 % more (docs/ci.md). -g1
+  # 40 % less processor time than at -O1, the suite longer (docs/ci.md). -g1
   # keeps the line tables and function names that the sanitizers' stack traces print and
   # leaves out the variables and types a debugger would need (a third of the build's time).
   cmake_args+=(-DCMAKE_BUILD_TYPE=Debug -DCYCLONE_SANITIZE=ON "-DCMAKE_CXX_FLAGS_DEBUG=-Og -g1")
