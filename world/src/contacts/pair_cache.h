@@ -35,6 +35,11 @@ struct ManifoldState {
     std::uint64_t anchorsId = 0;
     std::uint32_t solverSlot = 0;  ///< Its solver slot in step solverStep (ConstraintSolver::assignSlots).
     std::uint64_t solverStep = ~std::uint64_t(0);  ///< The last step it was solved in (~0: never).
+    /// Whether it was solved in the step before step `stepCount` (never in the first step,
+    /// where `stepCount - 1` would wrap around to the "never" above).
+    bool solvedInStepBefore(std::uint64_t stepCount) const {
+        return stepCount > 0 && solverStep == stepCount - 1;
+    }
     int childA = 0;  ///< The child of A it touches when A is a compound, else 0.
     int childB = 0;  ///< The child of B it touches when B is a compound, else 0.
 };

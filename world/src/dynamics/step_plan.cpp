@@ -8,19 +8,18 @@ namespace cyclone::detail {
 namespace {
 
 // Whether the body rests on warm contacts: it touches something (a manifold with any
-// body, static ones too), each of its manifolds was solved last step (`solved`: the
-// step's number less one), and at least one of them carried a normal impulse, which
-// warm-starts it. A contact new in this step must build its whole impulse within the
+// body, static ones too), each of its manifolds was solved last step, and at least one
+// of them carried a normal impulse, which warm-starts it. A contact new in this step must build its whole impulse within the
 // step: a box with a twelfth of its shape's inertia, placed on the floor, sank 1.5 mm in
 // its first step at one sub-step of 12 passes and 0.5 mm at four of 3. A manifold solved
 // last step that carried nothing is a support the load did not need (a box of a pyramid
 // on two boxes below, one of which took the load): it counts as warm, else a tall stack
 // whose passes leave some support unloaded never takes a resting step.
-bool restsOnWarmContacts(const BodyRecord &r, const PairCache &pairs, std::uint64_t solved) {
+bool restsOnWarmContacts(const BodyRecord &r, const PairCache &pairs, std::uint64_t stepCount) {
     bool carried = false;
     for (std::uint32_t p : r.pairs) {
         for (const ManifoldState &m : pairs[p].manifolds) {
-            if (m.solverStep != solved) return false;
+            if (!m.solvedInStepBefore(stepCount)) return false;
             for (int i = 0; i < m.count; ++i) carried |= m.points[i].normalImpulse > 0;
         }
     }
@@ -57,7 +56,7 @@ StepPlan planStep(const WorldState &world, real dt) {
         if (r.isolated) continue;
         const RigidBody &body = r.body;
         const real reach = (body.getVelocity().norm() + body.getRotation().norm() * r.boundingRadius) * dt;
-        if (reach >= kRestingReach || !restsOnWarmContacts(r, pairs, world.stepCount - 1)) return full;
+        if (reach >= kRestingReach || !restsOnWarmContacts(r, pairs, world.stepCount)) return full;
     }
     // The same velocity passes per step, rounded up.
     const int passes = settings.velocityIterations * settings.substeps;

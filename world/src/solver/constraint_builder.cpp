@@ -185,7 +185,7 @@ void ConstraintSolver::assignSlots(WorldState &world) {
     slotTaken_.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
         const ManifoldState &m = world.contacts.manifold(keys_[k].manifold);
-        if (m.solverStep + 1 != world.stepCount || m.solverSlot >= n || slotTaken_[m.solverSlot]) continue;
+        if (!m.solvedInStepBefore(world.stepCount) || m.solverSlot >= n || slotTaken_[m.solverSlot]) continue;
         solveOrder_[k] = static_cast<int>(m.solverSlot);
         slotTaken_[m.solverSlot] = 1;
     }
