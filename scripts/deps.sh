@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential    # compiler and make
   cmake
+  ninja-build        # builds both cores' worth of work at once (scripts/test.sh)
   libeigen3-dev      # math types of the dynamics core
   libfcl-dev         # World: narrowphase collision
   libccd-dev         # World: GJK/EPA used by FCL
