@@ -101,9 +101,9 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
     for (int d = 0; d < 3; ++d)
         vectors([&](int k) -> const Lanes & { return m[k]->direction[d]; }, d == 0 ? c.normal : c.tangent[d - 1]);
     // Lane point i is the i-th in the manifold's solve order.
-    RowCouplings permuted[kWideLanes];
-    const RowCouplings *coupling[kWideLanes];
-    for (int k = 0; k < kWideLanes; ++k) coupling[k] = &couplingsInOrder(*m[k], m[k]->carriedCouplings, permuted[k]);
+    const CouplingOrder order[kWideLanes] = {CouplingOrder(*m[0]), CouplingOrder(*m[1]), CouplingOrder(*m[2]),
+                                             CouplingOrder(*m[3])};
+    Lanes entry[kWideLanes];
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
         const SolverPoint *p[kWideLanes];
         for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
@@ -112,8 +112,8 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
         lanesOf([&](int k) { return row(k).carriedMass; }, c.mass[i]);
         lanesOf([&](int k) { return row(k).impulse; }, c.impulse[i]);
         lanesOf([&](int k) { return p[k]->velocityBias; }, c.bias[i]);
-        transpose(coupling[0]->normal[i], coupling[1]->normal[i], coupling[2]->normal[i], coupling[3]->normal[i],
-                  c.normalCoupling[i]);
+        for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->carriedCouplings, i, entry[k]);
+        transpose(entry[0], entry[1], entry[2], entry[3], c.normalCoupling[i]);
     }
     if (patchCentre) {
         for (int k = 0; k < kWideLanes; ++k) {
@@ -134,9 +134,10 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
     exactDot(c.normal, carrierW, c.frictionCarrier[2]);
     c.frictionCarrier[2] = -c.frictionCarrier[2];
     lanesOf([&](int k) { return m[k]->twist.impulse; }, c.twistImpulse);
-    for (int r = 0; r < 3; ++r)
-        transpose(coupling[0]->friction[r], coupling[1]->friction[r], coupling[2]->friction[r], coupling[3]->friction[r],
-                  c.frictionCoupling[r]);
+    for (int r = 0; r < 3; ++r) {
+        for (int k = 0; k < kWideLanes; ++k) order[k].friction(m[k]->carriedCouplings, r, entry[k]);
+        transpose(entry[0], entry[1], entry[2], entry[3], c.frictionCoupling[r]);
+    }
     for (int e = 0; e < 6; ++e) lanesOf([&](int k) { return m[k]->carriedFrictionInverse[e]; }, c.frictionInverse[e]);
     lanesOf([&](int k) { return m[k]->friction; }, c.coefficient);
     lanesOf([&](int k) { return m[k]->twistRadius; }, c.twistRadius);
