@@ -18,10 +18,10 @@ struct RunLanes {
 
 CYCLONE_INLINE bool carriesB(const SolverManifold &m) { return m.carrier == Carrier::A; }
 
-// Per lane: a . b summed as dot3 sums one lane, (x + y) + z of the rounded products. The
+// Per lane: a . b summed as dot3 sums one vector, (x + y) + z of the rounded products. The
 // barriers keep the compiler from fusing a product into a sum (FMA), which would round
-// it otherwise than dot3 does: the carrier's shares were made by dot3 one lane at a time,
-// and the numbers stay theirs.
+// it otherwise: every operation is then a plain rounded one, and a sign taken into the
+// terms comes out of the sum exactly (a sign flip commutes with rounding).
 CYCLONE_INLINE void exactDot(const WideVector &a, const WideVector &b, Lanes &out) {
     const Lanes x = __builtin_assoc_barrier(a.x * b.x);
     const Lanes y = __builtin_assoc_barrier(a.y * b.y);
@@ -86,7 +86,7 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
     // along d (`direction`, already negated where the carried body is A): minus the
     // carrier's own terms where the carried body is B. The carrier's lever terms are
     // negated with d, so the share is -(d . v + (r x d) . w) of the signed terms in every
-    // lane, the same number as the sign times the unsigned terms' (exactDot).
+    // lane: the sign times that of the unsigned terms, exactly (exactDot).
     const auto loadRow = [&](auto row, const WideVector &direction, WideCarriedRow &out, Lanes &share)
                              __attribute__((always_inline)) {
         vectors([&](int k) -> const Lanes & { return row(k).*rxd[k]; }, out.rxd);

@@ -67,7 +67,8 @@ private:
     // Building (constraint_builder.cpp).
     void addSolverManifold(WorldState &world, const ManifoldKey &key, std::size_t slot);
     void assignSlots(WorldState &world);
-    void prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split, real restitutionThreshold);
+    void prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split,
+                         real restitutionThreshold);
     bool jacobiansHold(const WorldState &world, const JacobianStamp &stamp, const PairState &pair,
                        const ManifoldState &m) const;
     // Solving (solve.cpp).

@@ -165,11 +165,11 @@ struct SolverManifold {
 };
 
 /// The couplings of a manifold (its own or its carried ones) in its solve order: entry k
-/// is the k-th point's, lane l the l-th point's. The loaders pick each entry's lanes as
-/// they copy it into a group's lanes, in registers: a permuted copy of the couplings
-/// first, made whenever a manifold's points came in another order (three steps in four on
-/// a resting pyramid), cost its stores and loads. The lanes are picked as pairs of 32-bit
-/// words, one instruction per entry where the CPU has AVX2 (vpermd).
+/// is the k-th point's, lane l the l-th point's. The loaders pick each entry's lanes in
+/// registers as they copy it into a group's lanes, with no permuted copy of the couplings
+/// made (a resting pyramid's manifolds solve their points in another order than their
+/// rows' three steps in four). The lanes are picked as pairs of 32-bit words, one
+/// instruction per entry where the CPU has AVX2 (vpermd).
 struct CouplingOrder {
     using Words = int __attribute__((vector_size(8 * sizeof(int))));
     const signed char *order;  ///< SolverManifold::order.
