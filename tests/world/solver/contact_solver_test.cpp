@@ -100,7 +100,8 @@ TEST(ContactSolverPass, SolveOrderTakesThePointsWithTheirRowsAndCouplings) {
 }
 
 // The couplings in a solve order are P C P^T: entry k, lane l is the coupling of the k-th
-// point's row with the l-th point's (here c[i][j] = 10 i + j, friction rows 100 r + j).
+// point's row with the l-th point's (here c[i][j] = 10 i + j, friction rows 100 r + j). In
+// the stored order they are C itself.
 TEST(ContactSolverPass, CouplingsFollowTheSolveOrder) {
     SolverManifold m;
     detail::RowCouplings c;
@@ -108,16 +109,21 @@ TEST(ContactSolverPass, CouplingsFollowTheSolveOrder) {
         for (int j = 0; j < 4; ++j) c.normal[i][j] = 10 * i + j;
     for (int r = 0; r < 3; ++r)
         for (int j = 0; j < 4; ++j) c.friction[r][j] = 100 * r + j;
-    detail::RowCouplings out;
-    EXPECT_EQ(&detail::couplingsInOrder(m, c, out), &c);  // stored order: no copy
+    const signed char stored[4] = {0, 1, 2, 3};
     const signed char order[4] = {2, 0, 3, 1};
-    std::copy(order, order + 4, m.order);
-    const detail::RowCouplings &p = detail::couplingsInOrder(m, c, out);
-    ASSERT_EQ(&p, &out);
-    for (int k = 0; k < 4; ++k)
-        for (int l = 0; l < 4; ++l) EXPECT_EQ(p.normal[k][l], 10 * order[k] + order[l]) << k << ", " << l;
-    for (int r = 0; r < 3; ++r)
-        for (int l = 0; l < 4; ++l) EXPECT_EQ(p.friction[r][l], 100 * r + order[l]) << r << ", " << l;
+    for (const signed char *o : {stored, order}) {
+        std::copy(o, o + 4, m.order);
+        const detail::CouplingOrder picked(m);
+        detail::Lanes entry;
+        for (int k = 0; k < 4; ++k) {
+            picked.normal(c, k, entry);
+            for (int l = 0; l < 4; ++l) EXPECT_EQ(entry[l], 10 * o[k] + o[l]) << k << ", " << l;
+        }
+        for (int r = 0; r < 3; ++r) {
+            picked.friction(c, r, entry);
+            for (int l = 0; l < 4; ++l) EXPECT_EQ(entry[l], 100 * r + o[l]) << r << ", " << l;
+        }
+    }
 }
 
 // Loaded with the warm start, a group gives its bodies its accumulated impulses, as

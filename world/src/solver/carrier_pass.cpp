@@ -18,6 +18,17 @@ struct RunLanes {
 
 CYCLONE_INLINE bool carriesB(const SolverManifold &m) { return m.carrier == Carrier::A; }
 
+// Per lane: a . b summed as dot3 sums one vector, (x + y) + z of the rounded products. The
+// barriers keep the compiler from fusing a product into a sum (FMA), which would round
+// it otherwise: every operation is then a plain rounded one, and a sign taken into the
+// terms comes out of the sum exactly (a sign flip commutes with rounding).
+CYCLONE_INLINE void exactDot(const WideVector &a, const WideVector &b, Lanes &out) {
+    const Lanes x = __builtin_assoc_barrier(a.x * b.x);
+    const Lanes y = __builtin_assoc_barrier(a.y * b.y);
+    const Lanes z = __builtin_assoc_barrier(a.z * b.z);
+    out = (x + y) + z;
+}
+
 RunLanes laneRuns(const std::vector<SolverManifold> &manifolds, const CarrierRuns &runs, const int *run,
                   int count) {
     RunLanes lanes;
@@ -50,6 +61,7 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
     Lanes sign;  // +1 where the carried body is B, -1 where it is A
     Lanes SolverRow::*rxd[kWideLanes];  // the carried body's terms of a row
     Lanes SolverRow::*ang[kWideLanes];
+    Lanes SolverRow::*carrierRxd[kWideLanes];  // the carrier's
     for (int k = 0; k < kWideLanes; ++k) {
         const bool has = k < lanes.count && slot < lanes.size[k];
         m[k] = has ? &manifolds[runs.manifolds[lanes.first[k] + slot]] : &none;
@@ -58,7 +70,11 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
         sign[k] = b ? 1 : -1;
         rxd[k] = b ? &SolverRow::rBxd : &SolverRow::rAxd;
         ang[k] = b ? &SolverRow::angB : &SolverRow::angA;
+        carrierRxd[k] = b ? &SolverRow::rAxd : &SolverRow::rBxd;
     }
+    WideVector carrierV, carrierW;
+    transposeIn(carrier[0]->v, carrier[1]->v, carrier[2]->v, carrier[3]->v, carrierV);
+    transposeIn(carrier[0]->w, carrier[1]->w, carrier[2]->w, carrier[3]->w, carrierW);
     const auto vectors = [&](auto field, WideVector &out) __attribute__((always_inline)) {
         transposeIn(field(0), field(1), field(2), field(3), out);
         out.x *= sign, out.y *= sign, out.z *= sign;
@@ -67,32 +83,37 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
         out = Lanes{field(0), field(1), field(2), field(3)};
     };
     // A row as the carried body takes it, and the carrier's share of its relative velocity
-    // along d: minus the carrier's own terms where the carried body is B.
-    const auto loadRow = [&](auto row, int d, WideCarriedRow &out, Lanes &share) __attribute__((always_inline)) {
+    // along d (`direction`, already negated where the carried body is A): minus the
+    // carrier's own terms where the carried body is B. The carrier's lever terms are
+    // negated with d, so the share is -(d . v + (r x d) . w) of the signed terms in every
+    // lane: the sign times that of the unsigned terms, exactly (exactDot).
+    const auto loadRow = [&](auto row, const WideVector &direction, WideCarriedRow &out, Lanes &share)
+                             __attribute__((always_inline)) {
         vectors([&](int k) -> const Lanes & { return row(k).*rxd[k]; }, out.rxd);
         vectors([&](int k) -> const Lanes & { return row(k).*ang[k]; }, out.ang);
-        const auto of = [&](int k) {
-            const Lanes &carrierLever = carriesB(*m[k]) ? row(k).rAxd : row(k).rBxd;
-            return -sign[k] * (dot3(m[k]->direction[d], carrier[k]->v) + dot3(carrierLever, carrier[k]->w));
-        };
-        lanesOf(of, share);
+        WideVector lever;
+        vectors([&](int k) -> const Lanes & { return row(k).*carrierRxd[k]; }, lever);
+        Lanes linear, angular;
+        exactDot(direction, carrierV, linear);
+        exactDot(lever, carrierW, angular);
+        share = -(linear + angular);
     };
     for (int d = 0; d < 3; ++d)
         vectors([&](int k) -> const Lanes & { return m[k]->direction[d]; }, d == 0 ? c.normal : c.tangent[d - 1]);
     // Lane point i is the i-th in the manifold's solve order.
-    RowCouplings permuted[kWideLanes];
-    const RowCouplings *coupling[kWideLanes];
-    for (int k = 0; k < kWideLanes; ++k) coupling[k] = &couplingsInOrder(*m[k], m[k]->carriedCouplings, permuted[k]);
+    const CouplingOrder order[kWideLanes] = {CouplingOrder(*m[0]), CouplingOrder(*m[1]), CouplingOrder(*m[2]),
+                                             CouplingOrder(*m[3])};
+    Lanes entry[kWideLanes];
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
         const SolverPoint *p[kWideLanes];
         for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
         const auto row = [&](int k) -> const SolverRow & { return p[k]->normal; };
-        loadRow(row, 0, c.points[i], c.carrier[i]);
+        loadRow(row, c.normal, c.points[i], c.carrier[i]);
         lanesOf([&](int k) { return row(k).carriedMass; }, c.mass[i]);
         lanesOf([&](int k) { return row(k).impulse; }, c.impulse[i]);
         lanesOf([&](int k) { return p[k]->velocityBias; }, c.bias[i]);
-        transpose(coupling[0]->normal[i], coupling[1]->normal[i], coupling[2]->normal[i], coupling[3]->normal[i],
-                  c.normalCoupling[i]);
+        for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->carriedCouplings, i, entry[k]);
+        transpose(entry[0], entry[1], entry[2], entry[3], c.normalCoupling[i]);
     }
     if (patchCentre) {
         for (int k = 0; k < kWideLanes; ++k) {
@@ -105,16 +126,18 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
     }
     for (int r = 0; r < 2; ++r) {
         const auto row = [&](int k) -> const SolverRow & { return m[k]->frictionRow[r]; };
-        loadRow(row, r + 1, c.friction[r], c.frictionCarrier[r]);
+        loadRow(row, c.tangent[r], c.friction[r], c.frictionCarrier[r]);
         lanesOf([&](int k) { return row(k).impulse; }, c.frictionImpulse[r]);
     }
     // The twist row's lever terms are the normal itself, on either side.
     vectors([&](int k) -> const Lanes & { return m[k]->twist.*ang[k]; }, c.twist);
-    lanesOf([&](int k) { return -sign[k] * dot3(m[k]->direction[0], carrier[k]->w); }, c.frictionCarrier[2]);
+    exactDot(c.normal, carrierW, c.frictionCarrier[2]);
+    c.frictionCarrier[2] = -c.frictionCarrier[2];
     lanesOf([&](int k) { return m[k]->twist.impulse; }, c.twistImpulse);
-    for (int r = 0; r < 3; ++r)
-        transpose(coupling[0]->friction[r], coupling[1]->friction[r], coupling[2]->friction[r], coupling[3]->friction[r],
-                  c.frictionCoupling[r]);
+    for (int r = 0; r < 3; ++r) {
+        for (int k = 0; k < kWideLanes; ++k) order[k].friction(m[k]->carriedCouplings, r, entry[k]);
+        transpose(entry[0], entry[1], entry[2], entry[3], c.frictionCoupling[r]);
+    }
     for (int e = 0; e < 6; ++e) lanesOf([&](int k) { return m[k]->carriedFrictionInverse[e]; }, c.frictionInverse[e]);
     lanesOf([&](int k) { return m[k]->friction; }, c.coefficient);
     lanesOf([&](int k) { return m[k]->twistRadius; }, c.twistRadius);

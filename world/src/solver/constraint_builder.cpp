@@ -274,8 +274,9 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     }
     // Jacobians and effective masses are made once per step, at the step's poses, unless
     // the slot's still hold (jacobian_stamp.h).
+    const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
-        prepareManifold(bodies, s, h * world.plan.substeps);
+        prepareManifold(bodies, s, h, h * world.plan.substeps, split, settings.restitutionThreshold);
         JacobianStamp &stamp = stamps_[s];
         if (support && stamp.carrier != manifolds_[s].carrier) {
             prepareCarriedMasses(bodies_, manifolds_[s]);
@@ -300,7 +301,8 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     }
 }
 
-void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, real dt) {
+void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split,
+                                       real restitutionThreshold) {
     SolverManifold &m = manifolds_[s];
     const SlotBodies records = slotBodies_[s];
     const RigidBody &a = bodies[records.a].body;
@@ -326,11 +328,15 @@ void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, r
         prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m, turns);
         prepareCouplings(sa, sb, m);
     }
+    // The first sub-step's targets are set here, while the points are in the cache (later
+    // sub-steps set theirs at their depths: ConstraintSolver::solveVelocities).
+    const real inverseH = 1 / h;
     for (int i = 0; i < m.count; ++i) {
         SolverPoint &p = m.points[i];
         p.maxNormalImpulse = 0;
         // The normal velocity when the step began, measured only for restitution.
         p.approachSpeed = m.restitution == 0 ? 0 : normalVelocity(sa, sb, m, p);
+        if (split) p.velocityBias = velocityBias(m, p, h, inverseH, restitutionThreshold, true);
     }
 }
 

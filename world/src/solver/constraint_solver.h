@@ -25,6 +25,22 @@ namespace cyclone::detail {
 
 struct WorldState;
 
+/// The split-impulse target normal velocity of point p of m in a sub-step of h s
+/// (inverseH = 1 / h): a gap may close within the sub-step and no more; a contact
+/// touching, or closing its gap within the sub-step, at a speed that bounces (the first
+/// sub-step only for one touching) bounces.
+CYCLONE_INLINE real velocityBias(const SolverManifold &m, const SolverPoint &p, real h, real inverseH,
+                                 real restitutionThreshold, bool firstSubstep) {
+    const bool bounces = m.restitution > 0 && p.approachSpeed < -restitutionThreshold;
+    if (p.depth < 0) {
+        // A speculative contact that closes its gap within this sub-step at a speed that
+        // bounces: the bounce, as if it had touched.
+        if (bounces && -p.approachSpeed * h >= -p.depth) return -m.restitution * p.approachSpeed;
+        return p.depth * inverseH;
+    }
+    return firstSubstep && bounces ? -m.restitution * p.approachSpeed : 0;
+}
+
 class ConstraintSolver {
 public:
     /// The step's solver manifolds, in their slots (solve order: solveOrder_).
@@ -51,7 +67,8 @@ private:
     // Building (constraint_builder.cpp).
     void addSolverManifold(WorldState &world, const ManifoldKey &key, std::size_t slot);
     void assignSlots(WorldState &world);
-    void prepareManifold(const BodyStore &bodies, std::size_t s, real dt);
+    void prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split,
+                         real restitutionThreshold);
     bool jacobiansHold(const WorldState &world, const JacobianStamp &stamp, const PairState &pair,
                        const ManifoldState &m) const;
     // Solving (solve.cpp).

@@ -164,23 +164,32 @@ struct SolverManifold {
     SolverPoint points[kMaxManifoldPoints];
 };
 
-/// The couplings `c` of manifold `m` (its own or its supported ones) in m's solve order:
-/// entry k is the k-th point's, lane l the l-th point's. `c` itself when the points are
-/// solved in the order they are stored, else the copy made in `out`. The lanes are picked
-/// as pairs of 32-bit words, one instruction per entry where the CPU has AVX2 (vpermd).
-CYCLONE_INLINE const RowCouplings &couplingsInOrder(const SolverManifold &m, const RowCouplings &c,
-                                                    RowCouplings &out) {
+/// The couplings of a manifold (its own or its carried ones) in its solve order: entry k
+/// is the k-th point's, lane l the l-th point's. The loaders pick each entry's lanes in
+/// registers as they copy it into a group's lanes, with no permuted copy of the couplings
+/// made (a resting pyramid's manifolds solve their points in another order than their
+/// rows' three steps in four). The lanes are picked as pairs of 32-bit words, one
+/// instruction per entry where the CPU has AVX2 (vpermd).
+struct CouplingOrder {
     using Words = int __attribute__((vector_size(8 * sizeof(int))));
-    const signed char *o = m.order;
-    if (o[0] == 0 && o[1] == 1 && o[2] == 2 && o[3] == 3) return c;
-    const Words pick = {2 * o[0], 2 * o[0] + 1, 2 * o[1], 2 * o[1] + 1,
-                        2 * o[2], 2 * o[2] + 1, 2 * o[3], 2 * o[3] + 1};
-    for (int k = 0; k < kMaxManifoldPoints; ++k)
-        out.normal[k] = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(c.normal[o[k]]), pick));
-    for (int r = 0; r < 3; ++r)
-        out.friction[r] = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(c.friction[r]), pick));
-    return out;
-}
+    const signed char *order;  ///< SolverManifold::order.
+    Words pick;
+
+    CYCLONE_INLINE explicit CouplingOrder(const SolverManifold &m)
+        : order(m.order),
+          pick{2 * order[0], 2 * order[0] + 1, 2 * order[1], 2 * order[1] + 1,
+               2 * order[2], 2 * order[2] + 1, 2 * order[3], 2 * order[3] + 1} {}
+
+    /// Entry k of c.normal in solve order, into `out`.
+    CYCLONE_INLINE void normal(const RowCouplings &c, int k, Lanes &out) const { picked(c.normal[order[k]], out); }
+    /// Entry r of c.friction with its lanes in solve order, into `out`.
+    CYCLONE_INLINE void friction(const RowCouplings &c, int r, Lanes &out) const { picked(c.friction[r], out); }
+
+private:
+    CYCLONE_INLINE void picked(const Lanes &entry, Lanes &out) const {
+        out = reinterpret_cast<Lanes>(__builtin_shuffle(reinterpret_cast<Words>(entry), pick));
+    }
+};
 
 /// The carrier pass's order (assignCarriers): the carried bodies bottom up; run r is one
 /// body's manifolds with its carriers, manifolds[start[r] .. start[r + 1]). A level holds

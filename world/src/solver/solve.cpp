@@ -79,35 +79,25 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         }
     }
 
-    // Current separations from the anchors (positions move only between sub-steps). In the
-    // first sub-step the bodies are where the narrowphase found them, and its depths
-    // (addSolverManifold) are current: along the normal it last found, which differs from
-    // a kept manifold's (jacobian_stamp.h) by less than the reuse tolerance's turn.
+    // Current separations from the anchors (positions move only between sub-steps), and
+    // the targets they give. In the first sub-step the bodies are where the narrowphase
+    // found them, and its depths (addSolverManifold) are current: along the normal it last
+    // found, which differs from a kept manifold's (jacobian_stamp.h) by less than the reuse
+    // tolerance's turn; prepareManifold set their targets.
     const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
-    const real inverseH = 1 / h;
-    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
-        SolverManifold &m = manifolds_[s];
-        if (!firstSubstep) {
+    if (!firstSubstep) {
+        const real inverseH = 1 / h;
+        world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
+            SolverManifold &m = manifolds_[s];
             DepthFrame frame = depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body, m.normal);
             if (!roundDepths_.empty()) frame.offset += roundDepths_.change(s, frame);
-            for (int i = 0; i < m.count; ++i) m.points[i].depth = frame.of(m.points[i]);
-        }
-        if (!split) return;
-        for (int i = 0; i < m.count; ++i) {
-            SolverPoint &p = m.points[i];
-            p.velocityBias = 0;
-            if (p.depth < 0) {
-                p.velocityBias = p.depth * inverseH;  // apart: may close the gap during this sub-step, no more
-                // A speculative contact that closes its gap within this sub-step at a
-                // speed that bounces: the bounce, as if it had touched.
-                if (m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold &&
-                    -p.approachSpeed * h >= -p.depth)
-                    p.velocityBias = -m.restitution * p.approachSpeed;
-            } else if (firstSubstep && m.restitution > 0 && p.approachSpeed < -settings.restitutionThreshold) {
-                p.velocityBias = -m.restitution * p.approachSpeed;
+            for (int i = 0; i < m.count; ++i) {
+                SolverPoint &p = m.points[i];
+                p.depth = frame.of(p);
+                if (split) p.velocityBias = velocityBias(m, p, h, inverseH, settings.restitutionThreshold, false);
             }
-        }
-    });
+        });
+    }
 
     // Joints: rows made at the sub-step's poses, warm-started, and solved in the same
     // passes as the contacts, after them (joints/joint_set.h).

@@ -146,9 +146,9 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
         for (int d = 0; d < 3; ++d)
             vectors([d](const SolverManifold &x) -> const Lanes & { return x.direction[d]; }, d == 0 ? w.normal : w.tangent[d - 1]);
         // Lane point i is the i-th in the manifold's solve order.
-        RowCouplings permuted[kWideLanes];
-        const RowCouplings *c[kWideLanes];
-        for (int k = 0; k < kWideLanes; ++k) c[k] = &couplingsInOrder(*m[k], m[k]->couplings, permuted[k]);
+        const CouplingOrder order[kWideLanes] = {CouplingOrder(*m[0]), CouplingOrder(*m[1]), CouplingOrder(*m[2]),
+                                                 CouplingOrder(*m[3])};
+        Lanes entry[kWideLanes];
         for (int i = 0; i < kMaxManifoldPoints; ++i) {
             const SolverPoint *p[kWideLanes];
             for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
@@ -156,14 +156,17 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
             w.points[i].mass = Lanes{p[0]->normal.mass, p[1]->normal.mass, p[2]->normal.mass, p[3]->normal.mass};
             w.points[i].impulse = Lanes{p[0]->normal.impulse, p[1]->normal.impulse, p[2]->normal.impulse, p[3]->normal.impulse};
             w.points[i].bias = Lanes{p[0]->velocityBias, p[1]->velocityBias, p[2]->velocityBias, p[3]->velocityBias};
-            transpose(c[0]->normal[i], c[1]->normal[i], c[2]->normal[i], c[3]->normal[i], w.normalCoupling[i]);
+            for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->couplings, i, entry[k]);
+            transpose(entry[0], entry[1], entry[2], entry[3], w.normalCoupling[i]);
         }
         for (int r = 0; r < 2; ++r) {
             loadRow(m[0]->frictionRow[r], m[1]->frictionRow[r], m[2]->frictionRow[r], m[3]->frictionRow[r], w.friction[r]);
             lanes([r](const SolverManifold &x) { return x.frictionRow[r].impulse; }, w.frictionImpulse[r]);
         }
-        for (int r = 0; r < 3; ++r)
-            transpose(c[0]->friction[r], c[1]->friction[r], c[2]->friction[r], c[3]->friction[r], w.frictionCoupling[r]);
+        for (int r = 0; r < 3; ++r) {
+            for (int k = 0; k < kWideLanes; ++k) order[k].friction(m[k]->couplings, r, entry[k]);
+            transpose(entry[0], entry[1], entry[2], entry[3], w.frictionCoupling[r]);
+        }
         vectors([](const SolverManifold &x) -> const Lanes & { return x.twist.angA; }, w.twistA);
         vectors([](const SolverManifold &x) -> const Lanes & { return x.twist.angB; }, w.twistB);
         lanes([](const SolverManifold &x) { return x.twist.impulse; }, w.twistImpulse);
