@@ -105,6 +105,15 @@ int roundPairManifold(const Pair &pair, const Vector3 &normal, std::vector<Manif
     return appendReduced(points, normal, out);
 }
 
+// The unit direction from A's axis segment's closest point to B's (zero when they meet).
+Vector3 coreLine(const AxisCore &a, const AxisCore &b) {
+    real s = 0, t = 0;
+    closestOnSegments(a.end0, a.end1, b.end0, b.end1, s, t);
+    const Vector3 between = (b.end0 + t * (b.end1 - b.end0)) - (a.end0 + s * (a.end1 - a.end0));
+    const real distance = between.norm();
+    return distance > kMinNormalLength ? Vector3(between / distance) : Vector3::Zero();
+}
+
 // Whether shapes of these types are a cylinder and a cylinder or a capsule.
 bool cylinderRoundPair(ShapeType a, ShapeType b) {
     if (a != ShapeType::Cylinder) std::swap(a, b);
@@ -309,8 +318,19 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     const Pair pair{a, poseA, -1, b, poseB, -1, speculative};
     SupportFeature fa, fb;
     real overlap = 0;
-    const Vector3 normal =
+    Vector3 normal =
         chooseNormal(pair, raw[deepest].normal, NormalRule(), !exactInFcl(typeA, typeB), fa, fb, overlap);
+    if (roundPair) {
+        // MPR's start can leave every candidate far off (a capsule under a cylinder's rim got
+        // a normal pointing down through it, 1 m deep): the line between the cores' closest
+        // points is one more candidate.
+        const Vector3 cores = coreLine(axisCore(a, poseA), axisCore(b, poseB));
+        if (cores != Vector3::Zero() && pair.overlap(cores) < overlap) {
+            normal = cores;
+            a.supportingFeature(poseA, normal, -1, fa);
+            b.supportingFeature(poseB, -normal, -1, fb);
+        }
+    }
     PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
     if (roundPair) addAxisEnds(axisCore(a, poseA), axisCore(b, poseB), normal, speculative, points);
