@@ -160,7 +160,8 @@ TEST(CylinderPairs, StandingCylindersSideBySideApartHaveNoContact) {
     const Shape cylinder = Shape::cylinder(0.25, 1);
     for (const real y : {0.9, 0.5, 0.0}) {
         SCOPED_TRACE(y);
-        EXPECT_TRUE(collide(cylinder, pose(Vector3(0, y, 0), zUp()), cylinder, pose(Vector3(0.6, 0, 0.6), zUp()), 0).empty());
+        const Matrix4 poseA = pose(Vector3(0, y, 0), zUp()), poseB = pose(Vector3(0.6, 0, 0.6), zUp());
+        EXPECT_TRUE(collide(cylinder, poseA, cylinder, poseB, 0).empty());
     }
 }
 

@@ -2,13 +2,10 @@
 // axis segment grown by its radius across the axis: where the closest points of two axis
 // segments lie inside both, each surface there is its axis point plus the radius along
 // the line between the points, so that line is the exact normal and the radii less its
-// length the exact depth, however deep. Where only one side faces the other (the other's
-// rim or end comes down on it), the normal lies across that side's axis: along such a
-// direction the side's projection is its radius either side of the axis, so the least
-// overlap among them is the distance from the axis to the other shape, seen along the
-// axis, against the radius, found by walking to the other shape's point nearest the
-// axis. A cap's axis is a candidate too (a cap lying on a side); the candidate of least
-// overlap wins, as for every closed-form pair (separating axes).
+// length the exact depth, however deep. A cap's axis is a candidate too (a short
+// cylinder), as for every closed-form pair the candidate of least overlap wins
+// (separating axes); where a cap wins, or a rim or cap faces the other shape, FCL's path
+// answers. Nearly parallel round pairs also get their axis segments' ends as points.
 #include "collision/cylinder_pairs.h"
 
 #include <cmath>
@@ -24,8 +21,6 @@ constexpr real kMinAxisDistance = 1e-9;
 // Axes whose cross product's square is below this times their squared lengths' product
 // are parallel (within 1e-6 rad).
 constexpr real kParallelAxes = 1e-12;
-// Steps of the walk across a side's axis to the other shape's nearest point.
-constexpr int kRadialSteps = 6;
 // Cores whose axes are within 20 degrees of parallel get their segments' ends as points:
 // cos(20 deg).
 constexpr real kNearlyParallelCosine = 0.9396926207859084;
@@ -57,9 +52,8 @@ void considerCap(const Pair &pair, const AxisCore &core, AxisCandidate &best) {
     }
 }
 
-// The point of `core`'s surface nearest the line through `from` across which `outward`
-// (unit) points away from it: a capsule's end sphere's point towards -outward, a
-// cylinder's rim point, `end` being the end of its segment.
+// The point of `core`'s surface at the end `end` of its segment that reaches farthest
+// along -outward (unit): a capsule's end sphere's point, a cylinder's rim point.
 Vector3 surfaceTowards(const AxisCore &core, const Vector3 &end, const Vector3 &outward) {
     if (!core.cylinder) return end - core.radius * outward;
     const Vector3 axis = (core.end1 - core.end0).normalized();
