@@ -1,7 +1,8 @@
 // Narrowphase: FCL says whether two shapes touch; the manifold is built here from the
 // normal of least overlap (contact_normal.cpp) and the features clipped along it
-// (manifold_clipping.cpp). Box-box, sphere pairs, capsule pairs (round_pairs.cpp) and
-// planes have tests of their own.
+// (manifold_clipping.cpp). Box-box, sphere pairs, capsule pairs (round_pairs.cpp),
+// cylinders against cylinders and capsules (cylinder_pairs.cpp) and planes have tests of
+// their own.
 //
 // Meshes give one FCL contact per triangle; mesh_contacts.cpp builds their manifolds.
 //
@@ -15,6 +16,7 @@
 #include "collision/box_box.h"
 #include "collision/broadphase.h"
 #include "collision/contact_building.h"
+#include "collision/cylinder_pairs.h"
 #include "collision/mesh_contacts.h"
 #include "collision/round_pairs.h"
 #include "collision/shape_contact.h"
@@ -51,8 +53,10 @@ int clipAlong(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &ou
 // Convex shapes FCL found apart: a speculative manifold when they are closer than
 // `reach`, along the line between their nearest points (fcl::distance), clipped from the
 // features that face each other along it.
+int roundPairManifold(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out);
+
 int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
-                 real reach, std::vector<Manifold> &out) {
+                 real reach, std::vector<Manifold> &out, bool roundPair = false) {
     // The distance costs as much as the contact test: pairs that close less than this in
     // a step (0.3 m/s at 60 Hz) go without, and enter each other at most that far (plus
     // what gravity adds within the step) before their contact acts, m.
@@ -69,7 +73,8 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
     if (!(between.norm() > kMinNormalLength)) return 0;
     const Vector3 normal = between.normalized();
-    return clipAlong(Pair{a, poseA, -1, b, poseB, -1, reach}, normal, out);
+    const Pair pair{a, poseA, -1, b, poseB, -1, reach};
+    return roundPair ? roundPairManifold(pair, normal, out) : clipAlong(pair, normal, out);
 }
 
 // The ends of a capsule's segment (its local z axis, `length` long), world space.
@@ -77,6 +82,56 @@ void capsuleEnds(const CollisionShape &capsule, const Matrix4 &pose, Vector3 &en
     const Vector3 half = pose.linear().col(2) * (capsule.shape().length / 2);
     end0 = pose.translation() - half;
     end1 = pose.translation() + half;
+}
+
+// The axis core of a cylinder or capsule at `pose`.
+AxisCore axisCore(const CollisionShape &shape, const Matrix4 &pose) {
+    AxisCore core;
+    capsuleEnds(shape, pose, core.end0, core.end1);
+    core.radius = shape.shape().radius;
+    core.cylinder = shape.shape().type == ShapeType::Cylinder;
+    return core;
+}
+
+// The manifold of a cylinder and a cylinder or capsule along `normal`: the features
+// clipped as in clipAlong, and the axis segments' ends of nearly parallel cores.
+int roundPairManifold(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out) {
+    SupportFeature fa, fb;
+    pair.a.supportingFeature(pair.poseA, normal, -1, fa);
+    pair.b.supportingFeature(pair.poseB, -normal, -1, fb);
+    PointSet points;
+    clipFeatures(pair, normal, fa, fb, points);
+    addAxisEnds(axisCore(pair.a, pair.poseA), axisCore(pair.b, pair.poseB), normal, pair.speculative, points);
+    return appendReduced(points, normal, out);
+}
+
+// The unit direction from A's axis segment's closest point to B's (zero when they meet).
+Vector3 coreLine(const AxisCore &a, const AxisCore &b) {
+    real s = 0, t = 0;
+    closestOnSegments(a.end0, a.end1, b.end0, b.end1, s, t);
+    const Vector3 between = (b.end0 + t * (b.end1 - b.end0)) - (a.end0 + s * (a.end1 - a.end0));
+    const real distance = between.norm();
+    return distance > kMinNormalLength ? Vector3(between / distance) : Vector3::Zero();
+}
+
+// Whether shapes of these types are a cylinder and a cylinder or a capsule.
+bool cylinderRoundPair(ShapeType a, ShapeType b) {
+    if (a != ShapeType::Cylinder) std::swap(a, b);
+    return a == ShapeType::Cylinder && (b == ShapeType::Cylinder || b == ShapeType::Capsule);
+}
+
+// A cylinder against a cylinder or a capsule where two round sides face each other, from
+// their closest features (cylinder_pairs.cpp); -1 for the others, which FCL tests.
+int cylinderContact(const Pair &pair, real reach, std::vector<Manifold> &out) {
+    Vector3 normal;
+    real overlap = 0;
+    switch (cylinderPairNormal(pair, axisCore(pair.a, pair.poseA), axisCore(pair.b, pair.poseB), reach, normal,
+                               overlap)) {
+        case CylinderPairResult::Apart: return 0;
+        case CylinderPairResult::NotHandled: return -1;
+        case CylinderPairResult::Found: break;
+    }
+    return roundPairManifold(pair, normal, out);
 }
 
 // The pairs with a test of their own, which FCL would only have told touch: the
@@ -138,6 +193,8 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
         out.push_back(manifold);
         return 1;
     }
+    if (typeA == ShapeType::Cylinder || typeB == ShapeType::Cylinder)
+        return cylinderRoundPair(typeA, typeB) ? cylinderContact(pair, reach, out) : -1;
     if (typeA == ShapeType::Capsule || typeB == ShapeType::Capsule) {
         const bool capsuleIsA = typeA == ShapeType::Capsule;
         const CollisionShape &capsule = capsuleIsA ? a : b;
@@ -245,7 +302,8 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     const bool withPlane = typeA == ShapeType::Plane || typeB == ShapeType::Plane;
     if (withMesh && !withPlane)
         return meshContacts(a, poseA, b, poseB, settings.speculativeDistance, settings.reach, raw, rawCount, out);
-    if (rawCount == 0) return withMesh ? 0 : apartContact(a, poseA, b, poseB, settings.reach, out);
+    const bool roundPair = cylinderRoundPair(typeA, typeB);
+    if (rawCount == 0) return withMesh ? 0 : apartContact(a, poseA, b, poseB, settings.reach, out, roundPair);
 
     if (withPlane) {
         const Pair pair{a, poseA, raw[0].triangleA, b, poseB, raw[0].triangleB, speculative};
@@ -260,10 +318,22 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     const Pair pair{a, poseA, -1, b, poseB, -1, speculative};
     SupportFeature fa, fb;
     real overlap = 0;
-    const Vector3 normal =
+    Vector3 normal =
         chooseNormal(pair, raw[deepest].normal, NormalRule(), !exactInFcl(typeA, typeB), fa, fb, overlap);
+    if (roundPair) {
+        // MPR's start can leave every candidate far off (a capsule under a cylinder's rim got
+        // a normal pointing down through it, 1 m deep): the line between the cores' closest
+        // points is one more candidate.
+        const Vector3 cores = coreLine(axisCore(a, poseA), axisCore(b, poseB));
+        if (cores != Vector3::Zero() && pair.overlap(cores) < overlap) {
+            normal = cores;
+            a.supportingFeature(poseA, normal, -1, fa);
+            b.supportingFeature(poseB, -normal, -1, fb);
+        }
+    }
     PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
+    if (roundPair) addAxisEnds(axisCore(a, poseA), axisCore(b, poseB), normal, speculative, points);
     return appendReduced(points, normal, out);
 }
 

@@ -40,15 +40,18 @@ struct NarrowphaseSettings {
     /// tests nothing; FCL's pairs and meshes do not use it.
     real touchMargin = 0;
     /// Test every pair with FCL, even the pairs that have a test of their own (box-box,
-    /// sphere-sphere, sphere-box, sphere-capsule, capsule-capsule, capsule-box, a plane
-    /// against any solid shape); for comparing the two.
+    /// sphere-sphere, sphere-box, sphere-capsule, capsule-capsule, capsule-box, a cylinder
+    /// against a cylinder or a capsule, a plane against any solid shape); for comparing
+    /// the two.
     bool forceFcl = false;
 };
 
 /// Tests shapes `a` at `poseA` and `b` at `poseB` and appends one manifold per contact
 /// normal to `out` (none when apart; a mesh may give several). Returns the number
 /// appended. Box-box (separating axes), sphere-sphere, sphere-box, sphere-capsule,
-/// capsule-capsule, capsule-box (closest features, round_pairs.h) and a plane against any
+/// capsule-capsule, capsule-box (closest features, round_pairs.h), a cylinder against a
+/// cylinder or a capsule where a round side faces the other (cylinder_pairs.h; FCL
+/// confirms the contact unless two round sides face each other) and a plane against any
 /// solid shape have tests of their own; every other pair goes through FCL's contact test
 /// (GST_LIBCCD, through collideShapes), and so does every pair with `settings.forceFcl`.
 /// Normals point from A to B whatever order FCL used internally; near-zero normals are
