@@ -39,14 +39,20 @@ bool exactInFcl(ShapeType a, ShapeType b) {
     return a == ShapeType::Box && b == ShapeType::Box;
 }
 
-// The manifold of two convex shapes along `normal` (A to B): their supporting features
-// clipped against each other, reduced to at most four points.
-int clipAlong(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out) {
+// The points of two convex shapes along `normal` (A to B): their supporting features
+// clipped against each other.
+void clippedPoints(const Pair &pair, const Vector3 &normal, PointSet &points) {
     SupportFeature fa, fb;
     pair.a.supportingFeature(pair.poseA, normal, -1, fa);
     pair.b.supportingFeature(pair.poseB, -normal, -1, fb);
-    PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
+}
+
+// The manifold of two convex shapes along `normal`: their clipped points, reduced to at
+// most four.
+int clipAlong(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out) {
+    PointSet points;
+    clippedPoints(pair, normal, points);
     return appendReduced(points, normal, out);
 }
 
@@ -96,11 +102,8 @@ AxisCore axisCore(const CollisionShape &shape, const Matrix4 &pose) {
 // The manifold of a cylinder and a cylinder or capsule along `normal`: the features
 // clipped as in clipAlong, and the axis segments' ends of nearly parallel cores.
 int roundPairManifold(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out) {
-    SupportFeature fa, fb;
-    pair.a.supportingFeature(pair.poseA, normal, -1, fa);
-    pair.b.supportingFeature(pair.poseB, -normal, -1, fb);
     PointSet points;
-    clipFeatures(pair, normal, fa, fb, points);
+    clippedPoints(pair, normal, points);
     addAxisEnds(axisCore(pair.a, pair.poseA), axisCore(pair.b, pair.poseB), normal, pair.speculative, points);
     return appendReduced(points, normal, out);
 }
