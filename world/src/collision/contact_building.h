@@ -100,7 +100,8 @@ struct NormalRule {
 
 /// The normal of one contact from FCL's normal `fclNormal`: the candidate of least
 /// overlap among FCL's, the supporting faces', their edges' cross products and (for
-/// cylinders) the cap's and side's, refined when FCL's normal came from MPR (`refine`).
+/// cylinders) the cap's and side's, refined when FCL's normal came from MPR (`refine`),
+/// and (for a cylinder with a cylinder or a capsule) the line between their cores.
 /// Leaves the features along it in fa and fb, and the overlap along it in `overlap`.
 Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, const NormalRule &rule, bool refine,
                      SupportFeature &fa, SupportFeature &fb, real &overlap);

@@ -7,11 +7,13 @@
 // bounds the penetration from above (separating axes). Ties go to a face, so resting
 // contacts get the exact face normal. Where FCL used MPR, the winner is then refined:
 // the pair moved apart along it no longer touches, and GJK's nearest points give the
-// surfaces' common normal.
+// surfaces' common normal. A cylinder with a cylinder or a capsule also has the line
+// between their cores as a candidate.
 #include <algorithm>
 #include <cmath>
 
 #include "collision/contact_building.h"
+#include "collision/cylinder_pairs.h"
 #include "collision/gjk.h"
 
 namespace cyclone::detail {
@@ -222,7 +224,16 @@ Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, const NormalRul
             if (otherOverlap < bestOverlap) best = other, bestOverlap = otherOverlap;
         }
     }
-    // 5. The features along the normal chosen, for clipping.
+    // 5. A cylinder against a cylinder or a capsule: MPR's start can leave every candidate
+    //    far off (a capsule under a cylinder's rim got a normal pointing down through it,
+    //    1 m deep), so the line between the cores' closest points is one more candidate,
+    //    taken as it is.
+    if (cylinderRoundPair(pair.a.shape().type, pair.b.shape().type)) {
+        const Vector3 cores = coreLine(axisCore(pair.a, pair.poseA), axisCore(pair.b, pair.poseB));
+        const real coresOverlap = cores != Vector3::Zero() && rule.allows(cores) ? pair.overlap(cores) : bestOverlap;
+        if (coresOverlap < bestOverlap) best = cores, bestOverlap = coresOverlap;
+    }
+    // 6. The features along the normal chosen, for clipping.
     if (best != search.featureDirection) {
         pair.a.supportingFeature(pair.poseA, best, pair.triangleA, fa);
         pair.b.supportingFeature(pair.poseB, -best, pair.triangleB, fb);

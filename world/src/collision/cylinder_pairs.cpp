@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "collision/round_pairs.h"
 
@@ -106,8 +107,31 @@ void addAxisEnds(const AxisCore &a, const AxisCore &b, const Vector3 &normal, re
     }
 }
 
+AxisCore axisCore(const CollisionShape &shape, const Matrix4 &pose) {
+    const Vector3 half = pose.linear().col(2) * (shape.shape().length / 2);
+    AxisCore core;
+    core.end0 = pose.translation() - half;
+    core.end1 = pose.translation() + half;
+    core.radius = shape.shape().radius;
+    core.cylinder = shape.shape().type == ShapeType::Cylinder;
+    return core;
+}
+
+bool cylinderRoundPair(ShapeType a, ShapeType b) {
+    if (a != ShapeType::Cylinder) std::swap(a, b);
+    return a == ShapeType::Cylinder && (b == ShapeType::Cylinder || b == ShapeType::Capsule);
+}
+
+Vector3 coreLine(const AxisCore &a, const AxisCore &b) {
+    real s = 0, t = 0;
+    closestOnSegments(a.end0, a.end1, b.end0, b.end1, s, t);
+    const Vector3 between = (b.end0 + t * (b.end1 - b.end0)) - (a.end0 + s * (a.end1 - a.end0));
+    const real distance = between.norm();
+    return distance > kMinNormalLength ? Vector3(between / distance) : Vector3::Zero();
+}
+
 CylinderPairResult cylinderPairNormal(const Pair &pair, const AxisCore &a, const AxisCore &b, real reach,
-                                      Vector3 &normal, real &overlap) {
+                                      Vector3 &normal) {
     real s = 0, t = 0;
     closestOnSegments(a.end0, a.end1, b.end0, b.end1, s, t);
     const Vector3 u = a.end1 - a.end0, v = b.end1 - b.end0;
@@ -147,7 +171,6 @@ CylinderPairResult cylinderPairNormal(const Pair &pair, const AxisCore &a, const
     if (best.overlap < sides) return CylinderPairResult::NotHandled;
     if (!(best.overlap >= -reach)) return CylinderPairResult::Apart;
     normal = best.normal;
-    overlap = best.overlap;
     return CylinderPairResult::Found;
 }
 

@@ -15,10 +15,20 @@ struct AxisCore {
     bool cylinder;
 };
 
+/// The axis core of a cylinder or capsule placed at `pose` (its segment along the local z
+/// axis, `length` long).
+AxisCore axisCore(const CollisionShape &shape, const Matrix4 &pose);
+
+/// Whether shapes of these types are a cylinder and a cylinder or a capsule.
+bool cylinderRoundPair(ShapeType a, ShapeType b);
+
+/// The unit direction from A's axis segment's closest point to B's (zero when they meet).
+Vector3 coreLine(const AxisCore &a, const AxisCore &b);
+
 /// How cylinderPairNormal ended.
 enum class CylinderPairResult {
     Apart,      ///< Apart by more than the reach: no contact.
-    Found,      ///< `normal` and `overlap` are set.
+    Found,      ///< `normal` is set.
     NotHandled  ///< Not two round sides facing each other: ask FCL.
 };
 
@@ -27,10 +37,10 @@ enum class CylinderPairResult {
 /// points of the two axis segments lie inside each cylinder's segment, farther than the
 /// other's radius from its ends (anywhere on a capsule's), and no cap's axis overlaps
 /// less.
-/// The normal is then the line between those points and `overlap` the radii less their
-/// distance (m, negative when apart, when it is the distance): exact at any depth.
+/// The normal is then the line between those points, exact at any depth (the radii less
+/// their distance is the depth).
 CylinderPairResult cylinderPairNormal(const Pair &pair, const AxisCore &a, const AxisCore &b, real reach,
-                                      Vector3 &normal, real &overlap);
+                                      Vector3 &normal);
 
 /// Adds to `points` the contact points of the axis segments' ends of nearly parallel
 /// cores (within 20 degrees) whose `normal` (A to B) lies within 20 degrees of across

@@ -56,11 +56,18 @@ int clipAlong(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &ou
     return appendReduced(points, normal, out);
 }
 
+// The manifold of a cylinder and a cylinder or capsule along `normal`: the features
+// clipped as in clipAlong, and the axis segments' ends of nearly parallel cores.
+int roundPairManifold(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out) {
+    PointSet points;
+    clippedPoints(pair, normal, points);
+    addAxisEnds(axisCore(pair.a, pair.poseA), axisCore(pair.b, pair.poseB), normal, pair.speculative, points);
+    return appendReduced(points, normal, out);
+}
+
 // Convex shapes FCL found apart: a speculative manifold when they are closer than
 // `reach`, along the line between their nearest points (fcl::distance), clipped from the
 // features that face each other along it.
-int roundPairManifold(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out);
-
 int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
                  real reach, std::vector<Manifold> &out, bool roundPair = false) {
     // The distance costs as much as the contact test: pairs that close less than this in
@@ -83,53 +90,11 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     return roundPair ? roundPairManifold(pair, normal, out) : clipAlong(pair, normal, out);
 }
 
-// The ends of a capsule's segment (its local z axis, `length` long), world space.
-void capsuleEnds(const CollisionShape &capsule, const Matrix4 &pose, Vector3 &end0, Vector3 &end1) {
-    const Vector3 half = pose.linear().col(2) * (capsule.shape().length / 2);
-    end0 = pose.translation() - half;
-    end1 = pose.translation() + half;
-}
-
-// The axis core of a cylinder or capsule at `pose`.
-AxisCore axisCore(const CollisionShape &shape, const Matrix4 &pose) {
-    AxisCore core;
-    capsuleEnds(shape, pose, core.end0, core.end1);
-    core.radius = shape.shape().radius;
-    core.cylinder = shape.shape().type == ShapeType::Cylinder;
-    return core;
-}
-
-// The manifold of a cylinder and a cylinder or capsule along `normal`: the features
-// clipped as in clipAlong, and the axis segments' ends of nearly parallel cores.
-int roundPairManifold(const Pair &pair, const Vector3 &normal, std::vector<Manifold> &out) {
-    PointSet points;
-    clippedPoints(pair, normal, points);
-    addAxisEnds(axisCore(pair.a, pair.poseA), axisCore(pair.b, pair.poseB), normal, pair.speculative, points);
-    return appendReduced(points, normal, out);
-}
-
-// The unit direction from A's axis segment's closest point to B's (zero when they meet).
-Vector3 coreLine(const AxisCore &a, const AxisCore &b) {
-    real s = 0, t = 0;
-    closestOnSegments(a.end0, a.end1, b.end0, b.end1, s, t);
-    const Vector3 between = (b.end0 + t * (b.end1 - b.end0)) - (a.end0 + s * (a.end1 - a.end0));
-    const real distance = between.norm();
-    return distance > kMinNormalLength ? Vector3(between / distance) : Vector3::Zero();
-}
-
-// Whether shapes of these types are a cylinder and a cylinder or a capsule.
-bool cylinderRoundPair(ShapeType a, ShapeType b) {
-    if (a != ShapeType::Cylinder) std::swap(a, b);
-    return a == ShapeType::Cylinder && (b == ShapeType::Cylinder || b == ShapeType::Capsule);
-}
-
 // A cylinder against a cylinder or a capsule where two round sides face each other, from
 // their closest features (cylinder_pairs.cpp); -1 for the others, which FCL tests.
 int cylinderContact(const Pair &pair, real reach, std::vector<Manifold> &out) {
     Vector3 normal;
-    real overlap = 0;
-    switch (cylinderPairNormal(pair, axisCore(pair.a, pair.poseA), axisCore(pair.b, pair.poseB), reach, normal,
-                               overlap)) {
+    switch (cylinderPairNormal(pair, axisCore(pair.a, pair.poseA), axisCore(pair.b, pair.poseB), reach, normal)) {
         case CylinderPairResult::Apart: return 0;
         case CylinderPairResult::NotHandled: return -1;
         case CylinderPairResult::Found: break;
@@ -182,9 +147,8 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
         else if (other.shape().type == ShapeType::Box)
             hit = sphereBox(sphere.shape().radius, centre, other.shape().halfExtents, otherPose, manifold, reach);
         else if (other.shape().type == ShapeType::Capsule) {
-            Vector3 end0, end1;
-            capsuleEnds(other, otherPose, end0, end1);
-            hit = sphereCapsule(sphere.shape().radius, centre, other.shape().radius, end0, end1, manifold, reach);
+            const AxisCore core = axisCore(other, otherPose);
+            hit = sphereCapsule(sphere.shape().radius, centre, core.radius, core.end0, core.end1, manifold, reach);
         } else
             return -1;
         if (!hit) return 0;
@@ -203,19 +167,17 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
         const CollisionShape &capsule = capsuleIsA ? a : b;
         const CollisionShape &other = capsuleIsA ? b : a;
         const Matrix4 &otherPose = capsuleIsA ? poseB : poseA;
-        Vector3 end0, end1;
-        capsuleEnds(capsule, capsuleIsA ? poseA : poseB, end0, end1);
+        const AxisCore core = axisCore(capsule, capsuleIsA ? poseA : poseB);
         // Found from the capsule (or A's capsule) to the other shape.
         Vector3 normal;
         real depth = 0;
         bool hit = false;
         if (other.shape().type == ShapeType::Capsule) {
-            Vector3 other0, other1;
-            capsuleEnds(other, otherPose, other0, other1);
-            hit = capsuleCapsuleNormal(capsule.shape().radius, end0, end1, other.shape().radius, other0, other1, normal,
-                                       depth, reach);
+            const AxisCore otherCore = axisCore(other, otherPose);
+            hit = capsuleCapsuleNormal(core.radius, core.end0, core.end1, otherCore.radius, otherCore.end0,
+                                       otherCore.end1, normal, depth, reach);
         } else if (other.shape().type == ShapeType::Box) {
-            hit = capsuleBoxNormal(capsule.shape().radius, end0, end1, other.shape().halfExtents, otherPose, normal,
+            hit = capsuleBoxNormal(core.radius, core.end0, core.end1, other.shape().halfExtents, otherPose, normal,
                                    depth, reach);
         } else {
             return -1;
@@ -321,19 +283,8 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     const Pair pair{a, poseA, -1, b, poseB, -1, speculative};
     SupportFeature fa, fb;
     real overlap = 0;
-    Vector3 normal =
+    const Vector3 normal =
         chooseNormal(pair, raw[deepest].normal, NormalRule(), !exactInFcl(typeA, typeB), fa, fb, overlap);
-    if (roundPair) {
-        // MPR's start can leave every candidate far off (a capsule under a cylinder's rim got
-        // a normal pointing down through it, 1 m deep): the line between the cores' closest
-        // points is one more candidate.
-        const Vector3 cores = coreLine(axisCore(a, poseA), axisCore(b, poseB));
-        if (cores != Vector3::Zero() && pair.overlap(cores) < overlap) {
-            normal = cores;
-            a.supportingFeature(poseA, normal, -1, fa);
-            b.supportingFeature(poseB, -normal, -1, fb);
-        }
-    }
     PointSet points;
     clipFeatures(pair, normal, fa, fb, points);
     if (roundPair) addAxisEnds(axisCore(a, poseA), axisCore(b, poseB), normal, speculative, points);
