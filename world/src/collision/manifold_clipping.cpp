@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "collision/contact_building.h"
+#include "collision/round_side.h"
 
 namespace cyclone::detail {
 namespace {
@@ -275,6 +276,16 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
         if (!(t > -pair.speculative)) continue;
         add(q, t);
         deepest = std::max(deepest, t);
+    }
+    // A capsule or cylinder tilted onto one point (an end's sphere, a point of a rim) turns
+    // about it as it lands, and the other end of that side comes down within the step: it
+    // gets a point too, when within the speculative distance.
+    Vector3 end0, end1;
+    if (feature.count == 1 && farthestSideLine(other, otherPose, -up, end0, end1)) {
+        const Vector3 &farEnd =
+            (end0 - feature.points[0]).squaredNorm() > (end1 - feature.points[0]).squaredNorm() ? end0 : end1;
+        const real t = level - farEnd.dot(up);
+        if (t > -pair.speculative && (farEnd - feature.points[0]).norm() > kPointTolerance) add(farEnd, t);
     }
     // A convex face with more corners than a feature holds is thinned and may have lost
     // its deepest corner; other features hold theirs (or, a cylinder's cap tilted less

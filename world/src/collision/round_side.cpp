@@ -52,6 +52,25 @@ RoundCore roundSideAt(const CollisionShape &shape, int child, const Vector3 &out
     return core;
 }
 
+bool farthestSideLine(const CollisionShape &shape, const Matrix4 &pose, const Vector3 &direction, Vector3 &end0,
+                      Vector3 &end1) {
+    const Shape &s = shape.shape();
+    if (s.type != ShapeType::Capsule && s.type != ShapeType::Cylinder) return false;
+    if (!(s.length > 0)) return false;
+    const Vector3 axis = pose.linear().col(2);
+    Vector3 outward = direction;
+    if (s.type == ShapeType::Cylinder) {
+        outward -= axis.dot(direction) * axis;
+        const real across = outward.norm();
+        if (!(across > 0)) return false;
+        outward /= across;
+    }
+    const Vector3 half = axis * (s.length / 2);
+    end0 = pose.translation() - half + s.radius * outward;
+    end1 = pose.translation() + half + s.radius * outward;
+    return true;
+}
+
 Vector3 nearestCorePoint(const RoundCore &core, const Vector3 &point) {
     const real along = std::clamp(core.axis.dot(point - core.centre), -core.halfLength, core.halfLength);
     return core.centre + along * core.axis;

@@ -38,6 +38,13 @@ bool mayBeRound(const CollisionShape &shape);
 /// else radius 0.
 RoundCore roundSideAt(const CollisionShape &shape, int child, const Vector3 &outward);
 
+/// The side line of a capsule or cylinder at `pose` (world) that reaches farthest along
+/// `direction` (world, unit): its two ends, each an end of the core plus the radius along
+/// `direction` (across the axis, for a cylinder). False for other shapes, a cylinder
+/// whose axis is along `direction` (its cap reaches farthest) and a core of no length.
+bool farthestSideLine(const CollisionShape &shape, const Matrix4 &pose, const Vector3 &direction, Vector3 &end0,
+                      Vector3 &end1);
+
 /// The point of the core nearest `point` (body frame, m).
 Vector3 nearestCorePoint(const RoundCore &core, const Vector3 &point);
 
