@@ -59,13 +59,18 @@ Quaternion lyingTilted(real tilt) {
            Quaternion(Eigen::AngleAxis<real>(kPi / 2, Vector3::UnitY()));
 }
 
+// How far the lowest point of body `id` (of `shape`) lies below the ground, y = 0.
+real belowGround(const WorldFixture &f, BodyId id, const Shape &shape) {
+    const RigidBody &b = f.world.body(id);
+    return lowestBelowCentre(shape, b.getTransform().linear()) - b.getPosition().y();
+}
+
 // Steps 4 s and returns how far the body's lowest point went below the ground.
 real deepestBelowGround(WorldFixture &f, BodyId id, const Shape &shape) {
     real deepest = 0;
     for (int i = 0; i < 240; ++i) {
         f.world.step(kDt);
-        const RigidBody &b = f.world.body(id);
-        deepest = std::max(deepest, lowestBelowCentre(shape, b.getTransform().linear()) - b.getPosition().y());
+        deepest = std::max(deepest, belowGround(f, id, shape));
     }
     return deepest;
 }
@@ -135,6 +140,42 @@ TEST(TiltedLanding, HullLandsOnBothEnds) {
                                        Vector3(0.6, -0.1, -0.15), Vector3(0.6, -0.1, 0.15), Vector3(0.6, 0.15, 0)});
     const BodyId hull = droppedBody(f, shape, Quaternion(Eigen::AngleAxis<real>(kPi / 36, Vector3::UnitZ())), 2);
     EXPECT_LE(deepestBelowGround(f, hull, shape), kLandingDeepest);
+}
+
+// The plank of PlankLandsOnBothEnds and the capsule of CapsuleLandsOnBothEnds landing
+// on a static floor whose top is y = 0: their far sides are the incident shape's corners
+// over the floor's face or triangles. Returns the deeper of the two landings.
+real deepestOnFloor(WorldFixture &f) {
+    const Shape plankShape = Shape::box(Vector3(0.5, 0.1, 0.1));
+    const BodyId plank =
+        droppedBody(f, plankShape, Quaternion(Eigen::AngleAxis<real>(kPi / 36, Vector3::UnitZ())), 2);
+    const Shape capsuleShape = Shape::capsule(kRadius, kLength);
+    const BodyId capsule = droppedBody(f, capsuleShape, lyingTilted(kPi / 12), 6);
+    f.world.setPosition(capsule, f.position(capsule) + Vector3(0, 0, 4));
+    real deepest = 0;
+    for (int i = 0; i < 240; ++i) {
+        f.world.step(kDt);
+        deepest = std::max({deepest, belowGround(f, plank, plankShape), belowGround(f, capsule, capsuleShape)});
+    }
+    return deepest;
+}
+
+TEST(TiltedLanding, OnAStaticBox) {
+    WorldFixture f(noSleep());
+    addStatic(f.world, Shape::box(Vector3(20, 0.5, 20)), Vector3(0, -0.5, 0));
+    EXPECT_LE(deepestOnFloor(f), kLandingDeepest);
+}
+
+TEST(TiltedLanding, OnAMeshFloor) {
+    // Two triangles, placed so that their shared edge (z = x - 10) passes 10 m from where
+    // the bodies land. A plank landing across an inner edge, its far end over the other
+    // triangle, still went 15.7 mm deep (docs/contacts_and_sleep.md).
+    WorldFixture f(noSleep());
+    addStatic(f.world,
+              Shape::mesh({Vector3(-20, 0, -20), Vector3(20, 0, -20), Vector3(20, 0, 20), Vector3(-20, 0, 20)},
+                          {{0, 2, 1}, {0, 3, 2}}),
+              Vector3(10, 0, 0));
+    EXPECT_LE(deepestOnFloor(f), kLandingDeepest);
 }
 
 }  // namespace

@@ -220,38 +220,6 @@ bool overlapAlong(const SupportFeature &fa, const SupportFeature &fb, const Vect
     return count > 0;
 }
 
-void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, const SupportFeature &fb,
-                  PointSet &out, bool pointIfApart) {
-    const int before = out.count;
-    if (fa.count <= 1 || fb.count <= 1) {
-        pointContact(pair, n, fb.count == 1 && fa.count != 1, out);
-    } else if (fa.count == 2 && fb.count == 2) {
-        clipSegments(pair, n, fa, fb, out);
-    } else {
-        const Vector3 normalA = fa.count >= 3 ? polygonNormal(fa) : Vector3::Zero();
-        const Vector3 normalB = fb.count >= 3 ? polygonNormal(fb) : Vector3::Zero();
-        const real alignA = fa.count >= 3 ? normalA.dot(n) : -2;
-        const real alignB = fb.count >= 3 ? -normalB.dot(n) : -2;
-        // Equally aligned faces (resting flat): the one with fewer sides clips faster.
-        const bool referenceOnA =
-            std::abs(alignA - alignB) < kFaceTie ? fa.count <= fb.count : alignA > alignB;
-        const SupportFeature &reference = referenceOnA ? fa : fb;
-        const SupportFeature &incident = referenceOnA ? fb : fa;
-        const CollisionShape &referenceShape = referenceOnA ? pair.a : pair.b;
-        const bool unbounded = referenceShape.shape().type == ShapeType::Plane;
-        Vector3 buffer[kMaxClipped];
-        Vector3 scratch[kMaxClipped];
-        int count = 0;
-        const Vector3 *clipped =
-            clipAgainstFace(reference, referenceOnA ? n : Vector3(-n), !unbounded, incident, buffer, scratch, count);
-        const Vector3 &plane = referenceOnA ? normalA : normalB;
-        for (int i = 0; i < count; ++i)
-            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, pair.speculative, out);
-    }
-    if (out.count == before && pointIfApart) pointContact(pair, n, false, out);
-}
-
-// A plane against anything: exact normal, every incident point measured to the plane.
 namespace {
 
 // Calls visit(q) for each corner of `shape` at `pose` (world): a box's eight, a hull's
@@ -280,8 +248,72 @@ void forEachCorner(const CollisionShape &shape, const Matrix4 &pose, const Vecto
     }
 }
 
+// A body tilted onto a vertex or an edge over a face turns about it as it lands, and its
+// far side comes down within the step faster than the body fell (see planeContact): each
+// corner of the incident shape over the reference face (`reference`, A's when
+// `referenceOnA`, outward normal `plane`), `incident` being its supporting feature, is
+// a point when within twice the speculative distance.
+void addFarCorners(const Pair &pair, const Vector3 &n, const SupportFeature &reference, const Vector3 &plane,
+                   bool referenceOnA, const SupportFeature &incident, PointSet &out) {
+    const CollisionShape &shape = referenceOnA ? pair.b : pair.a;
+    const Vector3 w = referenceOnA ? n : Vector3(-n);
+    forEachCorner(shape, referenceOnA ? pair.poseB : pair.poseA, -w, [&](const Vector3 &q) {
+        for (int i = 0; i < incident.count; ++i)
+            if ((incident.points[i] - q).squaredNorm() < kPointTolerance * kPointTolerance) return;
+        SupportFeature corner;
+        corner.points[0] = q;
+        corner.count = 1;
+        Vector3 buffer[kMaxClipped];
+        Vector3 scratch[kMaxClipped];
+        int count = 0;
+        clipAgainstFace(reference, w, true, corner, buffer, scratch, count);
+        if (count > 0) addClipped(q, n, reference.points[0], plane, referenceOnA, 2 * pair.speculative, out);
+    });
+}
+
 }  // namespace
 
+void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, const SupportFeature &fb,
+                  PointSet &out, bool pointIfApart) {
+    const int before = out.count;
+    if (fa.count <= 1 || fb.count <= 1) {
+        pointContact(pair, n, fb.count == 1 && fa.count != 1, out);
+    } else if (fa.count == 2 && fb.count == 2) {
+        clipSegments(pair, n, fa, fb, out);
+    } else {
+        const Vector3 normalA = fa.count >= 3 ? polygonNormal(fa) : Vector3::Zero();
+        const Vector3 normalB = fb.count >= 3 ? polygonNormal(fb) : Vector3::Zero();
+        const real alignA = fa.count >= 3 ? normalA.dot(n) : -2;
+        const real alignB = fb.count >= 3 ? -normalB.dot(n) : -2;
+        // Equally aligned faces (resting flat): the one with fewer sides clips faster.
+        const bool referenceOnA =
+            std::abs(alignA - alignB) < kFaceTie ? fa.count <= fb.count : alignA > alignB;
+        const SupportFeature &reference = referenceOnA ? fa : fb;
+        const SupportFeature &incident = referenceOnA ? fb : fa;
+        const CollisionShape &referenceShape = referenceOnA ? pair.a : pair.b;
+        const bool unbounded = referenceShape.shape().type == ShapeType::Plane;
+        Vector3 buffer[kMaxClipped];
+        Vector3 scratch[kMaxClipped];
+        int count = 0;
+        const Vector3 *clipped =
+            clipAgainstFace(reference, referenceOnA ? n : Vector3(-n), !unbounded, incident, buffer, scratch, count);
+        const Vector3 &plane = referenceOnA ? normalA : normalB;
+        // Within twice the speculative distance: a face landing tilted turns about its
+        // near edge and its far edge comes down faster than the body fell (planeContact).
+        for (int i = 0; i < count; ++i)
+            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, 2 * pair.speculative, out);
+    }
+    if (out.count == before && pointIfApart) pointContact(pair, n, false, out);
+    // A vertex or an edge over a face: the far corners too.
+    if ((fa.count >= 3) != (fb.count >= 3)) {
+        const bool faceOnA = fa.count >= 3;
+        const SupportFeature &face = faceOnA ? fa : fb;
+        if ((faceOnA ? pair.a : pair.b).shape().type != ShapeType::Plane)
+            addFarCorners(pair, n, face, polygonNormal(face), faceOnA, faceOnA ? fb : fa, out);
+    }
+}
+
+// A plane against anything: exact normal, every incident point measured to the plane.
 int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
     const CollisionShape &plane = planeIsA ? pair.a : pair.b;
     const Matrix4 &planePose = planeIsA ? pair.poseA : pair.poseB;
