@@ -88,9 +88,7 @@ TEST(Manifold, ZeroSpeculativeDistanceKeepsOnlyPenetratingPoints) {
 TEST(Manifold, CylinderCapTiltedOnPlane) {
     // Standing cylinder (r = 0.4, length 1) tilted 5 degrees about z: the deepest point is
     // the rim point at local x = -0.4 of the bottom cap; the cap's other points lie higher,
-    // up to 0.8 sin 5 deg = 0.0697 above it, so only points within 0.04 of the plane stay
-    // (twice the speculative distance 0.02: against a plane a tilted body's far side is
-    // kept that far, manifold_clipping.cpp).
+    // up to 0.8 sin 5 deg = 0.0697 above it, so only points within 0.02 of the plane stay.
     const real angle = 5 * kPi / 180;
     const Quaternion q = rotation(angle, Vector3::UnitZ()) * zUp();
     const real drop = 0.5 * std::cos(angle) + 0.4 * std::sin(angle);
@@ -103,7 +101,7 @@ TEST(Manifold, CylinderCapTiltedOnPlane) {
     real deepest = -1;
     for (int i = 0; i < m.count; ++i) {
         deepest = std::max(deepest, m.points[i].depth);
-        EXPECT_GT(m.points[i].depth, -0.04);
+        EXPECT_GT(m.points[i].depth, -0.02);
         EXPECT_NEAR(m.points[i].pointB.y(), 0, 1e-12);
     }
     EXPECT_NEAR(deepest, 0.01, 1e-12);
@@ -298,9 +296,9 @@ TEST(Manifold, InvariantsOverRandomShallowContacts) {
     // Every pair of shapes, at random orientations, brought into contact 0.01 deep along
     // a random direction (bisection on FCL's yes/no answer, then 0.01 back). Whatever the
     // pair: unit normals, at most four points, depth = (pointA - pointB).normal, no point
-    // beyond twice the speculative distance (a face's far side), a deepest point no
-    // deeper than the 0.01 step (the step along its direction separates them, so the least
-    // overlap is at most that), and the same number of manifolds in both argument orders.
+    // beyond the speculative distance, a deepest point no deeper than the 0.01 step (the
+    // step along its direction separates them, so the least overlap is at most that), and
+    // the same number of manifolds in both argument orders.
     const std::vector<Shape> shapes = {Shape::box(Vector3(0.5, 0.3, 0.4)), Shape::sphere(0.4), Shape::capsule(0.25, 0.8),
                                        Shape::cylinder(0.35, 0.9), pyramid(), Shape::plane(Vector3::UnitY(), 0),
                                        meshFloor()};
@@ -352,9 +350,7 @@ TEST(Manifold, InvariantsOverRandomShallowContacts) {
                     for (int k = 0; k < m.count; ++k) {
                         const detail::ContactPoint &p = m.points[k];
                         EXPECT_NEAR((p.pointA - p.pointB).dot(m.normal), p.depth, 1e-9);
-                        // Within twice the speculative distance (a face's or a tilted
-                        // body's far side, manifold_clipping.cpp).
-                        EXPECT_GT(p.depth, -2 * settings.speculativeDistance);
+                        EXPECT_GT(p.depth, -settings.speculativeDistance);
                         deepest = std::max(deepest, p.depth);
                     }
                 }

@@ -252,7 +252,7 @@ void forEachCorner(const CollisionShape &shape, const Matrix4 &pose, const Vecto
 // far side comes down within the step faster than the body fell (see planeContact): each
 // corner of the incident shape over the reference face (`reference`, A's when
 // `referenceOnA`, outward normal `plane`), `incident` being its supporting feature, is
-// a point when within twice the speculative distance.
+// a point when within the pair's landingKeep().
 void addFarCorners(const Pair &pair, const Vector3 &n, const SupportFeature &reference, const Vector3 &plane,
                    bool referenceOnA, const SupportFeature &incident, PointSet &out) {
     const CollisionShape &shape = referenceOnA ? pair.b : pair.a;
@@ -267,7 +267,7 @@ void addFarCorners(const Pair &pair, const Vector3 &n, const SupportFeature &ref
         Vector3 scratch[kMaxClipped];
         int count = 0;
         clipAgainstFace(reference, w, true, corner, buffer, scratch, count);
-        if (count > 0) addClipped(q, n, reference.points[0], plane, referenceOnA, 2 * pair.speculative, out);
+        if (count > 0) addClipped(q, n, reference.points[0], plane, referenceOnA, pair.landingKeep(), out);
     });
 }
 
@@ -298,14 +298,14 @@ void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, 
         const Vector3 *clipped =
             clipAgainstFace(reference, referenceOnA ? n : Vector3(-n), !unbounded, incident, buffer, scratch, count);
         const Vector3 &plane = referenceOnA ? normalA : normalB;
-        // Within twice the speculative distance: a face landing tilted turns about its
-        // near edge and its far edge comes down faster than the body fell (planeContact).
+        // Within landingKeep(): a face landing tilted turns about its near edge and its far
+        // edge comes down faster than the body fell (planeContact).
         for (int i = 0; i < count; ++i)
-            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, 2 * pair.speculative, out);
+            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, pair.landingKeep(), out);
     }
     if (out.count == before && pointIfApart) pointContact(pair, n, false, out);
-    // A vertex or an edge over a face: the far corners too.
-    if ((fa.count >= 3) != (fb.count >= 3)) {
+    // A vertex or an edge of a moving body over a face: the far corners too.
+    if ((fa.count >= 3) != (fb.count >= 3) && pair.reach > 0) {
         const bool faceOnA = fa.count >= 3;
         const SupportFeature &face = faceOnA ? fa : fb;
         if ((faceOnA ? pair.a : pair.b).shape().type != ShapeType::Plane)
@@ -334,10 +334,11 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
     // A body tilted onto a vertex, an edge or a face's edge (a box's, a hull's, a capsule's
     // end, a rim) turns about it as it lands, and its far side comes down within the step.
     // Stopping one end of a falling rod (v) with an impulse J = m v / 4 turns it so that
-    // the other end falls at 1.5 v, so points are kept within twice the speculative
-    // distance (gaps the contact lets close and no more; a plane cannot stop a body passing
-    // by), and a vertex or an edge has the shape's other corners as points too.
-    const real keep = 2 * pair.speculative;
+    // the other end falls at 1.5 v, so points are kept within the speculative distance
+    // plus the pair's reach (gaps the contact lets close and no more; a plane cannot stop
+    // a body passing by), and a vertex or an edge of a moving body has the shape's other
+    // corners as points too. At rest (no reach) nothing changes.
+    const real keep = pair.landingKeep();
     real deepest = -keep;
     for (int i = 0; i < feature.count; ++i) {
         const Vector3 &q = feature.points[i];
@@ -346,7 +347,7 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
         add(q, t);
         deepest = std::max(deepest, t);
     }
-    if (feature.count <= 2 && triangle < 0)
+    if (feature.count <= 2 && triangle < 0 && pair.reach > 0)
         forEachCorner(other, otherPose, -up, [&](const Vector3 &q) {
             const real t = level - q.dot(up);
             if (!(t > -keep)) return;
