@@ -49,16 +49,20 @@ struct PointSet {
     struct Point {
         Vector3 pointA, pointB;
         real depth;
+        /// Kept only for a pair that may turn as it lands (beyond the speculative
+        /// distance, Pair::landingKeep): it fills what the other points leave free.
+        bool landing;
     };
     int count = 0;
     Point points[kMaxMerged];
 
-    void add(const Vector3 &pointA, const Vector3 &pointB, real depth) {
+    void add(const Vector3 &pointA, const Vector3 &pointB, real depth, bool landing = false) {
         if (count == kMaxMerged) return;
         Point &p = points[count++];
         p.pointA = pointA;
         p.pointB = pointB;
         p.depth = depth;
+        p.landing = landing;
     }
 };
 
@@ -120,8 +124,9 @@ bool overlapAlong(const SupportFeature &fa, const SupportFeature &fb, const Vect
 /// spanning the largest triangle with those two, the one adding the most area).
 void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &out);
 
-/// Appends the manifold reduced from `points` along `n` to `out`; returns how many were
-/// appended (0 when there are no points).
+/// Appends the manifold reduced from `points` along `n` to `out` (landing points only
+/// where the others leave room, deepest first); returns how many were appended (0 when
+/// there are no points).
 int appendReduced(const PointSet &points, const Vector3 &n, std::vector<Manifold> &out);
 
 /// Builds the contact points of features fa (A's along n) and fb (B's along -n). When

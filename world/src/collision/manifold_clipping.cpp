@@ -85,19 +85,19 @@ void pointContact(const Pair &pair, const Vector3 &n, bool pointOnB, PointSet &o
 }
 
 // Adds incident point q with its depth along n to the reference plane (point origin,
-// outward normal plane), if within the speculative distance.
+// outward normal plane), if within `keep`; beyond `speculative` as a landing point.
 void addClipped(const Vector3 &q, const Vector3 &n, const Vector3 &origin, const Vector3 &plane, bool referenceOnA,
-                real speculative, PointSet &out) {
+                real speculative, real keep, PointSet &out) {
     const real along = n.dot(plane);
     if (std::abs(along) < kPointTolerance) return;
     if (referenceOnA) {
         // q is on B; A's face is at q + t n.
         const real t = (origin - q).dot(plane) / along;
-        if (t > -speculative) out.add(q + t * n, q, t);
+        if (t > -keep) out.add(q + t * n, q, t, !(t > -speculative));
     } else {
         // q is on A; B's face is at q - t n.
         const real t = (q - origin).dot(plane) / along;
-        if (t > -speculative) out.add(q, q - t * n, t);
+        if (t > -keep) out.add(q, q - t * n, t, !(t > -speculative));
     }
 }
 
@@ -137,8 +137,9 @@ void clipSegments(const Pair &pair, const Vector3 &n, const SupportFeature &fa, 
     const real lo = std::max<real>(0, std::min(s0, s1));
     const real hi = std::min<real>(lu, std::max(s0, s1));
     if (hi < lo) return;
-    addClipped(q0 + (lo - s0) / ds * v, n, p0, plane, true, pair.speculative, out);
-    if (hi - lo > kPointTolerance) addClipped(q0 + (hi - s0) / ds * v, n, p0, plane, true, pair.speculative, out);
+    addClipped(q0 + (lo - s0) / ds * v, n, p0, plane, true, pair.speculative, pair.speculative, out);
+    if (hi - lo > kPointTolerance)
+        addClipped(q0 + (hi - s0) / ds * v, n, p0, plane, true, pair.speculative, pair.speculative, out);
 }
 
 // Clips the incident feature against the side planes of the reference polygon,
@@ -205,7 +206,23 @@ void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &ou
 int appendReduced(const PointSet &points, const Vector3 &n, std::vector<Manifold> &out) {
     if (points.count == 0) return 0;
     Manifold manifold;
-    reduce(points.points, points.count, n, manifold);
+    PointSet::Point touching[kMaxMerged], landing[kMaxMerged];
+    int touchingCount = 0, landingCount = 0;
+    for (int i = 0; i < points.count; ++i)
+        (points.points[i].landing ? landing[landingCount++] : touching[touchingCount++]) = points.points[i];
+    if (landingCount == 0 || touchingCount == 0) {
+        reduce(points.points, points.count, n, manifold);
+    } else {
+        reduce(touching, touchingCount, n, manifold);
+        std::sort(landing, landing + landingCount,
+                  [](const PointSet::Point &x, const PointSet::Point &y) { return x.depth > y.depth; });
+        for (int i = 0; i < landingCount && manifold.count < Manifold::kMaxPoints; ++i) {
+            ContactPoint &p = manifold.points[manifold.count++];
+            p.pointA = landing[i].pointA;
+            p.pointB = landing[i].pointB;
+            p.depth = landing[i].depth;
+        }
+    }
     out.push_back(manifold);
     return 1;
 }
@@ -267,7 +284,8 @@ void addFarCorners(const Pair &pair, const Vector3 &n, const SupportFeature &ref
         Vector3 scratch[kMaxClipped];
         int count = 0;
         clipAgainstFace(reference, w, true, corner, buffer, scratch, count);
-        if (count > 0) addClipped(q, n, reference.points[0], plane, referenceOnA, pair.landingKeep(), out);
+        if (count > 0)
+            addClipped(q, n, reference.points[0], plane, referenceOnA, pair.speculative, pair.landingKeep(), out);
     });
 }
 
@@ -301,7 +319,8 @@ void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, 
         // Within landingKeep(): a face landing tilted turns about its near edge and its far
         // edge comes down faster than the body fell (planeContact).
         for (int i = 0; i < count; ++i)
-            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, pair.landingKeep(), out);
+            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, pair.speculative, pair.landingKeep(),
+                       out);
     }
     if (out.count == before && pointIfApart) pointContact(pair, n, false, out);
     // A vertex or an edge of a moving body over a face: the far corners too.
@@ -326,10 +345,11 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
     other.supportingFeature(otherPose, -up, triangle, feature);
     PointSet points;
     auto add = [&](const Vector3 &q, real t) {
+        const bool landing = !(t > -pair.speculative);
         if (planeIsA)
-            points.add(q + t * up, q, t);
+            points.add(q + t * up, q, t, landing);
         else
-            points.add(q, q + t * up, t);
+            points.add(q, q + t * up, t, landing);
     };
     // A body tilted onto a vertex, an edge or a face's edge (a box's, a hull's, a capsule's
     // end, a rim) turns about it as it lands, and its far side comes down within the step.

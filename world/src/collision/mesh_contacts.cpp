@@ -216,7 +216,7 @@ void clipContact(const MeshPair &m, const MeshContact &c, const Vector3 &normal,
     for (int k = 0; k < clipped.count; ++k) {
         const PointSet::Point &p = clipped.points[k];
         if (p.depth <= c.cap) {
-            points.add(p.pointA, p.pointB, p.depth);
+            points.add(p.pointA, p.pointB, p.depth, p.landing);
         } else if (m.meshIsB) {
             points.add(p.pointA, p.pointA - c.cap * normal, c.cap);
         } else {
