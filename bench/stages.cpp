@@ -43,6 +43,7 @@ const Column kColumns[] = {
     {"solve: position", [](const StageTimes &t) { return t.solveParts.position; }},
     {"integrate", [](const StageTimes &t) { return t.integrate; }},
     {"ccd", [](const StageTimes &t) { return t.ccd; }},
+    {"landing", [](const StageTimes &t) { return t.landing; }},
     {"sleep", [](const StageTimes &t) { return t.sleep; }},
 };
 

@@ -9,12 +9,12 @@
 namespace cyclone::test {
 namespace {
 
-bool sameBits(real x, real y) { return std::memcmp(&x, &y, sizeof x) == 0; }
+bool sameValueBits(real x, real y) { return std::memcmp(&x, &y, sizeof x) == 0; }
 
 template <class V>
-bool sameBits(const V &x, const V &y) {
+bool sameValueBits(const V &x, const V &y) {
     for (int i = 0; i < x.size(); ++i)
-        if (!sameBits(x[i], y[i])) return false;
+        if (!sameValueBits(x[i], y[i])) return false;
     return true;
 }
 
@@ -83,9 +83,9 @@ struct DeterminismScene {
     for (std::size_t i = 0; i < x.ids.size(); ++i) {
         const RigidBody &a = x.world.body(x.ids[i]);
         const RigidBody &b = y.world.body(y.ids[i]);
-        if (!sameBits(a.getPosition(), b.getPosition()) ||
-            !sameBits(a.getOrientation().coeffs(), b.getOrientation().coeffs()) ||
-            !sameBits(a.getVelocity(), b.getVelocity()) || !sameBits(a.getRotation(), b.getRotation()) ||
+        if (!sameValueBits(a.getPosition(), b.getPosition()) ||
+            !sameValueBits(a.getOrientation().coeffs(), b.getOrientation().coeffs()) ||
+            !sameValueBits(a.getVelocity(), b.getVelocity()) || !sameValueBits(a.getRotation(), b.getRotation()) ||
             a.getAwake() != b.getAwake())
             return ::testing::AssertionFailure() << "body " << i << " differs";
     }
@@ -97,8 +97,8 @@ struct DeterminismScene {
     for (std::size_t i = 0; i < e.contactBegins.size(); ++i) {
         const ContactBegin &p = e.contactBegins[i];
         const ContactBegin &q = f.contactBegins[i];
-        if (p.a != q.a || p.b != q.b || !sameBits(p.point, q.point) || !sameBits(p.normal, q.normal) ||
-            !sameBits(p.depth, q.depth) || !sameBits(p.approachSpeed, q.approachSpeed))
+        if (p.a != q.a || p.b != q.b || !sameValueBits(p.point, q.point) || !sameValueBits(p.normal, q.normal) ||
+            !sameValueBits(p.depth, q.depth) || !sameValueBits(p.approachSpeed, q.approachSpeed))
             return ::testing::AssertionFailure() << "contact begin " << i << " differs";
     }
     for (std::size_t i = 0; i < e.contactEnds.size(); ++i)
