@@ -34,10 +34,15 @@ real pairTolerance(const BodyRecord &a, const BodyRecord &b, real slop) {
     return toleranceFor(size, slop);
 }
 
-// Whether the passes may move the body: awake and moved by this step.
-bool movable(const BodyRecord &r) { return r.simulated && !r.isolated; }
-
 }  // namespace
+
+// Whether the passes may move the body: awake and moved by this step, and in no joint
+// (a push would open the joint, which the next step's projection closes only as far as
+// the contacts then allow).
+bool LandingCorrection::movable(const BodyStore &bodies, std::uint32_t index) const {
+    const BodyRecord &r = bodies[index];
+    return r.simulated && !r.isolated && (jointed_.empty() || !jointed_[index]);
+}
 
 void LandingCorrection::correct(WorldState &world) {
     if (!world.settings.landingCorrection) return;
@@ -56,6 +61,15 @@ void LandingCorrection::correct(WorldState &world) {
         activeBodies_.push_back(index);
     }
     if (activeBodies_.empty()) return;
+    jointed_.clear();
+    if (!world.joints.empty()) {
+        jointed_.resize(bodies.size(), 0);
+        for (const JointRecord &joint : world.joints.records) {
+            if (!joint.alive) continue;
+            jointed_[joint.settings.a.index] = 1;
+            if (joint.settings.b) jointed_[joint.settings.b->index] = 1;
+        }
+    }
 
     points_.clear();
     const auto movedIn = [&](std::uint32_t index, int round) {
@@ -70,7 +84,7 @@ void LandingCorrection::correct(WorldState &world) {
         for (std::uint32_t p : stepPairs) {
             const PairState &pair = world.contacts.pairs[p];
             if (!movedIn(pair.a, last) && !movedIn(pair.b, last)) continue;
-            if (!movable(bodies[pair.a]) && !movable(bodies[pair.b])) continue;
+            if (!movable(bodies, pair.a) && !movable(bodies, pair.b)) continue;
             pairs_.push_back(p);
         }
         if (pairs_.empty()) break;
@@ -170,8 +184,8 @@ int LandingCorrection::push(WorldState &world, int round) {
             const real depth = (poseA * point.localA - poseB * point.localB).dot(normal);
             if (!(depth > point.target)) continue;
             // The bodies move along the normal only, split by their inverse masses.
-            const real massA = movable(a) ? a.body.getInverseMass() : 0;
-            const real massB = movable(b) ? b.body.getInverseMass() : 0;
+            const real massA = movable(bodies, point.a) ? a.body.getInverseMass() : 0;
+            const real massB = movable(bodies, point.b) ? b.body.getInverseMass() : 0;
             const real k = massA + massB;
             if (!(k > 0)) continue;
             const real lambda = (depth - point.target) / k;

@@ -17,7 +17,8 @@
 // overlap by p overlap by at most p - d, so a push never leaves a pair deeper elsewhere,
 // which a turn (splitting by the inertias too) did on round sides. Velocities are left
 // as they are (the next step's contacts, now touching, stop the bodies). Only the step's
-// simulated bodies move; static, kinematic, sleeping and just-woken bodies are immovable.
+// simulated bodies move; static, kinematic, sleeping and just-woken bodies, and bodies
+// in a joint, are immovable.
 // The points of every manifold found are kept, the shallow ones too, so that a push does
 // not drive a body into a neighbour the round tested; the pairs of the bodies a round
 // moved are tested afresh in the next (at most kRounds in all). The pairs' manifolds,
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "collision/narrowphase.h"
+#include "world/body_store.h"
 
 namespace cyclone::detail {
 
@@ -62,6 +64,9 @@ private:
 
     /// Per body index: the last round that moved it (0: it moved fast in the step; -1: none).
     std::vector<int> movedRound_;
+    /// Per body index, while the world has joints: whether a joint holds the body.
+    std::vector<char> jointed_;
+    bool movable(const BodyStore &bodies, std::uint32_t index) const;
     std::vector<std::uint32_t> activeBodies_;  ///< Bodies whose movedRound_ is set (to clear it).
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
