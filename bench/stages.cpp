@@ -3,9 +3,10 @@
 // stage's parts (StageTimes::solveParts), over the steps after the first second.
 //
 //   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T] [--defaults]
-//                  [--substeps S] [--iterations N] [--positions N]
+//                  [--substeps S] [--iterations N] [--positions N] [--landing on|off]
 // --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
 // benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
+// --landing off steps them without the landing correction (WorldSettings::landingCorrection).
 // The last column counts the steps (of all, the first second included) that took fewer
 // sub-steps than the settings' (resting steps, StepStats::substeps).
 #include <cstdio>
@@ -43,6 +44,7 @@ const Column kColumns[] = {
     {"solve: position", [](const StageTimes &t) { return t.solveParts.position; }},
     {"integrate", [](const StageTimes &t) { return t.integrate; }},
     {"ccd", [](const StageTimes &t) { return t.ccd; }},
+    {"landing", [](const StageTimes &t) { return t.landing; }},
     {"sleep", [](const StageTimes &t) { return t.sleep; }},
 };
 
@@ -52,6 +54,7 @@ int run(int argc, char **argv) {
     int threads = 1;
     bool worldDefaults = false;
     int substeps = 0, iterations = 0, positions = -1;  // 0 / -1: the scene's own
+    bool landing = true;  // WorldSettings::landingCorrection, for comparing
     for (int i = 1; i < argc; ++i) {
         std::string arg, value;
         if (std::string(argv[i]) == "--defaults") {
@@ -71,6 +74,8 @@ int run(int argc, char **argv) {
             iterations = std::atoi(value.c_str());
         } else if (arg == "--positions") {
             positions = std::atoi(value.c_str());
+        } else if (arg == "--landing" && (value == "on" || value == "off")) {
+            landing = value == "on";
         } else {
             std::fprintf(stderr, "cyclone-stages: unknown option %s\n", arg.c_str());
             return 2;
@@ -99,6 +104,7 @@ int run(int argc, char **argv) {
         if (substeps > 0) scene.world.substeps = substeps;
         if (iterations > 0) scene.world.velocityIterations = iterations;
         if (positions >= 0) scene.world.positionIterations = positions;
+        scene.world.landingCorrection = landing;
         World world(scene.world);
         for (const BodySettings &body : scene.bodies) world.addBody(body);
         std::vector<StageTimes> times;

@@ -42,6 +42,9 @@ public:
 
     /// The step's pairs of a sensor and a body it sees (either order), for the sensors.
     const std::vector<CandidatePair> &sensorCandidates() const { return found_.sensors; }
+    /// The step's pair slots (each candidate once, in the broadphase's order), for the
+    /// landing correction (contacts/landing.h).
+    const std::vector<std::uint32_t> &stepPairs() const { return stepPairs_; }
 
     ManifoldState &manifold(ManifoldRef ref) { return pairs[ref.pair].manifolds[ref.index]; }
     /// The pair of bodies i and j, created (and listed with both bodies) if new.

@@ -1,6 +1,6 @@
 // World::step: forces -> broadphase -> narrowphase -> contact events -> sensors -> constraints ->
 // islands -> per sub-step (forces, solve, integrate, penetration) -> continuous
-// collision -> sleep. Each stage adds its time to stats().ms.
+// collision -> landing correction -> sleep. Each stage adds its time to stats().ms.
 #include "world/stage_timer.h"
 #include "world/world_impl.h"
 
@@ -58,6 +58,7 @@ void WorldState::step(real dt) {
         joints.finishStep(*this, dt);
     }
     { const StageTimer t(ms.ccd); ccd.sweep(*this); }
+    { const StageTimer t(ms.landing); landing.correct(*this); }
     { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
     events.closeStep();
 
@@ -67,7 +68,7 @@ void WorldState::step(real dt) {
     stats.awakeBodies = static_cast<int>(bodies.awake.size());
     stats.isolatedBodies = bodies.isolatedCount;
     ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.sensors + ms.manifolds + ms.islands + ms.solve +
-               ms.integrate + ms.ccd + ms.sleep;
+               ms.integrate + ms.ccd + ms.landing + ms.sleep;
 }
 
 }  // namespace cyclone::detail

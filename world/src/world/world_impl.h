@@ -10,6 +10,7 @@
 
 #include "collision/broadphase.h"
 #include "contacts/contact_manager.h"
+#include "contacts/landing.h"
 #include "contacts/sensors.h"
 #include "cyclone/world/world.h"
 #include "dynamics/ccd.h"
@@ -41,6 +42,7 @@ struct WorldState {
     KinematicBodies kinematicBodies;
     Islands islands;
     ContinuousCollision ccd;
+    LandingCorrection landing;
     EventLog events;
     Workers workers;
     StepStats stats;

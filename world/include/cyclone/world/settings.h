@@ -134,6 +134,15 @@ struct WorldSettings {
     /// body sinks up to v dt into the surface before the contact acts (for comparison;
     /// docs/accuracy/README.md measures both).
     bool speculativeContacts = true;
+    /// The landing correction: after the step's integration, the pairs in which a body
+    /// moved fast this step (more than half the tolerance below) are tested again at
+    /// the poses the step ends with, and the points found deeper than a tolerance (5 mm,
+    /// or a tenth of the smaller body's bounding radius when less) are pushed apart by
+    /// position only, velocities unchanged, so that a body landing fast on a pile that is
+    /// itself landing is not left sunk in it. A step in which no body moves fast does
+    /// nothing more than compare each awake body's poses (docs/solver.md, "Landing
+    /// correction").
+    bool landingCorrection = true;
     /// A touching pair whose bodies moved less than this relative to each other since its
     /// last narrowphase keeps its manifold (depths refreshed from the anchors), and a
     /// manifold keeps its solver Jacobians while neither body moved more than this since

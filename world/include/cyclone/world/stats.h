@@ -28,6 +28,7 @@ struct StageTimes {
     double solve = 0;        ///< Velocity and position iterations (parts in solveParts).
     double integrate = 0;    ///< RigidBody::integrate and position correction.
     double ccd = 0;          ///< Continuous collision of fast bodies with BodySettings::ccd.
+    double landing = 0;      ///< The landing correction (WorldSettings::landingCorrection).
     double sleep = 0;        ///< Island sleep decisions.
     double total = 0;        ///< The whole step.
     SolveTimes solveParts;   ///< Where the solve stage's time went (the rest: restitution, storing impulses).
@@ -73,6 +74,8 @@ struct StepStats {
     int gyroscopicBodies = 0;   ///< Bodies given the implicit gyroscopic step (anisotropic inertia only).
     int ccdSweeps = 0;          ///< ccd bodies that moved far enough this step to be swept.
     int ccdHits = 0;            ///< ccd bodies moved back to their time of impact.
+    int landingPairs = 0;       ///< Pairs tested again at the step's end by the landing correction (WorldSettings::landingCorrection).
+    int landingPushes = 0;      ///< Contact points the landing correction pushed apart (deeper than its tolerance at the step's end).
     int isolatedBodies = 0;     ///< Bodies isolated because their state became non-finite (or beyond 1e12 m).
     real maxPenetration = 0;    ///< Deepest contact of the step, m.
     StageTimes ms;              ///< Time per stage, ms.

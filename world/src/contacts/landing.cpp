@@ -1,0 +1,227 @@
+#include "contacts/landing.h"
+
+#include <algorithm>
+
+#include "collision/time_of_impact.h"
+#include "world/world_impl.h"
+
+namespace cyclone::detail {
+namespace {
+
+// The deepest a pair may be left at the end of a step, m: 5 mm, or a tenth of the
+// smaller body's bounding radius when that is less (a 5 cm box: 4.3 mm), but not below
+// twice the slop, which the solver leaves alone. The passes push a point back to half
+// of it.
+constexpr real kLandingDepth = 0.005;
+constexpr real kLandingFraction = 0.1;
+
+// Rounds of testing and pushing: the first tests the pairs of the fast bodies, each later
+// one, afresh, those of the bodies the round before pushed farther than a quarter of
+// their tolerance (a push may take a body into a third, or, on a round side, off the
+// point that was pushed).
+constexpr int kRounds = 4;
+// Nonlinear Gauss-Seidel passes a round makes over its points.
+constexpr int kPasses = 8;
+
+real toleranceFor(real radius, real slop) {
+    return std::max(std::min(kLandingDepth, kLandingFraction * radius), 2 * slop);
+}
+
+// The tolerance of a pair: that of its smaller body (a plane's partner's).
+real pairTolerance(const BodyRecord &a, const BodyRecord &b, real slop) {
+    const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
+                               b.isPlane ? a.boundingRadius : b.boundingRadius);
+    return toleranceFor(size, slop);
+}
+
+}  // namespace
+
+// Whether the passes may move the body: awake and moved by this step, and in no joint
+// (a push would open the joint, which the next step's projection closes only as far as
+// the contacts then allow).
+bool LandingCorrection::movable(const BodyStore &bodies, std::uint32_t index) const {
+    const BodyRecord &r = bodies[index];
+    return r.simulated && !r.isolated && (jointed_.empty() || !jointed_[index]);
+}
+
+void LandingCorrection::correct(WorldState &world) {
+    if (!world.settings.landingCorrection) return;
+    BodyStore &bodies = world.bodies;
+    const real slop = world.settings.penetrationSlop;
+    // The fast bodies: those that moved (their collision object still holds the step's
+    // start) more than half their own tolerance. They count as moved in round 0.
+    activeBodies_.clear();
+    for (std::uint32_t index : bodies.simulated) {
+        const BodyRecord &r = bodies[index];
+        if (r.isolated || !r.object) continue;
+        const real tolerance = toleranceFor(r.boundingRadius, slop);
+        if (!(travel(r.object->getTransform(), r.body.getTransform(), r.boundingRadius) > 0.5 * tolerance)) continue;
+        if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
+        movedRound_[index] = 0;
+        activeBodies_.push_back(index);
+    }
+    if (activeBodies_.empty()) return;
+    jointed_.clear();
+    if (!world.joints.empty()) {
+        jointed_.resize(bodies.size(), 0);
+        for (const JointRecord &joint : world.joints.records) {
+            if (!joint.alive) continue;
+            jointed_[joint.settings.a.index] = 1;
+            if (joint.settings.b) jointed_[joint.settings.b->index] = 1;
+        }
+    }
+
+    points_.clear();
+    const auto movedIn = [&](std::uint32_t index, int round) {
+        return index < movedRound_.size() && movedRound_[index] == round;
+    };
+    const std::vector<std::uint32_t> &stepPairs = world.contacts.stepPairs();
+    for (int round = 1; round <= kRounds; ++round) {
+        // The pairs with a body that moved in the round before (or, in the first, moved
+        // fast in the step) are tested afresh: their old points go.
+        const int last = round - 1;
+        pairs_.clear();
+        for (std::uint32_t p : stepPairs) {
+            const PairState &pair = world.contacts.pairs[p];
+            if (!movedIn(pair.a, last) && !movedIn(pair.b, last)) continue;
+            if (!movable(bodies, pair.a) && !movable(bodies, pair.b)) continue;
+            pairs_.push_back(p);
+        }
+        if (pairs_.empty()) break;
+        const auto retested = [&](const Point &x) { return movedIn(x.a, last) || movedIn(x.b, last); };
+        points_.erase(std::remove_if(points_.begin(), points_.end(), retested), points_.end());
+        world.stats.landingPairs += static_cast<int>(pairs_.size());
+        const std::size_t before = points_.size();
+        const bool deep = detect(world);
+        // The first round acts only where some point is deeper than its tolerance; a later
+        // one wherever its fresh points lie deeper than their targets.
+        if (round == 1 ? !deep : points_.size() == before) break;
+        // Lowest first: a push up out of what is below is not undone by the one below it.
+        const auto lower = [](const Point &x, const Point &y) {
+            return x.height < y.height || (x.height == y.height && x.order < y.order);
+        };
+        std::sort(points_.begin(), points_.end(), lower);
+        world.stats.landingPushes += push(world, round);
+    }
+
+    for (std::uint32_t index : activeBodies_) movedRound_[index] = -1;
+    activeBodies_.clear();
+}
+
+bool LandingCorrection::detect(WorldState &world) {
+    const BodyStore &bodies = world.bodies;
+    const PairCache &pairs = world.contacts.pairs;
+    const real slop = world.settings.penetrationSlop;
+    NarrowphaseSettings narrowphase;
+    narrowphase.speculativeDistance = world.settings.speculativeDistance;
+    // Each pair on its own, in chunks shared between the threads; the points are then
+    // taken in the pairs' order, so that they do not depend on the thread count.
+    const std::size_t count = pairs_.size();
+    const std::size_t chunks = (count + Workers::kChunk - 1) / Workers::kChunk;
+    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
+    findEnds_.resize(count);
+    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
+        std::vector<Manifold> &out = chunkFinds_[static_cast<std::size_t>(chunk)];
+        out.clear();
+        const std::size_t end = std::min(count, std::size_t(chunk + 1) * Workers::kChunk);
+        for (std::size_t k = std::size_t(chunk) * Workers::kChunk; k < end; ++k) {
+            const PairState &pair = pairs[pairs_[k]];
+            const BodyRecord &a = bodies[pair.a];
+            const BodyRecord &b = bodies[pair.b];
+            collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out);
+            findEnds_[k] = static_cast<std::uint32_t>(out.size());
+        }
+    });
+
+    const Vector3 &gravity = world.settings.gravity;
+    const Vector3 up = gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());
+    bool deep = false;
+    for (std::size_t k = 0; k < count; ++k) {
+        const PairState &pair = pairs[pairs_[k]];
+        const BodyRecord &a = bodies[pair.a];
+        const BodyRecord &b = bodies[pair.b];
+        const real tolerance = pairTolerance(a, b, slop);
+        const real target = 0.5 * tolerance;
+        const std::vector<Manifold> &out = chunkFinds_[k / Workers::kChunk];
+        const std::size_t first = k % Workers::kChunk == 0 ? 0 : findEnds_[k - 1];
+        const Matrix4 poseA = a.body.getTransform();
+        const Matrix4 poseB = b.body.getTransform();
+        const Matrix3 toA = poseA.linear().transpose();
+        const Matrix3 toB = poseB.linear().transpose();
+        for (std::size_t f = first; f < findEnds_[k]; ++f) {
+            const Manifold &m = out[f];
+            for (int i = 0; i < m.count; ++i) {
+                const ContactPoint &c = m.points[static_cast<std::size_t>(i)];
+                deep = deep || c.depth > tolerance;
+                Point point;
+                point.a = pair.a;
+                point.b = pair.b;
+                point.localA = toA * (c.pointA - poseA.translation());
+                point.localB = toB * (c.pointB - poseB.translation());
+                point.localNormal = toA * m.normal;
+                point.target = target;
+                point.height = up.dot(0.5 * (c.pointA + c.pointB));
+                point.order = static_cast<std::uint32_t>(points_.size());
+                points_.push_back(point);
+            }
+        }
+    }
+    return deep;
+}
+
+int LandingCorrection::push(WorldState &world, int round) {
+    BodyStore &bodies = world.bodies;
+    int pushed = 0;
+    moved_.clear();
+    for (int pass = 0; pass < kPasses; ++pass) {
+        bool any = false;
+        for (const Point &point : points_) {
+            BodyRecord &a = bodies[point.a];
+            BodyRecord &b = bodies[point.b];
+            const Matrix4 &poseA = a.body.getTransform();
+            const Matrix4 &poseB = b.body.getTransform();
+            const Vector3 normal = poseA.linear() * point.localNormal;
+            const real depth = (poseA * point.localA - poseB * point.localB).dot(normal);
+            if (!(depth > point.target)) continue;
+            // The bodies move along the normal only, split by their inverse masses.
+            const real massA = movable(bodies, point.a) ? a.body.getInverseMass() : 0;
+            const real massB = movable(bodies, point.b) ? b.body.getInverseMass() : 0;
+            const real k = massA + massB;
+            if (!(k > 0)) continue;
+            const real lambda = (depth - point.target) / k;
+            if (massA > 0) {
+                a.body.setPosition(a.body.getPosition() - lambda * massA * normal);
+                noteMove(point.a, lambda * massA);
+            }
+            if (massB > 0) {
+                b.body.setPosition(b.body.getPosition() + lambda * massB * normal);
+                noteMove(point.b, lambda * massB);
+            }
+            if (pass == 0) ++pushed;
+            any = true;
+        }
+        if (!any) break;
+    }
+    // A body pushed farther than a quarter of its tolerance in all has its pairs tested
+    // again in the next round.
+    const real slop = world.settings.penetrationSlop;
+    for (const Move &move : moved_) {
+        if (!(move.length > 0.25 * toleranceFor(bodies[move.body].boundingRadius, slop))) continue;
+        if (movedRound_[move.body] < 0) activeBodies_.push_back(move.body);
+        movedRound_[move.body] = round;
+    }
+    for (const Move &move : moved_) moveSlot_[move.body] = -1;
+    return pushed;
+}
+
+void LandingCorrection::noteMove(std::uint32_t body, real length) {
+    if (moveSlot_.size() <= body) moveSlot_.resize(movedRound_.size(), -1);
+    int &slot = moveSlot_[body];
+    if (slot < 0) {
+        slot = static_cast<int>(moved_.size());
+        moved_.push_back({body, 0});
+    }
+    moved_[static_cast<std::size_t>(slot)].length += length;
+}
+
+}  // namespace cyclone::detail

@@ -1,0 +1,86 @@
+// The landing correction: after the step's integration (and continuous collision), the
+// candidate pairs in which a body moved fast this step are tested again at the poses the
+// step ends with, and the points found deeper than a tolerance are pushed apart by
+// position only, so that no frame shows a body sunk in another (WorldSettings::
+// landingCorrection).
+//
+// Design note. The step's contacts come from its start. A body landing on a pile that is
+// itself still landing may be let through by the solver (ten passes do not carry a
+// column's impulse within one step), and a body landing on one or two points turns about
+// them so that its far side plunges where the step's manifold had no point: within the
+// step, the motion makes overlaps that no contact of the step's start sees
+// (docs/solver.md, "Landing correction"). Here the narrowphase runs once more, on the
+// step's candidate pairs with a fast body only, and nonlinear Gauss-Seidel passes over
+// the fresh points, lowest first, translate each point's two bodies apart along its
+// normal, split by their inverse masses, until it is no deeper than half the tolerance.
+// Translation only: two convex shapes moved apart by d along a normal along which they
+// overlap by p overlap by at most p - d, so a push never leaves a pair deeper elsewhere,
+// which a turn (splitting by the inertias too) did on round sides. Velocities are left
+// as they are (the next step's contacts, now touching, stop the bodies). Only the step's
+// simulated bodies move; static, kinematic, sleeping and just-woken bodies, and bodies
+// in a joint, are immovable.
+// The points of every manifold found are kept, the shallow ones too, so that a push does
+// not drive a body into a neighbour the round tested; the pairs of the bodies a round
+// moved are tested afresh in the next (at most kRounds in all). The pairs' manifolds,
+// impulses and touching states are not touched, so no contact event changes. A step in
+// which no body moved fast costs one pose comparison per awake body.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "collision/narrowphase.h"
+#include "world/body_store.h"
+
+namespace cyclone::detail {
+
+struct WorldState;
+
+class LandingCorrection {
+public:
+    /// Tests again the step's candidate pairs with a fast body at the bodies' poses now,
+    /// and pushes apart by position the points deeper than the tolerance.
+    void correct(WorldState &world);
+
+private:
+    /// A point of a manifold found at the end of the step, held by anchors on both bodies
+    /// so that its depth follows the bodies as the passes move them.
+    struct Point {
+        std::uint32_t a = 0, b = 0;          ///< Body indices.
+        Vector3 localA = Vector3::Zero();    ///< Anchor on A, A's body space, m.
+        Vector3 localB = Vector3::Zero();    ///< Anchor on B, B's body space, m.
+        Vector3 localNormal = Vector3::Zero();  ///< Normal A to B in A's body space.
+        real target = 0;                     ///< Depth the passes push it back to, m.
+        real height = 0;                     ///< Along -gravity: the passes go lowest first.
+        std::uint32_t order = 0;             ///< Place in the pair walk: breaks ties in height.
+    };
+
+    /// Tests the pairs in pairs_ at the bodies' poses now and appends their manifolds'
+    /// points; returns whether one of them is deeper than its pair's tolerance.
+    bool detect(WorldState &world);
+    /// Nonlinear Gauss-Seidel passes over points_; marks each body moved as moved in
+    /// `round`. Returns how many points were pushed.
+    int push(WorldState &world, int round);
+
+    /// Per body index: the last round that moved it (0: it moved fast in the step; -1: none).
+    std::vector<int> movedRound_;
+    /// Per body index, while the world has joints: whether a joint holds the body.
+    std::vector<char> jointed_;
+    bool movable(const BodyStore &bodies, std::uint32_t index) const;
+    std::vector<std::uint32_t> activeBodies_;  ///< Bodies whose movedRound_ is set (to clear it).
+    std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
+    std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
+    std::vector<std::uint32_t> findEnds_;       ///< Per entry of pairs_: one past its last find in its chunk.
+    std::vector<Point> points_;
+    /// How far a round's passes moved a body in all (the sum of its pushes), m.
+    struct Move {
+        std::uint32_t body = 0;
+        real length = 0;
+    };
+    std::vector<Move> moved_;
+    std::vector<int> moveSlot_;  ///< Per body index: its entry in moved_ (-1: none).
+    /// Adds a push of `length` to the body's entry in moved_.
+    void noteMove(std::uint32_t body, real length);
+};
+
+}  // namespace cyclone::detail
