@@ -44,6 +44,8 @@ const Column kColumns[] = {
     {"integrate", [](const StageTimes &t) { return t.integrate; }},
     {"ccd", [](const StageTimes &t) { return t.ccd; }},
     {"sleep", [](const StageTimes &t) { return t.sleep; }},
+    {"shared", [](const StageTimes &t) { return t.shared; }},
+    {"serial", [](const StageTimes &t) { return t.total - t.shared; }},
 };
 
 int run(int argc, char **argv) {
