@@ -71,6 +71,12 @@ struct Pair {
     const Matrix4 &poseB;
     int triangleB;
     real speculative;
+    /// How far the two may close within the step (m; 0 at rest): a body landing tilted
+    /// turns about its first contact and its far side comes down faster than the body
+    /// fell, so points over a face are kept within landingKeep() (manifold_clipping.cpp).
+    real reach = 0;
+
+    real landingKeep() const { return speculative + reach; }
 
     // Separating-axis overlap along n (A to B): how far B must move along n to clear A.
     real overlap(const Vector3 &n) const {

@@ -220,6 +220,59 @@ bool overlapAlong(const SupportFeature &fa, const SupportFeature &fb, const Vect
     return count > 0;
 }
 
+namespace {
+
+// Calls visit(q) for each corner of `shape` at `pose` (world): a box's eight, a hull's
+// vertices, and the ends of the side line of a capsule or cylinder that reaches farthest
+// along `direction` (world, unit). Spheres, planes and meshes have none.
+template <class Visit>
+void forEachCorner(const CollisionShape &shape, const Matrix4 &pose, const Vector3 &direction, const Visit &visit) {
+    switch (shape.shape().type) {
+        case ShapeType::Box: {
+            const Vector3 &h = shape.shape().halfExtents;
+            for (int corner = 0; corner < 8; ++corner)
+                visit(pose * Vector3(corner & 1 ? h.x() : -h.x(), corner & 2 ? h.y() : -h.y(),
+                                     corner & 4 ? h.z() : -h.z()));
+            break;
+        }
+        case ShapeType::Convex:
+            for (const Vector3 &v : shape.vertices()) visit(pose * v);
+            break;
+        case ShapeType::Capsule:
+        case ShapeType::Cylinder: {
+            Vector3 end0, end1;
+            if (farthestSideLine(shape, pose, direction, end0, end1)) visit(end0), visit(end1);
+            break;
+        }
+        default: break;
+    }
+}
+
+// A body tilted onto a vertex or an edge over a face turns about it as it lands, and its
+// far side comes down within the step faster than the body fell (see planeContact): each
+// corner of the incident shape over the reference face (`reference`, A's when
+// `referenceOnA`, outward normal `plane`), `incident` being its supporting feature, is
+// a point when within the pair's landingKeep().
+void addFarCorners(const Pair &pair, const Vector3 &n, const SupportFeature &reference, const Vector3 &plane,
+                   bool referenceOnA, const SupportFeature &incident, PointSet &out) {
+    const CollisionShape &shape = referenceOnA ? pair.b : pair.a;
+    const Vector3 w = referenceOnA ? n : Vector3(-n);
+    forEachCorner(shape, referenceOnA ? pair.poseB : pair.poseA, -w, [&](const Vector3 &q) {
+        for (int i = 0; i < incident.count; ++i)
+            if ((incident.points[i] - q).squaredNorm() < kPointTolerance * kPointTolerance) return;
+        SupportFeature corner;
+        corner.points[0] = q;
+        corner.count = 1;
+        Vector3 buffer[kMaxClipped];
+        Vector3 scratch[kMaxClipped];
+        int count = 0;
+        clipAgainstFace(reference, w, true, corner, buffer, scratch, count);
+        if (count > 0) addClipped(q, n, reference.points[0], plane, referenceOnA, pair.landingKeep(), out);
+    });
+}
+
+}  // namespace
+
 void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, const SupportFeature &fb,
                   PointSet &out, bool pointIfApart) {
     const int before = out.count;
@@ -245,10 +298,19 @@ void clipFeatures(const Pair &pair, const Vector3 &n, const SupportFeature &fa, 
         const Vector3 *clipped =
             clipAgainstFace(reference, referenceOnA ? n : Vector3(-n), !unbounded, incident, buffer, scratch, count);
         const Vector3 &plane = referenceOnA ? normalA : normalB;
+        // Within landingKeep(): a face landing tilted turns about its near edge and its far
+        // edge comes down faster than the body fell (planeContact).
         for (int i = 0; i < count; ++i)
-            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, pair.speculative, out);
+            addClipped(clipped[i], n, reference.points[0], plane, referenceOnA, pair.landingKeep(), out);
     }
     if (out.count == before && pointIfApart) pointContact(pair, n, false, out);
+    // A vertex or an edge of a moving body over a face: the far corners too.
+    if ((fa.count >= 3) != (fb.count >= 3) && pair.reach > 0) {
+        const bool faceOnA = fa.count >= 3;
+        const SupportFeature &face = faceOnA ? fa : fb;
+        if ((faceOnA ? pair.a : pair.b).shape().type != ShapeType::Plane)
+            addFarCorners(pair, n, face, polygonNormal(face), faceOnA, faceOnA ? fb : fa, out);
+    }
 }
 
 // A plane against anything: exact normal, every incident point measured to the plane.
@@ -269,24 +331,30 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
         else
             points.add(q, q + t * up, t);
     };
-    real deepest = -pair.speculative;
+    // A body tilted onto a vertex, an edge or a face's edge (a box's, a hull's, a capsule's
+    // end, a rim) turns about it as it lands, and its far side comes down within the step.
+    // Stopping one end of a falling rod (v) with an impulse J = m v / 4 turns it so that
+    // the other end falls at 1.5 v, so points are kept within the speculative distance
+    // plus the pair's reach (gaps the contact lets close and no more; a plane cannot stop
+    // a body passing by), and a vertex or an edge of a moving body has the shape's other
+    // corners as points too. At rest (no reach) nothing changes.
+    const real keep = pair.landingKeep();
+    real deepest = -keep;
     for (int i = 0; i < feature.count; ++i) {
         const Vector3 &q = feature.points[i];
         const real t = level - q.dot(up);
-        if (!(t > -pair.speculative)) continue;
+        if (!(t > -keep)) continue;
         add(q, t);
         deepest = std::max(deepest, t);
     }
-    // A capsule or cylinder tilted onto one point (an end's sphere, a point of a rim) turns
-    // about it as it lands, and the other end of that side comes down within the step: it
-    // gets a point too, when within the speculative distance.
-    Vector3 end0, end1;
-    if (feature.count == 1 && farthestSideLine(other, otherPose, -up, end0, end1)) {
-        const Vector3 &farEnd =
-            (end0 - feature.points[0]).squaredNorm() > (end1 - feature.points[0]).squaredNorm() ? end0 : end1;
-        const real t = level - farEnd.dot(up);
-        if (t > -pair.speculative && (farEnd - feature.points[0]).norm() > kPointTolerance) add(farEnd, t);
-    }
+    if (feature.count <= 2 && triangle < 0 && pair.reach > 0)
+        forEachCorner(other, otherPose, -up, [&](const Vector3 &q) {
+            const real t = level - q.dot(up);
+            if (!(t > -keep)) return;
+            for (int i = 0; i < feature.count; ++i)
+                if ((feature.points[i] - q).squaredNorm() < kPointTolerance * kPointTolerance) return;
+            add(q, t);
+        });
     // A convex face with more corners than a feature holds is thinned and may have lost
     // its deepest corner; other features hold theirs (or, a cylinder's cap tilted less
     // than a degree, miss it by a fraction of a millimetre for steadier points).

@@ -62,11 +62,13 @@ struct MeshPair {
     const CollisionShape &other;
     const Matrix4 &otherPose;
     Vector3 centre;  // the other shape's centroid, world
+    real reach;      // how far the two may close within the step, m
 
-    MeshPair(const CollisionShape &a_, const Matrix4 &poseA_, const CollisionShape &b_, const Matrix4 &poseB_)
+    MeshPair(const CollisionShape &a_, const Matrix4 &poseA_, const CollisionShape &b_, const Matrix4 &poseB_,
+             real reach_)
         : a(a_), poseA(poseA_), b(b_), poseB(poseB_), meshIsB(b_.shape().type == ShapeType::Mesh),
           mesh(meshIsB ? b_ : a_), meshPose(meshIsB ? poseB_ : poseA_), other(meshIsB ? a_ : b_),
-          otherPose(meshIsB ? poseA_ : poseB_), centre(otherPose * other.centroid()) {}
+          otherPose(meshIsB ? poseA_ : poseB_), centre(otherPose * other.centroid()), reach(reach_) {}
 
     // The normal (A to B) along which triangle t pushes the other shape out.
     Vector3 front(int t) const {
@@ -83,7 +85,7 @@ struct MeshPair {
     }
 
     Pair pair(int t, real speculative) const {
-        return Pair{a, poseA, meshIsB ? -1 : t, b, poseB, meshIsB ? t : -1, speculative};
+        return Pair{a, poseA, meshIsB ? -1 : t, b, poseB, meshIsB ? t : -1, speculative, reach};
     }
 
     // Whether contact c touches its triangle at an inner (inactive) edge or vertex, or
@@ -227,7 +229,7 @@ void clipContact(const MeshPair &m, const MeshContact &c, const Vector3 &normal,
 
 int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
                  real speculative, real reach, const RawContact *raw, int rawCount, std::vector<Manifold> &out) {
-    const MeshPair m(a, poseA, b, poseB);
+    const MeshPair m(a, poseA, b, poseB, reach);
     const int triangles = static_cast<int>(m.mesh.faces().size());
     const real keep = std::max(speculative, reach);
 

@@ -86,7 +86,7 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
     if (!(between.norm() > kMinNormalLength)) return 0;
     const Vector3 normal = between.normalized();
-    const Pair pair{a, poseA, -1, b, poseB, -1, reach};
+    const Pair pair{a, poseA, -1, b, poseB, -1, reach, reach};
     return roundPair ? roundPairManifold(pair, normal, out) : clipAlong(pair, normal, out);
 }
 
@@ -111,7 +111,7 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
     const ShapeType typeA = a.shape().type;
     const ShapeType typeB = b.shape().type;
     const real reach = std::max(settings.reach, settings.touchMargin);
-    const Pair pair{a, poseA, -1, b, poseB, -1, std::max(settings.speculativeDistance, reach)};
+    const Pair pair{a, poseA, -1, b, poseB, -1, std::max(settings.speculativeDistance, reach), settings.reach};
     if (typeA == ShapeType::Plane || typeB == ShapeType::Plane) {
         // A solid shape's support point is exact: it touches the half-space when that
         // point lies on or below the surface (as in FCL). A mesh needs FCL's triangles.
@@ -271,7 +271,7 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     if (rawCount == 0) return withMesh ? 0 : apartContact(a, poseA, b, poseB, settings.reach, out, roundPair);
 
     if (withPlane) {
-        const Pair pair{a, poseA, raw[0].triangleA, b, poseB, raw[0].triangleB, speculative};
+        const Pair pair{a, poseA, raw[0].triangleA, b, poseB, raw[0].triangleB, speculative, settings.reach};
         return planeContact(pair, typeA == ShapeType::Plane, out);
     }
 
@@ -280,7 +280,7 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     int deepest = 0;
     for (int i = 1; i < rawCount; ++i)
         if (raw[i].depth > raw[deepest].depth) deepest = i;
-    const Pair pair{a, poseA, -1, b, poseB, -1, speculative};
+    const Pair pair{a, poseA, -1, b, poseB, -1, speculative, settings.reach};
     SupportFeature fa, fb;
     real overlap = 0;
     const Vector3 normal =
