@@ -50,7 +50,7 @@ Shape gridFloor(bool up, MeshSides sides = MeshSides::Both) {
     return Shape::mesh(vertices, triangles, sides);
 }
 
-BodyId addStatic(WorldFixture &f, const Shape &shape, real friction = 0.6) {
+BodyId addStaticMesh(WorldFixture &f, const Shape &shape, real friction = 0.6) {
     BodySettings s;
     s.isStatic = true;
     s.shape = shape;
@@ -90,7 +90,7 @@ TEST(MeshContact, DownWoundFloorHoldsABoxSphereAndCapsule) {
     for (const Rested &r : restingShapes()) {
         SCOPED_TRACE(r.name);
         WorldFixture f(noSleep());
-        addStatic(f, gridFloor(false));
+        addStaticMesh(f, gridFloor(false));
         const BodyId id = addBody(f, r.shape, Vector3(0.3, r.restHeight + 0.5, 0.2));
         f.simulate(2.0);
         EXPECT_NEAR(f.position(id).y(), r.restHeight, kRestTolerance);
@@ -111,7 +111,7 @@ TEST(MeshContact, OneSidedMeshPushesOutToItsOpenSideOnly) {
                           Case{false, MeshSides::Front, false}, Case{false, MeshSides::Back, true}}) {
         SCOPED_TRACE(std::string(c.up ? "up" : "down") + (c.sides == MeshSides::Front ? " front" : " back"));
         WorldFixture f(noSleep());
-        addStatic(f, gridFloor(c.up, c.sides));
+        addStaticMesh(f, gridFloor(c.up, c.sides));
         const BodyId ball = addBody(f, Shape::sphere(0.25), Vector3(0.3, 0.75, 0.2));
         f.simulate(2.0);
         if (c.holds) EXPECT_NEAR(f.position(ball).y(), 0.25, kRestTolerance);
@@ -128,7 +128,7 @@ TEST(MeshContact, TwoSidedMeshStopsABodyFromBelowToo) {
     settings.gravity = Vector3::Zero();
     for (MeshSides sides : {MeshSides::Both, MeshSides::Front}) {
         WorldFixture f(settings);
-        addStatic(f, gridFloor(true, sides));
+        addStaticMesh(f, gridFloor(true, sides));
         const BodyId ball = addBody(f, Shape::sphere(0.25), Vector3(0.3, -1, 0.2), Vector3(0, 3, 0));
         f.simulate(1.0);
         if (sides == MeshSides::Both) EXPECT_LE(f.position(ball).y(), -0.25 + kRestTolerance);
@@ -147,7 +147,7 @@ struct Track {
 Track crossFloor(const Shape &floor, const Shape &shape, const Quaternion &orientation, real rest,
                  const Vector3 &velocity, bool roll, real friction, double seconds) {
     WorldFixture f(noSleep());
-    addStatic(f, floor, friction);
+    addStaticMesh(f, floor, friction);
     BodySettings s;
     s.shape = shape;
     s.orientation = orientation;
@@ -256,7 +256,7 @@ TEST(MeshContact, SphereDroppedOntoAMeshStopsAtItsSurface) {
     // 9.9 m/s, 16.5 cm per step; the contact acts in the step of the impact, so it never
     // gets more than 5 mm into the floor.
     WorldFixture f(noSleep());
-    addStatic(f, gridFloor(true));
+    addStaticMesh(f, gridFloor(true));
     const real radius = 0.25;
     const BodyId ball = addBody(f, Shape::sphere(radius), Vector3(0.3, 5 + radius, 0.2));
     real deepest = 0;
@@ -278,7 +278,7 @@ TEST(MeshContact, BallPassingCloseToAMeshIsNotSlowed) {
     const real radius = 0.25;
     {
         WorldFixture f(settings);
-        addStatic(f, gridFloor(true));
+        addStaticMesh(f, gridFloor(true));
         const BodyId ball = addBody(f, Shape::sphere(radius), Vector3(-8, radius + 0.01, 0.3), Vector3(10, 0, 0));
         int contacts = 0;
         for (int i = 0; i < 90; ++i) {
@@ -292,7 +292,7 @@ TEST(MeshContact, BallPassingCloseToAMeshIsNotSlowed) {
         // A wall in the plane x = 0 over z in [-2, 0]: the ball's path along x at
         // z = radius + 0.01 passes its end edge at z = 0 with 1 cm to spare.
         WorldFixture f(settings);
-        addStatic(f, Shape::mesh({Vector3(0, -2, -2), Vector3(0, 2, -2), Vector3(0, 2, 0), Vector3(0, -2, 0)},
+        addStaticMesh(f, Shape::mesh({Vector3(0, -2, -2), Vector3(0, 2, -2), Vector3(0, 2, 0), Vector3(0, -2, 0)},
                                  {{0, 2, 1}, {0, 3, 2}}));
         const BodyId ball = addBody(f, Shape::sphere(radius), Vector3(-3, 0.3, radius + 0.01), Vector3(10, 0, 0));
         int contacts = 0;
