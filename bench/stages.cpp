@@ -6,7 +6,8 @@
 //                  [--substeps S] [--iterations N] [--positions N]
 // --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
 // benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
-// The last column counts the steps (of all, the first second included) that took fewer
+// `shared` is StageTimes::shared (on one thread, the work two threads would share) and
+// `serial` the rest of the step. The last column counts the steps (of all, the first second included) that took fewer
 // sub-steps than the settings' (resting steps, StepStats::substeps).
 #include <cstdio>
 #include <cstdlib>
