@@ -131,12 +131,12 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
         return r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0);
     };
     const std::size_t simulated = bodies.simulated.size();
-    moved_.resize(simulated + bodies.moving.size());
-    world.workers.forEach(moved_.size(), [&](std::size_t k) {
-        moved_[k] = place(k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]);
+    bodyFlags_.resize(simulated + bodies.moving.size());
+    world.workers.forEach(bodyFlags_.size(), [&](std::size_t k) {
+        bodyFlags_[k] = place(k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]);
     });
-    for (std::size_t k = 0; k < moved_.size(); ++k) {
-        if (!moved_[k]) continue;
+    for (std::size_t k = 0; k < bodyFlags_.size(); ++k) {
+        if (!bodyFlags_[k]) continue;
         const std::uint32_t index = k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated];
         movedObjects_.push_back(bodies[index].object.get());
     }
@@ -316,13 +316,13 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // walk over those bodies alone removes the same pairs in the same order.
     const std::size_t simulated = bodies.simulated.size();
     const auto bodyAt = [&](std::size_t k) { return k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]; };
-    moved_.resize(simulated + bodies.moving.size());
-    world.workers.forEach(moved_.size(), [&](std::size_t k) {
+    bodyFlags_.resize(simulated + bodies.moving.size());
+    world.workers.forEach(bodyFlags_.size(), [&](std::size_t k) {
         const std::vector<std::uint32_t> &list = bodies[bodyAt(k)].pairs;
-        moved_[k] = std::any_of(list.begin(), list.end(), [&](std::uint32_t p) { return pairs[p].lastSeen != stepCount; });
+        bodyFlags_[k] = std::any_of(list.begin(), list.end(), [&](std::uint32_t p) { return pairs[p].lastSeen != stepCount; });
     });
-    for (std::size_t k = 0; k < moved_.size(); ++k) {
-        if (!moved_[k]) continue;
+    for (std::size_t k = 0; k < bodyFlags_.size(); ++k) {
+        if (!bodyFlags_[k]) continue;
         std::vector<std::uint32_t> &list = bodies[bodyAt(k)].pairs;
         for (std::size_t i = list.size(); i-- > 0;) {
             const std::uint32_t p = list[i];

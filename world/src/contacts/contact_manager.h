@@ -84,9 +84,10 @@ private:
     static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::uint64_t anchorsIssued_ = 0;
     std::vector<fcl::CollisionObjectd *> movedObjects_;  ///< Objects whose fat box moved.
-    /// Per simulated, then moving kinematic, body: whether its fat box moved (broadphase),
-    /// whether it has a pair the broadphase no longer reports (narrowphase).
-    std::vector<char> moved_;
+    /// A flag per simulated, then moving kinematic, body, set on the threads and read in
+    /// the bodies' order: in the broadphase whether its fat box moved, in the narrowphase
+    /// whether it holds a pair the broadphase no longer reports.
+    std::vector<char> bodyFlags_;
     /// What a candidate pair is: skipped (joined, or two immovable bodies), held by the
     /// slot it had last step, or to be looked up.
     enum class CandidateKind : std::uint8_t { Excluded, Immovable, Held, LookUp };
