@@ -7,8 +7,10 @@
 // --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
 // benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
 // --landing off steps them without the landing correction (WorldSettings::landingCorrection).
-// The last column counts the steps (of all, the first second included) that took fewer
-// sub-steps than the settings' (resting steps, StepStats::substeps).
+// `shared` is StageTimes::shared (on one thread, the work two threads would share) and
+// `serial` the rest of the step. The last column counts the steps (of all, the first
+// second included) that took fewer sub-steps than the settings' (resting steps,
+// StepStats::substeps).
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
@@ -46,6 +48,8 @@ const Column kColumns[] = {
     {"ccd", [](const StageTimes &t) { return t.ccd; }},
     {"landing", [](const StageTimes &t) { return t.landing; }},
     {"sleep", [](const StageTimes &t) { return t.sleep; }},
+    {"shared", [](const StageTimes &t) { return t.shared; }},
+    {"serial", [](const StageTimes &t) { return t.total - t.shared; }},
 };
 
 int run(int argc, char **argv) {

@@ -121,16 +121,25 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
     // can meet within it is a candidate (and gets a speculative contact).
     const Vector3 fall = stepFall(settings, dt);
     const bool counted = fall.squaredNorm() > 0;
+    // Each body places its own object (on several threads); the moved ones are listed
+    // after, in the bodies' order.
     const auto place = [&](std::uint32_t index) {
         BodyRecord &r = bodies[index];
-        if (!r.object) return;
+        if (!r.object) return false;
         const bool falls = counted && fallsFreely(r, pairs);
         const real reach = settings.speculativeContacts ? stepReach(r, dt, falls ? fall : Vector3(Vector3::Zero())) : 0;
-        if (r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0))
-            movedObjects_.push_back(r.object.get());
+        return r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0);
     };
-    for (std::uint32_t index : bodies.simulated) place(index);
-    for (std::uint32_t index : bodies.moving) place(index);
+    const std::size_t simulated = bodies.simulated.size();
+    bodyFlags_.resize(simulated + bodies.moving.size());
+    world.workers.forEach(bodyFlags_.size(), [&](std::size_t k) {
+        bodyFlags_[k] = place(k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]);
+    });
+    for (std::size_t k = 0; k < bodyFlags_.size(); ++k) {
+        if (!bodyFlags_[k]) continue;
+        const std::uint32_t index = k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated];
+        movedObjects_.push_back(bodies[index].object.get());
+    }
     world.broadphase.refitAwake(movedObjects_);
 
     // Planes stay out of the trees: test each awake body's AABB against each plane (and,
@@ -194,28 +203,41 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     stepPairs_.clear();
     // The broadphase lists a settled scene's pairs in the same order step after step:
     // the slot each candidate had last step is checked first, saving most table look-ups.
+    // Whether that slot still holds the candidate is checked first, on several threads
+    // (the checks miss the cache); the other candidates are looked up one by one.
     const std::vector<CandidatePair> &candidates = found_.contacts;
     candidateSlots_.resize(candidates.size(), kNoSlot);
+    candidateKinds_.resize(candidates.size());
+    world.workers.forEach(candidates.size(), [&](std::size_t k) {
+        const CandidatePair &c = candidates[k];
+        CandidateKind kind = CandidateKind::Held;
+        if (world.joints.excludesContact(c.a, c.b)) kind = CandidateKind::Excluded;  // joined without collideConnected
+        else if (bodies[c.a].immovable && bodies[c.b].immovable) kind = CandidateKind::Immovable;
+        else if (!pairs.holds(candidateSlots_[k], c.a, c.b)) kind = CandidateKind::LookUp;
+        candidateKinds_[k] = kind;
+    });
     for (std::size_t k = 0; k < candidates.size(); ++k) {
         const CandidatePair &c = candidates[k];
-        if (world.joints.excludesContact(c.a, c.b)) continue;  // joined without collideConnected
-        if (bodies[c.a].immovable && bodies[c.b].immovable) {
+        const CandidateKind kind = candidateKinds_[k];
+        if (kind == CandidateKind::Excluded) continue;
+        if (kind == CandidateKind::Immovable) {
             // A moving kinematic body with a static or kinematic one: neither can push.
             ++world.stats.immovablePairsSkipped;
             continue;
         }
         std::uint32_t p = candidateSlots_[k];
-        if (!pairs.holds(p, c.a, c.b)) {
+        if (kind == CandidateKind::LookUp) {
             bool created = false;
             p = findOrAddPair(bodies, c.a, c.b, created);
             candidateSlots_[k] = p;
         }
-        PairState &pair = pairs[p];
-        if (pair.lastSeen == stepCount) continue;  // reported twice
-        pair.lastSeen = stepCount;
+        if (listedIn_.size() < pairs.slots()) listedIn_.resize(pairs.slots(), 0);
+        if (listedIn_[p] == stepCount) continue;  // reported twice
+        listedIn_[p] = stepCount;
         eventSlots_.push_back(p);
         stepPairs_.push_back(p);
     }
+    world.workers.forEach(stepPairs_.size(), [&](std::size_t k) { pairs[stepPairs_[k]].lastSeen = stepCount; });
 
     // Each pair on its own, in chunks shared between the threads: pairs that hardly moved
     // keep their manifolds, the others go through the narrowphase, which writes what it
@@ -240,40 +262,73 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out));
         }
     });
+    // The finds are merged into their pairs, again chunk by chunk: a merge writes only its
+    // own pair (but the detection above reads other pairs' manifolds, so it comes after
+    // all of them). The anchor numbers each merge issues are counted out first, in the
+    // pairs' order, so that each pair gets the same numbers whichever thread merges it.
+    std::uint64_t issued = anchorsIssued_;
     for (std::size_t k = 0; k < count; ++k) {
-        const Find &find = finds_[k];
+        Find &find = finds_[k];
         if (find.reused) {
             ++world.stats.pairsReused;
             continue;
         }
-        const std::vector<Manifold> &out = chunkFinds_[k / Workers::kChunk];
-        mergeFinds(world, stepPairs_[k], out.data() + find.first, find.count);
+        ++world.stats.pairsTested;
+        find.issuedBefore = issued;
+        issued += anchorsIssuedBy(world, stepPairs_[k], find.count);
     }
+    anchorsIssued_ = issued;
+    while (mergeScratch_.size() < chunks) mergeScratch_.emplace_back();
+    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
+        const std::vector<Manifold> &out = chunkFinds_[static_cast<std::size_t>(chunk)];
+        const std::size_t end = std::min(count, std::size_t(chunk + 1) * Workers::kChunk);
+        for (std::size_t k = std::size_t(chunk) * Workers::kChunk; k < end; ++k) {
+            Find &find = finds_[k];
+            const std::uint32_t p = stepPairs_[k];
+            if (!find.reused)
+                mergeFinds(world, p, out.data() + find.first, find.count, find.issuedBefore,
+                           mergeScratch_[static_cast<std::size_t>(chunk)]);
+            // A new contact with an awake or moving kinematic body wakes a sleeping one
+            // (from the next step on; waking changes none of the flags read here).
+            const PairState &pair = pairs[p];
+            find.touching = pair.touching();
+            if (!find.touching) continue;
+            const BodyRecord &a = bodies[pair.a];
+            const BodyRecord &b = bodies[pair.b];
+            find.wakeB = (a.simulated || a.moving) && !b.immovable && !b.simulated;
+            find.wakeA = (b.simulated || b.moving) && !a.immovable && !a.simulated;
+        }
+    });
 
     touchingPairs.clear();
-    for (std::uint32_t p : stepPairs_) {
-        const PairState &pair = pairs[p];
-        if (!pair.touching()) continue;
+    for (std::size_t k = 0; k < count; ++k) {
+        const Find &find = finds_[k];
+        if (!find.touching) continue;
+        const std::uint32_t p = stepPairs_[k];
         touchingPairs.push_back(p);
-        // A new contact with an awake or moving kinematic body wakes a sleeping one (from
-        // the next step on).
-        const BodyRecord &a = bodies[pair.a];
-        const BodyRecord &b = bodies[pair.b];
-        if ((a.simulated || a.moving) && !b.immovable && !b.simulated) world.wake(pair.b);
-        if ((b.simulated || b.moving) && !a.immovable && !a.simulated) world.wake(pair.a);
+        if (find.wakeB) world.wake(pairs[p].b);
+        if (find.wakeA) world.wake(pairs[p].a);
     }
 
     // Pairs with an awake member that the broadphase no longer reports have separated
-    // (walked body by body: sleeping bodies' pairs cost nothing).
-    const auto dropUnseen = [&](std::uint32_t index) {
-        std::vector<std::uint32_t> &list = bodies[index].pairs;
-        for (std::size_t k = list.size(); k-- > 0;) {
-            const std::uint32_t p = list[k];
+    // (walked body by body: sleeping bodies' pairs cost nothing). Which bodies have such
+    // a pair is found on several threads; removing pairs only shortens the lists, so the
+    // walk over those bodies alone removes the same pairs in the same order.
+    const std::size_t simulated = bodies.simulated.size();
+    const auto bodyAt = [&](std::size_t k) { return k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]; };
+    bodyFlags_.resize(simulated + bodies.moving.size());
+    world.workers.forEach(bodyFlags_.size(), [&](std::size_t k) {
+        const std::vector<std::uint32_t> &list = bodies[bodyAt(k)].pairs;
+        bodyFlags_[k] = std::any_of(list.begin(), list.end(), [&](std::uint32_t p) { return pairs[p].lastSeen != stepCount; });
+    });
+    for (std::size_t k = 0; k < bodyFlags_.size(); ++k) {
+        if (!bodyFlags_[k]) continue;
+        std::vector<std::uint32_t> &list = bodies[bodyAt(k)].pairs;
+        for (std::size_t i = list.size(); i-- > 0;) {
+            const std::uint32_t p = list[i];
             if (pairs[p].lastSeen != stepCount) removePair(bodies, p);
         }
-    };
-    for (std::uint32_t index : bodies.simulated) dropUnseen(index);
-    for (std::uint32_t index : bodies.moving) dropUnseen(index);
+    }
 }
 
 // Only a touching pair is reused: one with no manifold may come into contact within the
@@ -331,14 +386,21 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
     return out.size() - first;
 }
 
-void ContactManager::mergeFinds(WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n) {
+std::uint64_t ContactManager::anchorsIssuedBy(const WorldState &world, std::uint32_t p, std::size_t n) const {
+    const PairState &pair = pairs[p];
+    if (n == 0) return pair.manifolds.size();  // keepNearPoints renumbers each kept manifold
+    const bool compound = world.bodies[pair.a].shape->isCompound() || world.bodies[pair.b].shape->isCompound();
+    return std::min(n, compound ? kMaxCompoundManifolds : std::size_t(4));
+}
+
+void ContactManager::mergeFinds(const WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n,
+                                std::uint64_t issued, MergeScratch &scratch) {
     const BodyStore &bodies = world.bodies;
     PairState &pair = pairs[p];
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
     const Matrix4 poseA = a.body.getTransform();
     const Matrix4 poseB = b.body.getTransform();
-    ++world.stats.pairsTested;
     pair.tested = true;
     pair.relativePose = relativePose(a.body, b.body);
     const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
@@ -348,18 +410,18 @@ void ContactManager::mergeFinds(WorldState &world, std::uint32_t p, const Manifo
         // FCL sees only overlap: a resting contact that opens by a hair would be lost
         // with its warm-start impulses and found again a step later. Keep its points as
         // speculative contacts while they stay close.
-        keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance, anchorsIssued_);
+        keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance, issued);
         return;
     }
     if (a.shape->isCompound() || b.shape->isCompound()) {
-        mergeByChildren(pair, found, n, poseA, poseB, *a.shape, *b.shape, matchDistance);
+        mergeByChildren(pair, found, n, poseA, poseB, *a.shape, *b.shape, matchDistance, issued, scratch);
         return;
     }
     // At most four manifolds per pair (a mesh may report more normals).
     const std::size_t kept = std::min<std::size_t>(n, 4);
     pair.manifolds.resize(kept);
     for (std::size_t k = 0; k < kept; ++k)
-        mergeManifold(pair.manifolds[k], found[k], poseA, poseB, *a.shape, *b.shape, matchDistance, newAnchorsId());
+        mergeManifold(pair.manifolds[k], found[k], poseA, poseB, *a.shape, *b.shape, matchDistance, ++issued);
 }
 
 // A compound's manifolds belong to pairs of children: each fresh one warm-starts from the
@@ -367,24 +429,26 @@ void ContactManager::mergeFinds(WorldState &world, std::uint32_t p, const Manifo
 // mesh with several normals), wherever it stood in the list.
 void ContactManager::mergeByChildren(PairState &pair, const Manifold *found, std::size_t n, const Matrix4 &poseA,
                                      const Matrix4 &poseB, const CollisionShape &shapeA, const CollisionShape &shapeB,
-                                     real matchDistance) {
-    previous_.swap(pair.manifolds);
-    previousUsed_.assign(previous_.size(), 0);
+                                     real matchDistance, std::uint64_t issued, MergeScratch &scratch) {
+    std::vector<ManifoldState> &previous = scratch.previous;
+    std::vector<char> &used = scratch.used;
+    previous.swap(pair.manifolds);
+    used.assign(previous.size(), 0);
     const std::size_t kept = std::min(n, kMaxCompoundManifolds);
     pair.manifolds.resize(kept);
     for (std::size_t k = 0; k < kept; ++k) {
         const Manifold &fresh = found[k];
         ManifoldState &state = pair.manifolds[k];
         state = ManifoldState();
-        for (std::size_t j = 0; j < previous_.size(); ++j) {
-            if (previousUsed_[j] || previous_[j].childA != fresh.childA || previous_[j].childB != fresh.childB) continue;
-            previousUsed_[j] = 1;
-            state = previous_[j];
+        for (std::size_t j = 0; j < previous.size(); ++j) {
+            if (used[j] || previous[j].childA != fresh.childA || previous[j].childB != fresh.childB) continue;
+            used[j] = 1;
+            state = previous[j];
             break;
         }
-        mergeManifold(state, fresh, poseA, poseB, shapeA, shapeB, matchDistance, newAnchorsId());
+        mergeManifold(state, fresh, poseA, poseB, shapeA, shapeB, matchDistance, ++issued);
     }
-    previous_.clear();
+    previous.clear();
 }
 
 std::uint32_t ContactManager::findOrAddPair(BodyStore &bodies, std::uint32_t i, std::uint32_t j, bool &created) {

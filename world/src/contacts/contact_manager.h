@@ -63,13 +63,22 @@ private:
     /// Runs the narrowphase on pair p and appends the manifolds it finds to `out`;
     /// returns how many. Changes nothing else (pairs are detected on several threads).
     std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out) const;
-    /// Merges the `n` manifolds `found` for pair p into its manifolds.
-    void mergeFinds(WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n);
+    /// A compound pair's manifolds before its merge, and which a fresh one took.
+    struct MergeScratch {
+        std::vector<ManifoldState> previous;
+        std::vector<char> used;
+    };
+    /// How many anchor numbers mergeFinds issues for pair p with `n` manifolds found.
+    std::uint64_t anchorsIssuedBy(const WorldState &world, std::uint32_t p, std::size_t n) const;
+    /// Merges the `n` manifolds `found` for pair p into its manifolds, numbering new
+    /// anchors from issued + 1 on; writes only pair p (pairs are merged on several threads).
+    void mergeFinds(const WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n,
+                    std::uint64_t issued, MergeScratch &scratch);
     /// Merges `found` into a pair with a compound, each manifold with the old one of its
     /// children.
     void mergeByChildren(PairState &pair, const Manifold *found, std::size_t n, const Matrix4 &poseA,
                          const Matrix4 &poseB, const CollisionShape &shapeA, const CollisionShape &shapeB,
-                         real matchDistance);
+                         real matchDistance, std::uint64_t issued, MergeScratch &scratch);
 
     /// Most manifolds a pair with a compound keeps (one per touching pair of children,
     /// or more against a mesh).
@@ -78,21 +87,35 @@ private:
     static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::uint64_t anchorsIssued_ = 0;
     std::vector<fcl::CollisionObjectd *> movedObjects_;  ///< Objects whose fat box moved.
+    /// A flag per simulated, then moving kinematic, body, set on the threads and read in
+    /// the bodies' order: in the broadphase whether its fat box moved, in the narrowphase
+    /// whether it holds a pair the broadphase no longer reports.
+    std::vector<char> bodyFlags_;
+    /// What a candidate pair is: skipped (joined, or two immovable bodies), held by the
+    /// slot it had last step, or to be looked up.
+    enum class CandidateKind : std::uint8_t { Excluded, Immovable, Held, LookUp };
+    std::vector<CandidateKind> candidateKinds_;  ///< Per candidate.
+    std::vector<std::uint64_t> listedIn_;        ///< Per pair slot: the step that last listed it.
     BroadphasePairs found_;  ///< The step's pairs: candidate contacts, sensor pairs, the filtered count.
     BroadphasePairs planePairs_;  ///< This step's body-plane pairs, found before the trees'.
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
     std::vector<std::uint32_t> candidateSlots_;
     /// What the narrowphase stage did with each entry of stepPairs_: kept its manifolds,
     /// or found `count` manifolds from `first` on in its chunk's list of chunkFinds_.
+    /// issuedBefore: anchor numbers issued before its merge; touching, wakeA, wakeB:
+    /// whether the pair touches after it and wakes body A or B.
     struct Find {
         bool reused = false;
+        bool touching = false;
+        bool wakeA = false;
+        bool wakeB = false;
         std::uint32_t first = 0;
         std::uint32_t count = 0;
+        std::uint64_t issuedBefore = 0;
     };
     std::vector<Find> finds_;
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of Workers::kChunk step pairs.
-    std::vector<ManifoldState> previous_;  ///< A compound pair's manifolds before the merge.
-    std::vector<char> previousUsed_;       ///< Per entry of previous_: taken by a fresh one.
+    std::vector<MergeScratch> mergeScratch_;         ///< Per chunk.
     std::vector<std::uint32_t> stepPairs_;  ///< Pair slots the broadphase reported this step.
     std::vector<ContactTrack> tracks_;      ///< By pair slot.
     /// Pair slots whose touching state may have changed since the last contact events:

@@ -83,17 +83,31 @@ void ConstraintSolver::build(WorldState &world) {
     slotBodies_.resize(keys_.size());
     stamps_.resize(keys_.size());
     // Slot by slot: the slots are written in memory order.
-    world.workers.forEach(keys_.size(), [&](std::size_t s) { addSolverManifold(world, keys_[keyOfSlot_[s]], s); });
-    roundDepths_.clear();
-    for (std::size_t s = 0; s < manifolds_.size(); ++s) {
-        const SolverManifold &m = manifolds_[s];
-        ++world.stats.manifolds;
-        world.stats.contacts += m.count;
-        for (int i = 0; i < m.count; ++i) world.stats.maxPenetration = std::max(world.stats.maxPenetration, m.points[i].depth);
-        if (bodies.roundCount > 0)
-            roundDepths_.add(s, manifolds_.size(), bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], contacts,
-                             sources_[s], m.normal);
+    // The counters are summed chunk by chunk as the slots are written, then in the
+    // chunks' order (a count and a maximum: the same whatever the order).
+    const std::size_t chunks = (keys_.size() + Workers::kChunk - 1) / Workers::kChunk;
+    chunkCounts_.resize(chunks);
+    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
+        ChunkCount &count = chunkCounts_[static_cast<std::size_t>(chunk)];
+        count = ChunkCount();
+        const std::size_t end = std::min(keys_.size(), std::size_t(chunk + 1) * Workers::kChunk);
+        for (std::size_t s = std::size_t(chunk) * Workers::kChunk; s < end; ++s) {
+            addSolverManifold(world, keys_[keyOfSlot_[s]], s);
+            const SolverManifold &m = manifolds_[s];
+            count.contacts += m.count;
+            for (int i = 0; i < m.count; ++i) count.deepest = std::max(count.deepest, m.points[i].depth);
+        }
+    });
+    world.stats.manifolds += static_cast<int>(keys_.size());
+    for (const ChunkCount &count : chunkCounts_) {
+        world.stats.contacts += count.contacts;
+        world.stats.maxPenetration = std::max(world.stats.maxPenetration, count.deepest);
     }
+    roundDepths_.clear();
+    if (bodies.roundCount == 0) return;
+    for (std::size_t s = 0; s < manifolds_.size(); ++s)
+        roundDepths_.add(s, manifolds_.size(), bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], contacts,
+                         sources_[s], manifolds_[s].normal);
 }
 
 // addSolverManifold writes every field of a solver manifold and of its first `count`
@@ -181,13 +195,23 @@ bool ConstraintSolver::jacobiansHold(const WorldState &world, const JacobianStam
 // order. solveOrder_ lists the slots in solve order.
 void ConstraintSolver::assignSlots(WorldState &world) {
     const std::size_t n = keys_.size();
-    solveOrder_.assign(n, -1);
+    // Each manifold's slot of last step is read on several threads (the reads miss the
+    // cache), then claimed in solve order: the first to claim a slot keeps it.
+    solveOrder_.resize(n);
+    world.workers.forEach(n, [&](std::size_t k) {
+        const ManifoldState &m = world.contacts.manifold(keys_[k].manifold);
+        const bool kept = m.solvedInStepBefore(world.stepCount) && m.solverSlot < n;
+        solveOrder_[k] = kept ? static_cast<int>(m.solverSlot) : -1;
+    });
     slotTaken_.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
-        const ManifoldState &m = world.contacts.manifold(keys_[k].manifold);
-        if (!m.solvedInStepBefore(world.stepCount) || m.solverSlot >= n || slotTaken_[m.solverSlot]) continue;
-        solveOrder_[k] = static_cast<int>(m.solverSlot);
-        slotTaken_[m.solverSlot] = 1;
+        const int slot = solveOrder_[k];
+        if (slot < 0) continue;
+        if (slotTaken_[slot]) {
+            solveOrder_[k] = -1;
+            continue;
+        }
+        slotTaken_[slot] = 1;
     }
     std::size_t free = 0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -275,14 +299,33 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     // Jacobians and effective masses are made once per step, at the step's poses, unless
     // the slot's still hold (jacobian_stamp.h).
     const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
-    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
-        prepareManifold(bodies, s, h, h * world.plan.substeps, split, settings.restitutionThreshold);
-        JacobianStamp &stamp = stamps_[s];
-        if (support && stamp.carrier != manifolds_[s].carrier) {
-            prepareCarriedMasses(bodies_, manifolds_[s]);
-            stamp.carrier = manifolds_[s].carrier;
+    // The counters are summed chunk by chunk, then in the chunks' order.
+    const std::size_t chunks = (manifolds_.size() + Workers::kChunk - 1) / Workers::kChunk;
+    chunkCounts_.resize(chunks);
+    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
+        ChunkCount &count = chunkCounts_[static_cast<std::size_t>(chunk)];
+        count = ChunkCount();
+        const std::size_t end = std::min(manifolds_.size(), std::size_t(chunk + 1) * Workers::kChunk);
+        for (std::size_t s = std::size_t(chunk) * Workers::kChunk; s < end; ++s) {
+            prepareManifold(bodies, s, h, h * world.plan.substeps, split, settings.restitutionThreshold);
+            JacobianStamp &stamp = stamps_[s];
+            const SolverManifold &m = manifolds_[s];
+            if (support && stamp.carrier != m.carrier) {
+                prepareCarriedMasses(bodies_, manifolds_[s]);
+                stamp.carrier = m.carrier;
+            }
+            if (!stamp.kept) ++count.jacobians;
+            if (m.friction > 0) count.frictionRows += m.twistRadius > 0 ? 3 : 2;  // the patch: two tangents, a twist
+            if (m.restitution == 0) continue;
+            for (int i = 0; i < m.count; ++i)
+                if (m.points[i].approachSpeed < -settings.restitutionThreshold) ++count.restitution;
         }
     });
+    for (const ChunkCount &count : chunkCounts_) {
+        world.stats.jacobiansMade += count.jacobians;
+        world.stats.frictionRows += count.frictionRows;
+        world.stats.restitutionContacts += count.restitution;
+    }
     for (const int s : solveOrder_) {
         const Material &ma = bodies[slotBodies_[s].a].material;
         const Material &mb = bodies[slotBodies_[s].b].material;
@@ -291,14 +334,6 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     }
     for (const ResistanceRow &row : resistance_)
         world.stats.resistanceRows += (row.mass[0] > 0) + (row.mass[1] > 0) + (row.mass[2] > 0);
-    for (std::size_t s = 0; s < manifolds_.size(); ++s) {
-        const SolverManifold &m = manifolds_[s];
-        if (!stamps_[s].kept) ++world.stats.jacobiansMade;
-        if (m.friction > 0) world.stats.frictionRows += m.twistRadius > 0 ? 3 : 2;  // the patch: two tangents, a twist
-        if (m.restitution == 0) continue;
-        for (int i = 0; i < m.count; ++i)
-            if (m.points[i].approachSpeed < -settings.restitutionThreshold) ++world.stats.restitutionContacts;
-    }
 }
 
 void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split,

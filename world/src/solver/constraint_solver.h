@@ -95,6 +95,16 @@ private:
     /// which the manifolds keep from step to step (assignSlots).
     std::vector<int> solveOrder_;
     std::vector<char> slotTaken_;           ///< Scratch of assignSlots.
+    /// A chunk of slots' share of the step's counters: contacts and the deepest (build),
+    /// Jacobians made, friction rows and restitution contacts (prepare).
+    struct ChunkCount {
+        int contacts = 0;
+        real deepest = 0;
+        int jacobians = 0;
+        int frictionRows = 0;
+        int restitution = 0;
+    };
+    std::vector<ChunkCount> chunkCounts_;  ///< Per chunk (Workers::kChunk) of slots.
     std::vector<std::uint32_t> keyOfSlot_;  ///< Entry of keys_ each slot holds.
     std::vector<real> heights_;             ///< Each slot's contact height (ManifoldKey::height), m.
     std::vector<JacobianStamp> stamps_;     ///< What each slot's Jacobians were made from.

@@ -12,6 +12,7 @@ void WorldState::step(real dt) {
     events.openStep();
     StageTimes &ms = stats.ms;
     workers.match(settings.threads);  // the narrowphase and the solver share their work
+    workers.resetTimes();
 
     {
         const StageTimer t(ms.forces);
@@ -69,6 +70,7 @@ void WorldState::step(real dt) {
     stats.isolatedBodies = bodies.isolatedCount;
     ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.sensors + ms.manifolds + ms.islands + ms.solve +
                ms.integrate + ms.ccd + ms.landing + ms.sleep;
+    ms.shared = workers.shared();
 }
 
 }  // namespace cyclone::detail

@@ -42,9 +42,9 @@ void TaskPool::runJob(int count, Call call, const void *context) {
     }
     wakeUp_.notify_all();
     takeTasks();
-    while (finished_.load() < count) cpuRelax();
+    waitUntil([&] { return finished_.load() >= count; });
     generation_.fetch_add(1);  // closed
-    while (joined_.load() != 0) cpuRelax();
+    waitUntil([&] { return joined_.load() == 0; });
 }
 
 void TaskPool::takeTasks() {

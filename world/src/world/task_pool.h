@@ -28,6 +28,19 @@ inline void cpuRelax() {
 #endif
 }
 
+/// Polls until done() holds: spinning for a few microseconds, then giving up the core
+/// between polls. With more runnable threads than cores (other programs, or more
+/// threads than cores) the thread waited for may be the one off its core: spinning on
+/// would hold the core it needs for the whole time slice.
+template <class Done>
+void waitUntil(const Done &done) {
+    constexpr int kSpinPolls = 2000;
+    for (int polls = 0; !done(); ++polls) {
+        if (polls < kSpinPolls) cpuRelax();
+        else std::this_thread::yield();
+    }
+}
+
 class TaskPool {
 public:
     /// A pool of `threads` threads in all, the caller's included (threads - 1 workers).

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <memory>
 
@@ -20,12 +21,23 @@ public:
     bool parallel() const { return pool_ != nullptr; }
 
     /// Runs task(i) for i in [0, count), on the pool's threads when there is one; the
-    /// tasks must be independent.
+    /// tasks must be independent. A job of more than one task adds its time to shared().
     template <class Task>
     void forEachTask(int count, const Task &task) {
+        if (count <= 1) {
+            if (count == 1) task(0);
+            return;
+        }
+        const auto start = std::chrono::steady_clock::now();
         if (pool_) pool_->run(count, task);
         else for (int i = 0; i < count; ++i) task(i);
+        shared_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
+
+    /// Milliseconds, since resetTimes(), in jobs of more than one task: the work that
+    /// threads share (on one thread, the work two would share).
+    double shared() const { return shared_; }
+    void resetTimes() { shared_ = 0; }
 
     /// Items handed to a thread at once: enough to outweigh the handing (a microsecond).
     static constexpr std::size_t kChunk = 64;
@@ -41,6 +53,7 @@ public:
 
 private:
     std::unique_ptr<TaskPool> pool_;
+    double shared_ = 0;
 };
 
 }  // namespace cyclone::detail

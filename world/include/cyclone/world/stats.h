@@ -31,6 +31,9 @@ struct StageTimes {
     double landing = 0;      ///< The landing correction (WorldSettings::landingCorrection).
     double sleep = 0;        ///< Island sleep decisions.
     double total = 0;        ///< The whole step.
+    /// Of the total, the time in work shared between threads (WorldSettings::threads): on
+    /// one thread, the work that two would share. total - shared is the serial part.
+    double shared = 0;
     SolveTimes solveParts;   ///< Where the solve stage's time went (the rest: restitution, storing impulses).
 };
 

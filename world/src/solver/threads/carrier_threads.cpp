@@ -15,7 +15,7 @@ void awaitCarriers(const std::vector<SolverManifold> &manifolds, const CarrierRu
         const int carrier = carrierBody(manifolds[runs.manifolds[k]]);
         const int carrierRun = threads.runOf[carrier];
         if (carrierRun < 0) continue;
-        while (threads.finished[carrierRun].load(std::memory_order_acquire) != threads.pass) cpuRelax();
+        waitUntil([&] { return threads.finished[carrierRun].load(std::memory_order_acquire) == threads.pass; });
     }
 }
 
