@@ -206,13 +206,16 @@ void reduce(const PointSet::Point *in, int count, const Vector3 &n, Manifold &ou
 int appendReduced(const PointSet &points, const Vector3 &n, std::vector<Manifold> &out) {
     if (points.count == 0) return 0;
     Manifold manifold;
-    PointSet::Point touching[kMaxMerged], landing[kMaxMerged];
-    int touchingCount = 0, landingCount = 0;
-    for (int i = 0; i < points.count; ++i)
-        (points.points[i].landing ? landing[landingCount++] : touching[touchingCount++]) = points.points[i];
-    if (landingCount == 0 || touchingCount == 0) {
+    const int landingCount = static_cast<int>(std::count_if(
+        points.points, points.points + points.count, [](const PointSet::Point &p) { return p.landing; }));
+    if (landingCount == 0 || landingCount == points.count) {
         reduce(points.points, points.count, n, manifold);
     } else {
+        // The touching points are reduced on their own; the landing ones fill what is left.
+        PointSet::Point touching[kMaxMerged], landing[kMaxMerged];
+        int touchingCount = 0, landed = 0;
+        for (int i = 0; i < points.count; ++i)
+            (points.points[i].landing ? landing[landed++] : touching[touchingCount++]) = points.points[i];
         reduce(touching, touchingCount, n, manifold);
         std::sort(landing, landing + landingCount,
                   [](const PointSet::Point &x, const PointSet::Point &y) { return x.depth > y.depth; });

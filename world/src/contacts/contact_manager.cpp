@@ -245,16 +245,15 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // another in the pairs' order (anchors are numbered in that order), so the results do
     // not depend on the thread count.
     const std::size_t count = stepPairs_.size();
-    const std::size_t chunks = (count + Workers::kChunk - 1) / Workers::kChunk;
+    const std::size_t chunks = Workers::chunksOf(count);
     // Room for one manifold per pair (convex pairs find at most one), so that a chunk's
     // list is not grown by a few more touching pairs in a later step.
     while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     finds_.resize(count);
-    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
-        std::vector<Manifold> &out = chunkFinds_[static_cast<std::size_t>(chunk)];
+    world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
-        const std::size_t end = std::min(count, std::size_t(chunk + 1) * Workers::kChunk);
-        for (std::size_t k = std::size_t(chunk) * Workers::kChunk; k < end; ++k) {
+        for (std::size_t k = begin; k < end; ++k) {
             Find &find = finds_[k];
             find.reused = reuseManifolds(world, stepPairs_[k]);
             if (find.reused) continue;
@@ -279,15 +278,14 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     }
     anchorsIssued_ = issued;
     while (mergeScratch_.size() < chunks) mergeScratch_.emplace_back();
-    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
-        const std::vector<Manifold> &out = chunkFinds_[static_cast<std::size_t>(chunk)];
-        const std::size_t end = std::min(count, std::size_t(chunk + 1) * Workers::kChunk);
-        for (std::size_t k = std::size_t(chunk) * Workers::kChunk; k < end; ++k) {
+    world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        const std::vector<Manifold> &out = chunkFinds_[chunk];
+        for (std::size_t k = begin; k < end; ++k) {
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
             if (!find.reused)
                 mergeFinds(world, p, out.data() + find.first, find.count, find.issuedBefore,
-                           mergeScratch_[static_cast<std::size_t>(chunk)]);
+                           mergeScratch_[chunk]);
             // A new contact with an awake or moving kinematic body wakes a sleeping one
             // (from the next step on; waking changes none of the flags read here).
             const PairState &pair = pairs[p];

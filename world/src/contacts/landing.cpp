@@ -117,14 +117,12 @@ bool LandingCorrection::detect(WorldState &world) {
     // Each pair on its own, in chunks shared between the threads; the points are then
     // taken in the pairs' order, so that they do not depend on the thread count.
     const std::size_t count = pairs_.size();
-    const std::size_t chunks = (count + Workers::kChunk - 1) / Workers::kChunk;
-    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
+    while (chunkFinds_.size() < Workers::chunksOf(count)) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     findEnds_.resize(count);
-    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
-        std::vector<Manifold> &out = chunkFinds_[static_cast<std::size_t>(chunk)];
+    world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
-        const std::size_t end = std::min(count, std::size_t(chunk + 1) * Workers::kChunk);
-        for (std::size_t k = std::size_t(chunk) * Workers::kChunk; k < end; ++k) {
+        for (std::size_t k = begin; k < end; ++k) {
             const PairState &pair = pairs[pairs_[k]];
             const BodyRecord &a = bodies[pair.a];
             const BodyRecord &b = bodies[pair.b];

@@ -85,13 +85,11 @@ void ConstraintSolver::build(WorldState &world) {
     // Slot by slot: the slots are written in memory order.
     // The counters are summed chunk by chunk as the slots are written, then in the
     // chunks' order (a count and a maximum: the same whatever the order).
-    const std::size_t chunks = (keys_.size() + Workers::kChunk - 1) / Workers::kChunk;
-    chunkCounts_.resize(chunks);
-    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
-        ChunkCount &count = chunkCounts_[static_cast<std::size_t>(chunk)];
+    chunkCounts_.resize(Workers::chunksOf(keys_.size()));
+    world.workers.forEachChunk(keys_.size(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        ChunkCount &count = chunkCounts_[chunk];
         count = ChunkCount();
-        const std::size_t end = std::min(keys_.size(), std::size_t(chunk + 1) * Workers::kChunk);
-        for (std::size_t s = std::size_t(chunk) * Workers::kChunk; s < end; ++s) {
+        for (std::size_t s = begin; s < end; ++s) {
             addSolverManifold(world, keys_[keyOfSlot_[s]], s);
             const SolverManifold &m = manifolds_[s];
             count.contacts += m.count;
@@ -300,13 +298,11 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     // the slot's still hold (jacobian_stamp.h).
     const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
     // The counters are summed chunk by chunk, then in the chunks' order.
-    const std::size_t chunks = (manifolds_.size() + Workers::kChunk - 1) / Workers::kChunk;
-    chunkCounts_.resize(chunks);
-    world.workers.forEachTask(static_cast<int>(chunks), [&](int chunk) {
-        ChunkCount &count = chunkCounts_[static_cast<std::size_t>(chunk)];
+    chunkCounts_.resize(Workers::chunksOf(manifolds_.size()));
+    world.workers.forEachChunk(manifolds_.size(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        ChunkCount &count = chunkCounts_[chunk];
         count = ChunkCount();
-        const std::size_t end = std::min(manifolds_.size(), std::size_t(chunk + 1) * Workers::kChunk);
-        for (std::size_t s = std::size_t(chunk) * Workers::kChunk; s < end; ++s) {
+        for (std::size_t s = begin; s < end; ++s) {
             prepareManifold(bodies, s, h, h * world.plan.substeps, split, settings.restitutionThreshold);
             JacobianStamp &stamp = stamps_[s];
             const SolverManifold &m = manifolds_[s];

@@ -42,12 +42,24 @@ public:
     /// Items handed to a thread at once: enough to outweigh the handing (a microsecond).
     static constexpr std::size_t kChunk = 64;
 
+    /// How many chunks of kChunk items `count` items make.
+    static std::size_t chunksOf(std::size_t count) { return (count + kChunk - 1) / kChunk; }
+
+    /// Runs task(chunk, begin, end) for each chunk [begin, end) of kChunk items of
+    /// [0, count): for work that keeps something per chunk (a list of finds, counters).
+    template <class Task>
+    void forEachChunk(std::size_t count, const Task &task) {
+        forEachTask(static_cast<int>(chunksOf(count)), [&](int chunk) {
+            const std::size_t begin = std::size_t(chunk) * kChunk;
+            task(std::size_t(chunk), begin, std::min(count, begin + kChunk));
+        });
+    }
+
     /// Runs task(i) for every i in [0, count), in chunks of kChunk.
     template <class Task>
     void forEach(std::size_t count, const Task &task) {
-        forEachTask(static_cast<int>((count + kChunk - 1) / kChunk), [&](int chunk) {
-            const std::size_t end = std::min(count, std::size_t(chunk + 1) * kChunk);
-            for (std::size_t i = std::size_t(chunk) * kChunk; i < end; ++i) task(i);
+        forEachChunk(count, [&](std::size_t, std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) task(i);
         });
     }
 
