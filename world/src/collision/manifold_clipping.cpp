@@ -242,11 +242,18 @@ bool overlapAlong(const SupportFeature &fa, const SupportFeature &fb, const Vect
 
 namespace {
 
-// Calls visit(q) for each corner of `shape` at `pose` (world): a box's eight, a hull's
-// vertices, and the ends of the side line of a capsule or cylinder that reaches farthest
-// along `direction` (world, unit). Spheres, planes and meshes have none.
+// Calls visit(q) for each corner of `shape` at `pose` (world) that is not already a point
+// of `feature` (its supporting feature): a box's eight, a hull's vertices, and the ends of
+// the side line of a capsule or cylinder that reaches farthest along `direction` (world,
+// unit). Spheres, planes and meshes have none.
 template <class Visit>
-void forEachCorner(const CollisionShape &shape, const Matrix4 &pose, const Vector3 &direction, const Visit &visit) {
+void forEachOtherCorner(const CollisionShape &shape, const Matrix4 &pose, const Vector3 &direction,
+                        const SupportFeature &feature, const Visit &visitCorner) {
+    const auto visit = [&](const Vector3 &q) {
+        for (int i = 0; i < feature.count; ++i)
+            if ((feature.points[i] - q).squaredNorm() < kPointTolerance * kPointTolerance) return;
+        visitCorner(q);
+    };
     switch (shape.shape().type) {
         case ShapeType::Box: {
             const Vector3 &h = shape.shape().halfExtents;
@@ -277,9 +284,7 @@ void addFarCorners(const Pair &pair, const Vector3 &n, const SupportFeature &ref
                    bool referenceOnA, const SupportFeature &incident, PointSet &out) {
     const CollisionShape &shape = referenceOnA ? pair.b : pair.a;
     const Vector3 w = referenceOnA ? n : Vector3(-n);
-    forEachCorner(shape, referenceOnA ? pair.poseB : pair.poseA, -w, [&](const Vector3 &q) {
-        for (int i = 0; i < incident.count; ++i)
-            if ((incident.points[i] - q).squaredNorm() < kPointTolerance * kPointTolerance) return;
+    forEachOtherCorner(shape, referenceOnA ? pair.poseB : pair.poseA, -w, incident, [&](const Vector3 &q) {
         SupportFeature corner;
         corner.points[0] = q;
         corner.count = 1;
@@ -371,12 +376,9 @@ int planeContact(const Pair &pair, bool planeIsA, std::vector<Manifold> &out) {
         deepest = std::max(deepest, t);
     }
     if (feature.count <= 2 && triangle < 0 && pair.reach > 0)
-        forEachCorner(other, otherPose, -up, [&](const Vector3 &q) {
+        forEachOtherCorner(other, otherPose, -up, feature, [&](const Vector3 &q) {
             const real t = level - q.dot(up);
-            if (!(t > -keep)) return;
-            for (int i = 0; i < feature.count; ++i)
-                if ((feature.points[i] - q).squaredNorm() < kPointTolerance * kPointTolerance) return;
-            add(q, t);
+            if (t > -keep) add(q, t);
         });
     // A convex face with more corners than a feature holds is thinned and may have lost
     // its deepest corner; other features hold theirs (or, a cylinder's cap tilted less
