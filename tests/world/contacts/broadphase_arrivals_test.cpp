@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "collision/broadphase.h"
+#include "world/task_pool.h"
 
 namespace cyclone {
 namespace {
@@ -95,6 +96,74 @@ TEST(BroadphaseArrivals, WaitingBoxesAreFoundRemovedAndMoved) {
     pairs.clear();
     EXPECT_TRUE(broadphase.findPairs(pairs, nullptr, 1u << 20));
     EXPECT_EQ(pairs.contacts.size(), 4950u);
+}
+
+// An 8 x 8 x 8 grid of awake unit boxes 0.9 m apart over a layer of 8 x 8 static ones:
+// boxes overlap where their grid places differ by at most one along every axis (0.9 m
+// apart along an axis, 1.04 m across with the margin; 1.8 m apart, not). In a grid of n
+// along an axis, the offsets d in {-1, 0, 1} give n - |d| places each, so the awake pairs
+// are ((n + 2 (n - 1))^3 - n^3) / 2 = (22^3 - 512) / 2 = 5,068 and the static layer's with
+// the bottom layer (n + 2 (n - 1))^2 = 484.
+struct Grid {
+    Boxes boxes;
+    Broadphase broadphase;
+    Grid() {
+        for (int x = 0; x < 8; ++x)
+            for (int z = 0; z < 8; ++z) {
+                for (int y = 0; y < 8; ++y)
+                    broadphase.place(boxes.add(fcl::Vector3d(0.9 * x, 0.9 * y, 0.9 * z)), Tree::None, Tree::Awake);
+                broadphase.place(boxes.add(fcl::Vector3d(0.9 * x, -0.9, 0.9 * z)), Tree::None, Tree::Static);
+            }
+    }
+};
+
+bool samePairs(const std::vector<detail::CandidatePair> &x, const std::vector<detail::CandidatePair> &y) {
+    return x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin(), [](const auto &p, const auto &q) {
+               return p.a == q.a && p.b == q.b;
+           });
+}
+
+// The walk cut into pieces finds every pair once, and the same list in the same order
+// whether its pieces run in order, backwards, or on two threads.
+TEST(BroadphaseWalk, PiecesOnAnyThreadsGiveOneWalksPairsInItsOrder) {
+    Grid grid;
+    detail::BroadphasePairs inOrder;
+    EXPECT_TRUE(grid.broadphase.findPairs(inOrder, nullptr, 1u << 20));
+    EXPECT_EQ(inOrder.contacts.size(), 5068u + 484u);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> unique;
+    for (const detail::CandidatePair &pair : inOrder.contacts)
+        unique.emplace_back(std::min(pair.a, pair.b), std::max(pair.a, pair.b));
+    std::sort(unique.begin(), unique.end());
+    EXPECT_EQ(std::unique(unique.begin(), unique.end()), unique.end());
+
+    grid.broadphase.invalidate();
+    detail::BroadphasePairs backwards;
+    EXPECT_TRUE(grid.broadphase.findPairs(backwards, nullptr, 1u << 20, [](int count, const auto &task) {
+        for (int i = count - 1; i >= 0; --i) task(i);
+    }));
+    EXPECT_TRUE(samePairs(backwards.contacts, inOrder.contacts));
+
+    detail::TaskPool pool(2);
+    grid.broadphase.invalidate();
+    detail::BroadphasePairs threaded;
+    EXPECT_TRUE(grid.broadphase.findPairs(threaded, nullptr, 1u << 20,
+                                          [&](int count, const auto &task) { pool.run(count, task); }));
+    EXPECT_TRUE(samePairs(threaded.contacts, inOrder.contacts));
+}
+
+// Past the limit the walk keeps the first pairs of its order, on two threads as on one,
+// and says that it left some out.
+TEST(BroadphaseWalk, PastTheLimitTheFirstPairsOfTheOrderAreKept) {
+    Grid grid;
+    detail::BroadphasePairs all;
+    EXPECT_TRUE(grid.broadphase.findPairs(all, nullptr, 1u << 20));
+    detail::TaskPool pool(2);
+    grid.broadphase.invalidate();
+    detail::BroadphasePairs first;
+    EXPECT_FALSE(grid.broadphase.findPairs(first, nullptr, 1000,
+                                           [&](int count, const auto &task) { pool.run(count, task); }));
+    ASSERT_EQ(first.contacts.size(), 1000u);
+    EXPECT_TRUE(samePairs(first.contacts, {all.contacts.begin(), all.contacts.begin() + 1000}));
 }
 
 }  // namespace

@@ -3,43 +3,69 @@
 namespace cyclone::detail {
 namespace {
 
-// Where the walk puts its pairs, what decides where each goes (null: every pair is a
+using Node = fcl::detail::NodeBase<fcl::AABBd>;
+
+// Where a walk puts its pairs, what decides where each goes (null: every pair is a
 // candidate contact, and nothing is asked), and how many it may keep.
 struct PairWalk {
     BroadphasePairs *out;
     const PairFilter *filter;
     std::size_t limit;
+    /// Counts the pairs of every piece, to stop each once all have passed the limit.
+    std::atomic<std::size_t> *walked = nullptr;
     bool complete = true;
 
     // False (and the walk stops) once the limit is reached.
     bool room() {
-        if (out->contacts.size() + out->sensors.size() < limit) return true;
+        const std::size_t found = walked ? walked->fetch_add(1, std::memory_order_relaxed)
+                                         : out->contacts.size() + out->sensors.size();
+        if (found < limit) return true;
         complete = false;
+        return false;
+    }
+
+    // Records the pair of two leaves' objects; true stops the walk.
+    bool record(const Node *first, const Node *second) {
+        if (!room()) return true;
+        const CandidatePair pair{bodyIndexOf(static_cast<const fcl::CollisionObjectd *>(first->data)),
+                                 bodyIndexOf(static_cast<const fcl::CollisionObjectd *>(second->data))};
+        if (!filter) {
+            out->contacts.push_back(pair);
+            return false;
+        }
+        switch (filter->classify(pair.a, pair.b)) {
+            case PairKind::Contact: out->contacts.push_back(pair); break;
+            case PairKind::Sensor: out->sensors.push_back(pair); break;
+            case PairKind::Filtered: ++out->filtered; break;
+        }
         return false;
     }
 };
 
-// FCL calls this for every overlapping pair; recording them keeps the narrowphase (and
-// its timing) a stage of its own. Returning true stops FCL's walk.
-bool recordPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
-    auto *walk = static_cast<PairWalk *>(data);
-    if (!walk->room()) return true;
-    walk->out->contacts.push_back({bodyIndexOf(o1), bodyIndexOf(o2)});
-    return false;
+// Whether the walk splits `first` (else `second`) at a pair of nodes that are not both
+// leaves: the one with the larger box, as FCL's walk does.
+bool splitsFirst(const Node *first, const Node *second) {
+    return second->isLeaf() || (!first->isLeaf() && first->bv.size() > second->bv.size());
 }
 
-// The same with a filter: a pair it drops is never a candidate.
-bool recordFilteredPair(fcl::CollisionObjectd *o1, fcl::CollisionObjectd *o2, void *data) {
-    auto *walk = static_cast<PairWalk *>(data);
-    if (!walk->room()) return true;
-    const CandidatePair pair{bodyIndexOf(o1), bodyIndexOf(o2)};
-    switch (walk->filter->classify(pair.a, pair.b)) {
-        case PairKind::Contact: walk->out->contacts.push_back(pair); break;
-        case PairKind::Sensor: walk->out->sensors.push_back(pair); break;
-        case PairKind::Filtered: ++walk->out->filtered; break;
-    }
-    return false;
+// The pairs between two subtrees, in FCL's order; true stops the walk.
+bool walkBetween(const Node *first, const Node *second, PairWalk &walk) {
+    if (!first->bv.overlap(second->bv)) return false;
+    if (first->isLeaf() && second->isLeaf()) return walk.record(first, second);
+    if (splitsFirst(first, second))
+        return walkBetween(first->children[0], second, walk) || walkBetween(first->children[1], second, walk);
+    return walkBetween(first, second->children[0], walk) || walkBetween(first, second->children[1], walk);
 }
+
+// The pairs within a subtree, in FCL's order: each child's, then between the children.
+bool walkWithin(const Node *node, PairWalk &walk) {
+    if (node->isLeaf()) return false;
+    return walkWithin(node->children[0], walk) || walkWithin(node->children[1], walk) ||
+           walkBetween(node->children[0], node->children[1], walk);
+}
+
+// Pieces a walk is cut into, at least: a few per thread, so that uneven pieces even out.
+constexpr std::size_t kWalkPieces = 32;
 
 // An object that is only a box: what the trees test against in overlapping().
 class BoxProbe : public fcl::CollisionObjectd {
@@ -162,28 +188,107 @@ const fcl::detail::NodeBase<fcl::AABBd> *Broadphase::root(Tree tree) const {
     return nullptr;
 }
 
-bool Broadphase::findPairs(BroadphasePairs &out, const PairFilter *filter, std::size_t limit) {
+bool Broadphase::mustWalk(const PairFilter *filter, std::size_t limit) {
     // Resting bodies stay inside their fat boxes: most steps of a settled scene change no
     // tree, and the walk would find the same pairs in the same order.
-    if (changed_ || filter != lastFilter_ || limit != limit_) {
-        flush();
-        pairs_.clear();
-        PairWalk walk{&pairs_, filter, limit};
-        const auto record = filter ? recordFilteredPair : recordPair;
-        if (!awake_.empty()) {
-            awake_.collide(&walk, record);
-            if (walk.complete && !asleep_.empty()) awake_.collide(&asleep_, &walk, record);
-            if (walk.complete && !static_.empty()) awake_.collide(&static_, &walk, record);
-        }
-        changed_ = false;
-        lastFilter_ = filter;
-        limit_ = limit;
-        complete_ = walk.complete;
+    if (!changed_ && filter == lastFilter_ && limit == limit_) return false;
+    flush();
+    changed_ = false;
+    lastFilter_ = filter;
+    limit_ = limit;
+    return true;
+}
+
+int Broadphase::cutWalk() {
+    // The whole walk, then each piece replaced by the pieces it walks in turn (dropping
+    // those that find nothing), until there are enough or none can be cut.
+    cutting_.clear();
+    walked_.store(0, std::memory_order_relaxed);
+    if (const Node *awake = awake_.empty() ? nullptr : awake_.getTree().getRoot()) {
+        cutting_.push_back({awake, nullptr, {}});
+        for (const auto *other : {&asleep_, &static_})
+            if (!other->empty()) cutting_.push_back({awake, other->getTree().getRoot(), {}});
     }
-    out.contacts.insert(out.contacts.end(), pairs_.contacts.begin(), pairs_.contacts.end());
-    out.sensors.insert(out.sensors.end(), pairs_.sensors.begin(), pairs_.sensors.end());
-    out.filtered += pairs_.filtered;
-    return complete_;
+    std::vector<WalkPiece> &cut = pieces_;
+    std::size_t count = cutting_.size();
+    for (bool split = true; split && count < kWalkPieces;) {
+        split = false;
+        std::size_t next = 0;
+        const auto add = [&](const Node *first, const Node *second) {
+            if (cut.size() <= next) cut.emplace_back();
+            cut[next].first = first;
+            cut[next].second = second;
+            ++next;
+        };
+        for (std::size_t k = 0; k < count; ++k) {
+            const Node *first = cutting_[k].first;
+            const Node *second = cutting_[k].second;
+            if (!second) {
+                split = split || !first->isLeaf();
+                if (first->isLeaf()) continue;
+                add(first->children[0], nullptr);
+                add(first->children[1], nullptr);
+                add(first->children[0], first->children[1]);
+            } else if (!first->bv.overlap(second->bv)) {
+                split = true;
+            } else if (first->isLeaf() && second->isLeaf()) {
+                add(first, second);
+            } else {
+                split = true;
+                if (splitsFirst(first, second)) {
+                    add(first->children[0], second);
+                    add(first->children[1], second);
+                } else {
+                    add(first, second->children[0]);
+                    add(first, second->children[1]);
+                }
+            }
+        }
+        count = next;
+        cutting_.resize(count);
+        for (std::size_t k = 0; k < count; ++k) {
+            cutting_[k].first = cut[k].first;
+            cutting_[k].second = cut[k].second;
+        }
+    }
+    if (pieces_.size() < count) pieces_.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        pieces_[k].first = cutting_[k].first;
+        pieces_[k].second = cutting_[k].second;
+        pieces_[k].pairs.clear();
+    }
+    pieceCount_ = static_cast<int>(count);
+    return pieceCount_;
+}
+
+void Broadphase::walkPiece(int piece, const PairFilter *filter, std::size_t limit) {
+    WalkPiece &p = pieces_[static_cast<std::size_t>(piece)];
+    PairWalk walk{&p.pairs, filter, limit, &walked_};
+    if (p.second) walkBetween(p.first, p.second, walk);
+    else walkWithin(p.first, walk);
+}
+
+void Broadphase::joinWalk(const PairFilter *filter, std::size_t limit) {
+    pairs_.clear();
+    if (walked_.load(std::memory_order_relaxed) < limit) {
+        // Every piece ran to its end: their pairs, in order, are the walk's.
+        for (int k = 0; k < pieceCount_; ++k) {
+            const BroadphasePairs &found = pieces_[static_cast<std::size_t>(k)].pairs;
+            pairs_.contacts.insert(pairs_.contacts.end(), found.contacts.begin(), found.contacts.end());
+            pairs_.sensors.insert(pairs_.sensors.end(), found.sensors.begin(), found.sensors.end());
+            pairs_.filtered += found.filtered;
+        }
+        complete_ = true;
+        return;
+    }
+    // Past the limit: the first pairs of the walk's order are kept, as one walk finds them.
+    PairWalk walk{&pairs_, filter, limit};
+    if (const Node *awake = awake_.empty() ? nullptr : awake_.getTree().getRoot()) {
+        bool stopped = walkWithin(awake, walk);
+        for (const auto *other : {&asleep_, &static_})
+            if (!stopped && !other->empty()) stopped = walkBetween(awake, other->getTree().getRoot(), walk);
+    }
+    complete_ = walk.complete;
 }
 
 }  // namespace cyclone::detail

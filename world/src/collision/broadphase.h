@@ -130,7 +130,31 @@ public:
     /// called, and the filter and limit are the same), the pairs (and their order) are the
     /// same: they are given again without walking the trees. Without a filter nothing is
     /// asked per pair.
-    bool findPairs(BroadphasePairs &out, const PairFilter *filter, std::size_t limit);
+    ///
+    /// The walk is FCL's (the awake tree against itself, then against the sleeping and the
+    /// static trees; at each pair of nodes the larger box is split), cut into pieces at
+    /// its top: `forEachTask(count, task)` runs task(i) for each i in [0, count), on
+    /// several threads at once or not (Workers::forEachTask), and the pieces' pairs are
+    /// joined in the order one walk would give them, so that the pairs do not depend on
+    /// the thread count. A walk that passes the limit is made again in one piece.
+    template <class ForEachTask>
+    bool findPairs(BroadphasePairs &out, const PairFilter *filter, std::size_t limit, const ForEachTask &forEachTask) {
+        if (mustWalk(filter, limit)) {
+            const int pieces = cutWalk();
+            forEachTask(pieces, [&](int piece) { walkPiece(piece, filter, limit); });
+            joinWalk(filter, limit);
+        }
+        out.contacts.insert(out.contacts.end(), pairs_.contacts.begin(), pairs_.contacts.end());
+        out.sensors.insert(out.sensors.end(), pairs_.sensors.begin(), pairs_.sensors.end());
+        out.filtered += pairs_.filtered;
+        return complete_;
+    }
+    /// The same on the calling thread alone.
+    bool findPairs(BroadphasePairs &out, const PairFilter *filter, std::size_t limit) {
+        return findPairs(out, filter, limit, [](int count, const auto &task) {
+            for (int i = 0; i < count; ++i) task(i);
+        });
+    }
     /// The next findPairs() walks the trees: what a filter says of some pair changed.
     void invalidate() { changed_ = true; }
     /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
@@ -162,8 +186,29 @@ private:
     std::size_t limit_ = 0;             ///< The limit of that walk.
     bool complete_ = true;              ///< Whether that walk found every pair.
 
+    /// A piece of the walk: the pairs within the subtree `first` (no `second`), or between
+    /// the subtrees `first` and `second`, with the pairs it found.
+    struct WalkPiece {
+        const fcl::detail::NodeBase<fcl::AABBd> *first = nullptr;
+        const fcl::detail::NodeBase<fcl::AABBd> *second = nullptr;
+        BroadphasePairs pairs;
+    };
+    std::vector<WalkPiece> pieces_;  ///< The pieces of the walk (their lists kept between steps).
+    std::vector<WalkPiece> cutting_; ///< cutWalk()'s scratch.
+    int pieceCount_ = 0;             ///< Pieces in use.
+    std::atomic<std::size_t> walked_{0};  ///< Pairs the pieces found, all kinds.
+
     fcl::DynamicAABBTreeCollisionManagerd *manager(Tree tree) const;
     void flushTree(Tree tree) const;
+    /// Whether the trees must be walked (else the last walk's pairs stand); flushes them.
+    bool mustWalk(const PairFilter *filter, std::size_t limit);
+    /// Cuts the walk into pieces, in the walk's order; returns how many.
+    int cutWalk();
+    /// Walks piece `piece` into its own list. Safe to call for different pieces at once.
+    void walkPiece(int piece, const PairFilter *filter, std::size_t limit);
+    /// Joins the pieces' pairs into pairs_, or, when they passed the limit, walks again
+    /// in one piece, which stops at the limit.
+    void joinWalk(const PairFilter *filter, std::size_t limit);
 };
 
 /// The body index stored in a collision object's user data.

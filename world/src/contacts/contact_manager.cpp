@@ -186,7 +186,8 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
     const std::size_t budget = static_cast<std::size_t>(settings.maxPairs);
     const std::size_t planeCount = planePairs_.contacts.size() + planePairs_.sensors.size();
     const std::size_t treeBudget = budget > planeCount ? budget - planeCount : 0;
-    const bool complete = world.broadphase.findPairs(found_, filtering ? &bodies : nullptr, treeBudget);
+    const bool complete = world.broadphase.findPairs(found_, filtering ? &bodies : nullptr, treeBudget,
+                                                     [&](int count, const auto &task) { world.workers.forEachTask(count, task); });
     found_.contacts.insert(found_.contacts.end(), planePairs_.contacts.begin(), planePairs_.contacts.end());
     found_.sensors.insert(found_.sensors.end(), planePairs_.sensors.begin(), planePairs_.sensors.end());
     found_.filtered += planePairs_.filtered;
