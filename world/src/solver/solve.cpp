@@ -3,6 +3,7 @@
 // bodies through addVelocity / addRotation; then, after integration, penetration
 // recovered without adding energy: pseudo-velocities (SplitImpulse) or a rigid relax
 // pass (SoftStep).
+#include <atomic>
 #include <cmath>
 
 #include "solver/constraint_solver.h"
@@ -19,17 +20,21 @@ DepthFrame depthFrame(const RigidBody &a, const RigidBody &b, const Vector3 &nor
             (a.getPosition() - b.getPosition()).dot(normal)};
 }
 
-// Gives body `index` the solver's change of velocity and rotation. A change that is not
-// finite (the solve overflowed for this body) isolates the body, as a non-finite state
-// does, so that the rest of the world steps on.
-void changeVelocities(WorldState &world, std::uint32_t index, const Vector3 &dv, const Vector3 &dw) {
+// Gives body `index` the solver's change of velocity and rotation; false, changing
+// nothing, when the change is not finite (the solve overflowed for this body): the caller
+// then isolates the body, as a non-finite state does, so that the rest of the world
+// steps on.
+bool changeVelocities(WorldState &world, std::uint32_t index, const Vector3 &dv, const Vector3 &dw) {
     RigidBody &body = world.bodies[index].body;
-    if (!(body.getVelocity() + dv).allFinite() || !(body.getRotation() + dw).allFinite()) {
-        world.isolate(index);
-        return;
-    }
+    if (!(body.getVelocity() + dv).allFinite() || !(body.getRotation() + dw).allFinite()) return false;
     body.addVelocity(dv);
     body.addRotation(dw);
+    return true;
+}
+
+// The same, isolating the body when the change is not finite (on the stepping thread).
+void changeOrIsolate(WorldState &world, std::uint32_t index, const Vector3 &dv, const Vector3 &dw) {
+    if (!changeVelocities(world, index, dv, dw)) world.isolate(index);
 }
 
 }  // namespace
@@ -49,18 +54,23 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     // unbalanced box spinning at 6 rad/s on a frictionless floor gained 12% of its energy
     // in 20 s at 4 sub-steps; taken once, it loses 17% (the contacts cancel the tilt the
     // step gives, at first order in dt), which a first-order step may, but never gains.
+    //
+    // Each body on its own, in chunks shared between the threads; the bodies to isolate
+    // are isolated after, in order (isolation is not for worker threads).
     const bool gyroscopic = settings.integrator == Integrator::NewtonEulerGyroscopic ||
                             settings.integrator == Integrator::NewtonEulerImplicit;
-    for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+    overflowed_.assign(bodies.simulated.size(), 0);
+    std::atomic<int> gyroscopicBodies{0};
+    world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         SolverBody &sb = bodies_[k + 1];
         if (r.isolated) {
             sb = SolverBody();  // immovable from now on: its state reaches no one
-            continue;
+            return;
         }
         if (gyroscopic && firstSubstep && !r.body.hasIsotropicInertia()) {
             r.body.applyGyroscopicStep(GyroscopicStep::Midpoint, h * world.plan.substeps);
-            ++stats.gyroscopicBodies;
+            gyroscopicBodies.fetch_add(1, std::memory_order_relaxed);
         }
         const Vector3 a = r.body.getAcceleration() + r.body.getAccumulatedForce() * sb.invMass;
         // The body's current inertia, as integrate(h) uses, not the step's (sb.invInertia).
@@ -74,10 +84,13 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         if (!std::isfinite(predictedV_[k].squaredNorm() + predictedW_[k].squaredNorm())) {
             // A velocity beyond ~1e154 m/s would overflow impulses: isolate the body
             // before any contact carries it to a neighbour.
-            world.isolate(bodies.simulated[k]);
+            overflowed_[k] = 1;
             sb = SolverBody();
         }
-    }
+    });
+    stats.gyroscopicBodies += gyroscopicBodies.load(std::memory_order_relaxed);
+    for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
+        if (overflowed_[k]) world.isolate(bodies.simulated[k]);
 
     // Current separations from the anchors (positions move only between sub-steps), and
     // the targets they give. In the first sub-step the bodies are where the narrowphase
@@ -142,10 +155,13 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     // step turns w into angular momentum through the current one: it is given that
     // impulse (I_start dw) instead, or a body whose contacts cancel its torque-free wobble
     // in every sub-step would gain energy (docs/solver.md).
+    //
+    // Each body on its own, in chunks shared between the threads, as above.
     const bool conserving = settings.integrator == Integrator::MomentumConserving;
-    for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+    overflowed_.assign(bodies.simulated.size(), 0);
+    world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
-        if (r.isolated) continue;
+        if (r.isolated) return;
         const SolverBody &sb = bodies_[k + 1];
         const Vector3 dv =
             linearFactor_[k] > 0 ? Vector3((toVector3(sb.v) - predictedV_[k]) / linearFactor_[k]) : Vector3::Zero();
@@ -156,8 +172,10 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
                 dw = r.body.getInverseInertiaTensorWorld() * sb.invInertia.inverse() * dw;
             dw /= angularFactor_[k];
         }
-        changeVelocities(world, bodies.simulated[k], dv, dw);
-    }
+        overflowed_[k] = !changeVelocities(world, bodies.simulated[k], dv, dw);
+    });
+    for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
+        if (overflowed_[k]) world.isolate(bodies.simulated[k]);
 }
 
 // The warm start (without split impulse: loadVelocityPasses makes it) and each velocity
@@ -230,7 +248,7 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
         for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
             BodyRecord &r = bodies[bodies.simulated[k]];
             if (r.isolated) continue;
-            changeVelocities(world, bodies.simulated[k], toVector3(bodies_[k + 1].v) - r.body.getVelocity(),
+            changeOrIsolate(world, bodies.simulated[k], toVector3(bodies_[k + 1].v) - r.body.getVelocity(),
                              toVector3(bodies_[k + 1].w) - r.body.getRotation());
         }
         stats.positionIterations += settings.positionIterations;
@@ -301,7 +319,7 @@ void ConstraintSolver::applyRestitution(WorldState &world) {
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         if (r.isolated) continue;
-        changeVelocities(world, bodies.simulated[k], toVector3(bodies_[k + 1].v) - r.body.getVelocity(),
+        changeOrIsolate(world, bodies.simulated[k], toVector3(bodies_[k + 1].v) - r.body.getVelocity(),
                          toVector3(bodies_[k + 1].w) - r.body.getRotation());
     }
 }
