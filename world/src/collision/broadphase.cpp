@@ -202,70 +202,57 @@ bool Broadphase::mustWalk(const PairFilter *filter, std::size_t limit) {
 int Broadphase::cutWalk() {
     // The whole walk, then each piece replaced by the pieces it walks in turn (dropping
     // those that find nothing), until there are enough or none can be cut.
-    cutting_.clear();
+    std::vector<WalkNodes> &cut = cut_, &next = nextCut_;
+    cut.clear();
     walked_.store(0, std::memory_order_relaxed);
     if (const Node *awake = awake_.empty() ? nullptr : awake_.getTree().getRoot()) {
-        cutting_.push_back({awake, nullptr, {}});
+        cut.push_back({awake, nullptr});
         for (const auto *other : {&asleep_, &static_})
-            if (!other->empty()) cutting_.push_back({awake, other->getTree().getRoot(), {}});
+            if (!other->empty()) cut.push_back({awake, other->getTree().getRoot()});
     }
-    std::vector<WalkPiece> &cut = pieces_;
-    std::size_t count = cutting_.size();
-    for (bool split = true; split && count < kWalkPieces;) {
+    for (bool split = true; split && cut.size() < kWalkPieces;) {
         split = false;
-        std::size_t next = 0;
-        const auto add = [&](const Node *first, const Node *second) {
-            if (cut.size() <= next) cut.emplace_back();
-            cut[next].first = first;
-            cut[next].second = second;
-            ++next;
-        };
-        for (std::size_t k = 0; k < count; ++k) {
-            const Node *first = cutting_[k].first;
-            const Node *second = cutting_[k].second;
+        next.clear();
+        for (const WalkNodes &piece : cut) {
+            const Node *first = piece.first;
+            const Node *second = piece.second;
             if (!second) {
-                split = split || !first->isLeaf();
                 if (first->isLeaf()) continue;
-                add(first->children[0], nullptr);
-                add(first->children[1], nullptr);
-                add(first->children[0], first->children[1]);
+                split = true;
+                next.push_back({first->children[0], nullptr});
+                next.push_back({first->children[1], nullptr});
+                next.push_back({first->children[0], first->children[1]});
             } else if (!first->bv.overlap(second->bv)) {
                 split = true;
             } else if (first->isLeaf() && second->isLeaf()) {
-                add(first, second);
+                next.push_back(piece);
             } else {
                 split = true;
                 if (splitsFirst(first, second)) {
-                    add(first->children[0], second);
-                    add(first->children[1], second);
+                    next.push_back({first->children[0], second});
+                    next.push_back({first->children[1], second});
                 } else {
-                    add(first, second->children[0]);
-                    add(first, second->children[1]);
+                    next.push_back({first, second->children[0]});
+                    next.push_back({first, second->children[1]});
                 }
             }
         }
-        count = next;
-        cutting_.resize(count);
-        for (std::size_t k = 0; k < count; ++k) {
-            cutting_[k].first = cut[k].first;
-            cutting_[k].second = cut[k].second;
-        }
+        cut.swap(next);
     }
-    if (pieces_.size() < count) pieces_.resize(count);
-    for (std::size_t k = 0; k < count; ++k) {
-        pieces_[k].first = cutting_[k].first;
-        pieces_[k].second = cutting_[k].second;
+    if (pieces_.size() < cut.size()) pieces_.resize(cut.size());
+    for (std::size_t k = 0; k < cut.size(); ++k) {
+        pieces_[k].nodes = cut[k];
         pieces_[k].pairs.clear();
     }
-    pieceCount_ = static_cast<int>(count);
+    pieceCount_ = static_cast<int>(cut.size());
     return pieceCount_;
 }
 
 void Broadphase::walkPiece(int piece, const PairFilter *filter, std::size_t limit) {
     WalkPiece &p = pieces_[static_cast<std::size_t>(piece)];
     PairWalk walk{&p.pairs, filter, limit, &walked_};
-    if (p.second) walkBetween(p.first, p.second, walk);
-    else walkWithin(p.first, walk);
+    if (p.nodes.second) walkBetween(p.nodes.first, p.nodes.second, walk);
+    else walkWithin(p.nodes.first, walk);
 }
 
 void Broadphase::joinWalk(const PairFilter *filter, std::size_t limit) {

@@ -187,14 +187,18 @@ private:
     bool complete_ = true;              ///< Whether that walk found every pair.
 
     /// A piece of the walk: the pairs within the subtree `first` (no `second`), or between
-    /// the subtrees `first` and `second`, with the pairs it found.
-    struct WalkPiece {
+    /// the subtrees `first` and `second`.
+    struct WalkNodes {
         const fcl::detail::NodeBase<fcl::AABBd> *first = nullptr;
         const fcl::detail::NodeBase<fcl::AABBd> *second = nullptr;
+    };
+    /// A piece and the pairs it found.
+    struct WalkPiece {
+        WalkNodes nodes;
         BroadphasePairs pairs;
     };
     std::vector<WalkPiece> pieces_;  ///< The pieces of the walk (their lists kept between steps).
-    std::vector<WalkPiece> cutting_; ///< cutWalk()'s scratch.
+    std::vector<WalkNodes> cut_, nextCut_;  ///< cutWalk()'s scratch.
     int pieceCount_ = 0;             ///< Pieces in use.
     std::atomic<std::size_t> walked_{0};  ///< Pairs the pieces found, all kinds.
 
