@@ -66,6 +66,8 @@ bool walkWithin(const Node *node, PairWalk &walk) {
 
 // Pieces a walk is cut into, at least: a few per thread, so that uneven pieces even out.
 constexpr std::size_t kWalkPieces = 32;
+// A walk of fewer awake bodies than this is not cut: it is too short to share.
+constexpr std::size_t kMinCutLeaves = 256;
 
 // An object that is only a box: what the trees test against in overlapping().
 class BoxProbe : public fcl::CollisionObjectd {
@@ -210,7 +212,7 @@ int Broadphase::cutWalk() {
         for (const auto *other : {&asleep_, &static_})
             if (!other->empty()) cut.push_back({awake, other->getTree().getRoot()});
     }
-    for (bool split = true; split && cut.size() < kWalkPieces;) {
+    for (bool split = awake_.size() >= kMinCutLeaves; split && cut.size() < kWalkPieces;) {
         split = false;
         next.clear();
         for (const WalkNodes &piece : cut) {

@@ -155,6 +155,8 @@ public:
             for (int i = 0; i < count; ++i) task(i);
         });
     }
+    /// Pieces the last walk was cut into (for tests: whether threads can share it).
+    int walkPieces() const { return pieceCount_; }
     /// The next findPairs() walks the trees: what a filter says of some pair changed.
     void invalidate() { changed_ = true; }
     /// The root of `tree`'s hierarchy (null when empty), for queries that walk it; a
