@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "collision/broadphase.h"
 #include "collision/shape_contact.h"
 
 namespace cyclone::detail {
@@ -16,6 +17,8 @@ namespace {
 constexpr real kFractionTolerance = 1e-7;
 // Most poses the sampled sweep tests (a hull with a tiny inner radius moving far).
 constexpr int kMaxSamples = 4096;
+// Shapes whose boxes lie farther apart than this do not touch, m.
+constexpr real kBoxesApartGap = 0.001;
 
 // Calls visit(geometry, pose) for the shape, or for each child of a compound.
 template <class Visit>
@@ -37,6 +40,10 @@ bool overlap(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, con
     static thread_local fcl::CollisionResultd result;
     return anyPart(a, poseA, [&](const fcl::CollisionGeometryd *ga, const Matrix4 &pa) {
         return anyPart(b, poseB, [&](const fcl::CollisionGeometryd *gb, const Matrix4 &pb) {
+            // Boxes clearly apart (beyond libccd's 1e-6 tolerance) rule the contact
+            // test out; a half-space has no box.
+            const bool bounded = ga->getNodeType() != fcl::GEOM_HALFSPACE && gb->getNodeType() != fcl::GEOM_HALFSPACE;
+            if (bounded && boxesApart(*ga, pa, *gb, pb, kBoxesApartGap)) return false;
             result.clear();
             return collideShapes(ga, pa, gb, pb, request, result) > 0;
         });
