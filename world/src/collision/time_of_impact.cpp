@@ -1,13 +1,14 @@
 // Time of impact between two shapes moving from one pose to another over a step, by
 // sampling and bisection with FCL's contact test (collideShapes: fcl::collide without its
-// allocations; why not fcl::continuousCollide: docs/solver.md).
+// allocations; two boxes by the separating axes, box_box.h; why not
+// fcl::continuousCollide: docs/solver.md).
 #include "collision/time_of_impact.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "collision/broadphase.h"
+#include "collision/box_box.h"
 #include "collision/shape_contact.h"
 
 namespace cyclone::detail {
@@ -17,8 +18,6 @@ namespace {
 constexpr real kFractionTolerance = 1e-7;
 // Most poses the sampled sweep tests (a hull with a tiny inner radius moving far).
 constexpr int kMaxSamples = 4096;
-// Shapes whose boxes lie farther apart than this do not touch, m.
-constexpr real kBoxesApartGap = 0.001;
 
 // Calls visit(geometry, pose) for the shape, or for each child of a compound.
 template <class Visit>
@@ -40,10 +39,14 @@ bool overlap(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, con
     static thread_local fcl::CollisionResultd result;
     return anyPart(a, poseA, [&](const fcl::CollisionGeometryd *ga, const Matrix4 &pa) {
         return anyPart(b, poseB, [&](const fcl::CollisionGeometryd *gb, const Matrix4 &pb) {
-            // Boxes clearly apart (beyond libccd's 1e-6 tolerance) rule the contact
-            // test out; a half-space has no box.
-            const bool bounded = ga->getNodeType() != fcl::GEOM_HALFSPACE && gb->getNodeType() != fcl::GEOM_HALFSPACE;
-            if (bounded && boxesApart(*ga, pa, *gb, pb, kBoxesApartGap)) return false;
+            // Two boxes by the separating axes (touching counts, as in FCL): FCL's own box
+            // test fills vectors of its own on every call.
+            if (ga->getNodeType() == fcl::GEOM_BOX && gb->getNodeType() == fcl::GEOM_BOX) {
+                Vector3 normal;
+                real depth = 0;
+                return boxBoxAxis(0.5 * static_cast<const fcl::Boxd *>(ga)->side, pa,
+                                  0.5 * static_cast<const fcl::Boxd *>(gb)->side, pb, normal, depth);
+            }
             result.clear();
             return collideShapes(ga, pa, gb, pb, request, result) > 0;
         });
