@@ -32,7 +32,8 @@ inline bool boxContains(const fcl::AABBd &outer, const fcl::AABBd &inner) {
 inline fcl::AABBd placedBox(const fcl::CollisionGeometryd &geometry, const fcl::Transform3d &pose, double margin = 0) {
     const fcl::AABBd &local = geometry.aabb_local;
     const fcl::Vector3d centre = pose * boxCentre(local);
-    const fcl::Vector3d half = pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) + fcl::Vector3d::Constant(margin);
+    const fcl::Vector3d half =
+        pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) + fcl::Vector3d::Constant(margin);
     return fcl::AABBd(centre - half, centre + half);
 }
 

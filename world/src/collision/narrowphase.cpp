@@ -213,7 +213,8 @@ int collideCompound(const CollisionShape &a, const Matrix4 &poseA, const Collisi
     for (std::size_t i = 0; i < countA; ++i) {
         const CollisionShape &childA = a.isCompound() ? *a.children()[i].shape : a;
         const Matrix4 childPoseA = a.isCompound() ? partPose(a, i, poseA) : poseA;
-        const fcl::AABBd boxA = unbounded ? fcl::AABBd() : placedBox(*childA.geometry(), childPoseA, settings.speculativeDistance);
+        const fcl::AABBd boxA =
+            unbounded ? fcl::AABBd() : placedBox(*childA.geometry(), childPoseA, settings.speculativeDistance);
         for (std::size_t j = 0; j < countB; ++j) {
             const CollisionShape &childB = b.isCompound() ? *b.children()[j].shape : b;
             const Matrix4 childPoseB = b.isCompound() ? partPose(b, j, poseB) : poseB;

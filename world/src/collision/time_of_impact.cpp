@@ -145,8 +145,11 @@ Matrix4 interpolate(const Matrix4 &from, const Matrix4 &to, real t) {
     return pose;
 }
 
-Impact timeOfImpact(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b,
-                    const Matrix4 &b0, const Matrix4 &b1, real &t) {
+namespace {
+
+// timeOfImpact() with `t` null: stops at the first sample in contact, unrefined.
+Impact sweep(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b, const Matrix4 &b0,
+             const Matrix4 &b1, real *t) {
     if (overlap(a, a0, b, b0)) return Impact::Overlapping;
     const real motion = travel(a0, a1, a.boundingRadius) + travel(b0, b1, b.boundingRadius);
     if (!(motion > 0)) return Impact::None;
@@ -163,16 +166,29 @@ Impact timeOfImpact(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, c
             free = s;
             continue;
         }
+        if (!t) return Impact::Hit;
         real hit = s;
         while (hit - free > tolerance) {
             const real mid = 0.5 * (free + hit);
             if (overlap(a, interpolate(a0, a1, mid), b, interpolate(b0, b1, mid))) hit = mid;
             else free = mid;
         }
-        t = free;
+        *t = free;
         return Impact::Hit;
     }
     return Impact::None;
+}
+
+}  // namespace
+
+Impact timeOfImpact(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b,
+                    const Matrix4 &b0, const Matrix4 &b1, real &t) {
+    return sweep(a, a0, a1, b, b0, b1, &t);
+}
+
+Impact meetDuring(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b, const Matrix4 &b0,
+                  const Matrix4 &b1) {
+    return sweep(a, a0, a1, b, b0, b1, nullptr);
 }
 
 }  // namespace cyclone::detail
