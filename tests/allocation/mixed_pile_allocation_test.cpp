@@ -13,9 +13,8 @@ namespace {
 
 constexpr real kPileStep = 1.0 / 60.0;
 
-// At the default manifold reuse. With reuse off, a box-box pair that opens by a hair is
-// swept by the time of impact, whose box-box test is FCL's (boxBox2 fills vectors of its
-// own): 8 allocations in the 120 counted steps, so that case is not counted here.
+// At the default manifold reuse (the time of impact's box-box test, which a pair opening
+// by a hair goes through, is counted in Allocation.TimeOfImpactOfTwoBoxesAllocatesNothing).
 TEST(StepAllocation, SettledMixedPileAllocatesNothing) {
     if (!kCountingAllocator) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
     for (const int threads : {1, 2}) {
@@ -26,8 +25,7 @@ TEST(StepAllocation, SettledMixedPileAllocatesNothing) {
         World world(settings);
         addMixedPile(world, 4, 3);  // 48 bodies
         // Falls and settles: with landing points (manifold_clipping.cpp) a body of the 48
-        // still moved at step 300, which sends pairs through the time of impact's FCL box
-        // test (5 allocations); by step 600 all rest.
+        // still moved at step 300; by step 600 all rest.
         for (int i = 0; i < 600; ++i) world.step(kPileStep);
         long allocations = 0;
         long visited = 0;

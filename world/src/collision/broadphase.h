@@ -27,6 +27,25 @@ inline bool boxContains(const fcl::AABBd &outer, const fcl::AABBd &inner) {
     return !(outer.min_.array() > inner.min_.array()).any() && !(outer.max_.array() < inner.max_.array()).any();
 }
 
+/// The box of `geometry` placed at `pose`, grown by `margin` (m): its local box turned, as
+/// a body's object is placed below.
+inline fcl::AABBd placedBox(const fcl::CollisionGeometryd &geometry, const fcl::Transform3d &pose, double margin = 0) {
+    const fcl::AABBd &local = geometry.aabb_local;
+    const fcl::Vector3d centre = pose * boxCentre(local);
+    const fcl::Vector3d half =
+        pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) + fcl::Vector3d::Constant(margin);
+    return fcl::AABBd(centre - half, centre + half);
+}
+
+/// Whether the placed boxes of two bounded geometries (not a half-space) lie more than
+/// `gap` apart along some axis (m): the shapes in them are then more than `gap` apart.
+inline bool boxesApart(const fcl::CollisionGeometryd &a, const fcl::Transform3d &poseA,
+                       const fcl::CollisionGeometryd &b, const fcl::Transform3d &poseB, double gap) {
+    const fcl::AABBd boxA = placedBox(a, poseA, gap);
+    const fcl::AABBd boxB = placedBox(b, poseB);
+    return (boxA.min_.array() > boxB.max_.array()).any() || (boxB.min_.array() > boxA.max_.array()).any();
+}
+
 /// A body's FCL collision object whose broadphase box is fattened by a margin, so that
 /// a body moving a little stays in its tree node and the tree is not rebuilt each step.
 class BodyObject : public fcl::CollisionObjectd {

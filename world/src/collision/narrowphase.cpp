@@ -188,13 +188,17 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
     return -1;
 }
 
-// The box of a shape placed at `pose`, widened by `margin`: the world box of its local
-// one turned, as the broadphase places bodies.
-fcl::AABBd placedBox(const CollisionShape &shape, const Matrix4 &pose, real margin) {
-    const fcl::AABBd &local = shape.geometry()->aabb_local;
-    const Vector3 centre = pose * boxCentre(local);
-    const Vector3 half = pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) + Vector3::Constant(margin);
-    return fcl::AABBd(centre - half, centre + half);
+// Whether two solids (not planes or meshes) lie farther apart than `gap`, by their boxes
+// and by their extents along the line between their origins; false when unsure.
+bool solidsApart(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                 real gap) {
+    if (boxesApart(*a.geometry(), poseA, *b.geometry(), poseB, gap)) return true;
+    const Vector3 between = poseB.translation() - poseA.translation();
+    const real length = between.norm();
+    if (!(length > kMinNormalLength)) return false;
+    const Vector3 u = between / length;
+    // B's nearest extent along u beyond A's farthest one: a separating axis.
+    return (b.supportPoint(poseB, -u, -1) - a.supportPoint(poseA, u, -1)).dot(u) > gap;
 }
 
 // A compound against any shape (or another compound): each pair of children whose boxes
@@ -209,11 +213,12 @@ int collideCompound(const CollisionShape &a, const Matrix4 &poseA, const Collisi
     for (std::size_t i = 0; i < countA; ++i) {
         const CollisionShape &childA = a.isCompound() ? *a.children()[i].shape : a;
         const Matrix4 childPoseA = a.isCompound() ? partPose(a, i, poseA) : poseA;
-        const fcl::AABBd boxA = unbounded ? fcl::AABBd() : placedBox(childA, childPoseA, settings.speculativeDistance);
+        const fcl::AABBd boxA =
+            unbounded ? fcl::AABBd() : placedBox(*childA.geometry(), childPoseA, settings.speculativeDistance);
         for (std::size_t j = 0; j < countB; ++j) {
             const CollisionShape &childB = b.isCompound() ? *b.children()[j].shape : b;
             const Matrix4 childPoseB = b.isCompound() ? partPose(b, j, poseB) : poseB;
-            if (!unbounded && !boxA.overlap(placedBox(childB, childPoseB, 0)))
+            if (!unbounded && !boxA.overlap(placedBox(*childB.geometry(), childPoseB)))
                 continue;
             const std::size_t first = out.size();
             const int n = collide(childA, childPoseA, childB, childPoseB, settings, out);
@@ -240,6 +245,13 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
         if (appended >= 0) return appended;
     }
     const bool withMesh = typeA == ShapeType::Mesh || typeB == ShapeType::Mesh;
+    const bool withPlane = typeA == ShapeType::Plane || typeB == ShapeType::Plane;
+    // Two solids get a manifold below only when FCL finds them touching or apart by less
+    // than the reach: a separating axis farther apart than that (by more than FCL's
+    // tolerances) rules both out, for the price of two boxes and two support points
+    // instead of MPR and GJK.
+    constexpr real kBoxesApartMargin = 0.001;  // m, far above libccd's 1e-6 tolerances
+    if (!withMesh && !withPlane && solidsApart(a, poseA, b, poseB, settings.reach + kBoxesApartMargin)) return 0;
 
     static const fcl::CollisionRequestd shapeRequest = makeRequest(4);
     static const fcl::CollisionRequestd meshRequest = makeRequest(kMaxFclContacts);
@@ -264,7 +276,6 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
         r.triangleB = static_cast<int>(swapped ? contact.b1 : contact.b2);
     }
     const real speculative = std::max(settings.speculativeDistance, settings.reach);
-    const bool withPlane = typeA == ShapeType::Plane || typeB == ShapeType::Plane;
     if (withMesh && !withPlane)
         return meshContacts(a, poseA, b, poseB, settings.speculativeDistance, settings.reach, raw, rawCount, out);
     const bool roundPair = cylinderRoundPair(typeA, typeB);

@@ -53,7 +53,8 @@ struct NarrowphaseSettings {
 /// cylinder or a capsule where a round side faces the other (cylinder_pairs.h; FCL
 /// confirms the contact unless two round sides face each other) and a plane against any
 /// solid shape have tests of their own; every other pair goes through FCL's contact test
-/// (GST_LIBCCD, through collideShapes), and so does every pair with `settings.forceFcl`.
+/// (GST_LIBCCD, through collideShapes), and so does every pair with `settings.forceFcl`,
+/// unless a box or axis shows the two more than the reach apart (nothing appended).
 /// Normals point from A to B whatever order FCL used internally; near-zero normals are
 /// dropped. A mesh pushes a shape out to the side of each triangle that Shape::sides
 /// allows (both sides: the side the shape's centre is on), and contacts on its inner

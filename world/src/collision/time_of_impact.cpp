@@ -1,12 +1,14 @@
 // Time of impact between two shapes moving from one pose to another over a step, by
 // sampling and bisection with FCL's contact test (collideShapes: fcl::collide without its
-// allocations; why not fcl::continuousCollide: docs/solver.md).
+// allocations; two boxes by the separating axes, box_box.h; why not
+// fcl::continuousCollide: docs/solver.md).
 #include "collision/time_of_impact.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "collision/box_box.h"
 #include "collision/shape_contact.h"
 
 namespace cyclone::detail {
@@ -37,6 +39,14 @@ bool overlap(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, con
     static thread_local fcl::CollisionResultd result;
     return anyPart(a, poseA, [&](const fcl::CollisionGeometryd *ga, const Matrix4 &pa) {
         return anyPart(b, poseB, [&](const fcl::CollisionGeometryd *gb, const Matrix4 &pb) {
+            // Two boxes by the separating axes (touching counts, as in FCL): FCL's own box
+            // test fills vectors of its own on every call.
+            if (ga->getNodeType() == fcl::GEOM_BOX && gb->getNodeType() == fcl::GEOM_BOX) {
+                Vector3 normal;
+                real depth = 0;
+                return boxBoxAxis(0.5 * static_cast<const fcl::Boxd *>(ga)->side, pa,
+                                  0.5 * static_cast<const fcl::Boxd *>(gb)->side, pb, normal, depth);
+            }
             result.clear();
             return collideShapes(ga, pa, gb, pb, request, result) > 0;
         });
@@ -135,8 +145,11 @@ Matrix4 interpolate(const Matrix4 &from, const Matrix4 &to, real t) {
     return pose;
 }
 
-Impact timeOfImpact(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b,
-                    const Matrix4 &b0, const Matrix4 &b1, real &t) {
+namespace {
+
+// timeOfImpact() with `t` null: stops at the first sample in contact, unrefined.
+Impact sweep(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b, const Matrix4 &b0,
+             const Matrix4 &b1, real *t) {
     if (overlap(a, a0, b, b0)) return Impact::Overlapping;
     const real motion = travel(a0, a1, a.boundingRadius) + travel(b0, b1, b.boundingRadius);
     if (!(motion > 0)) return Impact::None;
@@ -153,16 +166,29 @@ Impact timeOfImpact(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, c
             free = s;
             continue;
         }
+        if (!t) return Impact::Hit;
         real hit = s;
         while (hit - free > tolerance) {
             const real mid = 0.5 * (free + hit);
             if (overlap(a, interpolate(a0, a1, mid), b, interpolate(b0, b1, mid))) hit = mid;
             else free = mid;
         }
-        t = free;
+        *t = free;
         return Impact::Hit;
     }
     return Impact::None;
+}
+
+}  // namespace
+
+Impact timeOfImpact(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b,
+                    const Matrix4 &b0, const Matrix4 &b1, real &t) {
+    return sweep(a, a0, a1, b, b0, b1, &t);
+}
+
+Impact meetDuring(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b, const Matrix4 &b0,
+                  const Matrix4 &b1) {
+    return sweep(a, a0, a1, b, b0, b1, nullptr);
 }
 
 }  // namespace cyclone::detail

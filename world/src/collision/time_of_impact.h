@@ -47,9 +47,15 @@ enum class Impact {
 /// kSweepTolerance (or 1e-7 of the motion, if that is larger). Poses are sampled no
 /// further apart than a's inner radius (b's motion included), so that consecutive poses
 /// of `a` overlap and its centre cannot cross a surface unseen; each is tested with
-/// fcl::collide, and the first interval that ends in contact is bisected.
+/// FCL's contact test (two boxes by their separating axes, box_box.h), and the first
+/// interval that ends in contact is bisected.
 Impact timeOfImpact(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b,
                     const Matrix4 &b0, const Matrix4 &b1, real &t);
+
+/// What timeOfImpact() reports for the same motions, without finding the time: it stops
+/// at the first sampled pose in contact instead of bisecting towards the first contact.
+Impact meetDuring(const SweptShape &a, const Matrix4 &a0, const Matrix4 &a1, const SweptShape &b, const Matrix4 &b0,
+                  const Matrix4 &b1);
 
 /// The distance between `a` and `b` and the unit direction from a's nearest point to
 /// b's, by fcl::distance; false when they touch or FCL gives no direction.

@@ -99,9 +99,8 @@ Matrix4 poseAfter(const BodyRecord &r, real dt, const Vector3 &fall) {
 // and a body passing by a corner would be stopped by it without this test.
 bool meetWithinStep(const BodyRecord &a, const BodyRecord &b, real dt, const Vector3 &fall) {
     if (a.isPlane || b.isPlane) return true;  // a half-space's normal is exact: closing() is the test
-    real t = 0;
-    return timeOfImpact(sweptShape(*a.shape), a.body.getTransform(), poseAfter(a, dt, fall), sweptShape(*b.shape),
-                        b.body.getTransform(), poseAfter(b, dt, fall), t) != Impact::None;
+    return meetDuring(sweptShape(*a.shape), a.body.getTransform(), poseAfter(a, dt, fall), sweptShape(*b.shape),
+                      b.body.getTransform(), poseAfter(b, dt, fall)) != Impact::None;
 }
 
 // B's pose seen from A (the manifold-reuse test compares it with the last narrowphase's):
