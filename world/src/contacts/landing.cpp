@@ -36,12 +36,15 @@ real pairTolerance(const BodyRecord &a, const BodyRecord &b, real slop) {
 
 }  // namespace
 
-// Whether the passes may move the body: awake and moved by this step, and in no joint
-// (a push would open the joint, which the next step's projection closes only as far as
-// the contacts then allow).
+// Whether the passes may move the body: awake and moved fast by this step, and in no
+// joint (a push would open the joint, which the next step's projection closes only as far
+// as the contacts then allow). A body that hardly moved did not make the overlap, and
+// its pairs with third bodies (the ground under it) are not tested: pushed, it would be
+// driven into them unseen.
 bool LandingCorrection::movable(const BodyStore &bodies, std::uint32_t index) const {
     const BodyRecord &r = bodies[index];
-    return r.simulated && !r.isolated && (jointed_.empty() || !jointed_[index]);
+    return r.simulated && !r.isolated && index < movedRound_.size() && movedRound_[index] >= 0 &&
+           (jointed_.empty() || !jointed_[index]);
 }
 
 void LandingCorrection::correct(WorldState &world) {
@@ -114,6 +117,9 @@ bool LandingCorrection::detect(WorldState &world) {
     const real slop = world.settings.penetrationSlop;
     NarrowphaseSettings narrowphase;
     narrowphase.speculativeDistance = world.settings.speculativeDistance;
+    // Shapes a hair apart (a box just above the ground) get points too, so that a push
+    // towards them is held; only the pairs with a test of their own give them, at no cost.
+    narrowphase.touchMargin = world.settings.speculativeDistance;
     // Each pair on its own, in chunks shared between the threads; the points are then
     // taken in the pairs' order, so that they do not depend on the thread count.
     const std::size_t count = pairs_.size();
@@ -201,13 +207,10 @@ int LandingCorrection::push(WorldState &world, int round) {
         if (!any) break;
     }
     // A body pushed farther than a quarter of its tolerance in all has its pairs tested
-    // again in the next round.
+    // again in the next round (it moved fast, so it is in activeBodies_ already).
     const real slop = world.settings.penetrationSlop;
-    for (const Move &move : moved_) {
-        if (!(move.length > 0.25 * toleranceFor(bodies[move.body].boundingRadius, slop))) continue;
-        if (movedRound_[move.body] < 0) activeBodies_.push_back(move.body);
-        movedRound_[move.body] = round;
-    }
+    for (const Move &move : moved_)
+        if (move.length > 0.25 * toleranceFor(bodies[move.body].boundingRadius, slop)) movedRound_[move.body] = round;
     for (const Move &move : moved_) moveSlot_[move.body] = -1;
     return pushed;
 }
