@@ -20,6 +20,11 @@ constexpr real kLandingFraction = 0.1;
 // their tolerance (a push may take a body into a third, or, on a round side, off the
 // point that was pushed).
 constexpr int kRounds = 4;
+// A pair the step began deeper in than this times its tolerance has its bodies pushed
+// too, though they did not move fast: 8 mm at the 5 mm tolerance, under the 1 cm a pile
+// may show; a pile held at the tolerance itself, pushed every step, took longer to sleep
+// (docs/contacts_and_sleep.md, "The deepest contact traced").
+constexpr real kRestingFactor = 1.6;
 // Nonlinear Gauss-Seidel passes a round makes over its points.
 constexpr int kPasses = 8;
 
@@ -52,7 +57,8 @@ void LandingCorrection::correct(WorldState &world) {
     BodyStore &bodies = world.bodies;
     const real slop = world.settings.penetrationSlop;
     // The fast bodies: those that moved (their collision object still holds the step's
-    // start) more than half their own tolerance. They count as moved in round 0.
+    // start) more than half their own tolerance, and the bodies of deep resting pairs.
+    // They count as moved in round 0.
     activeBodies_.clear();
     for (std::uint32_t index : bodies.simulated) {
         const BodyRecord &r = bodies[index];
@@ -62,6 +68,24 @@ void LandingCorrection::correct(WorldState &world) {
         if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
         movedRound_[index] = 0;
         activeBodies_.push_back(index);
+    }
+    // The bodies of a pair the step began deeper in than kRestingFactor times its
+    // tolerance (a body sunk under a pile's load, which the solver does not carry).
+    for (std::uint32_t p : world.contacts.touchingPairs) {
+        const PairState &pair = world.contacts.pairs[p];
+        const real deepest = kRestingFactor * pairTolerance(bodies[pair.a], bodies[pair.b], slop);
+        bool deep = false;
+        for (const ManifoldState &m : pair.manifolds)
+            for (int i = 0; i < m.count && !deep; ++i) deep = m.points[i].depth > deepest;
+        if (!deep) continue;
+        for (const std::uint32_t index : {pair.a, pair.b}) {
+            const BodyRecord &r = bodies[index];
+            if (!r.simulated || r.isolated || !r.object) continue;
+            if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
+            if (movedRound_[index] == 0) continue;
+            movedRound_[index] = 0;
+            activeBodies_.push_back(index);
+        }
     }
     if (activeBodies_.empty()) return;
     jointed_.clear();
