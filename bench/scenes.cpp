@@ -112,9 +112,9 @@ Scene pyramid(int base) {
 }
 
 // columns x rows x layers bodies, one in five of each kind, dropped from a grid 0.95 m
-// apart with random orientations (none overlapping another) into a walled box of columns x rows metres with 6 m
-// walls (mixed1000: 10 x 10 x 10 into 10 m x 10 m; mixed5000: 25 x 20 x 10 into
-// 25 m x 20 m, the same pile per square metre).
+// apart with random orientations (none overlapping another) into a walled box of
+// columns x rows metres with 6 m walls (mixed1000: 10 x 10 x 10 into 10 m x 10 m;
+// mixed5000: 25 x 20 x 10 into 25 m x 20 m, the same pile per square metre).
 Scene mixed(std::uint64_t seed, int columns, int rows, int layers) {
     Scene scene;
     const int count = columns * rows * layers;
