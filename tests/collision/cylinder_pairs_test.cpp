@@ -165,5 +165,49 @@ TEST(CylinderPairs, StandingCylindersSideBySideApartHaveNoContact) {
     }
 }
 
+TEST(CylinderPairs, RimsMicronsApartClaimNoDepth) {
+    // Two tilted cylinders whose rims are a few micrometres apart (poses of a mixed1000
+    // pile, seeds 3 and 7, where they meet rim to rim): FCL finds no contact, and its
+    // distance gives nearest points so close that the line between them has no
+    // direction; along it the shapes overlap by 31 and 93 mm. The shapes are apart, so no
+    // point may claim more depth than rounding (apartContact's 0.1 mm): with a reach
+    // they get no contact, or one no deeper than that.
+    struct Case {
+        real radiusA, lengthA, radiusB, lengthB;
+        Vector3 positionA, positionB;
+        Quaternion orientationA, orientationB;
+    };
+    const Case cases[] = {
+        {0.28621331456470789, 0.44496822868947777, 0.28466241533115866, 0.41192729371501124,
+         Vector3(3.5992305040507619, 0.24121216095336587, 1.6891250928771462),
+         Vector3(3.3004844940493485, 0.77005067592884346, 1.3387358371878866),
+         Quaternion(0.71317017816891226, -0.68174634612481699, -0.094698620152361204, -0.13282465078900788),
+         Quaternion(0.30756239645804567, 0.70398601411250838, -0.43998896510401125, 0.46499330619447427)},
+        {0.29545628367344901, 0.45201247737566358, 0.26034946740216047, 0.41321704681562399,
+         Vector3(-2.1778550354377972, 1.6076141901747678, 0.18493483288620063),
+         Vector3(-2.1747390450960298, 1.7871671375829656, -0.46465047013316285),
+         Quaternion(-0.38290392706411491, 0.68510494162866786, 0.60835979821856889, -0.11795828714558748),
+         Quaternion(0.10763918782586011, 0.19850605726996512, -0.90038945092189837, 0.37189781814348566)},
+    };
+    for (const Case &c : cases) {
+        const auto a = detail::compileShape(Shape::cylinder(c.radiusA, c.lengthA));
+        const auto b = detail::compileShape(Shape::cylinder(c.radiusB, c.lengthB));
+        const Matrix4 poseA = pose(c.positionA, c.orientationA.normalized());
+        const Matrix4 poseB = pose(c.positionB, c.orientationB.normalized());
+        for (const real reach : {0.0, 0.006, 0.02, 0.1}) {
+            SCOPED_TRACE(reach);
+            detail::NarrowphaseSettings settings;
+            settings.reach = reach;
+            for (int order = 0; order < 2; ++order) {
+                std::vector<Manifold> out;
+                if (order == 0) detail::collide(*a, poseA, *b, poseB, settings, out);
+                else detail::collide(*b, poseB, *a, poseA, settings, out);
+                for (const Manifold &m : out)
+                    for (int i = 0; i < m.count; ++i) EXPECT_LE(m.points[i].depth, 1e-4);
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace cyclone::test

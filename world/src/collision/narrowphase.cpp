@@ -74,6 +74,9 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     // a step (0.3 m/s at 60 Hz) go without, and enter each other at most that far (plus
     // what gravity adds within the step) before their contact acts, m.
     constexpr real kMinDistanceReach = 0.005;
+    // The most the shapes may overlap along the nearest points' line, m (none, but for
+    // rounding).
+    constexpr real kApartNormalError = 1e-4;
     if (!(reach >= kMinDistanceReach)) return 0;
     static const fcl::DistanceRequestd request = [] {
         fcl::DistanceRequestd r(true);
@@ -87,6 +90,9 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     if (!(between.norm() > kMinNormalLength)) return 0;
     const Vector3 normal = between.normalized();
     const Pair pair{a, poseA, -1, b, poseB, -1, reach, reach};
+    // Nearest points a hair apart give no direction: along the line between them the
+    // shapes may overlap deeply, and the clipped points would claim that depth.
+    if (!(pair.overlap(normal) <= kApartNormalError)) return 0;
     return roundPair ? roundPairManifold(pair, normal, out) : clipAlong(pair, normal, out);
 }
 

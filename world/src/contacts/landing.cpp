@@ -20,6 +20,11 @@ constexpr real kLandingFraction = 0.1;
 // their tolerance (a push may take a body into a third, or, on a round side, off the
 // point that was pushed).
 constexpr int kRounds = 4;
+// A pair the step began deeper in than this times its tolerance has its bodies pushed
+// too, though they did not move fast: 8 mm at the 5 mm tolerance, under the 1 cm a pile
+// may show; a pile held at the tolerance itself, pushed every step, took longer to sleep
+// (docs/contacts_and_sleep.md, "The deepest contact traced").
+constexpr real kRestingFactor = 1.6;
 // Nonlinear Gauss-Seidel passes a round makes over its points.
 constexpr int kPasses = 8;
 
@@ -36,12 +41,15 @@ real pairTolerance(const BodyRecord &a, const BodyRecord &b, real slop) {
 
 }  // namespace
 
-// Whether the passes may move the body: awake and moved by this step, and in no joint
-// (a push would open the joint, which the next step's projection closes only as far as
-// the contacts then allow).
+// Whether the passes may move the body: awake and moved fast by this step, and in no
+// joint (a push would open the joint, which the next step's projection closes only as far
+// as the contacts then allow). A body that hardly moved did not make the overlap, and
+// its pairs with third bodies (the ground under it) are not tested: pushed, it would be
+// driven into them unseen.
 bool LandingCorrection::movable(const BodyStore &bodies, std::uint32_t index) const {
     const BodyRecord &r = bodies[index];
-    return r.simulated && !r.isolated && (jointed_.empty() || !jointed_[index]);
+    return r.simulated && !r.isolated && index < movedRound_.size() && movedRound_[index] >= 0 &&
+           (jointed_.empty() || !jointed_[index]);
 }
 
 void LandingCorrection::correct(WorldState &world) {
@@ -49,7 +57,8 @@ void LandingCorrection::correct(WorldState &world) {
     BodyStore &bodies = world.bodies;
     const real slop = world.settings.penetrationSlop;
     // The fast bodies: those that moved (their collision object still holds the step's
-    // start) more than half their own tolerance. They count as moved in round 0.
+    // start) more than half their own tolerance, and the bodies of deep resting pairs.
+    // They count as moved in round 0.
     activeBodies_.clear();
     for (std::uint32_t index : bodies.simulated) {
         const BodyRecord &r = bodies[index];
@@ -59,6 +68,24 @@ void LandingCorrection::correct(WorldState &world) {
         if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
         movedRound_[index] = 0;
         activeBodies_.push_back(index);
+    }
+    // The bodies of a pair the step began deeper in than kRestingFactor times its
+    // tolerance (a body sunk under a pile's load, which the solver does not carry).
+    for (std::uint32_t p : world.contacts.touchingPairs) {
+        const PairState &pair = world.contacts.pairs[p];
+        const real deepest = kRestingFactor * pairTolerance(bodies[pair.a], bodies[pair.b], slop);
+        bool deep = false;
+        for (const ManifoldState &m : pair.manifolds)
+            for (int i = 0; i < m.count && !deep; ++i) deep = m.points[i].depth > deepest;
+        if (!deep) continue;
+        for (const std::uint32_t index : {pair.a, pair.b}) {
+            const BodyRecord &r = bodies[index];
+            if (!r.simulated || r.isolated || !r.object) continue;
+            if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
+            if (movedRound_[index] == 0) continue;
+            movedRound_[index] = 0;
+            activeBodies_.push_back(index);
+        }
     }
     if (activeBodies_.empty()) return;
     jointed_.clear();
@@ -114,6 +141,9 @@ bool LandingCorrection::detect(WorldState &world) {
     const real slop = world.settings.penetrationSlop;
     NarrowphaseSettings narrowphase;
     narrowphase.speculativeDistance = world.settings.speculativeDistance;
+    // Shapes a hair apart (a box just above the ground) get points too, so that a push
+    // towards them is held; only the pairs with a test of their own give them, at no cost.
+    narrowphase.touchMargin = world.settings.speculativeDistance;
     // Each pair on its own, in chunks shared between the threads; the points are then
     // taken in the pairs' order, so that they do not depend on the thread count.
     const std::size_t count = pairs_.size();
@@ -201,13 +231,10 @@ int LandingCorrection::push(WorldState &world, int round) {
         if (!any) break;
     }
     // A body pushed farther than a quarter of its tolerance in all has its pairs tested
-    // again in the next round.
+    // again in the next round (it moved fast, so it is in activeBodies_ already).
     const real slop = world.settings.penetrationSlop;
-    for (const Move &move : moved_) {
-        if (!(move.length > 0.25 * toleranceFor(bodies[move.body].boundingRadius, slop))) continue;
-        if (movedRound_[move.body] < 0) activeBodies_.push_back(move.body);
-        movedRound_[move.body] = round;
-    }
+    for (const Move &move : moved_)
+        if (move.length > 0.25 * toleranceFor(bodies[move.body].boundingRadius, slop)) movedRound_[move.body] = round;
     for (const Move &move : moved_) moveSlot_[move.body] = -1;
     return pushed;
 }

@@ -16,14 +16,20 @@
 // Translation only: two convex shapes moved apart by d along a normal along which they
 // overlap by p overlap by at most p - d, so a push never leaves a pair deeper elsewhere,
 // which a turn (splitting by the inertias too) did on round sides. Velocities are left
-// as they are (the next step's contacts, now touching, stop the bodies). Only the step's
-// simulated bodies move; static, kinematic, sleeping and just-woken bodies, and bodies
-// in a joint, are immovable.
-// The points of every manifold found are kept, the shallow ones too, so that a push does
-// not drive a body into a neighbour the round tested; the pairs of the bodies a round
-// moved are tested afresh in the next (at most kRounds in all). The pairs' manifolds,
-// impulses and touching states are not touched, so no contact event changes. A step in
-// which no body moved fast costs one pose comparison per awake body.
+// as they are (the next step's contacts, now touching, stop the bodies).
+// Only the fast bodies move: every pair of theirs is tested, so a push meets every
+// neighbour it can reach. A body that hardly moved made none of the overlap, and its
+// pairs with third bodies are not tested: pushed, it went unseen into the ground under
+// it. The bodies of a pair the step began deep in (kRestingFactor tolerances: sunk under
+// a pile's load) count as fast. Static, kinematic, sleeping and just-woken bodies, and
+// bodies in a joint, are immovable.
+// The points of every manifold found are kept, the shallow ones too, and shapes a hair
+// apart give points (WorldSettings::speculativeDistance, for the pairs with a test of
+// their own), so that a push does not drive a body into a neighbour the round tested;
+// the pairs of the bodies a round moved are tested afresh in the next (at most kRounds
+// in all). The pairs' manifolds, impulses and touching states are not touched, so no
+// contact event changes. A step in which no body moved fast and no pair is deep costs
+// one pose comparison per awake body and one depth comparison per contact point.
 #pragma once
 
 #include <cstdint>

@@ -139,8 +139,10 @@ struct WorldSettings {
     /// the poses the step ends with, and the points found deeper than a tolerance (5 mm,
     /// or a tenth of the smaller body's bounding radius when less) are pushed apart by
     /// position only, velocities unchanged, so that a body landing fast on a pile that is
-    /// itself landing is not left sunk in it. A step in which no body moves fast does
-    /// nothing more than compare each awake body's poses (docs/solver.md, "Landing
+    /// itself landing is not left sunk in it. Only the fast bodies are moved, and the
+    /// bodies of a pair the step began deeper in than 1.6 tolerances (sunk under a pile's
+    /// load). A step in which neither is found does nothing more than compare each awake
+    /// body's poses and each contact point's depth (docs/solver.md, "Landing
     /// correction").
     bool landingCorrection = true;
     /// A touching pair whose bodies moved less than this relative to each other since its
