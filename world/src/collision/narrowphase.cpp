@@ -88,11 +88,18 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     if (!(distance > 0 && distance < reach)) return 0;
     const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
     if (!(between.norm() > kMinNormalLength)) return 0;
-    const Vector3 normal = between.normalized();
+    Vector3 normal = between.normalized();
     const Pair pair{a, poseA, -1, b, poseB, -1, reach, reach};
     // Nearest points a hair apart give no direction: along the line between them the
-    // shapes may overlap deeply, and the clipped points would claim that depth.
-    if (!(pair.overlap(normal) <= kApartNormalError)) return 0;
+    // shapes may overlap deeply, and the clipped points would claim that depth. The
+    // normal of least overlap (which the touching pairs take) is then the contact's; a
+    // pair that overlaps along it too gets none.
+    if (!(pair.overlap(normal) <= kApartNormalError)) {
+        SupportFeature fa, fb;
+        real overlap = 0;
+        normal = chooseNormal(pair, normal, NormalRule{}, true, fa, fb, overlap);
+        if (!(overlap <= kApartNormalError)) return 0;
+    }
     return roundPair ? roundPairManifold(pair, normal, out) : clipAlong(pair, normal, out);
 }
 
