@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -88,6 +89,13 @@ struct Expected {
     /// When set: called with every point, A's and B's side as in the order (a, b).
     std::function<void(const Vector3 &pointA, const Vector3 &pointB)> eachPoint;
 };
+
+// The depth of a manifold's deepest point, m (-1e300 for none).
+inline real deepestDepth(const Manifold &m) {
+    real d = -1e300;
+    for (int i = 0; i < m.count; ++i) d = std::max(d, m.points[i].depth);
+    return d;
+}
 
 inline bool nonCollinear(const Manifold &m, real minArea = 1e-4) {
     for (int i = 0; i < m.count; ++i)

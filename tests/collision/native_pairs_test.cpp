@@ -35,12 +35,6 @@ std::vector<Manifold> native(const CollisionShape &a, const Matrix4 &poseA, cons
     return out;
 }
 
-real deepest(const Manifold &m) {
-    real d = -1e300;
-    for (int i = 0; i < m.count; ++i) d = std::max(d, m.points[i].depth);
-    return d;
-}
-
 // ---- hand-worked box-box cases ----
 
 TEST(BoxBox, SmallBoxRestingOnAFace) {
@@ -120,7 +114,7 @@ TEST(BoxBox, JustApartGivesNothingAndTouchingGivesZeroDepth) {
                                              viaFcl(*box, pose(Vector3(0.2, 1, 0)), *box, Matrix4::Identity())}) {
         ASSERT_EQ(out.size(), 1u);
         EXPECT_EQ(out[0].count, 4);
-        EXPECT_NEAR(deepest(out[0]), 0, 1e-12);
+        EXPECT_NEAR(deepestDepth(out[0]), 0, 1e-12);
     }
 }
 
@@ -214,9 +208,9 @@ TEST(BoxBox, AgreesWithTheFclPathOnRandomPoses) {
         if (unambiguous) {
             ++clear;
             EXPECT_LT((n[0].normal - f[0].normal).norm(), 1e-6) << n[0].normal.transpose() << " vs " << f[0].normal.transpose();
-            EXPECT_NEAR(deepest(n[0]), deepest(f[0]), 1e-9);
+            EXPECT_NEAR(deepestDepth(n[0]), deepestDepth(f[0]), 1e-9);
         } else {
-            EXPECT_LE(deepest(n[0]), deepest(f[0]) / 0.98 + 1e-5 + 1e-9);
+            EXPECT_LE(deepestDepth(n[0]), deepestDepth(f[0]) / 0.98 + 1e-5 + 1e-9);
         }
     }
     EXPECT_GT(misses, 150);

@@ -23,12 +23,6 @@ std::vector<Manifold> collideWithReach(const Shape &a, const Matrix4 &poseA, con
     return out;
 }
 
-real deepest(const Manifold &m) {
-    real depth = -1e9;
-    for (int k = 0; k < m.count; ++k) depth = std::max(depth, m.points[k].depth);
-    return depth;
-}
-
 // Unit cubes 1.3 m apart along x: their facing faces are 0.3 m apart, and so are their
 // boxes.
 TEST(SeparatedPairs, HullsApartAlongAnAxisMeetWithinTheReachOnly) {
@@ -39,7 +33,7 @@ TEST(SeparatedPairs, HullsApartAlongAnAxisMeetWithinTheReachOnly) {
     const std::vector<Manifold> within = collideWithReach(cube, poseA, cube, poseB, 0.31);
     ASSERT_EQ(within.size(), 1u);
     EXPECT_NEAR(within[0].normal.x(), 1, 1e-6);
-    EXPECT_NEAR(deepest(within[0]), -0.3, 1e-6);
+    EXPECT_NEAR(deepestDepth(within[0]), -0.3, 1e-6);
 }
 
 // Both cubes turned 45 degrees about z, B at (1.2, 1.2, 0): their boxes (0.707 m half
@@ -56,7 +50,7 @@ TEST(SeparatedPairs, HullsApartAlongTheLineBetweenThemMeetWithinTheReachOnly) {
     ASSERT_EQ(within.size(), 1u);
     EXPECT_NEAR(within[0].normal.x(), std::sqrt(0.5), 1e-6);
     EXPECT_NEAR(within[0].normal.y(), std::sqrt(0.5), 1e-6);
-    EXPECT_NEAR(deepest(within[0]), -gap, 1e-6);
+    EXPECT_NEAR(deepestDepth(within[0]), -gap, 1e-6);
 }
 
 }  // namespace
