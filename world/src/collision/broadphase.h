@@ -27,8 +27,8 @@ inline bool boxContains(const fcl::AABBd &outer, const fcl::AABBd &inner) {
     return !(outer.min_.array() > inner.min_.array()).any() && !(outer.max_.array() < inner.max_.array()).any();
 }
 
-/// The box of `geometry` placed at `pose`, grown by `margin` (m): its local box turned, as
-/// a body's object is placed below.
+/// The box of `geometry` placed at `pose`, grown by `margin` (m): its local box turned
+/// (BodyObject::place's tight box).
 inline fcl::AABBd placedBox(const fcl::CollisionGeometryd &geometry, const fcl::Transform3d &pose, double margin = 0) {
     const fcl::AABBd &local = geometry.aabb_local;
     const fcl::Vector3d centre = pose * boxCentre(local);
@@ -59,12 +59,7 @@ public:
         setTransform(pose);
         // FCL's computeAABB bounds a rotated shape by its bounding sphere (a rotated unit
         // box gets a 1.73 m box); the rotated local box is much tighter.
-        const fcl::AABBd &local = collisionGeometry()->aabb_local;
-        const fcl::Vector3d centre = pose * boxCentre(local);
-        const fcl::Vector3d half =
-            pose.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_)) + fcl::Vector3d::Constant(reach);
-        aabb.min_ = centre - half;
-        aabb.max_ = centre + half;
+        aabb = placedBox(*collisionGeometry(), pose, reach);
         if (boxContains(fat_, aabb)) {
             aabb = fat_;
             return false;

@@ -110,6 +110,19 @@ RelativePose relativePose(const RigidBody &a, const RigidBody &b) {
             a.getOrientation().conjugate() * b.getOrientation()};
 }
 
+// Flags each simulated, then moving kinematic, body by flag(index) on the threads, then
+// calls act(index) for the flagged ones in that order on this thread. `flags` is scratch.
+template <class Flag, class Act>
+void forFlaggedBodies(WorldState &world, std::vector<char> &flags, const Flag &flag, const Act &act) {
+    const BodyStore &bodies = world.bodies;
+    const std::size_t simulated = bodies.simulated.size();
+    const auto bodyAt = [&](std::size_t k) { return k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]; };
+    flags.resize(simulated + bodies.moving.size());
+    world.workers.forEach(flags.size(), [&](std::size_t k) { flags[k] = flag(bodyAt(k)); });
+    for (std::size_t k = 0; k < flags.size(); ++k)
+        if (flags[k]) act(bodyAt(k));
+}
+
 }  // namespace
 
 void ContactManager::findCandidates(WorldState &world, real dt) {
@@ -129,16 +142,8 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
         const real reach = settings.speculativeContacts ? stepReach(r, dt, falls ? fall : Vector3(Vector3::Zero())) : 0;
         return r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0);
     };
-    const std::size_t simulated = bodies.simulated.size();
-    bodyFlags_.resize(simulated + bodies.moving.size());
-    world.workers.forEach(bodyFlags_.size(), [&](std::size_t k) {
-        bodyFlags_[k] = place(k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]);
-    });
-    for (std::size_t k = 0; k < bodyFlags_.size(); ++k) {
-        if (!bodyFlags_[k]) continue;
-        const std::uint32_t index = k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated];
-        movedObjects_.push_back(bodies[index].object.get());
-    }
+    forFlaggedBodies(world, bodyFlags_, place,
+                     [&](std::uint32_t index) { movedObjects_.push_back(bodies[index].object.get()); });
     world.broadphase.refitAwake(movedObjects_);
 
     // Planes stay out of the trees: test each awake body's AABB against each plane (and,
@@ -312,21 +317,15 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // (walked body by body: sleeping bodies' pairs cost nothing). Which bodies have such
     // a pair is found on several threads; removing pairs only shortens the lists, so the
     // walk over those bodies alone removes the same pairs in the same order.
-    const std::size_t simulated = bodies.simulated.size();
-    const auto bodyAt = [&](std::size_t k) { return k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]; };
-    bodyFlags_.resize(simulated + bodies.moving.size());
-    world.workers.forEach(bodyFlags_.size(), [&](std::size_t k) {
-        const std::vector<std::uint32_t> &list = bodies[bodyAt(k)].pairs;
-        bodyFlags_[k] = std::any_of(list.begin(), list.end(), [&](std::uint32_t p) { return pairs[p].lastSeen != stepCount; });
-    });
-    for (std::size_t k = 0; k < bodyFlags_.size(); ++k) {
-        if (!bodyFlags_[k]) continue;
-        std::vector<std::uint32_t> &list = bodies[bodyAt(k)].pairs;
-        for (std::size_t i = list.size(); i-- > 0;) {
-            const std::uint32_t p = list[i];
-            if (pairs[p].lastSeen != stepCount) removePair(bodies, p);
-        }
-    }
+    const auto unseen = [&](std::uint32_t p) { return pairs[p].lastSeen != stepCount; };
+    forFlaggedBodies(
+        world, bodyFlags_,
+        [&](std::uint32_t index) { return std::any_of(bodies[index].pairs.begin(), bodies[index].pairs.end(), unseen); },
+        [&](std::uint32_t index) {
+            std::vector<std::uint32_t> &list = bodies[index].pairs;
+            for (std::size_t i = list.size(); i-- > 0;)
+                if (unseen(list[i])) removePair(bodies, list[i]);
+        });
 }
 
 // Only a touching pair is reused: one with no manifold may come into contact within the
@@ -387,8 +386,7 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
 std::uint64_t ContactManager::anchorsIssuedBy(const WorldState &world, std::uint32_t p, std::size_t n) const {
     const PairState &pair = pairs[p];
     if (n == 0) return pair.manifolds.size();  // keepNearPoints renumbers each kept manifold
-    const bool compound = world.bodies[pair.a].shape->isCompound() || world.bodies[pair.b].shape->isCompound();
-    return std::min(n, compound ? kMaxCompoundManifolds : std::size_t(4));
+    return keptManifolds(n, world.bodies[pair.a].shape->isCompound() || world.bodies[pair.b].shape->isCompound());
 }
 
 void ContactManager::mergeFinds(const WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n,
@@ -415,8 +413,7 @@ void ContactManager::mergeFinds(const WorldState &world, std::uint32_t p, const 
         mergeByChildren(pair, found, n, poseA, poseB, *a.shape, *b.shape, matchDistance, issued, scratch);
         return;
     }
-    // At most four manifolds per pair (a mesh may report more normals).
-    const std::size_t kept = std::min<std::size_t>(n, 4);
+    const std::size_t kept = keptManifolds(n, false);
     pair.manifolds.resize(kept);
     for (std::size_t k = 0; k < kept; ++k)
         mergeManifold(pair.manifolds[k], found[k], poseA, poseB, *a.shape, *b.shape, matchDistance, ++issued);
@@ -432,7 +429,7 @@ void ContactManager::mergeByChildren(PairState &pair, const Manifold *found, std
     std::vector<char> &used = scratch.used;
     previous.swap(pair.manifolds);
     used.assign(previous.size(), 0);
-    const std::size_t kept = std::min(n, kMaxCompoundManifolds);
+    const std::size_t kept = keptManifolds(n, true);
     pair.manifolds.resize(kept);
     for (std::size_t k = 0; k < kept; ++k) {
         const Manifold &fresh = found[k];

@@ -3,6 +3,7 @@
 // their warm-start impulses, and the contact begin and end events.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -83,6 +84,12 @@ private:
     /// Most manifolds a pair with a compound keeps (one per touching pair of children,
     /// or more against a mesh).
     static constexpr std::size_t kMaxCompoundManifolds = 32;
+    /// Most manifolds any other pair keeps (a mesh may report more normals).
+    static constexpr std::size_t kMaxPairManifolds = 4;
+    /// How many of `n` fresh manifolds a pair keeps (with a compound or not).
+    static std::size_t keptManifolds(std::size_t n, bool compound) {
+        return std::min(n, compound ? kMaxCompoundManifolds : kMaxPairManifolds);
+    }
 
     static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::uint64_t anchorsIssued_ = 0;

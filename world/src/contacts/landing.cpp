@@ -60,14 +60,17 @@ void LandingCorrection::correct(WorldState &world) {
     // start) more than half their own tolerance, and the bodies of deep resting pairs.
     // They count as moved in round 0.
     activeBodies_.clear();
+    const auto markFast = [&](std::uint32_t index) {
+        if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
+        if (movedRound_[index] == 0) return;
+        movedRound_[index] = 0;
+        activeBodies_.push_back(index);
+    };
     for (std::uint32_t index : bodies.simulated) {
         const BodyRecord &r = bodies[index];
         if (r.isolated || !r.object) continue;
         const real tolerance = toleranceFor(r.boundingRadius, slop);
-        if (!(travel(r.object->getTransform(), r.body.getTransform(), r.boundingRadius) > 0.5 * tolerance)) continue;
-        if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
-        movedRound_[index] = 0;
-        activeBodies_.push_back(index);
+        if (travel(r.object->getTransform(), r.body.getTransform(), r.boundingRadius) > 0.5 * tolerance) markFast(index);
     }
     // The bodies of a pair the step began deeper in than kRestingFactor times its
     // tolerance (a body sunk under a pile's load, which the solver does not carry).
@@ -80,11 +83,7 @@ void LandingCorrection::correct(WorldState &world) {
         if (!deep) continue;
         for (const std::uint32_t index : {pair.a, pair.b}) {
             const BodyRecord &r = bodies[index];
-            if (!r.simulated || r.isolated || !r.object) continue;
-            if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
-            if (movedRound_[index] == 0) continue;
-            movedRound_[index] = 0;
-            activeBodies_.push_back(index);
+            if (r.simulated && !r.isolated && r.object) markFast(index);
         }
     }
     if (activeBodies_.empty()) return;
