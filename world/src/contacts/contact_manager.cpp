@@ -208,8 +208,8 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     stepPairs_.clear();
     // The broadphase lists a settled scene's pairs in the same order step after step:
     // the slot each candidate had last step is checked first, saving most table look-ups.
-    // Whether that slot still holds the candidate is checked first, on several threads
-    // (the checks miss the cache); the other candidates are looked up one by one.
+    // That check and the look-up of the others are made on several threads (both miss the
+    // cache); only the pairs not in the table are then added, one by one.
     const std::vector<CandidatePair> &candidates = found_.contacts;
     candidateSlots_.resize(candidates.size(), kNoSlot);
     candidateKinds_.resize(candidates.size());
@@ -218,7 +218,11 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         CandidateKind kind = CandidateKind::Held;
         if (world.joints.excludesContact(c.a, c.b)) kind = CandidateKind::Excluded;  // joined without collideConnected
         else if (bodies[c.a].immovable && bodies[c.b].immovable) kind = CandidateKind::Immovable;
-        else if (!pairs.holds(candidateSlots_[k], c.a, c.b)) kind = CandidateKind::LookUp;
+        else if (!pairs.holds(candidateSlots_[k], c.a, c.b)) {
+            const long found = pairs.find(c.a, c.b);
+            if (found >= 0) candidateSlots_[k] = static_cast<std::uint32_t>(found);
+            else kind = CandidateKind::New;
+        }
         candidateKinds_[k] = kind;
     });
     for (std::size_t k = 0; k < candidates.size(); ++k) {
@@ -231,7 +235,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             continue;
         }
         std::uint32_t p = candidateSlots_[k];
-        if (kind == CandidateKind::LookUp) {
+        if (kind == CandidateKind::New) {  // or listed twice, and added by its first listing
             bool created = false;
             p = findOrAddPair(bodies, c.a, c.b, created);
             candidateSlots_[k] = p;

@@ -98,9 +98,9 @@ private:
     /// the bodies' order: in the broadphase whether its fat box moved, in the narrowphase
     /// whether it holds a pair the broadphase no longer reports.
     std::vector<char> bodyFlags_;
-    /// What a candidate pair is: skipped (joined, or two immovable bodies), held by the
-    /// slot it had last step, or to be looked up.
-    enum class CandidateKind : std::uint8_t { Excluded, Immovable, Held, LookUp };
+    /// What a candidate pair is: skipped (joined, or two immovable bodies), held by a slot
+    /// (the one it had last step, or the one the table gives), or not in the table yet.
+    enum class CandidateKind : std::uint8_t { Excluded, Immovable, Held, New };
     std::vector<CandidateKind> candidateKinds_;  ///< Per candidate.
     std::vector<std::uint64_t> listedIn_;        ///< Per pair slot: the step that last listed it.
     BroadphasePairs found_;  ///< The step's pairs: candidate contacts, sensor pairs, the filtered count.
