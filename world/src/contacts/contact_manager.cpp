@@ -117,10 +117,8 @@ void forFlaggedBodies(WorldState &world, std::vector<char> &flags, const Flag &f
     const BodyStore &bodies = world.bodies;
     const std::size_t simulated = bodies.simulated.size();
     const auto bodyAt = [&](std::size_t k) { return k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]; };
-    flags.resize(simulated + bodies.moving.size());
-    world.workers.forEach(flags.size(), [&](std::size_t k) { flags[k] = flag(bodyAt(k)); });
-    for (std::size_t k = 0; k < flags.size(); ++k)
-        if (flags[k]) act(bodyAt(k));
+    world.workers.forFlagged(simulated + bodies.moving.size(), flags, [&](std::size_t k) { return flag(bodyAt(k)); },
+                             [&](std::size_t k) { act(bodyAt(k)); });
 }
 
 }  // namespace

@@ -66,26 +66,34 @@ void LandingCorrection::correct(WorldState &world) {
         movedRound_[index] = 0;
         activeBodies_.push_back(index);
     };
-    for (std::uint32_t index : bodies.simulated) {
-        const BodyRecord &r = bodies[index];
-        if (r.isolated || !r.object) continue;
+    // Each test below is made on the threads, and the bodies it picks are marked after,
+    // in order.
+    const auto movedFast = [&](std::size_t k) {
+        const BodyRecord &r = bodies[bodies.simulated[k]];
+        if (r.isolated || !r.object) return false;
         const real tolerance = toleranceFor(r.boundingRadius, slop);
-        if (travel(r.object->getTransform(), r.body.getTransform(), r.boundingRadius) > 0.5 * tolerance) markFast(index);
-    }
+        return travel(r.object->getTransform(), r.body.getTransform(), r.boundingRadius) > 0.5 * tolerance;
+    };
+    world.workers.forFlagged(bodies.simulated.size(), flags_, movedFast,
+                             [&](std::size_t k) { markFast(bodies.simulated[k]); });
     // The bodies of a pair the step began deeper in than kRestingFactor times its
     // tolerance (a body sunk under a pile's load, which the solver does not carry).
-    for (std::uint32_t p : world.contacts.touchingPairs) {
-        const PairState &pair = world.contacts.pairs[p];
+    const std::vector<std::uint32_t> &touching = world.contacts.touchingPairs;
+    const auto deepPair = [&](std::size_t k) {
+        const PairState &pair = world.contacts.pairs[touching[k]];
         const real deepest = kRestingFactor * pairTolerance(bodies[pair.a], bodies[pair.b], slop);
-        bool deep = false;
         for (const ManifoldState &m : pair.manifolds)
-            for (int i = 0; i < m.count && !deep; ++i) deep = m.points[i].depth > deepest;
-        if (!deep) continue;
+            for (int i = 0; i < m.count; ++i)
+                if (m.points[i].depth > deepest) return true;
+        return false;
+    };
+    world.workers.forFlagged(touching.size(), flags_, deepPair, [&](std::size_t k) {
+        const PairState &pair = world.contacts.pairs[touching[k]];
         for (const std::uint32_t index : {pair.a, pair.b}) {
             const BodyRecord &r = bodies[index];
             if (r.simulated && !r.isolated && r.object) markFast(index);
         }
-    }
+    });
     if (activeBodies_.empty()) return;
     jointed_.clear();
     if (!world.joints.empty()) {
@@ -107,12 +115,11 @@ void LandingCorrection::correct(WorldState &world) {
         // fast in the step) are tested afresh: their old points go.
         const int last = round - 1;
         pairs_.clear();
-        for (std::uint32_t p : stepPairs) {
-            const PairState &pair = world.contacts.pairs[p];
-            if (!movedIn(pair.a, last) && !movedIn(pair.b, last)) continue;
-            if (!movable(bodies, pair.a) && !movable(bodies, pair.b)) continue;
-            pairs_.push_back(p);
-        }
+        const auto retest = [&](std::size_t k) {
+            const PairState &pair = world.contacts.pairs[stepPairs[k]];
+            return (movedIn(pair.a, last) || movedIn(pair.b, last)) && (movable(bodies, pair.a) || movable(bodies, pair.b));
+        };
+        world.workers.forFlagged(stepPairs.size(), flags_, retest, [&](std::size_t k) { pairs_.push_back(stepPairs[k]); });
         if (pairs_.empty()) break;
         const auto retested = [&](const Point &x) { return movedIn(x.a, last) || movedIn(x.b, last); };
         points_.erase(std::remove_if(points_.begin(), points_.end(), retested), points_.end());

@@ -75,6 +75,7 @@ private:
     bool movable(const BodyStore &bodies, std::uint32_t index) const;
     std::vector<std::uint32_t> activeBodies_;  ///< Bodies whose movedRound_ is set (to clear it).
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
+    std::vector<char> flags_;                   ///< Scratch: what a test on the threads picked.
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
     std::vector<std::uint32_t> findEnds_;       ///< Per entry of pairs_: one past its last find in its chunk.
     std::vector<Point> points_;

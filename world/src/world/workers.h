@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "world/task_pool.h"
 
@@ -61,6 +62,17 @@ public:
         forEachChunk(count, [&](std::size_t, std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) task(i);
         });
+    }
+
+    /// Tests flag(i) for every i in [0, count) on the threads, then calls act(i) for the
+    /// flagged ones in order on this thread: an ordered walk that visits only what the
+    /// shared tests picked. `flags` is the caller's scratch.
+    template <class Flag, class Act>
+    void forFlagged(std::size_t count, std::vector<char> &flags, const Flag &flag, const Act &act) {
+        flags.resize(count);
+        forEach(count, [&](std::size_t i) { flags[i] = flag(i) ? 1 : 0; });
+        for (std::size_t i = 0; i < count; ++i)
+            if (flags[i]) act(i);
     }
 
 private:
