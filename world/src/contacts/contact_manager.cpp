@@ -140,7 +140,7 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
         const real reach = settings.speculativeContacts ? stepReach(r, dt, falls ? fall : Vector3(Vector3::Zero())) : 0;
         return r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0);
     };
-    forFlaggedBodies(world, bodyFlags_, place,
+    forFlaggedBodies(world, flags_, place,
                      [&](std::uint32_t index) { movedObjects_.push_back(bodies[index].object.get()); });
     world.broadphase.refitAwake(movedObjects_);
 
@@ -321,7 +321,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // walk over those bodies alone removes the same pairs in the same order.
     const auto unseen = [&](std::uint32_t p) { return pairs[p].lastSeen != stepCount; };
     forFlaggedBodies(
-        world, bodyFlags_,
+        world, flags_,
         [&](std::uint32_t index) { return std::any_of(bodies[index].pairs.begin(), bodies[index].pairs.end(), unseen); },
         [&](std::uint32_t index) {
             std::vector<std::uint32_t> &list = bodies[index].pairs;
@@ -491,15 +491,17 @@ void ContactManager::reportContactEvents(WorldState &world) {
         const bool touching = pair && pair->alive && pair->touching();
         return ContactTrack{touching ? bodies.idOf(pair->a) : BodyId(), touching ? bodies.idOf(pair->b) : BodyId(), touching};
     };
-    // The changed slots are moved to the front of eventSlots_, in place: a list of their
-    // own would allocate the first time a late step changes more than it ever held.
+    // Which slots changed is found on the threads; they are then moved to the front of
+    // eventSlots_, in place: a list of their own would allocate the first time a late
+    // step changes more than it ever held.
+    const auto changedAt = [&](std::size_t k) {
+        const ContactTrack &track = tracks_[eventSlots_[k]];
+        const ContactTrack now = stateOf(eventSlots_[k]);
+        return track.touching != now.touching || (now.touching && (track.a != now.a || track.b != now.b));
+    };
     std::size_t changed = 0;
-    for (std::uint32_t p : eventSlots_) {
-        const ContactTrack &track = tracks_[p];
-        const ContactTrack now = stateOf(p);
-        if (track.touching != now.touching || (now.touching && (track.a != now.a || track.b != now.b)))
-            eventSlots_[changed++] = p;
-    }
+    world.workers.forFlagged(eventSlots_.size(), flags_, changedAt,
+                             [&](std::size_t k) { eventSlots_[changed++] = eventSlots_[k]; });
     eventSlots_.resize(changed);
     std::sort(eventSlots_.begin(), eventSlots_.end());
     eventSlots_.erase(std::unique(eventSlots_.begin(), eventSlots_.end()), eventSlots_.end());

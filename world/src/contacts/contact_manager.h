@@ -94,10 +94,11 @@ private:
     static constexpr std::uint32_t kNoSlot = ~std::uint32_t(0);
     std::uint64_t anchorsIssued_ = 0;
     std::vector<fcl::CollisionObjectd *> movedObjects_;  ///< Objects whose fat box moved.
-    /// A flag per simulated, then moving kinematic, body, set on the threads and read in
-    /// the bodies' order: in the broadphase whether its fat box moved, in the narrowphase
-    /// whether it holds a pair the broadphase no longer reports.
-    std::vector<char> bodyFlags_;
+    /// Flags set on the threads and read in order (Workers::forFlagged): per simulated,
+    /// then moving kinematic, body in the broadphase (its fat box moved) and in the
+    /// narrowphase (it holds a pair the broadphase no longer reports); per entry of
+    /// eventSlots_ in the contact events (its contact began or ended).
+    std::vector<char> flags_;
     /// What a candidate pair is: skipped (joined, or two immovable bodies), held by a slot
     /// (the one it had last step, or the one the table gives), or not in the table yet.
     enum class CandidateKind : std::uint8_t { Excluded, Immovable, Held, New };
