@@ -103,9 +103,11 @@ void ConstraintSolver::build(WorldState &world) {
     }
     roundDepths_.clear();
     if (bodies.roundCount == 0) return;
-    for (std::size_t s = 0; s < manifolds_.size(); ++s)
-        roundDepths_.add(s, manifolds_.size(), bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], contacts,
-                         sources_[s], manifolds_[s].normal);
+    roundDepths_.reset(manifolds_.size());
+    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
+        roundDepths_.add(s, bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], contacts, sources_[s], manifolds_[s].normal);
+    });
+    roundDepths_.finish();
 }
 
 // addSolverManifold writes every field of a solver manifold and of its first `count`

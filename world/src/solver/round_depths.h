@@ -8,9 +8,9 @@
 // roundDepthChange (collision/round_side.h), the same for every point of the manifold,
 // so it goes into the frame's offset (docs/solver.md, "Round bodies").
 //
-// Design note. Only manifolds with a round side are listed, once per step; a step
-// without any keeps the list empty and reads nothing more per sub-step, and a world
-// without round bodies (BodyStore::roundCount, a box pile) does not look.
+// Design note. The slots are looked at once per step, each on its own (on the threads);
+// a step without a round side reads nothing more per sub-step, and a world without round
+// bodies (BodyStore::roundCount, a box pile) does not look.
 #pragma once
 
 #include <cstdint>
@@ -29,16 +29,25 @@ class RoundDepths {
 public:
     /// Forgets the last step's slots.
     void clear() {
-        entries_.clear();
-        entryOfSlot_.clear();
+        round_.clear();
+        any_ = false;
     }
-    /// Lists slot `slot` (of `slots`) if its manifold has a round side: `a` and `b` its
-    /// bodies at the step's start, `source` the pair manifold it was made from (which
-    /// children it touches), `normal` the solver's normal (from A to B).
-    void add(std::size_t slot, std::size_t slots, const BodyRecord &a, const BodyRecord &b,
-             const ContactManager &contacts, const ManifoldRef &source, const Vector3 &normal);
+    /// Makes room for `slots` solver slots, none of them round yet.
+    void reset(std::size_t slots) {
+        entries_.resize(slots);
+        round_.assign(slots, 0);
+        any_ = false;
+    }
+    /// Notes slot `slot` if its manifold has a round side: `a` and `b` its bodies at the
+    /// step's start, `source` the pair manifold it was made from (which children it
+    /// touches), `normal` the solver's normal (from A to B). Different slots may be noted
+    /// on different threads at once.
+    void add(std::size_t slot, const BodyRecord &a, const BodyRecord &b, const ContactManager &contacts,
+             const ManifoldRef &source, const Vector3 &normal);
+    /// After the slots are noted: settles whether any has a round side.
+    void finish();
     /// Whether no slot has a round side (then nothing else needs calling).
-    bool empty() const { return entries_.empty(); }
+    bool empty() const { return !any_; }
     /// How much deeper slot `s`'s points are than its anchors say at the poses of `frame`
     /// (the slot's DepthFrame), m; 0 for a slot without a round side.
     real change(std::size_t s, const DepthFrame &frame) const;
@@ -49,8 +58,9 @@ private:
         Vector3 startA = Vector3::Zero();  ///< A's outward normal (n) in A's frame at the step's start.
         Vector3 startB = Vector3::Zero();  ///< B's outward normal (-n) in B's frame at the step's start.
     };
-    std::vector<Entry> entries_;
-    std::vector<int> entryOfSlot_;  ///< -1: no round side (sized only when entries_ is not empty).
+    std::vector<Entry> entries_;  ///< Per slot; read only where round_ is set.
+    std::vector<char> round_;     ///< Per slot: whether it has a round side (empty: none has).
+    bool any_ = false;
 };
 
 }  // namespace cyclone::detail
