@@ -266,12 +266,14 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             if (find.reused) continue;
             find.first = static_cast<std::uint32_t>(out.size());
             find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out));
+            find.anchors = static_cast<std::uint32_t>(anchorsIssuedBy(world, stepPairs_[k], find.count));
         }
     });
     // The finds are merged into their pairs, again chunk by chunk: a merge writes only its
     // own pair (but the detection above reads other pairs' manifolds, so it comes after
-    // all of them). The anchor numbers each merge issues are counted out first, in the
-    // pairs' order, so that each pair gets the same numbers whichever thread merges it.
+    // all of them). The anchor numbers each merge issues, counted with the tests, are
+    // handed out first, in the pairs' order, so that each pair gets the same numbers
+    // whichever thread merges it.
     std::uint64_t issued = anchorsIssued_;
     for (std::size_t k = 0; k < count; ++k) {
         Find &find = finds_[k];
@@ -281,7 +283,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         }
         ++world.stats.pairsTested;
         find.issuedBefore = issued;
-        issued += anchorsIssuedBy(world, stepPairs_[k], find.count);
+        issued += find.anchors;
     }
     anchorsIssued_ = issued;
     while (mergeScratch_.size() < chunks) mergeScratch_.emplace_back();
@@ -395,11 +397,14 @@ void ContactManager::mergeFinds(const WorldState &world, std::uint32_t p, const 
                                 std::uint64_t issued, MergeScratch &scratch) {
     const BodyStore &bodies = world.bodies;
     PairState &pair = pairs[p];
+    pair.tested = true;
+    // A pair apart that stays apart (most of a pile's pairs) has nothing to merge, and
+    // its pose is not kept: only a touching pair is reused.
+    if (n == 0 && pair.manifolds.empty()) return;
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
     const Matrix4 poseA = a.body.getTransform();
     const Matrix4 poseB = b.body.getTransform();
-    pair.tested = true;
     pair.relativePose = relativePose(a.body, b.body);
     const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
                                b.isPlane ? a.boundingRadius : b.boundingRadius);

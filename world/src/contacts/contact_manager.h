@@ -119,6 +119,7 @@ private:
         bool wakeB = false;
         std::uint32_t first = 0;
         std::uint32_t count = 0;
+        std::uint32_t anchors = 0;  ///< Anchor numbers its merge issues (anchorsIssuedBy).
         std::uint64_t issuedBefore = 0;
     };
     std::vector<Find> finds_;

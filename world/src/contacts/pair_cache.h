@@ -54,7 +54,7 @@ struct PairState {
     std::uint32_t a = 0;  ///< Body index of A (the smaller index).
     std::uint32_t b = 0;  ///< Body index of B.
     std::vector<ManifoldState> manifolds;
-    RelativePose relativePose;    ///< B seen from A at the last narrowphase.
+    RelativePose relativePose;    ///< B seen from A at the last narrowphase that left the pair touching (reuse reads it only then).
     std::uint64_t lastSeen = 0;   ///< Step in which the broadphase last reported the pair.
     bool tested = false;          ///< Whether it has been through the narrowphase.
     bool alive = false;
