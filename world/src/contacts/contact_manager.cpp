@@ -344,8 +344,9 @@ bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
     const Matrix4 poseA = a.body.getTransform();
     const Matrix4 poseB = b.body.getTransform();
     const RelativePose relative = relativePose(a.body, b.body);
-    const real shift = (relative.position - pair.relativePose.position).norm();
-    const Quaternion turn = relative.orientation * pair.relativePose.orientation.conjugate();
+    const RelativePose &tested = pairs.relativePose(p);
+    const real shift = (relative.position - tested.position).norm();
+    const Quaternion turn = relative.orientation * tested.orientation.conjugate();
     const real radius = std::max(a.boundingRadius, b.boundingRadius);
     if (!movedLess(shift, turn, radius, settings.manifoldReuseTolerance)) return false;
     for (ManifoldState &m : pair.manifolds) refreshFromAnchors(m, poseA, poseB);
@@ -405,7 +406,7 @@ void ContactManager::mergeFinds(const WorldState &world, std::uint32_t p, const 
     const BodyRecord &b = bodies[pair.b];
     const Matrix4 poseA = a.body.getTransform();
     const Matrix4 poseB = b.body.getTransform();
-    pair.relativePose = relativePose(a.body, b.body);
+    pairs.relativePose(p) = relativePose(a.body, b.body);
     const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
                                b.isPlane ? a.boundingRadius : b.boundingRadius);
     const real matchDistance = std::clamp(0.1 * size, real(0.001), real(0.05));

@@ -77,12 +77,13 @@ std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &creat
     } else {
         slot = static_cast<std::uint32_t>(pairs_.size());
         pairs_.emplace_back();
+        relativePoses_.emplace_back();
     }
     PairState &p = pairs_[slot];
     p.a = std::min(i, j);
     p.b = std::max(i, j);
     p.manifolds.clear();
-    p.relativePose = RelativePose();
+    relativePoses_[slot] = RelativePose();
     p.lastSeen = 0;
     p.tested = false;
     p.alive = true;

@@ -50,16 +50,20 @@ struct ManifoldRef {
     std::uint32_t index = 0;
 };
 
-struct PairState {
+/// What the narrowphase reads of every candidate pair, in one cache line: a pile's pairs
+/// are visited in the broadphase's order, not the slots', and each visit missed the cache
+/// twice when the pair's relative pose (read only while it touches) sat between these
+/// fields (PairCache::relativePose holds it now).
+struct alignas(64) PairState {
     std::uint32_t a = 0;  ///< Body index of A (the smaller index).
     std::uint32_t b = 0;  ///< Body index of B.
-    std::vector<ManifoldState> manifolds;
-    RelativePose relativePose;    ///< B seen from A at the last narrowphase that left the pair touching (reuse reads it only then).
     std::uint64_t lastSeen = 0;   ///< Step in which the broadphase last reported the pair.
     bool tested = false;          ///< Whether it has been through the narrowphase.
     bool alive = false;
+    std::vector<ManifoldState> manifolds;
     bool touching() const { return !manifolds.empty(); }
 };
+static_assert(sizeof(PairState) == 64, "a pair's state fills one cache line");
 
 class PairCache {
 public:
@@ -76,6 +80,10 @@ public:
     void remove(std::uint32_t pair);
     PairState &operator[](std::uint32_t pair) { return pairs_[pair]; }
     const PairState &operator[](std::uint32_t pair) const { return pairs_[pair]; }
+    /// B seen from A at the last narrowphase that left the pair touching (manifold reuse
+    /// reads it only then).
+    RelativePose &relativePose(std::uint32_t pair) { return relativePoses_[pair]; }
+    const RelativePose &relativePose(std::uint32_t pair) const { return relativePoses_[pair]; }
     /// Every slot, alive or not (check PairState::alive).
     std::size_t slots() const { return pairs_.size(); }
 
@@ -90,6 +98,7 @@ private:
     void erase(std::uint64_t key);
 
     std::vector<PairState> pairs_;
+    std::vector<RelativePose> relativePoses_;  ///< By slot, as pairs_.
     std::vector<std::uint32_t> free_;
     // Pair slots by key, open addressing with linear probing: unlike a node-based map it
     // allocates only when it grows, so pairs that come and go cost no allocation.
