@@ -113,9 +113,7 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
         lanesOf([&](int k) { return row(k).impulse; }, c.impulse[i]);
         lanesOf([&](int k) { return p[k]->velocityBias; }, c.bias[i]);
         for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->carriedCouplings, i, entry[k]);
-        Lanes coupling[kMaxManifoldPoints];
-        transpose(entry[0], entry[1], entry[2], entry[3], coupling);
-        for (int j = 0; j < kOtherPoints; ++j) c.normalCoupling[i][j] = coupling[otherPoint(i, j)];
+        transpose(entry[0], entry[1], entry[2], entry[3], c.normalCoupling[i]);
     }
     if (patchCentre) {
         for (int k = 0; k < kWideLanes; ++k) {
@@ -195,8 +193,8 @@ struct CarriedSweep {
         out = carrier + (linear + angular);
     }
 
-    CYCLONE_INLINE void couple(int i, const Lanes &impulse) {
-        for (int j = 0; j < kOtherPoints; ++j) vn[otherPoint(i, j)] += impulse * c.normalCoupling[i][j];
+    CYCLONE_INLINE void couple(const Lanes coupling[kMaxManifoldPoints], const Lanes &impulse) {
+        for (int j = 0; j < kMaxManifoldPoints; ++j) vn[j] += impulse * coupling[j];
     }
 
     // The patch's friction (patch_friction.h).
@@ -221,7 +219,7 @@ struct CarriedSweep {
         const Lanes updated = active ? (candidate > zero ? candidate : zero) : c.impulse[i];
         change[i] = updated - c.impulse[i];
         c.impulse[i] = updated;
-        couple(i, change[i]);
+        couple(c.normalCoupling[i], change[i]);
     }
 
     // Gives the carried bodies the sweep's impulses.

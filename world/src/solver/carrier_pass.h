@@ -55,7 +55,7 @@ struct WideCarriedContact {
     Lanes twistImpulse{};        ///< N m s.
     Lanes frictionInverse[6]{};  ///< SolverManifold::carriedFrictionInverse.
     /// SolverManifold::carriedCouplings in lanes, as ManifoldBatch holds the couplings.
-    Lanes normalCoupling[kMaxManifoldPoints][kOtherPoints]{};
+    Lanes normalCoupling[kMaxManifoldPoints][kMaxManifoldPoints]{};
     Lanes frictionCoupling[3][kMaxManifoldPoints]{};
     Lanes coefficient{};  ///< Friction coefficient (0: no friction rows).
     Lanes twistRadius{};  ///< m (0: no twist row).

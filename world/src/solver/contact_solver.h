@@ -88,13 +88,6 @@ struct RowCouplings {
     Lanes friction[3];                 ///< Per unit impulse on tangent 0, tangent 1, the twist.
 };
 
-/// The points a point's normal row couples to in the passes' copies (ManifoldBatch,
-/// WideCarriedContact), which hold no entry for the point itself: zero, and its normal
-/// velocity is not read again in the sweep once its row is solved.
-inline constexpr int kOtherPoints = kMaxManifoldPoints - 1;
-/// Entry j (< kOtherPoints) of point k's couplings in those copies is point otherPoint(k, j)'s.
-CYCLONE_INLINE constexpr int otherPoint(int k, int j) { return j < k ? j : j + 1; }
-
 /// Most Gauss-Seidel sweeps the carrier pass gives one body against the bodies that
 /// carry it: one sweep over a face's four corners leaves the body turning, and a stack
 /// leans (the choice of 12: docs/solver.md, "The carrier pass").

@@ -88,24 +88,23 @@ CYCLONE_INLINE bool setTargets(const SolverGroup &group, const PseudoTargets &ta
 // RowCouplings of the supported side give the same but for rounding): the sweep's chain
 // does not wait on them, and loading them cost more.
 CYCLONE_INLINE void supportedRows(const ManifoldBatch &m, const PenetrationBatch &p, Lanes mass[kMaxManifoldPoints],
-                                  Lanes coupling[kMaxManifoldPoints][kOtherPoints]) {
+                                  Lanes coupling[kMaxManifoldPoints][kMaxManifoldPoints]) {
     const Lanes invMasses = m.invMassA * p.moveA + m.invMassB * p.moveB;
     const Lanes zero{};
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
         WideVector angA, angB;  // IA^-1 (rA x n), IB^-1 (rB x n) of point i
         multiply(m.invInertiaA, m.points[i].row.rAxd, angA);
         multiply(m.invInertiaB, m.points[i].row.rBxd, angB);
-        // J_j M^-1 J_i^T through the moving sides, for row j at point `at`.
-        const auto through = [&](const WideRow &at, Lanes &out) __attribute__((always_inline)) {
+        for (int j = 0; j < kMaxManifoldPoints; ++j) {
+            const WideRow &at = m.points[j].row;
             Lanes a, b;
             dotLanes(at.rAxd, angA, a);
             dotLanes(at.rBxd, angB, b);
-            out = invMasses + (a * p.moveA + b * p.moveB);
-        };
-        Lanes k;
-        through(m.points[i].row, k);
+            coupling[i][j] = invMasses + (a * p.moveA + b * p.moveB);
+        }
+        const Lanes k = coupling[i][i];
         mass[i] = k > zero ? 1 / k : zero;
-        for (int j = 0; j < kOtherPoints; ++j) through(m.points[otherPoint(i, j)].row, coupling[i][j]);
+        coupling[i][i] = zero;
     }
 }
 
@@ -125,7 +124,7 @@ CYCLONE_INLINE void solveGroup(std::vector<SolverBody> &bodies, const ManifoldBa
                 (row.rBxd.y * vel.wb.y - row.rAxd.y * vel.wa.y) + (row.rBxd.z * vel.wb.z - row.rAxd.z * vel.wa.z);
     }
     const Lanes zero{};
-    Lanes carriedMass[kMaxManifoldPoints], supportedCoupling[kMaxManifoldPoints][kOtherPoints];
+    Lanes carriedMass[kMaxManifoldPoints], supportedCoupling[kMaxManifoldPoints][kMaxManifoldPoints];
     if (kSupport) supportedRows(m, p, carriedMass, supportedCoupling);
     Lanes change[kMaxManifoldPoints];
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
@@ -138,7 +137,7 @@ CYCLONE_INLINE void solveGroup(std::vector<SolverBody> &bodies, const ManifoldBa
         const Lanes updated = active ? pushed : p.impulse[i];
         change[i] = updated - p.impulse[i];
         p.impulse[i] = updated;
-        for (int j = 0; j < kOtherPoints; ++j) vn[otherPoint(i, j)] += change[i] * coupling[j];
+        for (int j = 0; j < kMaxManifoldPoints; ++j) vn[j] += change[i] * coupling[j];
     }
     const Lanes total = (change[0] + change[1]) + (change[2] + change[3]);
     WideVector impulseA = {total * m.normal.x, total * m.normal.y, total * m.normal.z};

@@ -92,10 +92,9 @@ struct WideSweep {
         v2 = m.normal.x * dw.x + m.normal.y * dw.y + m.normal.z * dw.z;
     }
 
-    // Adds `impulse` times point i's normal row's couplings to the other points' normal
-    // velocities.
-    CYCLONE_INLINE void couple(int i, const Lanes &impulse) {
-        for (int j = 0; j < kOtherPoints; ++j) vn[otherPoint(i, j)] += impulse * m.normalCoupling[i][j];
+    // Adds `impulse` times a row's couplings to the points' normal velocities.
+    CYCLONE_INLINE void couple(const Lanes coupling[kMaxManifoldPoints], const Lanes &impulse) {
+        for (int j = 0; j < kMaxManifoldPoints; ++j) vn[j] += impulse * coupling[j];
     }
 
     // The patch's friction (patch_friction.h).
@@ -117,7 +116,7 @@ struct WideSweep {
         const Lanes updated = candidate > zero ? candidate : zero;
         change[i] = updated - p.impulse;
         p.impulse = updated;
-        couple(i, change[i]);
+        couple(m.normalCoupling[i], change[i]);
     }
 
     // Gives the bodies the sweep's impulses.
@@ -174,9 +173,7 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
             w.points[i].impulse = Lanes{p[0]->normal.impulse, p[1]->normal.impulse, p[2]->normal.impulse, p[3]->normal.impulse};
             w.points[i].bias = Lanes{p[0]->velocityBias, p[1]->velocityBias, p[2]->velocityBias, p[3]->velocityBias};
             for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->couplings, i, entry[k]);
-            Lanes coupling[kMaxManifoldPoints];
-            transpose(entry[0], entry[1], entry[2], entry[3], coupling);
-            for (int j = 0; j < kOtherPoints; ++j) w.normalCoupling[i][j] = coupling[otherPoint(i, j)];
+            transpose(entry[0], entry[1], entry[2], entry[3], w.normalCoupling[i]);
         }
         for (int r = 0; r < 2; ++r) {
             loadRow(m[0]->frictionRow[r], m[1]->frictionRow[r], m[2]->frictionRow[r], m[3]->frictionRow[r], w.friction[r]);

@@ -13,7 +13,7 @@
 // The rows are copied in at the start of each sub-step, each group giving the bodies its
 // warm-start impulses as it is copied (loadBatches), and the accumulated impulses go back
 // after the velocity passes (storeBatches): a pass reads only the
-// rows it solves, 3456 bytes per group of four (864 per manifold; a SolverManifold is
+// rows it solves, 3584 bytes per group of four (896 per manifold; a SolverManifold is
 // 2304). The rows hold no angular terms I^-1 (r x d): a pass sums each side's lever
 // impulses, sum of impulse times (r x d), and turns the sum by the body's inverse inertia
 // once, which the group holds per lane (the passes stream the rows from memory on large
@@ -60,9 +60,9 @@ struct ManifoldBatch {
     Lanes frictionImpulse[2]{};     ///< N s.
     Lanes twistImpulse{};           ///< N m s.
     Lanes frictionInverse[6]{};     ///< SolverManifold::frictionInverse.
-    /// RowCouplings in lanes: [k][j] is point otherPoint(k, j)'s normal velocity change per
-    /// N s on point k's normal row, and per N s on tangent 0, tangent 1, the twist.
-    Lanes normalCoupling[kMaxManifoldPoints][kOtherPoints]{};
+    /// RowCouplings in lanes: [k][j] is point j's normal velocity change per N s on point
+    /// k's normal row (0 for j = k), and per N s on tangent 0, tangent 1, the twist.
+    Lanes normalCoupling[kMaxManifoldPoints][kMaxManifoldPoints]{};
     Lanes frictionCoupling[3][kMaxManifoldPoints]{};
     Lanes coefficient{};            ///< Friction coefficient (0: no friction rows).
     Lanes twistRadius{};            ///< m (0: no twist row).
