@@ -14,10 +14,10 @@ namespace {
 
 // The budget of these tests and the bound on what one kept pair may cost, bytes. A
 // touching pair holds at most (docs/hostile_input.md, "Bytes per pair"): its
-// SolverManifold (2,304), a ManifoldBatch (4,544) and a PenetrationBatch (1,120) of its
+// SolverManifold (2,304), a ManifoldBatch (3,584) and a PenetrationBatch (1,120) of its
 // own when no other manifold can share its group (in a pile at one point few can), the
 // batches reserved 1.5 times over (loadBatches), its ManifoldState (408) and PairState
-// (112), and some 100 bytes of lists: 12,950 bytes. Vectors that grow by doubling hold
+// (112), and some 100 bytes of lists: 11,510 bytes. Vectors that grow by doubling hold
 // the old and the new array while they move, so up to twice that: 24 KB.
 constexpr int kBudget = 2000;
 constexpr long kBytesPerPair = 24 * 1024;

@@ -30,17 +30,19 @@ struct SolverBody {
     Matrix3 invInertia = Matrix3::Zero();  ///< World space, 1/(kg m^2).
 };
 
-/// One constraint direction at a point: Jacobian terms and the accumulated impulse.
+/// One constraint direction at a point: Jacobian terms and the accumulated impulse. The
+/// angular terms come last: the velocity passes' loader (loadBatches) reads the rest, and
+/// in a SolverPoint the row's last cache line then holds nothing else.
 struct SolverRow {
-    Lanes rAxd{};      ///< rA x d.
-    Lanes rBxd{};      ///< rB x d.
-    Lanes angA{};      ///< IA^-1 (rA x d).
-    Lanes angB{};      ///< IB^-1 (rB x d).
     /// Effective mass along d, kg. Normal rows only: the friction rows are solved as a
     /// block through SolverManifold::frictionInverse and leave both masses unset.
     real mass = 0;
     real carriedMass = 0;  ///< Effective mass with the carrier immovable (carrier pass), kg.
     real impulse = 0;  ///< Accumulated impulse, N s.
+    Lanes rAxd{};      ///< rA x d.
+    Lanes rBxd{};      ///< rB x d.
+    Lanes angA{};      ///< IA^-1 (rA x d).
+    Lanes angB{};      ///< IB^-1 (rB x d).
 };
 
 /// The fields that the depth loop (World::Impl::solve) and loadBatches read and write come
@@ -132,7 +134,9 @@ enum class Carrier : int {
     B,     ///< B carries A.
 };
 
-struct SolverManifold {
+/// Aligned to cache lines, so that each SolverPoint's fields lie on the lines its layout
+/// intends (the points start 1280 bytes in).
+struct alignas(64) SolverManifold {
     int a = 0;  ///< Index into the SolverBody array (0 = static world).
     int b = 0;
     Vector3 normal;      ///< From A to B.

@@ -92,12 +92,14 @@ CYCLONE_INLINE void supportedRows(const ManifoldBatch &m, const PenetrationBatch
     const Lanes invMasses = m.invMassA * p.moveA + m.invMassB * p.moveB;
     const Lanes zero{};
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
-        const WideRow &impulse = m.points[i].row;
+        WideVector angA, angB;  // IA^-1 (rA x n), IB^-1 (rB x n) of point i
+        multiply(m.invInertiaA, m.points[i].row.rAxd, angA);
+        multiply(m.invInertiaB, m.points[i].row.rBxd, angB);
         for (int j = 0; j < kMaxManifoldPoints; ++j) {
             const WideRow &at = m.points[j].row;
             Lanes a, b;
-            dotLanes(at.rAxd, impulse.angA, a);
-            dotLanes(at.rBxd, impulse.angB, b);
+            dotLanes(at.rAxd, angA, a);
+            dotLanes(at.rBxd, angB, b);
             coupling[i][j] = invMasses + (a * p.moveA + b * p.moveB);
         }
         const Lanes k = coupling[i][i];
@@ -140,11 +142,16 @@ CYCLONE_INLINE void solveGroup(std::vector<SolverBody> &bodies, const ManifoldBa
     const Lanes total = (change[0] + change[1]) + (change[2] + change[3]);
     WideVector impulseA = {total * m.normal.x, total * m.normal.y, total * m.normal.z};
     WideVector impulseB = impulseA;
-    WideVector angularA{}, angularB{};
+    // Each side's angular impulse, sum of impulse times (r x n), turned by its inverse
+    // inertia once.
+    WideVector leverA{}, leverB{};
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
-        addScaled(angularA, change[i], m.points[i].row.angA);
-        addScaled(angularB, change[i], m.points[i].row.angB);
+        addScaled(leverA, change[i], m.points[i].row.rAxd);
+        addScaled(leverB, change[i], m.points[i].row.rBxd);
     }
+    WideVector angularA, angularB;
+    multiply(m.invInertiaA, leverA, angularA);
+    multiply(m.invInertiaB, leverB, angularB);
     Lanes invMassA = m.invMassA, invMassB = m.invMassB;
     if (kSupport) {
         // A side that does not move gets nothing.

@@ -15,8 +15,17 @@ CYCLONE_INLINE void loadRow(const SolverRow &r0, const SolverRow &r1, const Solv
                             WideRow &out) {
     transposeIn(r0.rAxd, r1.rAxd, r2.rAxd, r3.rAxd, out.rAxd);
     transposeIn(r0.rBxd, r1.rBxd, r2.rBxd, r3.rBxd, out.rBxd);
-    transposeIn(r0.angA, r1.angA, r2.angA, r3.angA, out.angA);
-    transposeIn(r0.angB, r1.angB, r2.angB, r3.angB, out.angB);
+}
+
+// The inverse inertias of the bodies `index` of four lanes, as WideSymmetric holds them.
+CYCLONE_INLINE void loadInertia(const std::vector<SolverBody> &bodies, const int index[kWideLanes],
+                                WideSymmetric &out) {
+    const real *m[kWideLanes];  // column by column (Eigen's default)
+    for (int k = 0; k < kWideLanes; ++k) m[k] = bodies[index[k]].invInertia.data();
+    const auto entry = [&](int e, Lanes &lanes) __attribute__((always_inline)) {
+        lanes = Lanes{m[0][e], m[1][e], m[2][e], m[3][e]};
+    };
+    entry(0, out.xx), entry(1, out.yx), entry(2, out.zx), entry(4, out.yy), entry(5, out.zy), entry(8, out.zz);
 }
 
 // Per lane: out = d . (vb - va) + rBxd . wb - rAxd . wa, summed x + y + z as sum3 does.
@@ -38,16 +47,23 @@ CYCLONE_INLINE void giveImpulses(WideVelocities<> &vel, const ManifoldBatch &m, 
                                total * m.normal.z + tangent0 * m.tangent[0].z + tangent1 * m.tangent[1].z};
     subtractScaled(vel.va, m.invMassA, linear);
     addScaled(vel.vb, m.invMassB, linear);
+    // Each side's angular impulse, sum of impulse times (r x d), turned by its inverse
+    // inertia once (the twist row's r x d is the normal).
+    WideVector leverA = {twist * m.normal.x, twist * m.normal.y, twist * m.normal.z};
+    WideVector leverB = leverA;
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
-        subtractScaled(vel.wa, normal[i], m.points[i].row.angA);
-        addScaled(vel.wb, normal[i], m.points[i].row.angB);
+        addScaled(leverA, normal[i], m.points[i].row.rAxd);
+        addScaled(leverB, normal[i], m.points[i].row.rBxd);
     }
-    subtractScaled(vel.wa, tangent0, m.friction[0].angA);
-    subtractScaled(vel.wa, tangent1, m.friction[1].angA);
-    subtractScaled(vel.wa, twist, m.twistA);
-    addScaled(vel.wb, tangent0, m.friction[0].angB);
-    addScaled(vel.wb, tangent1, m.friction[1].angB);
-    addScaled(vel.wb, twist, m.twistB);
+    for (int r = 0; r < 2; ++r) {
+        addScaled(leverA, r == 0 ? tangent0 : tangent1, m.friction[r].rAxd);
+        addScaled(leverB, r == 0 ? tangent0 : tangent1, m.friction[r].rBxd);
+    }
+    WideVector turnA, turnB;
+    multiply(m.invInertiaA, leverA, turnA);
+    multiply(m.invInertiaB, leverB, turnB);
+    vel.wa = {vel.wa.x - turnA.x, vel.wa.y - turnA.y, vel.wa.z - turnA.z};
+    vel.wb = {vel.wb.x + turnB.x, vel.wb.y + turnB.y, vel.wb.z + turnB.z};
 }
 
 // One pass over a wide manifold's rows, as ManifoldSweep (contact_solver.cpp) makes it for
@@ -167,8 +183,8 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
             for (int k = 0; k < kWideLanes; ++k) order[k].friction(m[k]->couplings, r, entry[k]);
             transpose(entry[0], entry[1], entry[2], entry[3], w.frictionCoupling[r]);
         }
-        vectors([](const SolverManifold &x) -> const Lanes & { return x.twist.angA; }, w.twistA);
-        vectors([](const SolverManifold &x) -> const Lanes & { return x.twist.angB; }, w.twistB);
+        loadInertia(bodies, w.a, w.invInertiaA);
+        loadInertia(bodies, w.b, w.invInertiaB);
         lanes([](const SolverManifold &x) { return x.twist.impulse; }, w.twistImpulse);
         for (int e = 0; e < 6; ++e) lanes([e](const SolverManifold &x) { return x.frictionInverse[e]; }, w.frictionInverse[e]);
         lanes([](const SolverManifold &x) { return x.friction; }, w.coefficient);

@@ -13,9 +13,13 @@
 // The rows are copied in at the start of each sub-step, each group giving the bodies its
 // warm-start impulses as it is copied (loadBatches), and the accumulated impulses go back
 // after the velocity passes (storeBatches): a pass reads only the
-// rows it solves, 4544 bytes per group of four (1136 per manifold; a SolverManifold is
-// 2304). A lane past a group's size, and a point past a member's count, hold zero rows,
-// which change nothing.
+// rows it solves, 3584 bytes per group of four (896 per manifold; a SolverManifold is
+// 2304). The rows hold no angular terms I^-1 (r x d): a pass sums each side's lever
+// impulses, sum of impulse times (r x d), and turns the sum by the body's inverse inertia
+// once, which the group holds per lane (the passes stream the rows from memory on large
+// scenes, so bytes count more than the extra products: docs/solver.md, "Rows without
+// angular terms"). A lane past a group's size, and a point past a member's count, hold
+// zero rows, which change nothing.
 #pragma once
 
 #include <vector>
@@ -28,10 +32,9 @@ namespace cyclone::detail {
 
 static_assert(kGroupSize == kWideLanes, "a group fills one wide manifold");
 
-/// One row's Jacobian terms for four manifolds (SolverRow).
+/// One row's lever terms for four manifolds (SolverRow's rAxd and rBxd).
 struct WideRow {
     WideVector rAxd, rBxd;  ///< rA x d, rB x d.
-    WideVector angA, angB;  ///< IA^-1 (rA x d), IB^-1 (rB x d).
 };
 
 /// One point's normal row for four manifolds.
@@ -51,7 +54,9 @@ struct ManifoldBatch {
     WideVector normal, tangent[2];
     WidePoint points[kMaxManifoldPoints];
     WideRow friction[2];            ///< Along tangent[0], tangent[1].
-    WideVector twistA, twistB;      ///< IA^-1 n, IB^-1 n (the twist row's rAxd and rBxd are n).
+    /// World-space inverse inertia of each lane's A and B (SolverBody::invInertia, the
+    /// step's), 1/(kg m^2). The twist row's lever terms are the normal itself.
+    WideSymmetric invInertiaA, invInertiaB;
     Lanes frictionImpulse[2]{};     ///< N s.
     Lanes twistImpulse{};           ///< N m s.
     Lanes frictionInverse[6]{};     ///< SolverManifold::frictionInverse.

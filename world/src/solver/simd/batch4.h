@@ -66,6 +66,18 @@ CYCLONE_INLINE void subtractScaled(WideVector &out, const Lanes &s, const WideVe
     out.z -= s * v.z;
 }
 
+/// Four symmetric 3 x 3 matrices, one per lane: the lower triangle column by column.
+struct WideSymmetric {
+    Lanes xx, yx, zx, yy, zy, zz;
+};
+
+/// Per lane: out = m v, each row summed left to right (x, then y, then z terms).
+CYCLONE_INLINE void multiply(const WideSymmetric &m, const WideVector &v, WideVector &out) {
+    out.x = m.xx * v.x + m.yx * v.y + m.zx * v.z;
+    out.y = m.yx * v.x + m.yy * v.y + m.zy * v.z;
+    out.z = m.zx * v.x + m.zy * v.y + m.zz * v.z;
+}
+
 // Lanes are given back through a reference, as in simd/vector4.h.
 
 /// Per lane: out = a . b, summed x + y + z.
