@@ -25,6 +25,9 @@ constexpr real kContactKeepDistance = 0.002;
 // speculative contacts with the floor under it sink into one another.
 constexpr real kMinReach = 0.001;  // m
 
+// How many pairs ahead a walk over the step's pairs asks for a pair's state.
+constexpr std::size_t kPrefetchAhead = 8;
+
 // The speed gravity adds to a body falling freely over the step when it counts (above), m/s.
 Vector3 stepFall(const WorldSettings &settings, real dt) {
     const real fall = settings.gravity.norm() * dt * dt;
@@ -212,6 +215,8 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     candidateSlots_.resize(candidates.size(), kNoSlot);
     candidateKinds_.resize(candidates.size());
     world.workers.forEach(candidates.size(), [&](std::size_t k) {
+        if (k + kPrefetchAhead < candidates.size() && candidateSlots_[k + kPrefetchAhead] < pairs.slots())
+            pairs.prefetch(candidateSlots_[k + kPrefetchAhead]);
         const CandidatePair &c = candidates[k];
         CandidateKind kind = CandidateKind::Held;
         if (world.joints.excludesContact(c.a, c.b)) kind = CandidateKind::Excluded;  // joined without collideConnected
@@ -244,7 +249,10 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         eventSlots_.push_back(p);
         stepPairs_.push_back(p);
     }
-    world.workers.forEach(stepPairs_.size(), [&](std::size_t k) { pairs[stepPairs_[k]].lastSeen = stepCount; });
+    world.workers.forEach(stepPairs_.size(), [&](std::size_t k) {
+        if (k + kPrefetchAhead < stepPairs_.size()) pairs.prefetch(stepPairs_[k + kPrefetchAhead]);
+        pairs[stepPairs_[k]].lastSeen = stepCount;
+    });
 
     // Each pair on its own, in chunks shared between the threads: pairs that hardly moved
     // keep their manifolds, the others go through the narrowphase, which writes what it
@@ -261,6 +269,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
         for (std::size_t k = begin; k < end; ++k) {
+            if (k + kPrefetchAhead < end) pairs.prefetch(stepPairs_[k + kPrefetchAhead]);
             Find &find = finds_[k];
             find.reused = reuseManifolds(world, stepPairs_[k]);
             if (find.reused) continue;
@@ -290,6 +299,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         const std::vector<Manifold> &out = chunkFinds_[chunk];
         for (std::size_t k = begin; k < end; ++k) {
+            if (k + kPrefetchAhead < end) pairs.prefetch(stepPairs_[k + kPrefetchAhead]);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
             if (!find.reused)

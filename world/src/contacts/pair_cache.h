@@ -80,6 +80,9 @@ public:
     void remove(std::uint32_t pair);
     PairState &operator[](std::uint32_t pair) { return pairs_[pair]; }
     const PairState &operator[](std::uint32_t pair) const { return pairs_[pair]; }
+    /// Asks the cache for slot `pair`'s state ahead of a visit: a walk over the step's
+    /// pairs in the broadphase's order jumps between slots.
+    void prefetch(std::uint32_t pair) const { __builtin_prefetch(&pairs_[pair]); }
     /// B seen from A at the last narrowphase that left the pair touching (manifold reuse
     /// reads it only then).
     RelativePose &relativePose(std::uint32_t pair) { return relativePoses_[pair]; }
