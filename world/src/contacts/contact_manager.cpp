@@ -255,6 +255,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // list is not grown by a few more touching pairs in a later step.
     while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     finds_.resize(count);
+    fitNormalMemos();
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
@@ -263,7 +264,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             find.reused = reuseManifolds(world, stepPairs_[k]);
             if (find.reused) continue;
             find.first = static_cast<std::uint32_t>(out.size());
-            find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out));
+            find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out, normalMemos_[stepPairs_[k]]));
         }
     });
     // The finds are merged into their pairs, again chunk by chunk: a merge writes only its
@@ -348,7 +349,8 @@ bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
     return true;
 }
 
-std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out) const {
+std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
+                                   NormalMemo &memo) const {
     const BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
     const PairState &pair = pairs[p];
@@ -363,7 +365,7 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
     const real reach = settings.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;
-    const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out);
+    const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, &memo);
     if (narrowphase.reach > 0 && n > 0) {
         // Shapes apart that cannot close the gap along their normal in this step, or
         // would pass by each other, have no contact yet.
@@ -466,6 +468,7 @@ void ContactManager::removePair(BodyStore &bodies, std::uint32_t p) {
         }
     }
     pairs.remove(p);
+    if (p < normalMemos_.size()) normalMemos_[p].clear();
     eventSlots_.push_back(p);
 }
 

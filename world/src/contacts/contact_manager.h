@@ -56,14 +56,24 @@ public:
     void removePairsOf(BodyStore &bodies, std::uint32_t index);
     /// A number for a new set of anchors (ManifoldState::anchorsId), never given before.
     std::uint64_t newAnchorsId() { return ++anchorsIssued_; }
+    /// What the last FCL test of pair slot `pair` found (collide's memo): the landing
+    /// correction tests its pairs at the poses the next step's narrowphase starts from, which
+    /// then builds those pairs' manifolds without FCL's test and the choice of normal.
+    NormalMemo &normalMemo(std::uint32_t pair) { return normalMemos_[pair]; }
+    /// Gives every pair slot a memo (before pairs are tested on several threads).
+    void fitNormalMemos() {
+        if (normalMemos_.size() < pairs.slots()) normalMemos_.resize(pairs.slots());
+    }
 
 private:
     /// Refreshes pair p's manifolds from their anchors when its bodies hardly moved
     /// relative to each other since it was last tested; false: it must be tested.
     bool reuseManifolds(const WorldState &world, std::uint32_t p);
     /// Runs the narrowphase on pair p and appends the manifolds it finds to `out`;
-    /// returns how many. Changes nothing else (pairs are detected on several threads).
-    std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out) const;
+    /// returns how many. Changes nothing else but the pair's memo (pairs are detected on
+    /// several threads).
+    std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
+                       NormalMemo &memo) const;
     /// A compound pair's manifolds before its merge, and which a fresh one took.
     struct MergeScratch {
         std::vector<ManifoldState> previous;
@@ -124,6 +134,7 @@ private:
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of Workers::kChunk step pairs.
     std::vector<MergeScratch> mergeScratch_;         ///< Per chunk.
     std::vector<std::uint32_t> stepPairs_;  ///< Pair slots the broadphase reported this step.
+    std::vector<NormalMemo> normalMemos_;   ///< By pair slot.
     std::vector<ContactTrack> tracks_;      ///< By pair slot.
     /// Pair slots whose touching state may have changed since the last contact events:
     /// seen by the narrowphase or removed (reportContactEvents looks at these only).

@@ -148,6 +148,8 @@ bool LandingCorrection::detect(WorldState &world) {
     const std::size_t count = pairs_.size();
     while (chunkFinds_.size() < Workers::chunksOf(count)) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     findEnds_.resize(count);
+    // The pairs' memos let the next step's narrowphase skip FCL where these poses stay.
+    world.contacts.fitNormalMemos();
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
@@ -155,7 +157,8 @@ bool LandingCorrection::detect(WorldState &world) {
             const PairState &pair = pairs[pairs_[k]];
             const BodyRecord &a = bodies[pair.a];
             const BodyRecord &b = bodies[pair.b];
-            collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out);
+            collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out,
+                    &world.contacts.normalMemo(pairs_[k]));
             findEnds_[k] = static_cast<std::uint32_t>(out.size());
         }
     });
