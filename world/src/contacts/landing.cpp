@@ -123,10 +123,18 @@ void LandingCorrection::correct(WorldState &world) {
         // one wherever its fresh points lie deeper than their targets.
         if (round == 1 ? !deep : points_.size() == before) break;
         // Lowest first: a push up out of what is below is not undone by the one below it.
-        const auto lower = [](const Point &x, const Point &y) {
+        // Small keys are sorted and the points then gathered in their order: moving whole
+        // points about in the sort cost more.
+        sortKeys_.clear();
+        for (std::size_t i = 0; i < points_.size(); ++i)
+            sortKeys_.push_back({points_[i].height, points_[i].order, static_cast<std::uint32_t>(i)});
+        const auto lower = [](const SortKey &x, const SortKey &y) {
             return x.height < y.height || (x.height == y.height && x.order < y.order);
         };
-        std::sort(points_.begin(), points_.end(), lower);
+        std::sort(sortKeys_.begin(), sortKeys_.end(), lower);
+        sortedPoints_.clear();
+        for (const SortKey &key : sortKeys_) sortedPoints_.push_back(points_[key.index]);
+        points_.swap(sortedPoints_);
         world.stats.landingPushes += push(world, round);
     }
 

@@ -78,6 +78,14 @@ private:
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
     std::vector<std::uint32_t> findEnds_;       ///< Per entry of pairs_: one past its last find in its chunk.
     std::vector<Point> points_;
+    /// A point's place in the order the passes take points_ in.
+    struct SortKey {
+        real height = 0;
+        std::uint32_t order = 0;
+        std::uint32_t index = 0;  ///< In points_.
+    };
+    std::vector<SortKey> sortKeys_;
+    std::vector<Point> sortedPoints_;  ///< points_ in that order, then swapped with it.
     /// How far a round's passes moved a body in all (the sum of its pushes), m.
     struct Move {
         std::uint32_t body = 0;
