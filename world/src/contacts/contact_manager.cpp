@@ -255,7 +255,6 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // list is not grown by a few more touching pairs in a later step.
     while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     finds_.resize(count);
-    fitNormalMemos();
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
@@ -264,7 +263,8 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             find.reused = reuseManifolds(world, stepPairs_[k]);
             if (find.reused) continue;
             find.first = static_cast<std::uint32_t>(out.size());
-            find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out, normalMemos_[stepPairs_[k]]));
+            NormalMemo *memo = endNormal(stepPairs_[k], stepCount - 1);
+            find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out, memo));
         }
     });
     // The finds are merged into their pairs, again chunk by chunk: a merge writes only its
@@ -350,7 +350,7 @@ bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
 }
 
 std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
-                                   NormalMemo &memo) const {
+                                   NormalMemo *memo) const {
     const BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
     const PairState &pair = pairs[p];
@@ -365,7 +365,7 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
     const real reach = settings.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;
-    const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, &memo);
+    const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, memo);
     if (narrowphase.reach > 0 && n > 0) {
         // Shapes apart that cannot close the gap along their normal in this step, or
         // would pass by each other, have no contact yet.
@@ -448,6 +448,22 @@ void ContactManager::mergeByChildren(PairState &pair, const Manifold *found, std
     previous.clear();
 }
 
+void ContactManager::keepEndNormal(std::uint32_t p, const NormalMemo &memo, std::uint64_t step) {
+    if (endNormalOf_.size() < pairs.slots()) endNormalOf_.resize(pairs.slots(), kNoSlot);
+    if (NormalMemo *kept = endNormal(p, step)) {
+        *kept = memo;
+        return;
+    }
+    endNormalOf_[p] = static_cast<std::uint32_t>(endNormals_.size());
+    endNormals_.push_back({p, step, memo});
+}
+
+NormalMemo *ContactManager::endNormal(std::uint32_t p, std::uint64_t step) {
+    if (p >= endNormalOf_.size() || endNormalOf_[p] >= endNormals_.size()) return nullptr;
+    EndNormal &entry = endNormals_[endNormalOf_[p]];
+    return entry.pair == p && entry.step == step ? &entry.memo : nullptr;
+}
+
 std::uint32_t ContactManager::findOrAddPair(BodyStore &bodies, std::uint32_t i, std::uint32_t j, bool &created) {
     const std::uint32_t p = pairs.findOrAdd(i, j, created);
     if (created) {
@@ -468,7 +484,7 @@ void ContactManager::removePair(BodyStore &bodies, std::uint32_t p) {
         }
     }
     pairs.remove(p);
-    if (p < normalMemos_.size()) normalMemos_[p].clear();
+    if (p < endNormalOf_.size()) endNormalOf_[p] = kNoSlot;
     eventSlots_.push_back(p);
 }
 

@@ -56,14 +56,14 @@ public:
     void removePairsOf(BodyStore &bodies, std::uint32_t index);
     /// A number for a new set of anchors (ManifoldState::anchorsId), never given before.
     std::uint64_t newAnchorsId() { return ++anchorsIssued_; }
-    /// What the last FCL test of pair slot `pair` found (collide's memo): the landing
-    /// correction tests its pairs at the poses the next step's narrowphase starts from, which
-    /// then builds those pairs' manifolds without FCL's test and the choice of normal.
-    NormalMemo &normalMemo(std::uint32_t pair) { return normalMemos_[pair]; }
-    /// Gives every pair slot a memo (before pairs are tested on several threads).
-    void fitNormalMemos() {
-        if (normalMemos_.size() < pairs.slots()) normalMemos_.resize(pairs.slots());
-    }
+    /// End normals: what the landing correction's FCL tests found (collide's memos). It
+    /// tests its pairs at the poses the next step's narrowphase starts from, which then
+    /// builds the manifolds of the pairs whose bodies stayed there without FCL's test and
+    /// the choice of normal. Only the pairs that reached FCL have one.
+    /// Forgets the end normals of the step before (the landing correction starts anew).
+    void clearEndNormals() { endNormals_.clear(); }
+    /// Keeps `memo` as pair p's end normal in step `step`, replacing one kept before.
+    void keepEndNormal(std::uint32_t p, const NormalMemo &memo, std::uint64_t step);
 
 private:
     /// Refreshes pair p's manifolds from their anchors when its bodies hardly moved
@@ -73,7 +73,9 @@ private:
     /// returns how many. Changes nothing else but the pair's memo (pairs are detected on
     /// several threads).
     std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
-                       NormalMemo &memo) const;
+                       NormalMemo *memo) const;
+    /// Pair p's end normal kept in step `step`, or null.
+    NormalMemo *endNormal(std::uint32_t p, std::uint64_t step);
     /// A compound pair's manifolds before its merge, and which a fresh one took.
     struct MergeScratch {
         std::vector<ManifoldState> previous;
@@ -134,7 +136,14 @@ private:
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of Workers::kChunk step pairs.
     std::vector<MergeScratch> mergeScratch_;         ///< Per chunk.
     std::vector<std::uint32_t> stepPairs_;  ///< Pair slots the broadphase reported this step.
-    std::vector<NormalMemo> normalMemos_;   ///< By pair slot.
+    /// An end normal, of pair slot `pair`, kept in step `step`.
+    struct EndNormal {
+        std::uint32_t pair = 0;
+        std::uint64_t step = 0;
+        NormalMemo memo;
+    };
+    std::vector<EndNormal> endNormals_;
+    std::vector<std::uint32_t> endNormalOf_;  ///< By pair slot: its entry in endNormals_ (if that names it).
     std::vector<ContactTrack> tracks_;      ///< By pair slot.
     /// Pair slots whose touching state may have changed since the last contact events:
     /// seen by the narrowphase or removed (reportContactEvents looks at these only).

@@ -86,6 +86,7 @@ void LandingCorrection::correct(WorldState &world) {
             if (r.simulated && !r.isolated && r.object) markFast(index);
         }
     }
+    world.contacts.clearEndNormals();
     if (activeBodies_.empty()) return;
     jointed_.clear();
     if (!world.joints.empty()) {
@@ -123,7 +124,7 @@ void LandingCorrection::correct(WorldState &world) {
         // one wherever its fresh points lie deeper than their targets.
         if (round == 1 ? !deep : points_.size() == before) break;
         // Lowest first: a push up out of what is below is not undone by the one below it.
-        // Small keys are sorted and the points then gathered in their order: moving whole
+        // Small keys are sorted and the points then put in their order: moving whole
         // points about in the sort cost more.
         sortKeys_.clear();
         for (std::size_t i = 0; i < points_.size(); ++i)
@@ -132,14 +133,31 @@ void LandingCorrection::correct(WorldState &world) {
             return x.height < y.height || (x.height == y.height && x.order < y.order);
         };
         std::sort(sortKeys_.begin(), sortKeys_.end(), lower);
-        sortedPoints_.clear();
-        for (const SortKey &key : sortKeys_) sortedPoints_.push_back(points_[key.index]);
-        points_.swap(sortedPoints_);
+        placeInOrder();
         world.stats.landingPushes += push(world, round);
     }
 
     for (std::uint32_t index : activeBodies_) movedRound_[index] = -1;
     activeBodies_.clear();
+}
+
+// Each cycle of the permutation is followed once, a point held aside at its start; a key
+// whose point is in place is marked with kPlaced.
+void LandingCorrection::placeInOrder() {
+    constexpr std::uint32_t kPlaced = ~std::uint32_t(0);
+    for (std::size_t start = 0; start < sortKeys_.size(); ++start) {
+        if (sortKeys_[start].index == kPlaced) continue;
+        const Point held = points_[start];
+        std::size_t at = start;
+        while (sortKeys_[at].index != start) {
+            const std::size_t from = sortKeys_[at].index;
+            points_[at] = points_[from];
+            sortKeys_[at].index = kPlaced;
+            at = from;
+        }
+        points_[at] = held;
+        sortKeys_[at].index = kPlaced;
+    }
 }
 
 bool LandingCorrection::detect(WorldState &world) {
@@ -156,20 +174,25 @@ bool LandingCorrection::detect(WorldState &world) {
     const std::size_t count = pairs_.size();
     while (chunkFinds_.size() < Workers::chunksOf(count)) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     findEnds_.resize(count);
-    // The pairs' memos let the next step's narrowphase skip FCL where these poses stay.
-    world.contacts.fitNormalMemos();
+    while (chunkMemos_.size() < Workers::chunksOf(count)) chunkMemos_.emplace_back();
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
+        std::vector<Memo> &memos = chunkMemos_[chunk];
         out.clear();
+        memos.clear();
         for (std::size_t k = begin; k < end; ++k) {
             const PairState &pair = pairs[pairs_[k]];
             const BodyRecord &a = bodies[pair.a];
             const BodyRecord &b = bodies[pair.b];
-            collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out,
-                    &world.contacts.normalMemo(pairs_[k]));
+            NormalMemo memo;
+            collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, &memo);
             findEnds_[k] = static_cast<std::uint32_t>(out.size());
+            if (memo.a) memos.push_back({pairs_[k], memo});
         }
     });
+    // What FCL found goes on to the next step's narrowphase (ContactManager's end normals).
+    for (std::size_t chunk = 0; chunk < Workers::chunksOf(count); ++chunk)
+        for (const Memo &m : chunkMemos_[chunk]) world.contacts.keepEndNormal(m.pair, m.memo, world.stepCount);
 
     const Vector3 &gravity = world.settings.gravity;
     const Vector3 up = gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());

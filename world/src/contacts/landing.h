@@ -77,6 +77,12 @@ private:
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
     std::vector<std::uint32_t> findEnds_;       ///< Per entry of pairs_: one past its last find in its chunk.
+    /// What FCL found for a pair slot (collide's memo), for the next step's narrowphase.
+    struct Memo {
+        std::uint32_t pair = 0;
+        NormalMemo memo;
+    };
+    std::vector<std::vector<Memo>> chunkMemos_;  ///< Per chunk of pairs_, the memos FCL's tests left.
     std::vector<Point> points_;
     /// A point's place in the order the passes take points_ in.
     struct SortKey {
@@ -85,7 +91,9 @@ private:
         std::uint32_t index = 0;  ///< In points_.
     };
     std::vector<SortKey> sortKeys_;
-    std::vector<Point> sortedPoints_;  ///< points_ in that order, then swapped with it.
+    /// Puts points_ in the order of sortKeys_ (sorted: the k-th key names the point that
+    /// goes k-th), in place.
+    void placeInOrder();
     /// How far a round's passes moved a body in all (the sum of its pushes), m.
     struct Move {
         std::uint32_t body = 0;
