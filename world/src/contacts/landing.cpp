@@ -187,12 +187,21 @@ bool LandingCorrection::detect(WorldState &world) {
             NormalMemo memo;
             collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, &memo);
             findEnds_[k] = static_cast<std::uint32_t>(out.size());
-            if (memo.a) memos.push_back({pairs_[k], memo});
+            if (memo.a) memos.push_back({static_cast<std::uint32_t>(k), memo.touching, memo.normal});
         }
     });
-    // What FCL found goes on to the next step's narrowphase (ContactManager's end normals).
-    for (std::size_t chunk = 0; chunk < Workers::chunksOf(count); ++chunk)
-        for (const Memo &m : chunkMemos_[chunk]) world.contacts.keepEndNormal(m.pair, m.memo, world.stepCount);
+    // What FCL found goes on to the next step's narrowphase (ContactManager's end normals),
+    // with the poses it was found at: the bodies' own still.
+    for (std::size_t chunk = 0; chunk < Workers::chunksOf(count); ++chunk) {
+        for (const Memo &m : chunkMemos_[chunk]) {
+            const PairState &pair = pairs[pairs_[m.k]];
+            const BodyRecord &a = bodies[pair.a];
+            const BodyRecord &b = bodies[pair.b];
+            NormalMemo memo;
+            memo.keep(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), m.touching, m.normal);
+            world.contacts.keepEndNormal(pairs_[m.k], memo, world.stepCount);
+        }
+    }
 
     const Vector3 &gravity = world.settings.gravity;
     const Vector3 up = gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());

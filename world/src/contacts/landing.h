@@ -77,12 +77,14 @@ private:
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
     std::vector<std::uint32_t> findEnds_;       ///< Per entry of pairs_: one past its last find in its chunk.
-    /// What FCL found for a pair slot (collide's memo), for the next step's narrowphase.
+    /// What FCL found for an entry of pairs_ (collide's memo, but for the shapes and poses:
+    /// the pair's), for the next step's narrowphase.
     struct Memo {
-        std::uint32_t pair = 0;
-        NormalMemo memo;
+        std::uint32_t k = 0;  ///< Entry of pairs_.
+        bool touching = false;
+        Vector3 normal = Vector3::UnitY();
     };
-    std::vector<std::vector<Memo>> chunkMemos_;  ///< Per chunk of pairs_, the memos FCL's tests left.
+    std::vector<std::vector<Memo>> chunkMemos_;  ///< Per chunk of pairs_, what FCL's tests found.
     std::vector<Point> points_;
     /// A point's place in the order the passes take points_ in.
     struct SortKey {
