@@ -56,10 +56,12 @@ public:
     void removePairsOf(BodyStore &bodies, std::uint32_t index);
     /// A number for a new set of anchors (ManifoldState::anchorsId), never given before.
     std::uint64_t newAnchorsId() { return ++anchorsIssued_; }
-    /// End normals: what the landing correction's FCL tests found (collide's memos). It
-    /// tests its pairs at the poses the next step's narrowphase starts from, which then
-    /// builds the manifolds of the pairs whose bodies stayed there without FCL's test and
-    /// the choice of normal. Only the pairs that reached FCL have one.
+    // End normals: what the landing correction's FCL tests found (collide's memos). It
+    // tests its pairs at the poses the next step's narrowphase starts from, which then
+    // builds the manifolds of the pairs whose bodies stayed there without FCL's test and
+    // the choice of normal (docs/solver.md, "The end poses' normals"). Only the pairs
+    // that reached FCL have one.
+
     /// Forgets the end normals of the step before (the landing correction starts anew).
     void clearEndNormals() { endNormals_.clear(); }
     /// Keeps `memo` as pair p's end normal in step `step`, replacing one kept before.
@@ -70,8 +72,8 @@ private:
     /// relative to each other since it was last tested; false: it must be tested.
     bool reuseManifolds(const WorldState &world, std::uint32_t p);
     /// Runs the narrowphase on pair p and appends the manifolds it finds to `out`;
-    /// returns how many. Changes nothing else but the pair's memo (pairs are detected on
-    /// several threads).
+    /// returns how many. Changes nothing else but `memo`, the pair's end normal if it has
+    /// one (pairs are detected on several threads).
     std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
                        NormalMemo *memo) const;
     /// Pair p's end normal kept in step `step`, or null.

@@ -28,7 +28,8 @@
 // their own), so that a push does not drive a body into a neighbour the round tested;
 // the pairs of the bodies a round moved are tested afresh in the next (at most kRounds
 // in all). The pairs' manifolds, impulses and touching states are not touched, so no
-// contact event changes. A step in which no body moved fast and no pair is deep costs
+// contact event changes; what FCL found at these poses goes on to the next step's
+// narrowphase (ContactManager's end normals), which starts from them. A step in which no body moved fast and no pair is deep costs
 // one pose comparison per awake body and one depth comparison per contact point.
 #pragma once
 
