@@ -65,8 +65,6 @@ struct NormalMemo {
     /// Keeps what a test of `a` at `poseA` and `b` at `poseB` found.
     void keep(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
               bool touching, const Vector3 &normal);
-    /// Forgets what it held.
-    void clear() { a = b = nullptr; }
 };
 
 /// Tests shapes `a` at `poseA` and `b` at `poseB` and appends one manifold per contact
