@@ -11,6 +11,7 @@
 // between their cores as a candidate.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "collision/contact_building.h"
 #include "collision/cylinder_pairs.h"
@@ -233,8 +234,10 @@ Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, const NormalRul
         const real coresOverlap = cores != Vector3::Zero() && rule.allows(cores) ? pair.overlap(cores) : bestOverlap;
         if (coresOverlap < bestOverlap) best = cores, bestOverlap = coresOverlap;
     }
-    // 6. The features along the normal chosen, for clipping.
-    if (best != search.featureDirection) {
+    // 6. The features along the normal chosen, for clipping. They are those along it bit
+    //    for bit (a zero's sign may change an angle), so that the normal alone gives them
+    //    again (NormalMemo).
+    if (std::memcmp(best.data(), search.featureDirection.data(), sizeof(Vector3)) != 0) {
         pair.a.supportingFeature(pair.poseA, best, pair.triangleA, fa);
         pair.b.supportingFeature(pair.poseB, -best, pair.triangleB, fb);
     }

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "collision/box_box.h"
 #include "collision/broadphase.h"
@@ -29,6 +30,13 @@ fcl::CollisionRequestd makeRequest(size_t maxContacts) {
     fcl::CollisionRequestd request(maxContacts, true);
     request.gjk_solver_type = fcl::GST_LIBCCD;
     return request;
+}
+
+// FCL's contact request for two shapes, or for a shape and a mesh (one contact per triangle).
+const fcl::CollisionRequestd &contactRequest(bool withMesh) {
+    static const fcl::CollisionRequestd shapeRequest = makeRequest(4);
+    static const fcl::CollisionRequestd meshRequest = makeRequest(kMaxFclContacts);
+    return withMesh ? meshRequest : shapeRequest;
 }
 
 // Whether FCL's libccd solver has an exact routine for the pair; the others go through
@@ -245,10 +253,94 @@ int collideCompound(const CollisionShape &a, const Matrix4 &poseA, const Collisi
     return appended;
 }
 
+// FCL's contacts of `a` and `b` with a usable normal, turned into `raw` (A to B whatever
+// order FCL used); returns how many.
+int fclContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                const fcl::CollisionRequestd &request, RawContact *raw) {
+    // Reused so that its contact vector keeps its capacity between calls.
+    static thread_local fcl::CollisionResultd result;
+    result.clear();
+    collideShapes(a.geometry().get(), poseA, b.geometry().get(), poseB, request, result);
+    int rawCount = 0;
+    for (size_t i = 0; i < result.numContacts() && rawCount < kMaxFclContacts; ++i) {
+        const fcl::Contactd &contact = result.getContact(i);
+        const real length = contact.normal.norm();
+        if (!(length > kMinNormalLength)) continue;
+        // FCL puts the mesh first when a shape is tested against a mesh.
+        const bool swapped = contact.o1 != a.geometry().get();
+        RawContact &r = raw[rawCount++];
+        r.normal = (swapped ? -contact.normal : contact.normal) / length;
+        r.depth = std::abs(contact.penetration_depth);
+        r.triangleA = static_cast<int>(swapped ? contact.b2 : contact.b1);
+        r.triangleB = static_cast<int>(swapped ? contact.b1 : contact.b2);
+    }
+    return rawCount;
+}
+
+// Two convex solids that FCL tests (not a plane, a mesh or a compound): apart, a
+// speculative contact (apartContact); touching, one normal, chosen from FCL's deepest
+// contact (FCL's extra box-box points are rebuilt by clipping along it), or taken from
+// `memo` when it holds the pair at these poses.
+int convexContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                  const NarrowphaseSettings &settings, std::vector<Manifold> &out, NormalMemo *memo) {
+    const ShapeType typeA = a.shape().type;
+    const ShapeType typeB = b.shape().type;
+    const bool roundPair = cylinderRoundPair(typeA, typeB);
+    const real speculative = std::max(settings.speculativeDistance, settings.reach);
+    const Pair pair{a, poseA, -1, b, poseB, -1, speculative, settings.reach};
+    SupportFeature fa, fb;
+    Vector3 normal;
+    if (memo && memo->holds(a, poseA, b, poseB)) {
+        if (!memo->touching) return apartContact(a, poseA, b, poseB, settings.reach, out, roundPair);
+        // The features chooseNormal leaves are those along its normal.
+        normal = memo->normal;
+        a.supportingFeature(poseA, normal, -1, fa);
+        b.supportingFeature(poseB, -normal, -1, fb);
+    } else {
+        RawContact raw[kMaxFclContacts];
+        const int rawCount = fclContacts(a, poseA, b, poseB, contactRequest(false), raw);
+        if (rawCount == 0) {
+            if (memo) memo->keep(a, poseA, b, poseB, false, Vector3::UnitY());
+            return apartContact(a, poseA, b, poseB, settings.reach, out, roundPair);
+        }
+        int deepest = 0;
+        for (int i = 1; i < rawCount; ++i)
+            if (raw[i].depth > raw[deepest].depth) deepest = i;
+        real overlap = 0;
+        normal = chooseNormal(pair, raw[deepest].normal, NormalRule(), !exactInFcl(typeA, typeB), fa, fb, overlap);
+        if (memo) memo->keep(a, poseA, b, poseB, true, normal);
+    }
+    PointSet points;
+    clipFeatures(pair, normal, fa, fb, points);
+    if (roundPair) addAxisEnds(axisCore(a, poseA), axisCore(b, poseB), normal, speculative, points);
+    return appendReduced(points, normal, out);
+}
+
+// Whether `pose`'s rotation and translation are `kept`, bit for bit.
+bool samePose(const Eigen::Matrix<real, 3, 4> &kept, const Matrix4 &pose) {
+    const Eigen::Matrix<real, 3, 4> now = pose.affine();
+    return std::memcmp(kept.data(), now.data(), sizeof now) == 0;
+}
+
 }  // namespace
 
+bool NormalMemo::holds(const CollisionShape &shapeA, const Matrix4 &placeA, const CollisionShape &shapeB,
+                       const Matrix4 &placeB) const {
+    return a == &shapeA && b == &shapeB && samePose(poseA, placeA) && samePose(poseB, placeB);
+}
+
+void NormalMemo::keep(const CollisionShape &shapeA, const Matrix4 &placeA, const CollisionShape &shapeB,
+                      const Matrix4 &placeB, bool touched, const Vector3 &chosen) {
+    a = &shapeA;
+    b = &shapeB;
+    poseA = placeA.affine();
+    poseB = placeB.affine();
+    touching = touched;
+    normal = chosen;
+}
+
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
-            const NarrowphaseSettings &settings, std::vector<Manifold> &out) {
+            const NarrowphaseSettings &settings, std::vector<Manifold> &out, NormalMemo *memo) {
     if (a.isCompound() || b.isCompound()) return collideCompound(a, poseA, b, poseB, settings, out);
     const ShapeType typeA = a.shape().type;
     const ShapeType typeB = b.shape().type;
@@ -264,55 +356,20 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     // tolerances) rules both out, for the price of two boxes and two support points
     // instead of MPR and GJK.
     constexpr real kBoxesApartMargin = 0.001;  // m, far above libccd's 1e-6 tolerances
-    if (!withMesh && !withPlane && solidsApart(a, poseA, b, poseB, settings.reach + kBoxesApartMargin)) return 0;
-
-    static const fcl::CollisionRequestd shapeRequest = makeRequest(4);
-    static const fcl::CollisionRequestd meshRequest = makeRequest(kMaxFclContacts);
-    // Reused so that its contact vector keeps its capacity between calls.
-    static thread_local fcl::CollisionResultd result;
-    result.clear();
-    collideShapes(a.geometry().get(), poseA, b.geometry().get(), poseB, withMesh ? meshRequest : shapeRequest,
-                  result);
+    if (!withMesh && !withPlane) {
+        if (solidsApart(a, poseA, b, poseB, settings.reach + kBoxesApartMargin)) return 0;
+        return convexContact(a, poseA, b, poseB, settings, out, memo);
+    }
 
     RawContact raw[kMaxFclContacts];
-    int rawCount = 0;
-    for (size_t i = 0; i < result.numContacts() && rawCount < kMaxFclContacts; ++i) {
-        const fcl::Contactd &contact = result.getContact(i);
-        const real length = contact.normal.norm();
-        if (!(length > kMinNormalLength)) continue;
-        // FCL puts the mesh first when a shape is tested against a mesh.
-        const bool swapped = contact.o1 != a.geometry().get();
-        RawContact &r = raw[rawCount++];
-        r.normal = (swapped ? -contact.normal : contact.normal) / length;
-        r.depth = std::abs(contact.penetration_depth);
-        r.triangleA = static_cast<int>(swapped ? contact.b2 : contact.b1);
-        r.triangleB = static_cast<int>(swapped ? contact.b1 : contact.b2);
-    }
-    const real speculative = std::max(settings.speculativeDistance, settings.reach);
+    const int rawCount = fclContacts(a, poseA, b, poseB, contactRequest(withMesh), raw);
     if (withMesh && !withPlane)
         return meshContacts(a, poseA, b, poseB, settings.speculativeDistance, settings.reach, raw, rawCount, out);
-    const bool roundPair = cylinderRoundPair(typeA, typeB);
-    if (rawCount == 0) return withMesh ? 0 : apartContact(a, poseA, b, poseB, settings.reach, out, roundPair);
-
-    if (withPlane) {
-        const Pair pair{a, poseA, raw[0].triangleA, b, poseB, raw[0].triangleB, speculative, settings.reach};
-        return planeContact(pair, typeA == ShapeType::Plane, out);
-    }
-
-    // Convex pairs touch along one normal; FCL's extra box-box points are rebuilt by
-    // clipping from its deepest contact.
-    int deepest = 0;
-    for (int i = 1; i < rawCount; ++i)
-        if (raw[i].depth > raw[deepest].depth) deepest = i;
-    const Pair pair{a, poseA, -1, b, poseB, -1, speculative, settings.reach};
-    SupportFeature fa, fb;
-    real overlap = 0;
-    const Vector3 normal =
-        chooseNormal(pair, raw[deepest].normal, NormalRule(), !exactInFcl(typeA, typeB), fa, fb, overlap);
-    PointSet points;
-    clipFeatures(pair, normal, fa, fb, points);
-    if (roundPair) addAxisEnds(axisCore(a, poseA), axisCore(b, poseB), normal, speculative, points);
-    return appendReduced(points, normal, out);
+    // A plane forced through FCL (NarrowphaseSettings::forceFcl) against a solid apart.
+    if (rawCount == 0) return withMesh ? 0 : apartContact(a, poseA, b, poseB, settings.reach, out);
+    const real speculative = std::max(settings.speculativeDistance, settings.reach);
+    const Pair pair{a, poseA, raw[0].triangleA, b, poseB, raw[0].triangleB, speculative, settings.reach};
+    return planeContact(pair, typeA == ShapeType::Plane, out);
 }
 
 }  // namespace cyclone::detail

@@ -46,6 +46,27 @@ struct NarrowphaseSettings {
     bool forceFcl = false;
 };
 
+/// What collide() learnt of two convex solids that FCL tested (not a plane, a mesh or a
+/// compound): whether FCL found them touching and, if so, the normal chosen. Both depend
+/// on the two shapes and their poses only, so a later test of the same shapes at the same
+/// poses, bit for bit, takes them from here instead of FCL's test and the choice of
+/// normal, and builds the very manifold the full test would (docs/solver.md, "The end
+/// poses' normals").
+struct NormalMemo {
+    const CollisionShape *a = nullptr;  ///< The shapes tested; null: nothing kept.
+    const CollisionShape *b = nullptr;
+    Eigen::Matrix<real, 3, 4> poseA;  ///< A's pose tested: rotation, then translation.
+    Eigen::Matrix<real, 3, 4> poseB;  ///< B's pose tested.
+    bool touching = false;            ///< Whether FCL found them touching.
+    Vector3 normal = Vector3::UnitY();  ///< When touching: the normal chosen, A to B.
+
+    /// Whether it holds shapes `a` and `b` at exactly these poses.
+    bool holds(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB) const;
+    /// Keeps what a test of `a` at `poseA` and `b` at `poseB` found.
+    void keep(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+              bool touching, const Vector3 &normal);
+};
+
 /// Tests shapes `a` at `poseA` and `b` at `poseB` and appends one manifold per contact
 /// normal to `out` (none when apart; a mesh may give several). Returns the number
 /// appended. Box-box (separating axes), sphere-sphere, sphere-box, sphere-capsule,
@@ -61,9 +82,11 @@ struct NarrowphaseSettings {
 /// edges take the face normal (mesh_contacts.h). A compound is tested child by child (each child pair
 /// whose boxes, widened by the speculative distance, overlap), and its manifolds name
 /// the children (Manifold::childA, childB). Allocates nothing once `out` has grown, except
-/// inside FCL for box-box pairs forced through it and for meshes.
+/// inside FCL for box-box pairs forced through it and for meshes. With a `memo`, two
+/// convex solids that go to FCL take FCL's answer and the normal from it when it holds
+/// them at these poses, and leave this test's there otherwise.
 int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
-            const NarrowphaseSettings &settings, std::vector<Manifold> &out);
+            const NarrowphaseSettings &settings, std::vector<Manifold> &out, NormalMemo *memo = nullptr);
 
 /// Whether `a` at `poseA` and `b` at `poseB` overlap or touch, by fcl::collide (a
 /// compound child by child).

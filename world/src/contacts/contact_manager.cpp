@@ -274,7 +274,8 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             find.reused = reuseManifolds(world, stepPairs_[k]);
             if (find.reused) continue;
             find.first = static_cast<std::uint32_t>(out.size());
-            find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out));
+            NormalMemo *memo = endNormal(stepPairs_[k], stepCount - 1);
+            find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out, memo));
             find.anchors = static_cast<std::uint32_t>(anchorsIssuedBy(world, stepPairs_[k], find.count));
         }
     });
@@ -363,7 +364,8 @@ bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
     return true;
 }
 
-std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out) const {
+std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
+                                   NormalMemo *memo) const {
     const BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
     const PairState &pair = pairs[p];
@@ -378,7 +380,7 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
     const real reach = settings.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;
-    const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out);
+    const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, memo);
     if (narrowphase.reach > 0 && n > 0) {
         // Shapes apart that cannot close the gap along their normal in this step, or
         // would pass by each other, have no contact yet.
@@ -464,6 +466,22 @@ void ContactManager::mergeByChildren(PairState &pair, const Manifold *found, std
     previous.clear();
 }
 
+void ContactManager::keepEndNormal(std::uint32_t p, const NormalMemo &memo, std::uint64_t step) {
+    if (endNormalOf_.size() < pairs.slots()) endNormalOf_.resize(pairs.slots(), kNoSlot);
+    if (NormalMemo *kept = endNormal(p, step)) {
+        *kept = memo;
+        return;
+    }
+    endNormalOf_[p] = static_cast<std::uint32_t>(endNormals_.size());
+    endNormals_.push_back({p, step, memo});
+}
+
+NormalMemo *ContactManager::endNormal(std::uint32_t p, std::uint64_t step) {
+    if (p >= endNormalOf_.size() || endNormalOf_[p] >= endNormals_.size()) return nullptr;
+    EndNormal &entry = endNormals_[endNormalOf_[p]];
+    return entry.pair == p && entry.step == step ? &entry.memo : nullptr;
+}
+
 std::uint32_t ContactManager::findOrAddPair(BodyStore &bodies, std::uint32_t i, std::uint32_t j, bool &created) {
     const std::uint32_t p = pairs.findOrAdd(i, j, created);
     if (created) {
@@ -484,6 +502,7 @@ void ContactManager::removePair(BodyStore &bodies, std::uint32_t p) {
         }
     }
     pairs.remove(p);
+    if (p < endNormalOf_.size()) endNormalOf_[p] = kNoSlot;
     eventSlots_.push_back(p);
 }
 

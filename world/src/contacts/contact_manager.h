@@ -56,14 +56,28 @@ public:
     void removePairsOf(BodyStore &bodies, std::uint32_t index);
     /// A number for a new set of anchors (ManifoldState::anchorsId), never given before.
     std::uint64_t newAnchorsId() { return ++anchorsIssued_; }
+    // End normals: what the landing correction's FCL tests found (collide's memos). It
+    // tests its pairs at the poses the next step's narrowphase starts from, which then
+    // builds the manifolds of the pairs whose bodies stayed there without FCL's test and
+    // the choice of normal (docs/solver.md, "The end poses' normals"). Only the pairs
+    // that reached FCL have one.
+
+    /// Forgets the end normals of the step before (the landing correction starts anew).
+    void clearEndNormals() { endNormals_.clear(); }
+    /// Keeps `memo` as pair p's end normal in step `step`, replacing one kept before.
+    void keepEndNormal(std::uint32_t p, const NormalMemo &memo, std::uint64_t step);
 
 private:
     /// Refreshes pair p's manifolds from their anchors when its bodies hardly moved
     /// relative to each other since it was last tested; false: it must be tested.
     bool reuseManifolds(const WorldState &world, std::uint32_t p);
     /// Runs the narrowphase on pair p and appends the manifolds it finds to `out`;
-    /// returns how many. Changes nothing else (pairs are detected on several threads).
-    std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out) const;
+    /// returns how many. Changes nothing else but `memo`, the pair's end normal if it has
+    /// one (pairs are detected on several threads).
+    std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
+                       NormalMemo *memo) const;
+    /// Pair p's end normal kept in step `step`, or null.
+    NormalMemo *endNormal(std::uint32_t p, std::uint64_t step);
     /// A compound pair's manifolds before its merge, and which a fresh one took.
     struct MergeScratch {
         std::vector<ManifoldState> previous;
@@ -126,6 +140,14 @@ private:
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of Workers::kChunk step pairs.
     std::vector<MergeScratch> mergeScratch_;         ///< Per chunk.
     std::vector<std::uint32_t> stepPairs_;  ///< Pair slots the broadphase reported this step.
+    /// An end normal, of pair slot `pair`, kept in step `step`.
+    struct EndNormal {
+        std::uint32_t pair = 0;
+        std::uint64_t step = 0;
+        NormalMemo memo;
+    };
+    std::vector<EndNormal> endNormals_;
+    std::vector<std::uint32_t> endNormalOf_;  ///< By pair slot: its entry in endNormals_ (if that names it).
     std::vector<ContactTrack> tracks_;      ///< By pair slot.
     /// Pair slots whose touching state may have changed since the last contact events:
     /// seen by the narrowphase or removed (reportContactEvents looks at these only).

@@ -94,6 +94,7 @@ void LandingCorrection::correct(WorldState &world) {
             if (r.simulated && !r.isolated && r.object) markFast(index);
         }
     });
+    world.contacts.clearEndNormals();
     if (activeBodies_.empty()) return;
     jointed_.clear();
     if (!world.joints.empty()) {
@@ -130,15 +131,40 @@ void LandingCorrection::correct(WorldState &world) {
         // one wherever its fresh points lie deeper than their targets.
         if (round == 1 ? !deep : points_.size() == before) break;
         // Lowest first: a push up out of what is below is not undone by the one below it.
-        const auto lower = [](const Point &x, const Point &y) {
+        // Small keys are sorted and the points then put in their order: moving whole
+        // points about in the sort cost more.
+        sortKeys_.clear();
+        for (std::size_t i = 0; i < points_.size(); ++i)
+            sortKeys_.push_back({points_[i].height, points_[i].order, static_cast<std::uint32_t>(i)});
+        const auto lower = [](const SortKey &x, const SortKey &y) {
             return x.height < y.height || (x.height == y.height && x.order < y.order);
         };
-        std::sort(points_.begin(), points_.end(), lower);
+        std::sort(sortKeys_.begin(), sortKeys_.end(), lower);
+        placeInOrder();
         world.stats.landingPushes += push(world, round);
     }
 
     for (std::uint32_t index : activeBodies_) movedRound_[index] = -1;
     activeBodies_.clear();
+}
+
+// Each cycle of the permutation is followed once, a point held aside at its start; a key
+// whose point is in place is marked with kPlaced.
+void LandingCorrection::placeInOrder() {
+    constexpr std::uint32_t kPlaced = ~std::uint32_t(0);
+    for (std::size_t start = 0; start < sortKeys_.size(); ++start) {
+        if (sortKeys_[start].index == kPlaced) continue;
+        const Point held = points_[start];
+        std::size_t at = start;
+        while (sortKeys_[at].index != start) {
+            const std::size_t from = sortKeys_[at].index;
+            points_[at] = points_[from];
+            sortKeys_[at].index = kPlaced;
+            at = from;
+        }
+        points_[at] = held;
+        sortKeys_[at].index = kPlaced;
+    }
 }
 
 bool LandingCorrection::detect(WorldState &world) {
@@ -155,17 +181,34 @@ bool LandingCorrection::detect(WorldState &world) {
     const std::size_t count = pairs_.size();
     while (chunkFinds_.size() < Workers::chunksOf(count)) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     findEnds_.resize(count);
+    while (chunkMemos_.size() < Workers::chunksOf(count)) chunkMemos_.emplace_back();
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
+        std::vector<Memo> &memos = chunkMemos_[chunk];
         out.clear();
+        memos.clear();
         for (std::size_t k = begin; k < end; ++k) {
             const PairState &pair = pairs[pairs_[k]];
             const BodyRecord &a = bodies[pair.a];
             const BodyRecord &b = bodies[pair.b];
-            collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out);
+            NormalMemo memo;
+            collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, &memo);
             findEnds_[k] = static_cast<std::uint32_t>(out.size());
+            if (memo.a) memos.push_back({static_cast<std::uint32_t>(k), memo.touching, memo.normal});
         }
     });
+    // What FCL found goes on to the next step's narrowphase (ContactManager's end normals),
+    // with the poses it was found at: the bodies' own still.
+    for (std::size_t chunk = 0; chunk < Workers::chunksOf(count); ++chunk) {
+        for (const Memo &m : chunkMemos_[chunk]) {
+            const PairState &pair = pairs[pairs_[m.k]];
+            const BodyRecord &a = bodies[pair.a];
+            const BodyRecord &b = bodies[pair.b];
+            NormalMemo memo;
+            memo.keep(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), m.touching, m.normal);
+            world.contacts.keepEndNormal(pairs_[m.k], memo, world.stepCount);
+        }
+    }
 
     const Vector3 &gravity = world.settings.gravity;
     const Vector3 up = gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());

@@ -28,7 +28,8 @@
 // their own), so that a push does not drive a body into a neighbour the round tested;
 // the pairs of the bodies a round moved are tested afresh in the next (at most kRounds
 // in all). The pairs' manifolds, impulses and touching states are not touched, so no
-// contact event changes. A step in which no body moved fast and no pair is deep costs
+// contact event changes; what FCL found at these poses goes on to the next step's
+// narrowphase (ContactManager's end normals), which starts from them. A step in which no body moved fast and no pair is deep costs
 // one pose comparison per awake body and one depth comparison per contact point.
 #pragma once
 
@@ -78,7 +79,25 @@ private:
     std::vector<char> flags_;                   ///< Scratch: what a test on the threads picked.
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
     std::vector<std::uint32_t> findEnds_;       ///< Per entry of pairs_: one past its last find in its chunk.
+    /// What FCL found for an entry of pairs_ (collide's memo, but for the shapes and poses:
+    /// the pair's), for the next step's narrowphase.
+    struct Memo {
+        std::uint32_t k = 0;  ///< Entry of pairs_.
+        bool touching = false;
+        Vector3 normal = Vector3::UnitY();
+    };
+    std::vector<std::vector<Memo>> chunkMemos_;  ///< Per chunk of pairs_, what FCL's tests found.
     std::vector<Point> points_;
+    /// A point's place in the order the passes take points_ in.
+    struct SortKey {
+        real height = 0;
+        std::uint32_t order = 0;
+        std::uint32_t index = 0;  ///< In points_.
+    };
+    std::vector<SortKey> sortKeys_;
+    /// Puts points_ in the order of sortKeys_ (sorted: the k-th key names the point that
+    /// goes k-th), in place.
+    void placeInOrder();
     /// How far a round's passes moved a body in all (the sum of its pushes), m.
     struct Move {
         std::uint32_t body = 0;
