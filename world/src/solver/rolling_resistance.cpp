@@ -55,11 +55,15 @@ void solveResistance(std::vector<SolverBody> &bodies, std::vector<ResistanceRow>
         // tangent friction is limited within a cone.
         if (row.rolling > 0) {
             for (int k = 0; k < 2; ++k) next[k] -= row.mass[k] * row.axis[k].dot(wb - wa);
+            // The squares decide (std::hypot is a slow library call); the length of a
+            // clamped impulse is taken as before.
             const real limit = row.rolling * row.limit;
-            const real length = std::hypot(next[0], next[1]);
-            if (length > limit) {
-                next[0] *= limit / length;
-                next[1] *= limit / length;
+            if (next[0] * next[0] + next[1] * next[1] > limit * limit) {
+                const real length = std::hypot(next[0], next[1]);
+                if (length > limit) {
+                    next[0] *= limit / length;
+                    next[1] *= limit / length;
+                }
             }
         }
         if (row.spinning > 0) {
