@@ -212,6 +212,10 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // That check and the look-up of the others are made on several threads (both miss the
     // cache); only the pairs not in the table are then added, one by one.
     const std::vector<CandidatePair> &candidates = found_.contacts;
+    // The walks over the step's pairs ask for the state of the pair kPrefetchAhead on.
+    const auto prefetchAhead = [&](std::size_t k, std::size_t end) {
+        if (k + kPrefetchAhead < end) pairs.prefetch(stepPairs_[k + kPrefetchAhead]);
+    };
     candidateSlots_.resize(candidates.size(), kNoSlot);
     candidateKinds_.resize(candidates.size());
     world.workers.forEach(candidates.size(), [&](std::size_t k) {
@@ -250,7 +254,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         stepPairs_.push_back(p);
     }
     world.workers.forEach(stepPairs_.size(), [&](std::size_t k) {
-        if (k + kPrefetchAhead < stepPairs_.size()) pairs.prefetch(stepPairs_[k + kPrefetchAhead]);
+        prefetchAhead(k, stepPairs_.size());
         pairs[stepPairs_[k]].lastSeen = stepCount;
     });
 
@@ -269,7 +273,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
         for (std::size_t k = begin; k < end; ++k) {
-            if (k + kPrefetchAhead < end) pairs.prefetch(stepPairs_[k + kPrefetchAhead]);
+            prefetchAhead(k, end);
             Find &find = finds_[k];
             find.reused = reuseManifolds(world, stepPairs_[k]);
             if (find.reused) continue;
@@ -300,7 +304,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         const std::vector<Manifold> &out = chunkFinds_[chunk];
         for (std::size_t k = begin; k < end; ++k) {
-            if (k + kPrefetchAhead < end) pairs.prefetch(stepPairs_[k + kPrefetchAhead]);
+            prefetchAhead(k, end);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
             if (!find.reused)
@@ -344,12 +348,13 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
 }
 
 // Only a touching pair is reused: one with no manifold may come into contact within the
-// tolerance, and FCL does not see contacts that are apart by a hair.
+// tolerance, and FCL does not see contacts that are apart by a hair. A pair touches only
+// through a merge, which kept its relative pose.
 bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
     const BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
     PairState &pair = pairs[p];
-    if (!pair.tested || !pair.touching() || settings.manifoldReuseTolerance <= 0) return false;
+    if (!pair.touching() || settings.manifoldReuseTolerance <= 0) return false;
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
     const Matrix4 poseA = a.body.getTransform();
@@ -410,7 +415,6 @@ void ContactManager::mergeFinds(const WorldState &world, std::uint32_t p, const 
                                 std::uint64_t issued, MergeScratch &scratch) {
     const BodyStore &bodies = world.bodies;
     PairState &pair = pairs[p];
-    pair.tested = true;
     // A pair apart that stays apart (most of a pile's pairs) has nothing to merge, and
     // its pose is not kept: only a touching pair is reused.
     if (n == 0 && pair.manifolds.empty()) return;

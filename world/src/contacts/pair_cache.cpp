@@ -85,7 +85,6 @@ std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &creat
     p.manifolds.clear();
     relativePoses_[slot] = RelativePose();
     p.lastSeen = 0;
-    p.tested = false;
     p.alive = true;
     insert(k, slot);
     return slot;

@@ -58,7 +58,6 @@ struct alignas(64) PairState {
     std::uint32_t a = 0;  ///< Body index of A (the smaller index).
     std::uint32_t b = 0;  ///< Body index of B.
     std::uint64_t lastSeen = 0;   ///< Step in which the broadphase last reported the pair.
-    bool tested = false;          ///< Whether it has been through the narrowphase.
     bool alive = false;
     std::vector<ManifoldState> manifolds;
     bool touching() const { return !manifolds.empty(); }
