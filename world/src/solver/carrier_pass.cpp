@@ -289,8 +289,9 @@ void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     // contacts at once, in a cycle of two states that no one-sweep test ends: pyramid40's
     // runs of levels 20-39 swept 10.9-11.1 times on average, in one direction 8.8-9.6
     // (docs/solver.md, "Sweeps in one direction").
+    for (int k = 0; k < kWideLanes; ++k) scratch.laneSweeps[k] = 0;
     for (int sweep = 0; sweep < stop.sweeps && anyLane(active); ++sweep) {
-        for (int k = 0; k < count; ++k) scratch.sweeps += active[k] != 0;
+        for (int k = 0; k < count; ++k) scratch.laneSweeps[k] += active[k] != 0;
         const CarriedBodies before = body;
         for (int slot = 0; slot < lanes.slots; ++slot) CarriedSweep(body, contacts[slot], active).solve(reverse);
         // A sweep that changed a body's velocity at its contacts by less than the
@@ -300,6 +301,7 @@ void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifol
         active &= ~(moved < tolerance);
     }
 
+    for (int k = 0; k < count; ++k) scratch.sweeps += scratch.laneSweeps[k];
     Lanes v[kWideLanes], w[kWideLanes];
     transposeOut(body.v, v);
     transposeOut(body.w, w);

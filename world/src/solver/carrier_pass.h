@@ -66,6 +66,7 @@ struct WideCarriedContact {
 struct CarrierPassScratch {
     std::vector<WideCarriedContact> contacts;
     long sweeps = 0;  ///< Sweeps of single runs, summed (a group's sweep counts once per run still going).
+    int laneSweeps[kWideLanes] = {};  ///< Sweeps of each run of the last group solved.
 };
 
 /// Solves runs run[0 .. count) (count <= kWideLanes, all of one level, their carriers'

@@ -25,6 +25,11 @@ struct CarrierThreads {
     std::vector<int> share[2];
     std::vector<int> runOf;     ///< Per solver body: its run, or -1 (none: final before the pass).
     std::vector<int> runLevel;  ///< Per run: its level.
+    std::vector<int> runBody;   ///< Per run: its carried body.
+    /// Per solver body: the sweeps its run took in the last carrier pass (0 if it had none).
+    /// The runs of a level are taken in their order, so that runs swept alike share a group.
+    std::vector<int> sweepsOf;
+    std::vector<int> sortCount, sortScratch;  ///< Scratch of the runs' order, kept so that a step allocates nothing.
     /// Per run: the pass (`pass`) in which it last finished.
     std::unique_ptr<std::atomic<std::uint32_t>[]> finished;
     std::size_t capacity = 0;  ///< Length of `finished`.
