@@ -89,6 +89,9 @@ void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifo
         threads.runBody[r] = body;
         threads.share[side ? (*side)[body] : 0].push_back(r);
     }
+    // The sort's keys: a run's sweeps (at most the stop's) and its level.
+    const int levels = static_cast<int>(runs.levelStart.size()) - 1;
+    threads.sortCount.reserve(static_cast<std::size_t>(std::max(carrierStop(levels).sweeps, levels)) + 2);
     for (std::vector<int> &list : threads.share) orderBySweeps(threads, list);
     if (static_cast<std::size_t>(runCount) > threads.capacity) {
         threads.capacity = static_cast<std::size_t>(runCount) * 2;
