@@ -26,8 +26,9 @@ struct CarrierThreads {
     std::vector<int> runOf;     ///< Per solver body: its run, or -1 (none: final before the pass).
     std::vector<int> runLevel;  ///< Per run: its level.
     std::vector<int> runBody;   ///< Per run: its carried body.
-    /// Per solver body: the sweeps its run took in the last carrier pass (0 if it had none).
-    /// The runs of a level are taken in their order, so that runs swept alike share a group.
+    /// Per solver body: the sweeps its run took in the last carrier pass that gave it one (0
+    /// before any). The runs of a level are taken in this order, so that runs that swept
+    /// alike share a group; only the cost depends on it.
     std::vector<int> sweepsOf;
     std::vector<int> sortCount, sortScratch;  ///< Scratch of the runs' order, kept so that a step allocates nothing.
     /// Per run: the pass (`pass`) in which it last finished.
