@@ -114,9 +114,11 @@ void solveCarrierShare(std::vector<SolverBody> &bodies, std::vector<SolverManifo
     // Alone, a share holds every run, level by level: each run's carriers have finished
     // before it starts, and nothing need be waited for.
     const bool alone = threads.share[1].empty();
-    for (std::size_t k = 0, end = 0; k < list.size(); k = end) {
-        end = groupEnd(list, threads, k);
-        if (end < list.size()) prefetchRuns(manifolds, runs, list, end, groupEnd(list, threads, end));
+    std::size_t end = list.empty() ? 0 : groupEnd(list, threads, 0);
+    for (std::size_t k = 0, next = 0; k < list.size(); k = end, end = next) {
+        // The next group is found once: its runs are asked for now and swept next.
+        next = end < list.size() ? groupEnd(list, threads, end) : end;
+        prefetchRuns(manifolds, runs, list, end, next);
         if (!alone)
             for (std::size_t r = k; r < end; ++r) awaitCarriers(manifolds, runs, threads, list[r]);
         solveCarriedRuns(bodies, manifolds, runs, &list[k], static_cast<int>(end - k), reverse, threads.scratch[share]);
