@@ -60,8 +60,11 @@ void LandingCorrection::correct(WorldState &world) {
     // start) more than half their own tolerance, and the bodies of deep resting pairs.
     // They count as moved in round 0.
     activeBodies_.clear();
+    if (movedRound_.size() < bodies.size()) {
+        movedRound_.resize(bodies.size(), -1);
+        sunk_.resize(bodies.size(), 0);
+    }
     const auto markFast = [&](std::uint32_t index) {
-        if (movedRound_.size() < bodies.size()) movedRound_.resize(bodies.size(), -1);
         if (movedRound_[index] == 0) return;
         movedRound_[index] = 0;
         activeBodies_.push_back(index);
@@ -91,7 +94,10 @@ void LandingCorrection::correct(WorldState &world) {
         const PairState &pair = world.contacts.pairs[touching[k]];
         for (const std::uint32_t index : {pair.a, pair.b}) {
             const BodyRecord &r = bodies[index];
-            if (r.simulated && !r.isolated && r.object) markFast(index);
+            if (r.simulated && !r.isolated && r.object) {
+                markFast(index);
+                sunk_[index] = 1;
+            }
         }
     });
     world.contacts.clearEndNormals();
@@ -144,7 +150,7 @@ void LandingCorrection::correct(WorldState &world) {
         world.stats.landingPushes += push(world, round);
     }
 
-    for (std::uint32_t index : activeBodies_) movedRound_[index] = -1;
+    for (std::uint32_t index : activeBodies_) movedRound_[index] = -1, sunk_[index] = 0;
     activeBodies_.clear();
 }
 
@@ -248,6 +254,8 @@ bool LandingCorrection::detect(WorldState &world) {
 
 int LandingCorrection::push(WorldState &world, int round) {
     BodyStore &bodies = world.bodies;
+    const Vector3 &gravity = world.settings.gravity;
+    const Vector3 up = gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());
     int pushed = 0;
     moved_.clear();
     for (int pass = 0; pass < kPasses; ++pass) {
@@ -260,6 +268,7 @@ int LandingCorrection::push(WorldState &world, int round) {
             const Vector3 normal = poseA.linear() * point.localNormal;
             const real depth = (poseA * point.localA - poseB * point.localB).dot(normal);
             if (!(depth > point.target)) continue;
+            liftAbove(bodies, point, normal.dot(up), round);
             // The bodies move along the normal only, split by their inverse masses.
             const real massA = movable(bodies, point.a) ? a.body.getInverseMass() : 0;
             const real massB = movable(bodies, point.b) ? b.body.getInverseMass() : 0;
@@ -286,6 +295,30 @@ int LandingCorrection::push(WorldState &world, int round) {
         if (move.length > 0.25 * toleranceFor(bodies[move.body].boundingRadius, slop)) movedRound_[move.body] = round;
     for (const Move &move : moved_) moveSlot_[move.body] = -1;
     return pushed;
+}
+
+// A sunk body (in a pair the step began deep in) pushed down by a body above it that may
+// not move would be driven back into what carries it: a column's bottom box, pushed up out
+// of the ground by the point before, then down again by the box it carries, went deeper
+// every step until it sank 13 mm. The body above is lifted instead: it becomes movable
+// and sunk, and as a body moved in this round its pairs are tested in the next, so that
+// a column is lifted box by box (kRounds of them). Only an awake dynamic body outside
+// joints, and only up (the normal within 60 degrees of gravity's opposite), so that it
+// goes into no ground unseen; only above a sunk body, as a fast one lifting what rests on
+// it kept piles rocking (docs/contacts_and_sleep.md, "A column's load lifted").
+void LandingCorrection::liftAbove(BodyStore &bodies, const Point &point, real normalUp, int round) {
+    constexpr real kSteepest = 0.5;  // cos 60 degrees
+    const bool moveA = movable(bodies, point.a);
+    if (moveA == movable(bodies, point.b)) return;
+    const std::uint32_t moving = moveA ? point.a : point.b;
+    const std::uint32_t still = moveA ? point.b : point.a;
+    // The still body must lie above the moving one (B lies along the normal).
+    if (!sunk_[moving] || (moveA ? normalUp : -normalUp) < kSteepest) return;
+    const BodyRecord &r = bodies[still];
+    if (!r.simulated || r.isolated || !r.object || (!jointed_.empty() && jointed_[still])) return;
+    movedRound_[still] = round;
+    sunk_[still] = 1;
+    activeBodies_.push_back(still);
 }
 
 void LandingCorrection::noteMove(std::uint32_t body, real length) {

@@ -71,9 +71,16 @@ private:
 
     /// Per body index: the last round that moved it (0: it moved fast in the step; -1: none).
     std::vector<int> movedRound_;
+    /// Per body index: whether it is in a pair the step began deep in (sunk under a
+    /// pile's load) or was lifted off such a body (liftAbove).
+    std::vector<char> sunk_;
     /// Per body index, while the world has joints: whether a joint holds the body.
     std::vector<char> jointed_;
     bool movable(const BodyStore &bodies, std::uint32_t index) const;
+    /// Makes the still body of a point whose other body is sunk and may move movable (and
+    /// sunk), when it lies above that body (`normalUp`: the point's normal, A to B, along
+    /// -gravity), so that the push lifts it rather than drive the sunk body down.
+    void liftAbove(BodyStore &bodies, const Point &point, real normalUp, int round);
     std::vector<std::uint32_t> activeBodies_;  ///< Bodies whose movedRound_ is set (to clear it).
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
     std::vector<char> flags_;                   ///< Scratch: what a test on the threads picked.
