@@ -156,6 +156,29 @@ TEST(LandingCorrection, PairSunkWhileRestingIsPushedOutOnlyBeyondOnePointSixTole
     }
 }
 
+// A column sunk under its load: the lower box placed 9 mm into the ground (beyond 1.6
+// tolerances, so it is pushed), the upper placed 6 mm into it (under 8 mm: not pushed
+// for its own sake), neither moving (the recovery at 1 %, as above). The ground pushes
+// the lower box up, out to 2.5 mm, which takes it 6.5 mm further into the upper box; the
+// upper box must then be lifted, not the lower driven back into the ground (the passes
+// ended with it 12.5 mm deep, under the still upper box). After the step both pairs are
+// within the tolerance and the upper box still rests on the lower (they overlap).
+TEST(LandingCorrection, BoxOnASunkBoxIsLiftedWithIt) {
+    WorldSettings settings = noSleep();
+    settings.penetrationRecovery = 0.01;
+    WorldFixture f(settings);
+    f.ground();
+    const BodyId lower = f.box(Vector3(0, 0.5 - 0.009, 0));
+    const BodyId upper = f.box(Vector3(0, 1.5 - 0.009 - 0.006, 0));
+    f.world.step(kDt);
+    EXPECT_GT(f.world.stats().landingPushes, 0);
+    EXPECT_LE(0.5 - f.position(lower).y(), kTolerance);
+    const real depth = overlap(f.world, lower, upper);
+    EXPECT_LE(depth, kTolerance);
+    EXPECT_GT(depth, 0);
+    EXPECT_GT(f.position(upper).y(), 1.5 - 0.009 - 0.006);
+}
+
 // A sleeping body is immovable for the step that wakes it: the landing box alone is
 // pushed back out of it.
 TEST(LandingCorrection, SleepingBodyIsNotMoved) {
