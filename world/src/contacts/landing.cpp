@@ -28,6 +28,11 @@ constexpr real kRestingFactor = 1.6;
 // Nonlinear Gauss-Seidel passes a round makes over its points.
 constexpr int kPasses = 8;
 
+// The unit vector against gravity (zero without gravity).
+Vector3 upward(const Vector3 &gravity) {
+    return gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());
+}
+
 real toleranceFor(real radius, real slop) {
     return std::max(std::min(kLandingDepth, kLandingFraction * radius), 2 * slop);
 }
@@ -216,8 +221,7 @@ bool LandingCorrection::detect(WorldState &world) {
         }
     }
 
-    const Vector3 &gravity = world.settings.gravity;
-    const Vector3 up = gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());
+    const Vector3 up = upward(world.settings.gravity);
     bool deep = false;
     for (std::size_t k = 0; k < count; ++k) {
         const PairState &pair = pairs[pairs_[k]];
@@ -254,8 +258,7 @@ bool LandingCorrection::detect(WorldState &world) {
 
 int LandingCorrection::push(WorldState &world, int round) {
     BodyStore &bodies = world.bodies;
-    const Vector3 &gravity = world.settings.gravity;
-    const Vector3 up = gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());
+    const Vector3 up = upward(world.settings.gravity);
     int pushed = 0;
     moved_.clear();
     for (int pass = 0; pass < kPasses; ++pass) {
@@ -299,13 +302,14 @@ int LandingCorrection::push(WorldState &world, int round) {
 
 // A sunk body (in a pair the step began deep in) pushed down by a body above it that may
 // not move would be driven back into what carries it: a column's bottom box, pushed up out
-// of the ground by the point before, then down again by the box it carries, went deeper
-// every step until it sank 13 mm. The body above is lifted instead: it becomes movable
-// and sunk, and as a body moved in this round its pairs are tested in the next, so that
-// a column is lifted box by box (kRounds of them). Only an awake dynamic body outside
-// joints, and only up (the normal within 60 degrees of gravity's opposite), so that it
-// goes into no ground unseen; only above a sunk body, as a fast one lifting what rests on
-// it kept piles rocking (docs/contacts_and_sleep.md, "A column's load lifted").
+// of the ground by the point before, then down again by the box it carries, ended the
+// passes deeper than it began (in the benchmark pile, 8 -> 12.5 mm in one step). The body
+// above is lifted instead: it becomes movable and sunk, and as a body moved in this round
+// its pairs are tested in the next, so that a column is lifted box by box (kRounds of
+// them). Only an awake dynamic body outside joints, and only up (the normal within 60
+// degrees of gravity's opposite), so that it goes into no ground unseen; only above a
+// sunk body, as a fast one lifting what rests on it kept piles rocking
+// (docs/contacts_and_sleep.md, "A column's load lifted").
 void LandingCorrection::liftAbove(BodyStore &bodies, const Point &point, real normalUp, int round) {
     constexpr real kSteepest = 0.5;  // cos 60 degrees
     const bool moveA = movable(bodies, point.a);

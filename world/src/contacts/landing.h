@@ -21,8 +21,9 @@
 // neighbour it can reach. A body that hardly moved made none of the overlap, and its
 // pairs with third bodies are not tested: pushed, it went unseen into the ground under
 // it. The bodies of a pair the step began deep in (kRestingFactor tolerances: sunk under
-// a pile's load) count as fast. Static, kinematic, sleeping and just-woken bodies, and
-// bodies in a joint, are immovable.
+// a pile's load) count as fast, and a body resting on one of them is lifted with it
+// rather than let the push drive it back down (liftAbove). Static, kinematic, sleeping
+// and just-woken bodies, and bodies in a joint, are immovable.
 // The points of every manifold found are kept, the shallow ones too, and shapes a hair
 // apart give points (WorldSettings::speculativeDistance, for the pairs with a test of
 // their own), so that a push does not drive a body into a neighbour the round tested;
