@@ -95,7 +95,11 @@ void LandingCorrection::correct(WorldState &world) {
                 if (m.points[i].depth > deepest) return true;
         return false;
     };
-    world.workers.forFlagged(touching.size(), flags_, deepPair, [&](std::size_t k) {
+    // None can be when no contact point of the step is deeper than that at the least
+    // tolerance (StepStats::maxPenetration: the deepest point the step solved), as in a
+    // resting stack: the pairs' points are then not read again.
+    const bool anyDeep = world.stats.maxPenetration > kRestingFactor * toleranceFor(0, slop);
+    if (anyDeep) world.workers.forFlagged(touching.size(), flags_, deepPair, [&](std::size_t k) {
         const PairState &pair = world.contacts.pairs[touching[k]];
         for (const std::uint32_t index : {pair.a, pair.b}) {
             const BodyRecord &r = bodies[index];
