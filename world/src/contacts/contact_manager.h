@@ -46,6 +46,10 @@ public:
     /// The step's pair slots (each candidate once, in the broadphase's order), for the
     /// landing correction (contacts/landing.h).
     const std::vector<std::uint32_t> &stepPairs() const { return stepPairs_; }
+    /// Whether the broadphase of step `step` reported pair slot p (it is in stepPairs()).
+    bool inStep(std::uint32_t p, std::uint64_t step) const { return p < listedIn_.size() && listedIn_[p] == step; }
+    /// Where pair slot p is in stepPairs(), when inStep.
+    std::uint32_t stepIndex(std::uint32_t p) const { return stepIndex_[p]; }
 
     ManifoldState &manifold(ManifoldRef ref) { return pairs[ref.pair].manifolds[ref.index]; }
     /// The pair of bodies i and j, created (and listed with both bodies) if new.
@@ -118,6 +122,7 @@ private:
     enum class CandidateKind : std::uint8_t { Excluded, Immovable, Held, New };
     std::vector<CandidateKind> candidateKinds_;  ///< Per candidate.
     std::vector<std::uint64_t> listedIn_;        ///< Per pair slot: the step that last listed it.
+    std::vector<std::uint32_t> stepIndex_;       ///< Per pair slot: its place in stepPairs_ that step.
     BroadphasePairs found_;  ///< The step's pairs: candidate contacts, sensor pairs, the filtered count.
     BroadphasePairs planePairs_;  ///< This step's body-plane pairs, found before the trees'.
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.

@@ -125,18 +125,27 @@ void LandingCorrection::correct(WorldState &world) {
     const auto movedIn = [&](std::uint32_t index, int round) {
         return index < movedRound_.size() && movedRound_[index] == round;
     };
-    const std::vector<std::uint32_t> &stepPairs = world.contacts.stepPairs();
+    const ContactManager &contacts = world.contacts;
     for (int round = 1; round <= kRounds; ++round) {
-        // The pairs with a body that moved in the round before (or, in the first, moved
-        // fast in the step) are tested afresh: their old points go.
+        // The step's pairs with a body that moved in the round before (or, in the first,
+        // moved fast in the step) are tested afresh: their old points go. They are found
+        // from those bodies' pairs, a pair of two such bodies once, and taken in the
+        // step's order (ContactManager::stepPairs).
         const int last = round - 1;
         pairs_.clear();
-        const auto retest = [&](std::size_t k) {
-            const PairState &pair = world.contacts.pairs[stepPairs[k]];
-            return (movedIn(pair.a, last) || movedIn(pair.b, last)) && (movable(bodies, pair.a) || movable(bodies, pair.b));
-        };
-        world.workers.forFlagged(stepPairs.size(), flags_, retest, [&](std::size_t k) { pairs_.push_back(stepPairs[k]); });
+        for (const std::uint32_t index : activeBodies_) {
+            if (movedRound_[index] != last) continue;
+            for (const std::uint32_t p : bodies[index].pairs) {
+                if (!contacts.inStep(p, world.stepCount)) continue;
+                const PairState &pair = contacts.pairs[p];
+                const std::uint32_t other = pair.a == index ? pair.b : pair.a;
+                if (movedIn(other, last) && other < index) continue;  // listed from `other`
+                if (movable(bodies, pair.a) || movable(bodies, pair.b)) pairs_.push_back(p);
+            }
+        }
         if (pairs_.empty()) break;
+        std::sort(pairs_.begin(), pairs_.end(),
+                  [&](std::uint32_t x, std::uint32_t y) { return contacts.stepIndex(x) < contacts.stepIndex(y); });
         const auto retested = [&](const Point &x) { return movedIn(x.a, last) || movedIn(x.b, last); };
         points_.erase(std::remove_if(points_.begin(), points_.end(), retested), points_.end());
         world.stats.landingPairs += static_cast<int>(pairs_.size());
