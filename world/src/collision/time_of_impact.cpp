@@ -138,6 +138,16 @@ real travel(const Matrix4 &from, const Matrix4 &to, real radius) {
     return (to.translation() - from.translation()).norm() + angle * radius;
 }
 
+// A turn by angle t has |R1 - R0|_F = 2 sqrt(2) sin(t / 2), and t <= pi sin(t / 2) on
+// [0, pi], so t <= pi |R1 - R0|_F / (2 sqrt(2)): about pi / 2 times t for a small turn.
+// The margin keeps the bound's rounding, and travel()'s, from deciding.
+bool travelWithin(const Matrix4 &from, const Matrix4 &to, real radius, real limit) {
+    constexpr real kTurnPerDistance = 1.1107207345395915;  // pi / (2 sqrt(2))
+    constexpr real kMargin = 1e-6;                         // m
+    const real turn = kTurnPerDistance * (to.linear() - from.linear()).norm();
+    return (to.translation() - from.translation()).norm() + turn * radius < limit - kMargin;
+}
+
 Matrix4 interpolate(const Matrix4 &from, const Matrix4 &to, real t) {
     Matrix4 pose = Matrix4::Identity();
     pose.translation() = from.translation() + t * (to.translation() - from.translation());

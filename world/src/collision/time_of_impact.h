@@ -66,6 +66,11 @@ bool separation(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, 
 /// (translation plus rotation angle times radius), m.
 real travel(const Matrix4 &from, const Matrix4 &to, real radius);
 
+/// Whether travel(from, to, radius) is surely below `limit`, from a bound on it without
+/// trigonometry (at most pi / 2 times the travel, and 1e-6 m of margin): true only when
+/// travel() is below `limit`; false may also mean the bound could not tell.
+bool travelWithin(const Matrix4 &from, const Matrix4 &to, real radius, real limit);
+
 /// The pose at fraction t of the motion from `from` to `to` (translation linear,
 /// rotation at constant angular velocity).
 Matrix4 interpolate(const Matrix4 &from, const Matrix4 &to, real t);

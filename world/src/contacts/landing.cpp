@@ -33,17 +33,6 @@ Vector3 upward(const Vector3 &gravity) {
     return gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());
 }
 
-// Whether travel(from, to, radius) is surely at most `limit`, from a bound on it that
-// needs no trigonometry: the turn's angle t has |R1 - R0|_F = 2 sqrt(2) sin(t / 2), and
-// t <= pi sin(t / 2) for t in [0, pi], so t <= pi |R1 - R0|_F / (2 sqrt(2)). The bound is
-// at most pi / 2 times the travel (a small turn), and 1e-6 m of margin keeps its rounding
-// from deciding: a body it cannot clear takes the exact travel.
-bool withinTravel(const Matrix4 &from, const Matrix4 &to, real radius, real limit) {
-    constexpr real kTurnBound = 1.1107207345395915;  // pi / (2 sqrt(2))
-    const real turn = kTurnBound * (to.linear() - from.linear()).norm();
-    return (to.translation() - from.translation()).norm() + turn * radius < limit - 1e-6;
-}
-
 real toleranceFor(real radius, real slop) {
     return std::max(std::min(kLandingDepth, kLandingFraction * radius), 2 * slop);
 }
@@ -93,7 +82,7 @@ void LandingCorrection::correct(WorldState &world) {
         const real tolerance = toleranceFor(r.boundingRadius, slop);
         const Matrix4 &from = r.object->getTransform();
         const Matrix4 &to = r.body.getTransform();
-        if (withinTravel(from, to, r.boundingRadius, 0.5 * tolerance)) return false;
+        if (travelWithin(from, to, r.boundingRadius, 0.5 * tolerance)) return false;
         return travel(from, to, r.boundingRadius) > 0.5 * tolerance;
     };
     world.workers.forFlagged(bodies.simulated.size(), flags_, movedFast,
