@@ -74,11 +74,14 @@ void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::v
         return;
     }
     const Vector3 u = up.normalized();
-    constexpr real kRestingCosine = 0.5;  // normal within 60 degrees of up
+    constexpr real kRestingCosine = 0.5;     // normal within 60 degrees of up
+    constexpr real kStandingCosine = 0.866;  // normal within 30 degrees of up
 
-    // Adjacency of the contact graph (counting sort by body).
+    // Adjacency of the contact graph (counting sort by body), each entry marked when the
+    // neighbour stands on the body (the normal within 30 degrees of up, the neighbour above).
     std::vector<int> &start = scratch.start;
     std::vector<int> &adjacent = scratch.adjacent;
+    std::vector<char> &carries = scratch.carries;
     start.assign(bodyCount + 1, 0);
     for (const SolverManifold &m : manifolds) {
         ++start[m.a + 1];
@@ -86,14 +89,26 @@ void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::v
     }
     for (int k = 0; k < bodyCount; ++k) start[k + 1] += start[k];
     adjacent.resize(start[bodyCount]);
+    carries.resize(start[bodyCount]);
     std::vector<int> &cursor = scratch.queue;  // reused below as the queue
     cursor.assign(start.begin(), start.end() - 1);
     for (const SolverManifold &m : manifolds) {
+        const real rise = m.normal.dot(u);  // > 0: B lies above A
+        carries[cursor[m.a]] = rise >= kStandingCosine;
         adjacent[cursor[m.a]++] = m.b;
+        carries[cursor[m.b]] = rise <= -kStandingCosine;
         adjacent[cursor[m.b]++] = m.a;
     }
 
-    // Breadth first from the immovable bodies.
+    // Levels, breadth first from the immovable bodies. First only up the contacts a body
+    // stands on, so that a body's level counts the bodies under it (a box of a column
+    // that touches a wall is not carried by the wall). A body on a steeper face would
+    // slide off it at the default friction (0.6, tan 31 degrees): its other contacts hold
+    // it too, and the carrier pass, which leaves out those with moving bodies, must not
+    // carry it on that face alone. Such bodies, and those that stand on nothing reached,
+    // get their levels in a second search over every contact, each from its lowest
+    // neighbour, so that every touching body has a level (the carrier pass's runs are
+    // ordered by it). docs/solver.md, "Carrier levels".
     constexpr int kUnreached = std::numeric_limits<int>::max();
     std::vector<int> &level = scratch.level;
     level.assign(bodyCount, kUnreached);
@@ -109,9 +124,23 @@ void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::v
         const int body = queue[head];
         for (int e = start[body]; e < start[body + 1]; ++e) {
             const int next = adjacent[e];
-            if (level[next] != kUnreached) continue;
+            if (level[next] != kUnreached || !carries[e]) continue;
             level[next] = level[body] + 1;
             queue.push_back(next);
+        }
+    }
+    // The second search takes the bodies in the order of their levels: those of the
+    // first (in `queue`, by level) merged with those it reaches (in `later`, by level).
+    std::vector<int> &later = scratch.later;
+    later.clear();
+    for (std::size_t head = 0, next = 0; head < queue.size() || next < later.size();) {
+        const bool first = next == later.size() || (head < queue.size() && level[queue[head]] <= level[later[next]]);
+        const int body = first ? queue[head++] : later[next++];
+        for (int e = start[body]; e < start[body + 1]; ++e) {
+            const int neighbour = adjacent[e];
+            if (level[neighbour] != kUnreached) continue;
+            level[neighbour] = level[body] + 1;
+            later.push_back(neighbour);
         }
     }
 
