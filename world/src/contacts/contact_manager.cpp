@@ -248,12 +248,8 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             p = findOrAddPair(bodies, c.a, c.b, created);
             candidateSlots_[k] = p;
         }
-        if (listedIn_.size() < pairs.slots()) {
-            listedIn_.resize(pairs.slots(), 0);
-            stepIndex_.resize(pairs.slots(), 0);
-        }
-        if (listedIn_[p] == stepCount) continue;  // reported twice
-        listedIn_[p] = stepCount;
+        if (stepIndex_.size() < pairs.slots()) stepIndex_.resize(pairs.slots(), 0);
+        if (inStep(p)) continue;  // reported twice
         stepIndex_[p] = static_cast<std::uint32_t>(stepPairs_.size());
         eventSlots_.push_back(p);
         stepPairs_.push_back(p);

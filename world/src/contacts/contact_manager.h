@@ -46,8 +46,10 @@ public:
     /// The step's pair slots (each candidate once, in the broadphase's order), for the
     /// landing correction (contacts/landing.h).
     const std::vector<std::uint32_t> &stepPairs() const { return stepPairs_; }
-    /// Whether the broadphase of step `step` reported pair slot p (it is in stepPairs()).
-    bool inStep(std::uint32_t p, std::uint64_t step) const { return p < listedIn_.size() && listedIn_[p] == step; }
+    /// Whether this step's broadphase reported pair slot p (it is in stepPairs()).
+    bool inStep(std::uint32_t p) const {
+        return p < stepIndex_.size() && stepIndex_[p] < stepPairs_.size() && stepPairs_[stepIndex_[p]] == p;
+    }
     /// Where pair slot p is in stepPairs(), when inStep.
     std::uint32_t stepIndex(std::uint32_t p) const { return stepIndex_[p]; }
 
@@ -121,8 +123,8 @@ private:
     /// (the one it had last step, or the one the table gives), or not in the table yet.
     enum class CandidateKind : std::uint8_t { Excluded, Immovable, Held, New };
     std::vector<CandidateKind> candidateKinds_;  ///< Per candidate.
-    std::vector<std::uint64_t> listedIn_;        ///< Per pair slot: the step that last listed it.
-    std::vector<std::uint32_t> stepIndex_;       ///< Per pair slot: its place in stepPairs_ that step.
+    /// Per pair slot: its place in stepPairs_ when last listed (this step's if it is there).
+    std::vector<std::uint32_t> stepIndex_;
     BroadphasePairs found_;  ///< The step's pairs: candidate contacts, sensor pairs, the filtered count.
     BroadphasePairs planePairs_;  ///< This step's body-plane pairs, found before the trees'.
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.

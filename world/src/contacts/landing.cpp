@@ -139,7 +139,7 @@ void LandingCorrection::correct(WorldState &world) {
         for (const std::uint32_t index : activeBodies_) {
             if (movedRound_[index] != last) continue;
             for (const std::uint32_t p : bodies[index].pairs) {
-                if (!contacts.inStep(p, world.stepCount)) continue;
+                if (!contacts.inStep(p)) continue;
                 const PairState &pair = contacts.pairs[p];
                 const std::uint32_t other = pair.a == index ? pair.b : pair.a;
                 if (movedIn(other, last) && other < index) continue;  // listed from `other`
@@ -287,10 +287,12 @@ int LandingCorrection::push(WorldState &world, int round) {
             const Vector3 normal = poseA.linear() * point.localNormal;
             const real depth = (poseA * point.localA - poseB * point.localB).dot(normal);
             if (!(depth > point.target)) continue;
-            liftAbove(bodies, point, normal.dot(up), round);
+            bool moveA = movable(bodies, point.a);
+            bool moveB = movable(bodies, point.b);
+            if (moveA != moveB && liftAbove(bodies, point, moveA, normal.dot(up), round)) moveA = moveB = true;
             // The bodies move along the normal only, split by their inverse masses.
-            const real massA = movable(bodies, point.a) ? a.body.getInverseMass() : 0;
-            const real massB = movable(bodies, point.b) ? b.body.getInverseMass() : 0;
+            const real massA = moveA ? a.body.getInverseMass() : 0;
+            const real massB = moveB ? b.body.getInverseMass() : 0;
             const real k = massA + massB;
             if (!(k > 0)) continue;
             const real lambda = (depth - point.target) / k;
@@ -326,19 +328,18 @@ int LandingCorrection::push(WorldState &world, int round) {
 // degrees of gravity's opposite), so that it goes into no ground unseen; only above a
 // sunk body, as a fast one lifting what rests on it kept piles rocking
 // (docs/contacts_and_sleep.md, "A column's load lifted").
-void LandingCorrection::liftAbove(BodyStore &bodies, const Point &point, real normalUp, int round) {
+bool LandingCorrection::liftAbove(const BodyStore &bodies, const Point &point, bool moveA, real normalUp, int round) {
     constexpr real kSteepest = 0.5;  // cos 60 degrees
-    const bool moveA = movable(bodies, point.a);
-    if (moveA == movable(bodies, point.b)) return;
     const std::uint32_t moving = moveA ? point.a : point.b;
     const std::uint32_t still = moveA ? point.b : point.a;
     // The still body must lie above the moving one (B lies along the normal).
-    if (!sunk_[moving] || (moveA ? normalUp : -normalUp) < kSteepest) return;
+    if (!sunk_[moving] || (moveA ? normalUp : -normalUp) < kSteepest) return false;
     const BodyRecord &r = bodies[still];
-    if (!r.simulated || r.isolated || !r.object || (!jointed_.empty() && jointed_[still])) return;
+    if (!r.simulated || r.isolated || !r.object || (!jointed_.empty() && jointed_[still])) return false;
     movedRound_[still] = round;
     sunk_[still] = 1;
     activeBodies_.push_back(still);
+    return true;
 }
 
 void LandingCorrection::noteMove(std::uint32_t body, real length) {

@@ -78,10 +78,11 @@ private:
     /// Per body index, while the world has joints: whether a joint holds the body.
     std::vector<char> jointed_;
     bool movable(const BodyStore &bodies, std::uint32_t index) const;
-    /// Makes the still body of a point whose other body is sunk and may move movable (and
-    /// sunk), when it lies above that body (`normalUp`: the point's normal, A to B, along
-    /// -gravity), so that the push lifts it rather than drive the sunk body down.
-    void liftAbove(BodyStore &bodies, const Point &point, real normalUp, int round);
+    /// For a point of which one body may move (A when `moveA`, else B): makes the other,
+    /// still one movable (and sunk) when the moving one is sunk and the still one lies
+    /// above it (`normalUp`: the point's normal, A to B, along -gravity), so that the push
+    /// lifts it rather than drive the sunk body down. Returns whether it did.
+    bool liftAbove(const BodyStore &bodies, const Point &point, bool moveA, real normalUp, int round);
     std::vector<std::uint32_t> activeBodies_;  ///< Bodies whose movedRound_ is set (to clear it).
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
     std::vector<char> flags_;                   ///< Scratch: what a test on the threads picked.
