@@ -25,8 +25,6 @@ constexpr real kContactKeepDistance = 0.002;
 // speculative contacts with the floor under it sink into one another.
 constexpr real kMinReach = 0.001;  // m
 
-// How many pairs ahead a walk over the step's pairs asks for a pair's state.
-constexpr std::size_t kPrefetchAhead = 8;
 
 // The speed gravity adds to a body falling freely over the step when it counts (above), m/s.
 Vector3 stepFall(const WorldSettings &settings, real dt) {
@@ -212,11 +210,11 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // That check and the look-up of the others are made on several threads (both miss the
     // cache); only the pairs not in the table are then added, one by one.
     const std::vector<CandidatePair> &candidates = found_.contacts;
-    // The walks over a list of pair slots ask for the state of the pair kPrefetchAhead on
-    // (a candidate not in the table yet has no slot to ask for).
+    // The walks over a list of pair slots ask for the state of the pair
+    // PairCache::kPrefetchAhead on (a candidate not in the table yet has no slot to ask for).
     const auto prefetchAhead = [&](const std::vector<std::uint32_t> &slots, std::size_t k, std::size_t end) {
-        if (k + kPrefetchAhead < end && slots[k + kPrefetchAhead] < pairs.slots())
-            pairs.prefetch(slots[k + kPrefetchAhead]);
+        if (k + PairCache::kPrefetchAhead < end && slots[k + PairCache::kPrefetchAhead] < pairs.slots())
+            pairs.prefetch(slots[k + PairCache::kPrefetchAhead]);
     };
     candidateSlots_.resize(candidates.size(), kNoSlot);
     candidateKinds_.resize(candidates.size());

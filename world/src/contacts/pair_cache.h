@@ -82,6 +82,8 @@ public:
     /// Asks the cache for slot `pair`'s state ahead of a visit: a walk over the step's
     /// pairs in the broadphase's order jumps between slots.
     void prefetch(std::uint32_t pair) const { __builtin_prefetch(&pairs_[pair]); }
+    /// How many pairs ahead such a walk asks for a pair's state.
+    static constexpr std::size_t kPrefetchAhead = 8;
     /// B seen from A at the last narrowphase that left the pair touching (manifold reuse
     /// reads it only then).
     RelativePose &relativePose(std::uint32_t pair) { return relativePoses_[pair]; }
