@@ -224,30 +224,59 @@ bool LandingCorrection::detect(WorldState &world) {
     // Shapes a hair apart (a box just above the ground) get points too, so that a push
     // towards them is held; only the pairs with a test of their own give them, at no cost.
     narrowphase.touchMargin = world.settings.speculativeDistance;
-    // Each pair on its own, in chunks shared between the threads; the points are then
-    // taken in the pairs' order, so that they do not depend on the thread count.
+    const Vector3 up = upward(world.settings.gravity);
+    // Each pair on its own, in chunks shared between the threads, each chunk's points in
+    // a list of its own; the lists are then joined in the pairs' order, so that the points
+    // do not depend on the thread count.
     const std::size_t count = pairs_.size();
-    while (chunkFinds_.size() < Workers::chunksOf(count)) chunkFinds_.emplace_back().reserve(Workers::kChunk);
-    findEnds_.resize(count);
-    while (chunkMemos_.size() < Workers::chunksOf(count)) chunkMemos_.emplace_back();
+    const std::size_t chunks = Workers::chunksOf(count);
+    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
+    while (chunkMemos_.size() < chunks) chunkMemos_.emplace_back();
+    while (chunkPoints_.size() < chunks) chunkPoints_.emplace_back();
+    chunkDeep_.resize(chunks);
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         std::vector<Memo> &memos = chunkMemos_[chunk];
+        std::vector<Point> &found = chunkPoints_[chunk];
         out.clear();
         memos.clear();
+        found.clear();
+        bool deep = false;
         for (std::size_t k = begin; k < end; ++k) {
             const PairState &pair = pairs[pairs_[k]];
             const BodyRecord &a = bodies[pair.a];
             const BodyRecord &b = bodies[pair.b];
+            const Matrix4 poseA = a.body.getTransform();
+            const Matrix4 poseB = b.body.getTransform();
+            const std::size_t first = out.size();
             NormalMemo memo;
-            collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, &memo);
-            findEnds_[k] = static_cast<std::uint32_t>(out.size());
+            collide(*a.shape, poseA, *b.shape, poseB, narrowphase, out, &memo);
             if (memo.a) memos.push_back({static_cast<std::uint32_t>(k), memo.touching, memo.normal});
+            const real tolerance = pairTolerance(a, b, slop);
+            const Matrix3 toA = poseA.linear().transpose();
+            const Matrix3 toB = poseB.linear().transpose();
+            for (std::size_t f = first; f < out.size(); ++f) {
+                const Manifold &m = out[f];
+                for (int i = 0; i < m.count; ++i) {
+                    const ContactPoint &c = m.points[static_cast<std::size_t>(i)];
+                    deep = deep || c.depth > tolerance;
+                    Point point;
+                    point.a = pair.a;
+                    point.b = pair.b;
+                    point.localA = toA * (c.pointA - poseA.translation());
+                    point.localB = toB * (c.pointB - poseB.translation());
+                    point.localNormal = toA * m.normal;
+                    point.target = 0.5 * tolerance;
+                    point.height = up.dot(0.5 * (c.pointA + c.pointB));
+                    found.push_back(point);
+                }
+            }
         }
+        chunkDeep_[chunk] = deep ? 1 : 0;
     });
     // What FCL found goes on to the next step's narrowphase (ContactManager's end normals),
     // with the poses it was found at: the bodies' own still.
-    for (std::size_t chunk = 0; chunk < Workers::chunksOf(count); ++chunk) {
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
         for (const Memo &m : chunkMemos_[chunk]) {
             const PairState &pair = pairs[pairs_[m.k]];
             const BodyRecord &a = bodies[pair.a];
@@ -257,37 +286,12 @@ bool LandingCorrection::detect(WorldState &world) {
             world.contacts.keepEndNormal(pairs_[m.k], memo, world.stepCount);
         }
     }
-
-    const Vector3 up = upward(world.settings.gravity);
     bool deep = false;
-    for (std::size_t k = 0; k < count; ++k) {
-        const PairState &pair = pairs[pairs_[k]];
-        const BodyRecord &a = bodies[pair.a];
-        const BodyRecord &b = bodies[pair.b];
-        const real tolerance = pairTolerance(a, b, slop);
-        const real target = 0.5 * tolerance;
-        const std::vector<Manifold> &out = chunkFinds_[k / Workers::kChunk];
-        const std::size_t first = k % Workers::kChunk == 0 ? 0 : findEnds_[k - 1];
-        const Matrix4 poseA = a.body.getTransform();
-        const Matrix4 poseB = b.body.getTransform();
-        const Matrix3 toA = poseA.linear().transpose();
-        const Matrix3 toB = poseB.linear().transpose();
-        for (std::size_t f = first; f < findEnds_[k]; ++f) {
-            const Manifold &m = out[f];
-            for (int i = 0; i < m.count; ++i) {
-                const ContactPoint &c = m.points[static_cast<std::size_t>(i)];
-                deep = deep || c.depth > tolerance;
-                Point point;
-                point.a = pair.a;
-                point.b = pair.b;
-                point.localA = toA * (c.pointA - poseA.translation());
-                point.localB = toB * (c.pointB - poseB.translation());
-                point.localNormal = toA * m.normal;
-                point.target = target;
-                point.height = up.dot(0.5 * (c.pointA + c.pointB));
-                point.order = static_cast<std::uint32_t>(points_.size());
-                points_.push_back(point);
-            }
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+        deep = deep || chunkDeep_[chunk] != 0;
+        for (Point point : chunkPoints_[chunk]) {
+            point.order = static_cast<std::uint32_t>(points_.size());
+            points_.push_back(point);
         }
     }
     return deep;
