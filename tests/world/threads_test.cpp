@@ -1,6 +1,7 @@
 // Threads share a step's work and change nothing in its results: the same scene with 1,
 // 2 or 3 threads gives bit-identical states (docs/solver.md, "Threads"). The scene is
 // large enough for the solver to split its passes in two halves (threads/partition.h).
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -10,6 +11,7 @@
 #include "solver/schedule.h"
 #include "solver/carriers.h"
 #include "solver/threads/carrier_threads.h"
+#include "solver/threads/ordered_shares.h"
 #include "world/task_pool.h"
 #include "world_fixture.h"
 
@@ -239,6 +241,140 @@ TEST(SolverSchedule, AManifoldPassesAWaitingOneItSharesABodyWithOnlyWhenLevel) {
     order = {0, 1, 2, 3};
     detail::buildSchedule(manifolds, order, groups, scratch);
     EXPECT_EQ(members(groups), plain);
+}
+
+// A pass shared by OrderedShares gives the one-thread numbers. Entries touch two of 300
+// bodies (body 0, the immovable world, now and then) and change them in a way whose result
+// depends on the order: each body must meet its entries in the list's order.
+struct OrderedEntries {
+    std::vector<int> a, b;
+    std::vector<signed char> side;
+    explicit OrderedEntries(std::size_t count) {
+        constexpr int kBodies = 300;
+        std::uint32_t state = 12345;
+        const auto next = [&](int range) {
+            state = state * 1664525u + 1013904223u;
+            return static_cast<int>((state >> 8) % static_cast<std::uint32_t>(range));
+        };
+        side.resize(kBodies);
+        side[0] = -1;
+        for (int k = 1; k < kBodies; ++k) side[static_cast<std::size_t>(k)] = static_cast<signed char>(k < kBodies / 2 ? 0 : 1);
+        for (std::size_t k = 0; k < count; ++k) {
+            // Mostly within a half, as a partition's bodies are; now and then across it.
+            const int first = 1 + next(kBodies - 1);
+            const bool across = next(8) == 0;
+            const int half = side[static_cast<std::size_t>(first)];
+            const int low = across ? 1 : (half == 0 ? 1 : kBodies / 2);
+            const int high = across ? kBodies : (half == 0 ? kBodies / 2 : kBodies);
+            int second = low + next(high - low);
+            if (second == first || next(20) == 0) second = 0;
+            a.push_back(first);
+            b.push_back(second);
+        }
+    }
+    void solve(std::vector<double> &values, int k) const {
+        const std::size_t i = static_cast<std::size_t>(a[static_cast<std::size_t>(k)]);
+        const std::size_t j = static_cast<std::size_t>(b[static_cast<std::size_t>(k)]);
+        const double x = values[i], y = values[j];
+        values[i] = 0.75 * x + 0.5 * y + k;
+        if (j != 0) values[j] = 0.5 * y - 0.25 * x + 1;
+    }
+};
+
+TEST(OrderedShares, TwoThreadsGiveTheOneThreadOrdersNumbers) {
+    const OrderedEntries entries(4000);
+    const std::size_t count = entries.a.size();
+    detail::OrderedShares shares;
+    detail::buildOrderedShares(
+        count, [&](std::size_t k) { return entries.a[k]; }, [&](std::size_t k) { return entries.b[k]; }, entries.side,
+        300, shares);
+    std::vector<double> one(300, 1.0), two(300, 1.0);
+    detail::TaskPool pool(2);
+    for (int pass = 0; pass < 5; ++pass) {
+        for (std::size_t k = 0; k < count; ++k) entries.solve(one, static_cast<int>(k));
+        detail::beginOrderedPass(shares);
+        pool.run(2, [&](int share) { detail::solveOrderedShare(shares, share, [&](int k) { entries.solve(two, k); }); });
+        for (std::size_t body = 0; body < one.size(); ++body) ASSERT_EQ(one[body], two[body]) << "pass " << pass << ", body " << body;
+    }
+    EXPECT_EQ(shares.share[0].size() + shares.share[1].size(), count);
+    EXPECT_FALSE(shares.share[0].empty());
+    EXPECT_FALSE(shares.share[1].empty());
+}
+
+// What each entry waits for, worked out apart: the last earlier entry touching each of its
+// moving bodies when that entry went to the other thread; an entry goes to the thread of
+// its first body's half.
+TEST(OrderedShares, AnEntryWaitsForTheOtherThreadsLastEntryOnEachOfItsBodies) {
+    const OrderedEntries entries(2000);
+    const std::size_t count = entries.a.size();
+    detail::OrderedShares shares;
+    detail::buildOrderedShares(
+        count, [&](std::size_t k) { return entries.a[k]; }, [&](std::size_t k) { return entries.b[k]; }, entries.side,
+        300, shares);
+    std::vector<int> shareOf(count, -1);
+    for (int s = 0; s < 2; ++s)
+        for (int k : shares.share[s]) shareOf[static_cast<std::size_t>(k)] = s;
+    int waits = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+        ASSERT_EQ(shareOf[k], entries.side[static_cast<std::size_t>(entries.a[k])]) << "entry " << k;
+        const int bodies[2] = {entries.a[k], entries.b[k]};
+        for (int j = 0; j < 2; ++j) {
+            int expected = -1;
+            if (bodies[j] != 0) {
+                for (std::size_t e = k; e-- > 0;) {
+                    if (entries.a[e] != bodies[j] && entries.b[e] != bodies[j]) continue;
+                    if (shareOf[e] != shareOf[k]) expected = static_cast<int>(e);
+                    break;
+                }
+            }
+            EXPECT_EQ(shares.waits[2 * k + static_cast<std::size_t>(j)], expected) << "entry " << k << ", body " << j;
+            waits += expected >= 0;
+        }
+        // Within a share the entries keep the list's order.
+    }
+    for (const std::vector<int> &share : shares.share) EXPECT_TRUE(std::is_sorted(share.begin(), share.end()));
+    EXPECT_GT(waits, 0);
+}
+
+// A heap of balls and capsules on a floor: rolling and spinning rows and manifolds without
+// a carrier (side by side on the floor) by the hundreds, which two threads share
+// (threads/ordered_shares.h): the states stay bit-identical to one thread's.
+TEST(Threads, SharedResistanceRowsAndUncarriedManifoldsGiveOneThreadsNumbers) {
+    struct Heap {
+        std::unique_ptr<World> world;
+        std::vector<BodyId> ids;
+        explicit Heap(int threads) {
+            WorldSettings settings;
+            settings.threads = threads;
+            world = std::make_unique<World>(settings);
+            BodySettings floor;
+            floor.isStatic = true;
+            floor.shape = Shape::plane(Vector3::UnitY(), 0);
+            ids.push_back(world->addBody(floor));
+            const Shape shapes[] = {Shape::sphere(0.25), Shape::capsule(0.2, 0.4)};
+            for (int i = 0; i < 300; ++i) {
+                BodySettings s;
+                s.shape = shapes[i % 2];
+                s.position = Vector3(-3.8 + 0.55 * (i % 15), 0.3 + 0.6 * (i / 45), -2.2 + 0.55 * ((i / 15) % 3) + 0.02 * (i % 4));
+                s.orientation = Quaternion(1, 0.05 * (i % 5), 0.3, 0.02 * i).normalized();
+                s.velocity = Vector3(0.1 * ((i % 3) - 1), -0.5, 0);
+                ids.push_back(world->addBody(s));
+            }
+        }
+    };
+    Heap one(1), two(2);
+    int mostRows = 0, mostManifolds = 0;
+    for (int i = 0; i < 150; ++i) {
+        one.world->step(kDt);
+        two.world->step(kDt);
+        for (std::size_t k = 0; k < one.ids.size(); ++k)
+            ASSERT_TRUE(sameBits(one.world->body(one.ids[k]), two.world->body(two.ids[k]))) << "body " << k << ", step " << i + 1;
+        mostRows = std::max(mostRows, one.world->stats().resistanceRows);
+        mostManifolds = std::max(mostManifolds, one.world->stats().manifolds);
+    }
+    // Shared only from detail::kMinSharedEntries entries on (rows count up to three each).
+    EXPECT_GE(mostRows, 3 * static_cast<int>(detail::kMinSharedEntries));
+    EXPECT_GE(mostManifolds, 2 * static_cast<int>(detail::kMinSharedEntries));
 }
 
 // The pool itself: every task of a job runs exactly once, whatever the count, and jobs

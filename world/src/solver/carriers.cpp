@@ -8,7 +8,8 @@ namespace {
 
 // The carrier pass's runs: each carried body's manifolds with its carriers, bodies by
 // level (bottom up; all level 0 without `level`), then by their first such manifold in
-// `order`, each body's manifolds in `order`. Bucketed, not sorted: the bodies are met in
+// `order`, each body's manifolds in `order`; and the manifolds without a carrier, in
+// `order`. Bucketed, not sorted: the bodies are met in
 // the order of their first manifolds, and a stable count by level keeps that order.
 void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
                const std::vector<int> *level, int bodyCount, CarrierScratch &scratch, CarrierRuns &runs) {
@@ -19,10 +20,14 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
     count.assign(bodyCount, 0);
     std::vector<int> &met = scratch.met;
     met.clear();
+    runs.uncarried.clear();
     int levels = 0;
     for (int index : order) {
         const SolverManifold &m = manifolds[index];
-        if (m.carrier == Carrier::None) continue;
+        if (m.carrier == Carrier::None) {
+            runs.uncarried.push_back(index);
+            continue;
+        }
         const int body = carried(m);
         if (count[body]++ == 0) {
             met.push_back(body);

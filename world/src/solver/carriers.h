@@ -32,7 +32,8 @@ struct CarrierScratch {
 /// `bodyCount` counts the solver bodies, body 0 included; entries from `firstKinematic`
 /// on are moving kinematic bodies, immovable like body 0 (bodyCount when none).
 /// Also lists the carrier pass's runs (CarrierRuns) bottom up; within a level, the
-/// bodies and each body's manifolds in the solve order `order` (manifold indices).
+/// bodies and each body's manifolds in the solve order `order` (manifold indices); and the
+/// manifolds without a carrier, in `order`.
 void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::vector<SolverManifold> &manifolds,
                    const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs);
 

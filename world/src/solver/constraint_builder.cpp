@@ -332,6 +332,20 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     }
     for (const ResistanceRow &row : resistance_)
         world.stats.resistanceRows += (row.mass[0] > 0) + (row.mass[1] > 0) + (row.mass[2] > 0);
+    // Two threads share the resistance rows and the manifolds without a carrier by the
+    // partition's halves, with the numbers of one (threads/ordered_shares.h).
+    orderedShares_ = world.workers.parallel() && partition_.split;
+    if (!orderedShares_) return;
+    const int bodyCount = static_cast<int>(bodies_.size());
+    const std::vector<signed char> &side = partitionScratch_.side;
+    buildOrderedShares(
+        resistance_.size(), [&](std::size_t k) { return resistance_[k].a; },
+        [&](std::size_t k) { return resistance_[k].b; }, side, bodyCount, resistanceShares_);
+    if (!support) return;
+    const std::vector<int> &uncarried = carrierRuns_.uncarried;
+    buildOrderedShares(
+        uncarried.size(), [&](std::size_t k) { return manifolds_[uncarried[k]].a; },
+        [&](std::size_t k) { return manifolds_[uncarried[k]].b; }, side, bodyCount, uncarriedShares_);
 }
 
 void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split,

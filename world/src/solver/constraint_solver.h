@@ -17,6 +17,7 @@
 #include "solver/rolling_resistance.h"
 #include "solver/round_depths.h"
 #include "solver/threads/carrier_threads.h"
+#include "solver/threads/ordered_shares.h"
 #include "solver/threads/partition.h"
 #include "solver/velocity_pass.h"
 #include "world/body_store.h"
@@ -77,6 +78,7 @@ private:
     void solveVelocityPass(WorldState &world, bool reverse);
     void storeVelocityPasses(WorldState &world);
     void solveCarrierPass(WorldState &world, bool reverse);
+    void solveResistancePass(WorldState &world);
     void recoverContactPenetration(WorldState &world, real h);
 
     /// The body records of a slot's A and B: the passes over the slots read them here,
@@ -119,6 +121,11 @@ private:
     CarrierScratch carrierScratch_;
     CarrierRuns carrierRuns_;
     CarrierThreads carrierThreads_;
+    /// Whether the resistance rows and the carrier pass's manifolds without a carrier are
+    /// shared between two threads this step (threads/ordered_shares.h), and how.
+    bool orderedShares_ = false;
+    OrderedShares resistanceShares_;  ///< Entries: resistance_.
+    OrderedShares uncarriedShares_;   ///< Entries: carrierRuns_.uncarried.
     SoftStepSettings soft_;
     std::vector<Vector3> predictedV_;  ///< Velocity each simulated body reaches without contacts.
     std::vector<Vector3> predictedW_;

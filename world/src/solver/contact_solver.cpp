@@ -414,15 +414,21 @@ void prepareCarriedMasses(const std::vector<SolverBody> &bodies, SolverManifold 
     fillCouplings(m, bMoves ? kOnlyB : kOnlyA, invMass, m.carriedCouplings);
 }
 
-CYCLONE_SIMD_CLONES
+// Out of line, so that one thread's pass (solveUncarried) and two threads' shares
+// (threads/ordered_shares.h) run the same instructions and round alike.
+CYCLONE_SIMD_CLONES __attribute__((noinline))
+void solveUncarriedManifold(std::vector<SolverBody> &bodies, SolverManifold &m, bool reverse) {
+    PairVelocities vel(bodies[m.a], bodies[m.b]);
+    solveManifold(vel, m, reverse);
+    vel.store(bodies, m);
+}
+
 void solveUncarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                       const std::vector<int> &order, bool reverse) {
     for (int index : order) {
         SolverManifold &m = manifolds[index];
         if (m.carrier != Carrier::None) continue;
-        PairVelocities vel(bodies[m.a], bodies[m.b]);
-        solveManifold(vel, m, reverse);
-        vel.store(bodies, m);
+        solveUncarriedManifold(bodies, m, reverse);
     }
 }
 

@@ -203,6 +203,9 @@ struct CarrierRuns {
     std::vector<int> start;
     std::vector<int> levelStart;  ///< Level l's runs are [levelStart[l], levelStart[l + 1]).
     std::vector<int> manifolds;
+    /// The manifolds without a carrier, in the solve order: the carrier pass's first pass
+    /// (solveUncarried) takes these alone.
+    std::vector<int> uncarried;
 };
 
 struct SolverSettings {
@@ -296,5 +299,8 @@ void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold
 /// solved at the same time.
 void solveUncarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
                       const std::vector<int> &order, bool reverse);
+/// solveUncarried's pass for one manifold without a carrier (threads/ordered_shares.h
+/// shares that pass's manifolds between threads).
+void solveUncarriedManifold(std::vector<SolverBody> &bodies, SolverManifold &m, bool reverse);
 
 }  // namespace cyclone::detail

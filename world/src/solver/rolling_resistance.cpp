@@ -42,44 +42,47 @@ void beginResistance(const std::vector<SolverManifold> &manifolds, std::vector<R
     }
 }
 
-void solveResistance(std::vector<SolverBody> &bodies, std::vector<ResistanceRow> &rows) {
-    for (ResistanceRow &row : rows) {
-        if (row.limit == 0) continue;
-        SolverBody &a = bodies[row.a];
-        SolverBody &b = bodies[row.b];
-        Vector3 wa = toVector3(a.w);
-        Vector3 wb = toVector3(b.w);
-        const Vector3 old = row.impulse;
-        Vector3 next = old;
-        // Rolling: the two tangents' impulses together within a disc, as a patch's
-        // tangent friction is limited within a cone.
-        if (row.rolling > 0) {
-            for (int k = 0; k < 2; ++k) next[k] -= row.mass[k] * row.axis[k].dot(wb - wa);
-            // The squares decide (std::hypot is a slow library call); the length of a
-            // clamped impulse is taken as before.
-            const real limit = row.rolling * row.limit;
-            if (next[0] * next[0] + next[1] * next[1] > limit * limit) {
-                const real length = std::hypot(next[0], next[1]);
-                if (length > limit) {
-                    next[0] *= limit / length;
-                    next[1] *= limit / length;
-                }
+void solveResistanceRow(std::vector<SolverBody> &bodies, ResistanceRow &row) {
+    if (row.limit == 0) return;
+    SolverBody &a = bodies[row.a];
+    SolverBody &b = bodies[row.b];
+    Vector3 wa = toVector3(a.w);
+    Vector3 wb = toVector3(b.w);
+    const Vector3 old = row.impulse;
+    Vector3 next = old;
+    // Rolling: the two tangents' impulses together within a disc, as a patch's
+    // tangent friction is limited within a cone.
+    if (row.rolling > 0) {
+        for (int k = 0; k < 2; ++k) next[k] -= row.mass[k] * row.axis[k].dot(wb - wa);
+        // The squares decide (std::hypot is a slow library call); the length of a
+        // clamped impulse is taken as before.
+        const real limit = row.rolling * row.limit;
+        if (next[0] * next[0] + next[1] * next[1] > limit * limit) {
+            const real length = std::hypot(next[0], next[1]);
+            if (length > limit) {
+                next[0] *= limit / length;
+                next[1] *= limit / length;
             }
         }
-        if (row.spinning > 0) {
-            const real limit = row.spinning * row.limit;
-            next[2] = std::clamp(next[2] - row.mass[2] * row.axis[2].dot(wb - wa), -limit, limit);
-        }
-        const Vector3 change = next - old;
-        row.impulse = next;
-        for (int k = 0; k < 3; ++k) {
-            wa -= change[k] * row.angA[k];
-            wb += change[k] * row.angB[k];
-        }
-        // The immovable world (entry 0) keeps zero velocities: its inverse inertia is zero.
-        setLanes(a.w, wa);
-        setLanes(b.w, wb);
     }
+    if (row.spinning > 0) {
+        const real limit = row.spinning * row.limit;
+        next[2] = std::clamp(next[2] - row.mass[2] * row.axis[2].dot(wb - wa), -limit, limit);
+    }
+    const Vector3 change = next - old;
+    row.impulse = next;
+    for (int k = 0; k < 3; ++k) {
+        wa -= change[k] * row.angA[k];
+        wb += change[k] * row.angB[k];
+    }
+    // The immovable world (entry 0) keeps zero velocities (its inverse inertia is zero):
+    // it is not written, so that two threads may read it at once (threads/ordered_shares.h).
+    if (row.a != 0) setLanes(a.w, wa);
+    if (row.b != 0) setLanes(b.w, wb);
+}
+
+void solveResistance(std::vector<SolverBody> &bodies, std::vector<ResistanceRow> &rows) {
+    for (ResistanceRow &row : rows) solveResistanceRow(bodies, row);
 }
 
 }  // namespace cyclone::detail

@@ -40,6 +40,8 @@ void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifo
 /// At a sub-step's start: each row's limit from its manifold's normal impulses, its
 /// accumulated impulse cleared.
 void beginResistance(const std::vector<SolverManifold> &manifolds, std::vector<ResistanceRow> &rows);
+/// Solves one row: its impulses within their limits, its bodies' spins changed.
+void solveResistanceRow(std::vector<SolverBody> &bodies, ResistanceRow &row);
 /// One pass over the rows, in order.
 void solveResistance(std::vector<SolverBody> &bodies, std::vector<ResistanceRow> &rows);
 

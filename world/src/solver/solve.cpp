@@ -127,7 +127,7 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         for (int it = 0; it < passes; ++it) {
             if (split) solveVelocityPass(world, (it & 1) != 0);
             else solveSoft(bodies_, manifolds_, solveOrder_, h, true, soft_);
-            solveResistance(bodies_, resistance_);
+            solveResistancePass(world);
             if (joints) world.joints.solveVelocities(bodies_);
         }
         if (split) storeVelocityPasses(world);
@@ -216,13 +216,35 @@ void ConstraintSolver::storeVelocityPasses(WorldState &world) {
 
 // The partition's halves at once, each run once its carriers are done (threads/carrier_threads.h).
 void ConstraintSolver::solveCarrierPass(WorldState &world, bool reverse) {
-    solveUncarried(bodies_, manifolds_, solveOrder_, reverse);
+    const std::vector<int> &uncarried = carrierRuns_.uncarried;
+    if (orderedShares_ && uncarried.size() >= kMinSharedEntries) {
+        beginOrderedPass(uncarriedShares_);
+        world.workers.forEachTask(2, [&](int share) {
+            solveOrderedShare(uncarriedShares_, share,
+                              [&](int k) { solveUncarriedManifold(bodies_, manifolds_[uncarried[k]], reverse); });
+        });
+    } else {
+        solveUncarried(bodies_, manifolds_, uncarried, reverse);
+    }
     beginCarrierPass(carrierThreads_);
     for (CarrierPassScratch &s : carrierThreads_.scratch) s.sweeps = 0;
     world.workers.forEachTask(carrierThreads_.share[1].empty() ? 1 : 2, [&](int share) {
         solveCarrierShare(bodies_, manifolds_, carrierRuns_, carrierThreads_, share, reverse);
     });
     for (const CarrierPassScratch &s : carrierThreads_.scratch) world.stats.carrierSweeps += static_cast<int>(s.sweeps);
+}
+
+// One pass over the resistance rows: on two threads (threads/ordered_shares.h) when there
+// are enough of them to outweigh the hand-over, with the same numbers either way.
+void ConstraintSolver::solveResistancePass(WorldState &world) {
+    if (!orderedShares_ || resistance_.size() < kMinSharedEntries) {
+        solveResistance(bodies_, resistance_);
+        return;
+    }
+    beginOrderedPass(resistanceShares_);
+    world.workers.forEachTask(2, [&](int share) {
+        solveOrderedShare(resistanceShares_, share, [&](int k) { solveResistanceRow(bodies_, resistance_[k]); });
+    });
 }
 
 void ConstraintSolver::recoverPenetration(WorldState &world, real h) {
