@@ -106,7 +106,12 @@ int run(int argc, char **argv) {
     std::vector<std::string> files;
     int firstSeed = 1, lastSeed = 10, steps = 600;
     bool landing = true;  // WorldSettings::landingCorrection, for comparing
+    bool worldDefaults = false;  // the benchmark scenes at WorldSettings' sub-steps and passes
     for (int i = 1; i < argc; ++i) {
+        if (std::string(argv[i]) == "--defaults") {
+            worldDefaults = true;
+            continue;
+        }
         std::string name, value;
         if (!readOption(kTool, argc, argv, i, name, value)) return 2;
         if (name == "--scene") {
@@ -124,7 +129,7 @@ int run(int argc, char **argv) {
         } else {
             std::fprintf(stderr,
                          "usage: %s [--scene NAME[,NAME]] [--seeds FIRST-LAST] [--file SCENE.json] [--steps N] "
-                         "[--landing on|off]\n",
+                         "[--landing on|off] [--defaults]\n",
                          kTool);
             return 2;
         }
@@ -139,6 +144,11 @@ int run(int argc, char **argv) {
             const Scene scene = makeScene(name, static_cast<std::uint64_t>(seed));
             WorldSettings settings = scene.world;
             settings.landingCorrection = landing;
+            if (worldDefaults) {
+                settings.substeps = WorldSettings().substeps;
+                settings.velocityIterations = WorldSettings().velocityIterations;
+                settings.positionIterations = WorldSettings().positionIterations;
+            }
             World world(settings);
             for (const BodySettings &body : scene.bodies) world.addBody(body);
             print(name + " seed " + std::to_string(seed), settle(world, steps, dt), dt);
