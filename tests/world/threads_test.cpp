@@ -18,6 +18,16 @@
 namespace cyclone::test {
 namespace {
 
+// A world of `threads` threads (the defaults otherwise) on a static floor at y = 0, whose
+// id goes first in `ids`.
+std::unique_ptr<World> worldOnFloor(int threads, std::vector<BodyId> &ids) {
+    WorldSettings settings;
+    settings.threads = threads;
+    auto world = std::make_unique<World>(settings);
+    ids.push_back(addStatic(*world, Shape::plane(Vector3::UnitY(), 0), Vector3::Zero()));
+    return world;
+}
+
 // A 16-box-wide pyramid (136 boxes, some 270 manifolds), with spheres, capsules and boxes
 // thrown onto it with spin and a spring on one of them; sleep on.
 struct ThreadedScene {
@@ -25,13 +35,7 @@ struct ThreadedScene {
     std::vector<BodyId> ids;
 
     explicit ThreadedScene(int threads) {
-        WorldSettings settings;
-        settings.threads = threads;
-        world = std::make_unique<World>(settings);
-        BodySettings floor;
-        floor.isStatic = true;
-        floor.shape = Shape::plane(Vector3::UnitY(), 0);
-        ids.push_back(world->addBody(floor));
+        world = worldOnFloor(threads, ids);
         constexpr int kBase = 16;
         for (int row = 0; row < kBase; ++row) {
             for (int i = 0; i < kBase - row; ++i) {
@@ -258,7 +262,8 @@ struct OrderedEntries {
         };
         side.resize(kBodies);
         side[0] = -1;
-        for (int k = 1; k < kBodies; ++k) side[static_cast<std::size_t>(k)] = static_cast<signed char>(k < kBodies / 2 ? 0 : 1);
+        for (int k = 1; k < kBodies; ++k)
+            side[static_cast<std::size_t>(k)] = static_cast<signed char>(k < kBodies / 2 ? 0 : 1);
         for (std::size_t k = 0; k < count; ++k) {
             // Mostly within a half, as a partition's bodies are; now and then across it.
             const int first = 1 + next(kBodies - 1);
@@ -293,8 +298,11 @@ TEST(OrderedShares, TwoThreadsGiveTheOneThreadOrdersNumbers) {
     for (int pass = 0; pass < 5; ++pass) {
         for (std::size_t k = 0; k < count; ++k) entries.solve(one, static_cast<int>(k));
         detail::beginOrderedPass(shares);
-        pool.run(2, [&](int share) { detail::solveOrderedShare(shares, share, [&](int k) { entries.solve(two, k); }); });
-        for (std::size_t body = 0; body < one.size(); ++body) ASSERT_EQ(one[body], two[body]) << "pass " << pass << ", body " << body;
+        pool.run(2, [&](int share) {
+            detail::solveOrderedShare(shares, share, [&](int k) { entries.solve(two, k); });
+        });
+        for (std::size_t body = 0; body < one.size(); ++body)
+            ASSERT_EQ(one[body], two[body]) << "pass " << pass << ", body " << body;
     }
     EXPECT_EQ(shares.share[0].size() + shares.share[1].size(), count);
     EXPECT_FALSE(shares.share[0].empty());
@@ -330,8 +338,8 @@ TEST(OrderedShares, AnEntryWaitsForTheOtherThreadsLastEntryOnEachOfItsBodies) {
             EXPECT_EQ(shares.waits[2 * k + static_cast<std::size_t>(j)], expected) << "entry " << k << ", body " << j;
             waits += expected >= 0;
         }
-        // Within a share the entries keep the list's order.
     }
+    // Within a share the entries keep the list's order.
     for (const std::vector<int> &share : shares.share) EXPECT_TRUE(std::is_sorted(share.begin(), share.end()));
     EXPECT_GT(waits, 0);
 }
@@ -344,18 +352,13 @@ TEST(Threads, SharedResistanceRowsAndUncarriedManifoldsGiveOneThreadsNumbers) {
         std::unique_ptr<World> world;
         std::vector<BodyId> ids;
         explicit Heap(int threads) {
-            WorldSettings settings;
-            settings.threads = threads;
-            world = std::make_unique<World>(settings);
-            BodySettings floor;
-            floor.isStatic = true;
-            floor.shape = Shape::plane(Vector3::UnitY(), 0);
-            ids.push_back(world->addBody(floor));
+            world = worldOnFloor(threads, ids);
             const Shape shapes[] = {Shape::sphere(0.25), Shape::capsule(0.2, 0.4)};
             for (int i = 0; i < 300; ++i) {
                 BodySettings s;
                 s.shape = shapes[i % 2];
-                s.position = Vector3(-3.8 + 0.55 * (i % 15), 0.3 + 0.6 * (i / 45), -2.2 + 0.55 * ((i / 15) % 3) + 0.02 * (i % 4));
+                s.position = Vector3(-3.8 + 0.55 * (i % 15), 0.3 + 0.6 * (i / 45),
+                                     -2.2 + 0.55 * ((i / 15) % 3) + 0.02 * (i % 4));
                 s.orientation = Quaternion(1, 0.05 * (i % 5), 0.3, 0.02 * i).normalized();
                 s.velocity = Vector3(0.1 * ((i % 3) - 1), -0.5, 0);
                 ids.push_back(world->addBody(s));
@@ -368,7 +371,8 @@ TEST(Threads, SharedResistanceRowsAndUncarriedManifoldsGiveOneThreadsNumbers) {
         one.world->step(kDt);
         two.world->step(kDt);
         for (std::size_t k = 0; k < one.ids.size(); ++k)
-            ASSERT_TRUE(sameBits(one.world->body(one.ids[k]), two.world->body(two.ids[k]))) << "body " << k << ", step " << i + 1;
+            ASSERT_TRUE(sameBits(one.world->body(one.ids[k]), two.world->body(two.ids[k])))
+                << "body " << k << ", step " << i + 1;
         mostRows = std::max(mostRows, one.world->stats().resistanceRows);
         mostManifolds = std::max(mostManifolds, one.world->stats().manifolds);
     }

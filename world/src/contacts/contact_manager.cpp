@@ -25,7 +25,6 @@ constexpr real kContactKeepDistance = 0.002;
 // speculative contacts with the floor under it sink into one another.
 constexpr real kMinReach = 0.001;  // m
 
-
 // The speed gravity adds to a body falling freely over the step when it counts (above), m/s.
 Vector3 stepFall(const WorldSettings &settings, real dt) {
     const real fall = settings.gravity.norm() * dt * dt;

@@ -142,14 +142,15 @@ void LandingCorrection::correct(WorldState &world) {
         // bodies once), sorted.
         const int last = round - 1;
         pairs_.clear();
-        const std::size_t movers = static_cast<std::size_t>(
-            std::count_if(activeBodies_.begin(), activeBodies_.end(), [&](std::uint32_t i) { return movedRound_[i] == last; }));
+        const std::size_t movers = static_cast<std::size_t>(std::count_if(
+            activeBodies_.begin(), activeBodies_.end(), [&](std::uint32_t i) { return movedRound_[i] == last; }));
         if (movers * kWalkShare >= bodies.simulated.size()) {
             // Most bodies moved (a landing pile's first round): the step's list is walked
             // on the threads, in order, its pairs' states asked for ahead.
             const std::vector<std::uint32_t> &step = contacts.stepPairs();
             const auto picked = [&](std::size_t k) {
-                if (k + PairCache::kPrefetchAhead < step.size()) contacts.pairs.prefetch(step[k + PairCache::kPrefetchAhead]);
+                const std::size_t ahead = k + PairCache::kPrefetchAhead;
+                if (ahead < step.size()) contacts.pairs.prefetch(step[ahead]);
                 const PairState &pair = contacts.pairs[step[k]];
                 return (movedIn(pair.a, last) || movedIn(pair.b, last)) &&
                        (movable(bodies, pair.a) || movable(bodies, pair.b));

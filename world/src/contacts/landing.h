@@ -87,7 +87,6 @@ private:
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
     std::vector<char> flags_;                   ///< Scratch: what a test on the threads picked.
     std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
-
     /// What FCL found for an entry of pairs_ (collide's memo, but for the shapes and poses:
     /// the pair's), for the next step's narrowphase.
     struct Memo {
@@ -97,8 +96,10 @@ private:
     };
     std::vector<std::vector<Memo>> chunkMemos_;  ///< Per chunk of pairs_, what FCL's tests found.
     std::vector<Point> points_;
-    std::vector<std::vector<Point>> chunkPoints_;  ///< Per chunk of pairs_, the points its finds gave (order not yet set).
-    std::vector<char> chunkDeep_;                  ///< Per chunk of pairs_: whether one of its points is deeper than its pair's tolerance.
+    /// Per chunk of pairs_: the points its finds gave (their order not yet set), and
+    /// whether one of them lies deeper than its pair's tolerance.
+    std::vector<std::vector<Point>> chunkPoints_;
+    std::vector<char> chunkDeep_;
     /// A point's place in the order the passes take points_ in.
     struct SortKey {
         real height = 0;

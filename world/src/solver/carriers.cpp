@@ -9,8 +9,8 @@ namespace {
 // The carrier pass's runs: each carried body's manifolds with its carriers, bodies by
 // level (bottom up; all level 0 without `level`), then by their first such manifold in
 // `order`, each body's manifolds in `order`; and the manifolds without a carrier, in
-// `order`. Bucketed, not sorted: the bodies are met in
-// the order of their first manifolds, and a stable count by level keeps that order.
+// `order`. Bucketed, not sorted: the bodies are met in the order of their first
+// manifolds, and a stable count by level keeps that order.
 void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
                const std::vector<int> *level, int bodyCount, CarrierScratch &scratch, CarrierRuns &runs) {
     const auto carried = [](const SolverManifold &m) { return m.carrier == Carrier::A ? m.b : m.a; };
