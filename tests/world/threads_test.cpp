@@ -277,6 +277,14 @@ struct OrderedEntries {
             b.push_back(second);
         }
     }
+    // The entries split between two threads by the bodies' halves.
+    detail::OrderedShares shared() const {
+        detail::OrderedShares shares;
+        detail::buildOrderedShares(
+            a.size(), [&](std::size_t k) { return a[k]; }, [&](std::size_t k) { return b[k]; }, side,
+            static_cast<int>(side.size()), shares);
+        return shares;
+    }
     void solve(std::vector<double> &values, int k) const {
         const std::size_t i = static_cast<std::size_t>(a[static_cast<std::size_t>(k)]);
         const std::size_t j = static_cast<std::size_t>(b[static_cast<std::size_t>(k)]);
@@ -289,10 +297,7 @@ struct OrderedEntries {
 TEST(OrderedShares, TwoThreadsGiveTheOneThreadOrdersNumbers) {
     const OrderedEntries entries(4000);
     const std::size_t count = entries.a.size();
-    detail::OrderedShares shares;
-    detail::buildOrderedShares(
-        count, [&](std::size_t k) { return entries.a[k]; }, [&](std::size_t k) { return entries.b[k]; }, entries.side,
-        300, shares);
+    detail::OrderedShares shares = entries.shared();
     std::vector<double> one(300, 1.0), two(300, 1.0);
     detail::TaskPool pool(2);
     for (int pass = 0; pass < 5; ++pass) {
@@ -315,10 +320,7 @@ TEST(OrderedShares, TwoThreadsGiveTheOneThreadOrdersNumbers) {
 TEST(OrderedShares, AnEntryWaitsForTheOtherThreadsLastEntryOnEachOfItsBodies) {
     const OrderedEntries entries(2000);
     const std::size_t count = entries.a.size();
-    detail::OrderedShares shares;
-    detail::buildOrderedShares(
-        count, [&](std::size_t k) { return entries.a[k]; }, [&](std::size_t k) { return entries.b[k]; }, entries.side,
-        300, shares);
+    const detail::OrderedShares shares = entries.shared();
     std::vector<int> shareOf(count, -1);
     for (int s = 0; s < 2; ++s)
         for (int k : shares.share[s]) shareOf[static_cast<std::size_t>(k)] = s;
