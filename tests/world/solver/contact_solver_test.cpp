@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -182,6 +183,56 @@ TEST(ContactSolverPass, EachLaneOfAGroupIsSolvedOnItsOwn) {
         EXPECT_NEAR(detail::toVector3(bodies[k + 1].w).z(), -0.24 * s, 1e-12) << "cube " << k;
     }
     EXPECT_EQ(detail::toVector3(bodies[0].v), Vector3::Zero());  // the world is never written
+}
+
+// A later sub-step copies again only what changes within a step (reloadBatches,
+// velocity_pass.h). After a sub-step's passes, with every impulse, target and velocity
+// changed and one body isolated (immovable: inverse mass and inertia zero), the batches
+// and the bodies it leaves are those a full copy leaves, bit for bit.
+TEST(ContactSolverPass, ReloadingForALaterSubStepGivesWhatAFullLoadGives) {
+    // Six cubes in a column on the world, each manifold's A the cube below (0: the world).
+    std::vector<SolverBody> bodies(1);
+    std::vector<SolverManifold> manifolds;
+    for (int k = 0; k < 6; ++k) manifolds.push_back(addCubeOn(k, Vector3(0.1 * k, -1 - k, 0.2), bodies));
+    std::vector<detail::SolverGroup> groups(2);
+    const int lanes[2][4] = {{3, 0, 5, 1}, {4, 2, 0, 0}};
+    for (int g = 0; g < 2; ++g) {
+        groups[g].size = g == 0 ? 4 : 2;
+        for (int k = 0; k < groups[g].size; ++k) groups[g].manifold[k] = lanes[g][k];
+    }
+    std::vector<detail::ManifoldBatch> wide;
+    detail::loadBatches(bodies, manifolds, groups, true, wide);
+    detail::solveVelocityBatches(bodies, wide, false);
+    detail::storeBatches(wide, groups, manifolds);
+
+    // What the sub-steps in between change.
+    for (int k = 0; k < 6; ++k) {
+        SolverManifold &m = manifolds[static_cast<std::size_t>(k)];
+        for (int i = 0; i < m.count; ++i) {
+            m.points[i].normal.impulse += 0.05 * (k + 1);
+            m.points[i].velocityBias = 0.01 * (k + i + 1);
+        }
+        m.frictionRow[0].impulse = 0.001 * (k + 1);
+        m.frictionRow[1].impulse = -0.002 * (k + 1);
+        m.twist.impulse = 0.003 * (k + 1);
+    }
+    for (std::size_t b = 1; b < bodies.size(); ++b) {
+        detail::setLanes(bodies[b].v, Vector3(0.2, -0.5 * static_cast<real>(b), 0.1));
+        detail::setLanes(bodies[b].w, Vector3(0.01 * static_cast<real>(b), 0, -0.02));
+    }
+    bodies[3] = SolverBody();
+
+    std::vector<SolverBody> fullBodies = bodies;
+    std::vector<detail::ManifoldBatch> full;
+    detail::loadBatches(fullBodies, manifolds, groups, true, full);
+    detail::reloadBatches(bodies, manifolds, groups, true, wide);
+    ASSERT_EQ(full.size(), wide.size());
+    for (std::size_t g = 0; g < wide.size(); ++g)
+        EXPECT_EQ(std::memcmp(&wide[g], &full[g], sizeof(detail::ManifoldBatch)), 0) << "group " << g;
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+        EXPECT_EQ(std::memcmp(&bodies[b], &fullBodies[b], sizeof(SolverBody)), 0) << "body " << b;
+    // The warm start moved the bodies: the comparison is not of two untouched copies.
+    EXPECT_NE(detail::toVector3(bodies[6].v), Vector3(0.2, -3, 0.1));
 }
 
 }  // namespace

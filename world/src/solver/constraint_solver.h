@@ -74,7 +74,7 @@ private:
                        const ManifoldState &m) const;
     // Solving (solve.cpp).
     void warmStart(WorldState &world);
-    void loadVelocityPasses(WorldState &world);
+    void loadVelocityPasses(WorldState &world, bool firstSubstep);
     void solveVelocityPass(WorldState &world, bool reverse);
     void storeVelocityPasses(WorldState &world);
     void solveCarrierPass(WorldState &world, bool reverse);

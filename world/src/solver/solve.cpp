@@ -120,7 +120,7 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         world.joints.warmStart(bodies_);
     }
     if (!manifolds_.empty()) {
-        if (split) loadVelocityPasses(world);
+        if (split) loadVelocityPasses(world, firstSubstep);
         else if (settings.warmStarting) warmStart(world);
         beginResistance(manifolds_, resistance_);
         const int passes = world.plan.velocityIterations;
@@ -189,18 +189,22 @@ void ConstraintSolver::warmStart(WorldState &world) {
 
 // The velocity passes work on a copy of the rows they solve (velocity_pass.h), taken at the
 // warm start, which each group makes as it is copied, and handed back, with the
-// accumulated impulses, after the last pass. Every part is loaded, the empty ones too: an
+// accumulated impulses, after the last pass. The rows are the step's: later sub-steps copy
+// only the impulses and targets again. Every part is loaded, the empty ones too: an
 // unsplit step must not find the seam's rows of an earlier split one. The seam comes
 // last, as in a pass: its warm start moves bodies of both halves.
-void ConstraintSolver::loadVelocityPasses(WorldState &world) {
+void ConstraintSolver::loadVelocityPasses(WorldState &world, bool firstSubstep) {
     const bool warm = world.settings.warmStarting;
     const bool recovers = world.settings.positionIterations > 0;
-    const auto pseudo = [&](int part) { return recovers ? &penetration_[part] : nullptr; };
-    world.workers.forEachTask(2, [&](int half) {
-        loadBatches(bodies_, manifolds_, partition_.groups[half], warm, batches_[half], pseudo(half));
-    });
-    const int seam = SolverPartition::kSeam;
-    loadBatches(bodies_, manifolds_, partition_.groups[seam], warm, batches_[seam], pseudo(seam));
+    const auto load = [&](int part) {
+        if (firstSubstep)
+            loadBatches(bodies_, manifolds_, partition_.groups[part], warm, batches_[part],
+                        recovers ? &penetration_[part] : nullptr);
+        else
+            reloadBatches(bodies_, manifolds_, partition_.groups[part], warm, batches_[part]);
+    };
+    world.workers.forEachTask(2, load);
+    load(SolverPartition::kSeam);
 }
 
 void ConstraintSolver::solveVelocityPass(WorldState &world, bool reverse) {

@@ -125,12 +125,51 @@ struct WideSweep {
 
 }  // namespace
 
+// Group g's manifolds, padded with an empty one (lanes past the group's size, and points
+// past a manifold's count, read zeros).
+CYCLONE_INLINE void groupManifolds(const std::vector<SolverManifold> &manifolds, const SolverGroup &group,
+                                   const SolverManifold *m[kWideLanes]) {
+    static const SolverManifold empty{};
+    for (int k = 0; k < kWideLanes; ++k) m[k] = k < group.size ? &manifolds[group.manifold[k]] : &empty;
+}
+
+// What changes between the sub-steps of a step: the accumulated impulses, the targets,
+// and the bodies' inverse masses and inertias (a body isolated in a sub-step is
+// immovable from then on).
+CYCLONE_INLINE void loadChanging(const std::vector<SolverBody> &bodies, const SolverManifold *const m[kWideLanes],
+                                 ManifoldBatch &w) {
+    static const SolverPoint zeroPoint{};
+    const auto lanes = [&](auto field, Lanes &out) __attribute__((always_inline)) {
+        out = Lanes{field(*m[0]), field(*m[1]), field(*m[2]), field(*m[3])};
+    };
+    w.invMassA = Lanes{bodies[w.a[0]].invMass, bodies[w.a[1]].invMass, bodies[w.a[2]].invMass, bodies[w.a[3]].invMass};
+    w.invMassB = Lanes{bodies[w.b[0]].invMass, bodies[w.b[1]].invMass, bodies[w.b[2]].invMass, bodies[w.b[3]].invMass};
+    loadInertia(bodies, w.a, w.invInertiaA);
+    loadInertia(bodies, w.b, w.invInertiaB);
+    // Lane point i is the i-th in the manifold's solve order.
+    for (int i = 0; i < kMaxManifoldPoints; ++i) {
+        const SolverPoint *p[kWideLanes];
+        for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
+        w.points[i].impulse = Lanes{p[0]->normal.impulse, p[1]->normal.impulse, p[2]->normal.impulse, p[3]->normal.impulse};
+        w.points[i].bias = Lanes{p[0]->velocityBias, p[1]->velocityBias, p[2]->velocityBias, p[3]->velocityBias};
+    }
+    for (int r = 0; r < 2; ++r) lanes([r](const SolverManifold &x) { return x.frictionRow[r].impulse; }, w.frictionImpulse[r]);
+    lanes([](const SolverManifold &x) { return x.twist.impulse; }, w.twistImpulse);
+}
+
+// The warm start of one group: its bodies take its accumulated impulses.
+CYCLONE_INLINE void warmStartGroup(std::vector<SolverBody> &bodies, const ManifoldBatch &w) {
+    WideVelocities<> vel(bodies, w);
+    const Lanes normal[kMaxManifoldPoints] = {w.points[0].impulse, w.points[1].impulse, w.points[2].impulse,
+                                              w.points[3].impulse};
+    giveImpulses(vel, w, normal, w.frictionImpulse[0], w.frictionImpulse[1], w.twistImpulse);
+    vel.store(bodies, w);
+}
+
 CYCLONE_SIMD_CLONES
 void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
               const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide,
               std::vector<PenetrationBatch> *pseudo) {
-    // Lanes past a group's size, and points past a manifold's count, read zeros.
-    static const SolverManifold empty{};
     static const SolverPoint zeroPoint{};
     // The number of groups moves a little from step to step (the order of a layer's
     // contacts, equal in height but for rounding, changes how they group): room for half
@@ -145,7 +184,7 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
     for (std::size_t g = 0; g < groups.size(); ++g) {
         ManifoldBatch &w = wide[g];
         const SolverManifold *m[kWideLanes];
-        for (int k = 0; k < kWideLanes; ++k) m[k] = k < groups[g].size ? &manifolds[groups[g].manifold[k]] : &empty;
+        groupManifolds(manifolds, groups[g], m);
         w.size = groups[g].size;
         for (int k = 0; k < kWideLanes; ++k) {
             w.a[k] = m[k]->a;
@@ -157,8 +196,7 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
         const auto vectors = [&](auto field, WideVector &out) __attribute__((always_inline)) {
             transposeIn(field(*m[0]), field(*m[1]), field(*m[2]), field(*m[3]), out);
         };
-        w.invMassA = Lanes{bodies[w.a[0]].invMass, bodies[w.a[1]].invMass, bodies[w.a[2]].invMass, bodies[w.a[3]].invMass};
-        w.invMassB = Lanes{bodies[w.b[0]].invMass, bodies[w.b[1]].invMass, bodies[w.b[2]].invMass, bodies[w.b[3]].invMass};
+        loadChanging(bodies, m, w);
         for (int d = 0; d < 3; ++d)
             vectors([d](const SolverManifold &x) -> const Lanes & { return x.direction[d]; }, d == 0 ? w.normal : w.tangent[d - 1]);
         // Lane point i is the i-th in the manifold's solve order.
@@ -170,33 +208,33 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
             for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
             loadRow(p[0]->normal, p[1]->normal, p[2]->normal, p[3]->normal, w.points[i].row);
             w.points[i].mass = Lanes{p[0]->normal.mass, p[1]->normal.mass, p[2]->normal.mass, p[3]->normal.mass};
-            w.points[i].impulse = Lanes{p[0]->normal.impulse, p[1]->normal.impulse, p[2]->normal.impulse, p[3]->normal.impulse};
-            w.points[i].bias = Lanes{p[0]->velocityBias, p[1]->velocityBias, p[2]->velocityBias, p[3]->velocityBias};
             for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->couplings, i, entry[k]);
             transpose(entry[0], entry[1], entry[2], entry[3], w.normalCoupling[i]);
         }
-        for (int r = 0; r < 2; ++r) {
+        for (int r = 0; r < 2; ++r)
             loadRow(m[0]->frictionRow[r], m[1]->frictionRow[r], m[2]->frictionRow[r], m[3]->frictionRow[r], w.friction[r]);
-            lanes([r](const SolverManifold &x) { return x.frictionRow[r].impulse; }, w.frictionImpulse[r]);
-        }
         for (int r = 0; r < 3; ++r) {
             for (int k = 0; k < kWideLanes; ++k) order[k].friction(m[k]->couplings, r, entry[k]);
             transpose(entry[0], entry[1], entry[2], entry[3], w.frictionCoupling[r]);
         }
-        loadInertia(bodies, w.a, w.invInertiaA);
-        loadInertia(bodies, w.b, w.invInertiaB);
-        lanes([](const SolverManifold &x) { return x.twist.impulse; }, w.twistImpulse);
         for (int e = 0; e < 6; ++e) lanes([e](const SolverManifold &x) { return x.frictionInverse[e]; }, w.frictionInverse[e]);
         lanes([](const SolverManifold &x) { return x.friction; }, w.coefficient);
         lanes([](const SolverManifold &x) { return x.twistRadius; }, w.twistRadius);
         if (pseudo) loadPseudo(m, (*pseudo)[g]);
         // The warm start, while the group's rows are still in the cache.
-        if (!warmStart) continue;
-        WideVelocities<> vel(bodies, w);
-        const Lanes normal[kMaxManifoldPoints] = {w.points[0].impulse, w.points[1].impulse, w.points[2].impulse,
-                                                  w.points[3].impulse};
-        giveImpulses(vel, w, normal, w.frictionImpulse[0], w.frictionImpulse[1], w.twistImpulse);
-        vel.store(bodies, w);
+        if (warmStart) warmStartGroup(bodies, w);
+    }
+}
+
+CYCLONE_SIMD_CLONES
+void reloadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+                   const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide) {
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        ManifoldBatch &w = wide[g];
+        const SolverManifold *m[kWideLanes];
+        groupManifolds(manifolds, groups[g], m);
+        loadChanging(bodies, m, w);
+        if (warmStart) warmStartGroup(bodies, w);
     }
 }
 

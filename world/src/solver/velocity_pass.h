@@ -10,10 +10,11 @@
 // after another, each impulse reaching the later rows through the couplings, so the
 // numbers are row-by-row Gauss-Seidel's.
 //
-// The rows are copied in at the start of each sub-step, each group giving the bodies its
-// warm-start impulses as it is copied (loadBatches), and the accumulated impulses go back
-// after the velocity passes (storeBatches): a pass reads only the
-// rows it solves, 3584 bytes per group of four (896 per manifold; a SolverManifold is
+// The rows are copied in at the start of a step's first sub-step, each group giving the
+// bodies its warm-start impulses as it is copied (loadBatches); a later sub-step copies
+// again only what changed, the impulses and targets (reloadBatches). The accumulated
+// impulses go back after the velocity passes (storeBatches): a pass reads only the rows
+// it solves, 3584 bytes per group of four (896 per manifold; a SolverManifold is
 // 2304). The rows hold no angular terms I^-1 (r x d): a pass sums each side's lever
 // impulses, sum of impulse times (r x d), and turns the sum by the body's inverse inertia
 // once, which the group holds per lane (the passes stream the rows from memory on large
@@ -76,6 +77,13 @@ struct PenetrationBatch;
 /// the penetration pass needs into it, one per group (loadPseudo).
 void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds, const std::vector<SolverGroup> &groups,
               bool warmStart, std::vector<ManifoldBatch> &wide, std::vector<PenetrationBatch> *pseudo = nullptr);
+/// What loadBatches copies that changes between the sub-steps of one step (the
+/// accumulated impulses, the targets, the bodies' inverse masses and inertias), copied
+/// again into `wide`, loaded by loadBatches from the same `groups` and manifolds earlier
+/// in the step, then the warm start as loadBatches makes it. The rows, made once a step,
+/// are left as they are, and so is what the penetration pass took (its anchors).
+void reloadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+                   const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide);
 /// One velocity pass over the wide manifolds, in order: in each, friction and then the
 /// points' normal rows, from the last point with `reverse` (alternating passes keep the
 /// first point from taking the largest share of a new contact's load, which would tilt
