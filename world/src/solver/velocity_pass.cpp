@@ -123,9 +123,7 @@ struct WideSweep {
     CYCLONE_INLINE void finish() { giveImpulses(vel, m, change, change0, change1, change2); }
 };
 
-}  // namespace
-
-// Group g's manifolds, padded with an empty one (lanes past the group's size, and points
+// A group's manifolds, padded with an empty one (lanes past the group's size, and points
 // past a manifold's count, read zeros).
 CYCLONE_INLINE void groupManifolds(const std::vector<SolverManifold> &manifolds, const SolverGroup &group,
                                    const SolverManifold *m[kWideLanes]) {
@@ -165,6 +163,8 @@ CYCLONE_INLINE void warmStartGroup(std::vector<SolverBody> &bodies, const Manifo
     giveImpulses(vel, w, normal, w.frictionImpulse[0], w.frictionImpulse[1], w.twistImpulse);
     vel.store(bodies, w);
 }
+
+}  // namespace
 
 CYCLONE_SIMD_CLONES
 void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
