@@ -570,12 +570,10 @@ int run(int argc, char **argv) {
     std::vector<Row> rows;
     for (const std::string &sceneName : options.scenes) {
         Scene scene = makeScene(sceneName, static_cast<std::uint64_t>(options.seed));
-        if (options.worldDefaults) {
-            scene.world.substeps = WorldSettings().substeps;
-            scene.world.velocityIterations = WorldSettings().velocityIterations;
-        } else {
+        if (options.worldDefaults)
+            useWorldDefaults(scene.world);
+        else
             splitSubsteps(scene, options.substeps);
-        }
         scene.world.threads = options.threads;
         const std::vector<RunResult> results = measure(scene, options.engines, options);
         for (std::size_t e = 0; e < results.size(); ++e) rows.push_back(Row{sceneName, options.engines[e], results[e]});

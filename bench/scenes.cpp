@@ -238,6 +238,13 @@ Scene makeScene(const std::string &name, std::uint64_t seed) {
     throw std::invalid_argument("makeScene: name \"" + name + "\" is not a scene (see --list)");
 }
 
+void useWorldDefaults(WorldSettings &settings) {
+    const WorldSettings defaults;
+    settings.substeps = defaults.substeps;
+    settings.velocityIterations = defaults.velocityIterations;
+    settings.positionIterations = defaults.positionIterations;
+}
+
 void splitSubsteps(Scene &scene, int substeps) {
     const int passes = scene.world.substeps * scene.world.velocityIterations;
     if (substeps < 1 || passes % substeps != 0) {

@@ -41,6 +41,10 @@ std::vector<std::string> splitSceneList(const std::string &list);
 /// other scenes have no randomness.
 Scene makeScene(const std::string &name, std::uint64_t seed = 0);
 
+/// Sets `settings`' sub-steps and velocity and position passes to WorldSettings' defaults
+/// (the `--defaults` of the benchmark tools) instead of the benchmark's 1 x 10.
+void useWorldDefaults(WorldSettings &settings);
+
 /// Splits the scene's velocity passes per frame over `substeps` sub-steps of cyclone's
 /// World (Bullet still takes one step with all of them). Throws std::invalid_argument
 /// unless `substeps` divides the passes.

@@ -144,11 +144,7 @@ int run(int argc, char **argv) {
             const Scene scene = makeScene(name, static_cast<std::uint64_t>(seed));
             WorldSettings settings = scene.world;
             settings.landingCorrection = landing;
-            if (worldDefaults) {
-                settings.substeps = WorldSettings().substeps;
-                settings.velocityIterations = WorldSettings().velocityIterations;
-                settings.positionIterations = WorldSettings().positionIterations;
-            }
+            if (worldDefaults) useWorldDefaults(settings);
             World world(settings);
             for (const BodySettings &body : scene.bodies) world.addBody(body);
             print(name + " seed " + std::to_string(seed), settle(world, steps, dt), dt);

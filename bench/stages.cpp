@@ -100,11 +100,7 @@ int run(int argc, char **argv) {
     std::printf("\n");
     for (bench::Scene &scene : built) {
         scene.world.threads = threads;
-        if (worldDefaults) {
-            scene.world.substeps = WorldSettings().substeps;
-            scene.world.velocityIterations = WorldSettings().velocityIterations;
-            scene.world.positionIterations = WorldSettings().positionIterations;
-        }
+        if (worldDefaults) bench::useWorldDefaults(scene.world);
         if (substeps > 0) scene.world.substeps = substeps;
         if (iterations > 0) scene.world.velocityIterations = iterations;
         if (positions >= 0) scene.world.positionIterations = positions;

@@ -131,15 +131,23 @@ CYCLONE_INLINE void groupManifolds(const std::vector<SolverManifold> &manifolds,
     for (int k = 0; k < kWideLanes; ++k) m[k] = k < group.size ? &manifolds[group.manifold[k]] : &empty;
 }
 
+// Each lane's `field` of its manifold.
+template <class Field>
+CYCLONE_INLINE void gatherLanes(const SolverManifold *const m[kWideLanes], const Field &field, Lanes &out) {
+    out = Lanes{field(*m[0]), field(*m[1]), field(*m[2]), field(*m[3])};
+}
+
+// Each lane's i-th point in its manifold's solve order (a zero point past its count).
+CYCLONE_INLINE void pointsInOrder(const SolverManifold *const m[kWideLanes], int i, const SolverPoint *p[kWideLanes]) {
+    static const SolverPoint zeroPoint{};
+    for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
+}
+
 // What changes between the sub-steps of a step: the accumulated impulses, the targets,
 // and the bodies' inverse masses and inertias (a body isolated in a sub-step is
 // immovable from then on).
 CYCLONE_INLINE void loadChanging(const std::vector<SolverBody> &bodies, const SolverManifold *const m[kWideLanes],
                                  ManifoldBatch &w) {
-    static const SolverPoint zeroPoint{};
-    const auto lanes = [&](auto field, Lanes &out) __attribute__((always_inline)) {
-        out = Lanes{field(*m[0]), field(*m[1]), field(*m[2]), field(*m[3])};
-    };
     w.invMassA = Lanes{bodies[w.a[0]].invMass, bodies[w.a[1]].invMass, bodies[w.a[2]].invMass, bodies[w.a[3]].invMass};
     w.invMassB = Lanes{bodies[w.b[0]].invMass, bodies[w.b[1]].invMass, bodies[w.b[2]].invMass, bodies[w.b[3]].invMass};
     loadInertia(bodies, w.a, w.invInertiaA);
@@ -147,12 +155,13 @@ CYCLONE_INLINE void loadChanging(const std::vector<SolverBody> &bodies, const So
     // Lane point i is the i-th in the manifold's solve order.
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
         const SolverPoint *p[kWideLanes];
-        for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
+        pointsInOrder(m, i, p);
         w.points[i].impulse = Lanes{p[0]->normal.impulse, p[1]->normal.impulse, p[2]->normal.impulse, p[3]->normal.impulse};
         w.points[i].bias = Lanes{p[0]->velocityBias, p[1]->velocityBias, p[2]->velocityBias, p[3]->velocityBias};
     }
-    for (int r = 0; r < 2; ++r) lanes([r](const SolverManifold &x) { return x.frictionRow[r].impulse; }, w.frictionImpulse[r]);
-    lanes([](const SolverManifold &x) { return x.twist.impulse; }, w.twistImpulse);
+    for (int r = 0; r < 2; ++r)
+        gatherLanes(m, [r](const SolverManifold &x) { return x.frictionRow[r].impulse; }, w.frictionImpulse[r]);
+    gatherLanes(m, [](const SolverManifold &x) { return x.twist.impulse; }, w.twistImpulse);
 }
 
 // The warm start of one group: its bodies take its accumulated impulses.
@@ -170,7 +179,6 @@ CYCLONE_SIMD_CLONES
 void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
               const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide,
               std::vector<PenetrationBatch> *pseudo) {
-    static const SolverPoint zeroPoint{};
     // The number of groups moves a little from step to step (the order of a layer's
     // contacts, equal in height but for rounding, changes how they group): room for half
     // as many more, so that a steady scene does not allocate when it rises past what an
@@ -190,9 +198,6 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
             w.a[k] = m[k]->a;
             w.b[k] = m[k]->b;
         }
-        const auto lanes = [&](auto field, Lanes &out) __attribute__((always_inline)) {
-            out = Lanes{field(*m[0]), field(*m[1]), field(*m[2]), field(*m[3])};
-        };
         const auto vectors = [&](auto field, WideVector &out) __attribute__((always_inline)) {
             transposeIn(field(*m[0]), field(*m[1]), field(*m[2]), field(*m[3]), out);
         };
@@ -205,7 +210,7 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
         Lanes entry[kWideLanes];
         for (int i = 0; i < kMaxManifoldPoints; ++i) {
             const SolverPoint *p[kWideLanes];
-            for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
+            pointsInOrder(m, i, p);
             loadRow(p[0]->normal, p[1]->normal, p[2]->normal, p[3]->normal, w.points[i].row);
             w.points[i].mass = Lanes{p[0]->normal.mass, p[1]->normal.mass, p[2]->normal.mass, p[3]->normal.mass};
             for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->couplings, i, entry[k]);
@@ -217,9 +222,10 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
             for (int k = 0; k < kWideLanes; ++k) order[k].friction(m[k]->couplings, r, entry[k]);
             transpose(entry[0], entry[1], entry[2], entry[3], w.frictionCoupling[r]);
         }
-        for (int e = 0; e < 6; ++e) lanes([e](const SolverManifold &x) { return x.frictionInverse[e]; }, w.frictionInverse[e]);
-        lanes([](const SolverManifold &x) { return x.friction; }, w.coefficient);
-        lanes([](const SolverManifold &x) { return x.twistRadius; }, w.twistRadius);
+        for (int e = 0; e < 6; ++e)
+            gatherLanes(m, [e](const SolverManifold &x) { return x.frictionInverse[e]; }, w.frictionInverse[e]);
+        gatherLanes(m, [](const SolverManifold &x) { return x.friction; }, w.coefficient);
+        gatherLanes(m, [](const SolverManifold &x) { return x.twistRadius; }, w.twistRadius);
         if (pseudo) loadPseudo(m, (*pseudo)[g]);
         // The warm start, while the group's rows are still in the cache.
         if (warmStart) warmStartGroup(bodies, w);
