@@ -244,6 +244,8 @@ bool LandingCorrection::detect(WorldState &world) {
         found.clear();
         bool deep = false;
         for (std::size_t k = begin; k < end; ++k) {
+            // The pairs lie scattered in the pair cache: their states are asked for ahead.
+            if (k + PairCache::kPrefetchAhead < end) pairs.prefetch(pairs_[k + PairCache::kPrefetchAhead]);
             const PairState &pair = pairs[pairs_[k]];
             const BodyRecord &a = bodies[pair.a];
             const BodyRecord &b = bodies[pair.b];
