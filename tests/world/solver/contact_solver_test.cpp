@@ -197,7 +197,8 @@ bool sameBits(const SolverBody &x, const SolverBody &y) {
 // Lanes field on (Lanes only, so no padding between them).
 bool sameBits(const detail::ManifoldBatch &x, const detail::ManifoldBatch &y) {
     const auto from = [](const detail::ManifoldBatch &m) { return reinterpret_cast<const char *>(&m.invMassA); };
-    const std::size_t lanes = sizeof(detail::ManifoldBatch) - static_cast<std::size_t>(from(x) - reinterpret_cast<const char *>(&x));
+    const auto start = reinterpret_cast<const char *>(&x);
+    const std::size_t lanes = sizeof(detail::ManifoldBatch) - static_cast<std::size_t>(from(x) - start);
     return std::memcmp(x.a, y.a, sizeof x.a) == 0 && std::memcmp(x.b, y.b, sizeof x.b) == 0 && x.size == y.size &&
            std::memcmp(from(x), from(y), lanes) == 0;
 }
@@ -253,7 +254,9 @@ void expectReloadGivesWhatAFullLoadGives(bool isolate) {
     EXPECT_NE(detail::toVector3(bodies[6].v), Vector3(0.2, -3, 0.1));
 }
 
-TEST(ContactSolverPass, ReloadingForALaterSubStepGivesWhatAFullLoadGives) { expectReloadGivesWhatAFullLoadGives(false); }
+TEST(ContactSolverPass, ReloadingForALaterSubStepGivesWhatAFullLoadGives) {
+    expectReloadGivesWhatAFullLoadGives(false);
+}
 
 TEST(ContactSolverPass, ReloadingAfterABodyWasIsolatedGivesWhatAFullLoadGives) {
     expectReloadGivesWhatAFullLoadGives(true);
