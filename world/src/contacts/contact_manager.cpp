@@ -209,16 +209,10 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     // That check and the look-up of the others are made on several threads (both miss the
     // cache); only the pairs not in the table are then added, one by one.
     const std::vector<CandidatePair> &candidates = found_.contacts;
-    // The walks over a list of pair slots ask for the state of the pair
-    // PairCache::kPrefetchAhead on (a candidate not in the table yet has no slot to ask for).
-    const auto prefetchAhead = [&](const std::vector<std::uint32_t> &slots, std::size_t k, std::size_t end) {
-        if (k + PairCache::kPrefetchAhead < end && slots[k + PairCache::kPrefetchAhead] < pairs.slots())
-            pairs.prefetch(slots[k + PairCache::kPrefetchAhead]);
-    };
     candidateSlots_.resize(candidates.size(), kNoSlot);
     candidateKinds_.resize(candidates.size());
     world.workers.forEach(candidates.size(), [&](std::size_t k) {
-        prefetchAhead(candidateSlots_, k, candidates.size());
+        pairs.prefetchAhead(candidateSlots_, k, candidates.size());
         const CandidatePair &c = candidates[k];
         CandidateKind kind = CandidateKind::Held;
         if (world.joints.excludesContact(c.a, c.b)) kind = CandidateKind::Excluded;  // joined without collideConnected
@@ -252,7 +246,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         stepPairs_.push_back(p);
     }
     world.workers.forEach(stepPairs_.size(), [&](std::size_t k) {
-        prefetchAhead(stepPairs_, k, stepPairs_.size());
+        pairs.prefetchAhead(stepPairs_, k, stepPairs_.size());
         pairs[stepPairs_[k]].lastSeen = stepCount;
     });
 
@@ -271,7 +265,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
         for (std::size_t k = begin; k < end; ++k) {
-            prefetchAhead(stepPairs_, k, end);
+            pairs.prefetchAhead(stepPairs_, k, end);
             Find &find = finds_[k];
             find.reused = reuseManifolds(world, stepPairs_[k]);
             if (find.reused) continue;
@@ -302,7 +296,7 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         const std::vector<Manifold> &out = chunkFinds_[chunk];
         for (std::size_t k = begin; k < end; ++k) {
-            prefetchAhead(stepPairs_, k, end);
+            pairs.prefetchAhead(stepPairs_, k, end);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
             if (!find.reused)

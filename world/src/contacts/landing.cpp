@@ -149,8 +149,7 @@ void LandingCorrection::correct(WorldState &world) {
             // on the threads, in order, its pairs' states asked for ahead.
             const std::vector<std::uint32_t> &step = contacts.stepPairs();
             const auto picked = [&](std::size_t k) {
-                const std::size_t ahead = k + PairCache::kPrefetchAhead;
-                if (ahead < step.size()) contacts.pairs.prefetch(step[ahead]);
+                contacts.pairs.prefetchAhead(step, k, step.size());
                 const PairState &pair = contacts.pairs[step[k]];
                 return (movedIn(pair.a, last) || movedIn(pair.b, last)) &&
                        (movable(bodies, pair.a) || movable(bodies, pair.b));
@@ -245,7 +244,7 @@ bool LandingCorrection::detect(WorldState &world) {
         bool deep = false;
         for (std::size_t k = begin; k < end; ++k) {
             // The pairs lie scattered in the pair cache: their states are asked for ahead.
-            if (k + PairCache::kPrefetchAhead < end) pairs.prefetch(pairs_[k + PairCache::kPrefetchAhead]);
+            pairs.prefetchAhead(pairs_, k, end);
             const PairState &pair = pairs[pairs_[k]];
             const BodyRecord &a = bodies[pair.a];
             const BodyRecord &b = bodies[pair.b];

@@ -84,6 +84,12 @@ public:
     void prefetch(std::uint32_t pair) const { __builtin_prefetch(&pairs_[pair]); }
     /// How many pairs ahead such a walk asks for a pair's state.
     static constexpr std::size_t kPrefetchAhead = 8;
+    /// For a walk over `slots` (up to `end`) at `k`: asks for the state of the pair
+    /// kPrefetchAhead on, when there is one with a slot (a candidate not in the table yet
+    /// has none).
+    void prefetchAhead(const std::vector<std::uint32_t> &slots, std::size_t k, std::size_t end) const {
+        if (k + kPrefetchAhead < end && slots[k + kPrefetchAhead] < pairs_.size()) prefetch(slots[k + kPrefetchAhead]);
+    }
     /// B seen from A at the last narrowphase that left the pair touching (manifold reuse
     /// reads it only then).
     RelativePose &relativePose(std::uint32_t pair) { return relativePoses_[pair]; }
