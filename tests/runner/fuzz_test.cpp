@@ -36,8 +36,14 @@ constexpr int kScale = 1;
 constexpr int kScale = 1;
 #endif
 
-const char *const kScenes[] = {"tower",   "pyramid-20", "pyramid-10", "resting-shapes", "incline",
-                               "sleep-wake", "springs", "mixed-shapes"};
+// The first eight hold the format's first version; the others its second: joints of
+// every type (chain-20, crane, door, ragdoll-stairs), kinematic motion (elevator), a
+// sensor on a layer (trigger-zone), a compound (table-and-chair) and a mesh under
+// round shapes (rolling-on-mesh).
+const char *const kScenes[] = {"tower",          "pyramid-20", "pyramid-10",   "resting-shapes", "incline",
+                               "sleep-wake",     "springs",    "mixed-shapes", "chain-20",       "crane",
+                               "door",           "elevator",   "trigger-zone", "table-and-chair", "rolling-on-mesh",
+                               "ragdoll-stairs"};
 
 // splitmix64: the same numbers on every platform and standard library.
 class Draw {
@@ -107,12 +113,22 @@ std::string misspell(std::string key, Draw &draw) {
     return key;
 }
 
-// Fields of the format's second version, which the runner knows but does not act on yet,
-// with good and bad values.
+// Body fields of the format's second version, with good and bad values.
 const char *const kSecondVersionFields[] = {"motion", "layer", "collides_with", "sensor", "rolling_friction",
                                             "spinning_friction"};
 const char *const kSecondVersionValues[] = {"\"kinematic\"", "\"dynamic\"", "3", "-1", "40", "[0, 1]", "true",
                                             "0.01", "-0.5", "\"static\""};
+
+// Joint fields, with good and bad values: another type, a body that is not there or the
+// world, a zero axis, reversed limits, a motor without force, a negative stiffness.
+const char *const kJointFields[] = {"type", "a", "b", "anchor", "anchor_b", "axis", "limits", "motor",
+                                    "min_distance", "max_distance", "stiffness", "damping", "break_force",
+                                    "collide_connected"};
+const char *const kJointValues[] = {"\"ball\"", "\"hinge\"", "\"fixed\"", "\"slider\"", "\"distance\"",
+                                    "\"weld\"", "null", "\"nobody\"", "[0, 0, 0]", "[0, 1, 0]", "[1, -1]",
+                                    "[-0.5, 0.5]", "{\"speed\": 1, \"max_force\": 0}",
+                                    "{\"speed\": -1e300, \"max_force\": 1e300}", "-1", "0", "2", "1e-300",
+                                    "true"};
 
 // One structural mutation of the document, returned as text.
 std::string mutateStructure(const json &original, Draw &draw) {
@@ -125,7 +141,7 @@ std::string mutateStructure(const json &original, Draw &draw) {
         nodes.clear();
         collect(doc, nullptr, "", 0, nodes);
         const Node node = nodes[draw.below(nodes.size())];
-        switch (draw.below(10)) {
+        switch (draw.below(11)) {
         case 0:  // delete
             if (node.parent && node.parent->is_object()) {
                 node.parent->erase(node.key);
@@ -182,6 +198,15 @@ std::string mutateStructure(const json &original, Draw &draw) {
                 if (body.is_object()) {
                     body[kSecondVersionFields[draw.below(std::size(kSecondVersionFields))]] =
                         json::parse(kSecondVersionValues[draw.below(std::size(kSecondVersionValues))]);
+                }
+            }
+            break;
+        case 10:  // a joint's field given another value, good or bad
+            if (doc.is_object() && doc.contains("joints") && doc["joints"].is_array() && !doc["joints"].empty()) {
+                json &joint = doc["joints"][draw.below(doc["joints"].size())];
+                if (joint.is_object()) {
+                    joint[kJointFields[draw.below(std::size(kJointFields))]] =
+                        json::parse(kJointValues[draw.below(std::size(kJointValues))]);
                 }
             }
             break;
@@ -263,10 +288,11 @@ std::string countsText(const std::map<int, int> &counts) {
 }
 
 TEST(Fuzz, ThousandsOfMutatedScenesInProcess) {
-    constexpr int kPerScene = 1500 / kScale;
+    constexpr int kPerScene = 1000 / kScale;
     Draw draw(0x5eed2024);
     std::map<int, int> counts;
     int strictRefusals = 0;
+    int jointRefusals = 0;  // refused at a place in "joints"
     TempDir dir;
     Invocation invocation;
     invocation.command = Invocation::Command::Run;
@@ -293,6 +319,7 @@ TEST(Fuzz, ThousandsOfMutatedScenesInProcess) {
             if (status == 2) {
                 ASSERT_TRUE(locatedRefusal(err.str(), "fuzz.json")) << "for:\n" << mutated;
                 if (err.str().find("(refused by --strict") != std::string::npos) ++strictRefusals;
+                if (err.str().find("fuzz.json: joints[") != std::string::npos) ++jointRefusals;
                 ASSERT_TRUE(dir.files().empty()) << err.str() << "for:\n" << mutated;
             } else {
                 ASSERT_EQ(dir.files().size(), outputs ? 2u : 0u) << err.str();
@@ -302,15 +329,17 @@ TEST(Fuzz, ThousandsOfMutatedScenesInProcess) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "[ fuzz     ] " << kPerScene * std::size(kScenes) << " in-process mutations in " << seconds
-              << " s:" << countsText(counts) << " (" << strictRefusals << " refused by --strict)\n";
+              << " s:" << countsText(counts) << " (" << strictRefusals << " refused by --strict, " << jointRefusals
+              << " at a joint)\n";
     EXPECT_GT(counts[0], 0);
     EXPECT_GT(counts[2], 0);
     EXPECT_GT(counts[3], 0);
     EXPECT_GT(strictRefusals, 0);
+    EXPECT_GT(jointRefusals, 0);
 }
 
 TEST(Fuzz, HundredsOfMutatedScenesThroughTheExecutable) {
-    constexpr int kPerScene = 60 / kScale;
+    constexpr int kPerScene = 40 / kScale;
     Draw draw(0xc0ffee);
     std::map<int, int> counts;
     TempDir dir;
