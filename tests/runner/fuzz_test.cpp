@@ -36,10 +36,11 @@ constexpr int kScale = 1;
 constexpr int kScale = 1;
 #endif
 
-// The first eight hold the format's first version; the others its second: joints of
-// every type (chain-20, crane, door, ragdoll-stairs), kinematic motion (elevator), a
-// sensor on a layer (trigger-zone), a compound (table-and-chair) and a mesh under
-// round shapes (rolling-on-mesh).
+// The first eight hold the format's first version; the others its second: ball, hinge,
+// slider and distance joints (chain-20, crane, door, ragdoll-stairs; the joint mutation
+// below makes fixed ones too), kinematic motion (elevator), a sensor on a layer
+// (trigger-zone), a compound (table-and-chair) and a mesh under round shapes
+// (rolling-on-mesh).
 const char *const kScenes[] = {"tower",          "pyramid-20", "pyramid-10",   "resting-shapes", "incline",
                                "sleep-wake",     "springs",    "mixed-shapes", "chain-20",       "crane",
                                "door",           "elevator",   "trigger-zone", "table-and-chair", "rolling-on-mesh",
