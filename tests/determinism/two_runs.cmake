@@ -1,6 +1,7 @@
 # Determinism across processes: runs the cyclone-world runner twice on the same scene,
-# each writing a full trace (every body, every step, %.17g: the exact doubles), and
-# requires the two traces to be byte for byte the same.
+# each writing a full trace (every body, every step, %.17g: the exact doubles) and a
+# summary, and requires the two traces to be byte for byte the same, and the summaries'
+# sensor events and joints (their breaks) the same (the rest of a summary holds timings).
 #
 #   cmake -DRUNNER=... -DSCENE=... -DWORK_DIR=... [-DSTEPS=N] -P two_runs.cmake
 foreach(var RUNNER SCENE WORK_DIR)
@@ -16,6 +17,7 @@ file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 foreach(run first second)
   execute_process(COMMAND ${RUNNER} run ${SCENE} --steps ${STEPS} --quiet --trace ${WORK_DIR}/${run}.csv
+    --summary ${WORK_DIR}/${run}.json
     RESULT_VARIABLE status ERROR_VARIABLE err)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "the ${run} run of ${SCENE} failed (${status}): ${err}")
@@ -30,5 +32,24 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK_DIR}/first.csv 
 if(NOT differ EQUAL 0)
   message(FATAL_ERROR "two runs of ${SCENE} gave different traces: ${WORK_DIR}/first.csv, ${WORK_DIR}/second.csv")
 endif()
+foreach(run first second)
+  file(READ ${WORK_DIR}/${run}.json summary)
+  foreach(member sensor_events joints)
+    # A member the scene's summary does not have reads as empty in both runs.
+    string(JSON ${run}_${member} ERROR_VARIABLE missing GET "${summary}" ${member})
+    if(missing)
+      set(${run}_${member} "")
+    endif()
+  endforeach()
+endforeach()
+set(compared "")
+foreach(member sensor_events joints)
+  if(NOT first_${member} STREQUAL second_${member})
+    message(FATAL_ERROR "two runs of ${SCENE} gave different ${member}: ${WORK_DIR}/first.json, ${WORK_DIR}/second.json")
+  endif()
+  if(NOT first_${member} STREQUAL "")
+    string(APPEND compared ", the same ${member}")
+  endif()
+endforeach()
 file(REMOVE_RECURSE ${WORK_DIR})
-message(STATUS "two runs of ${SCENE}: ${STEPS} steps, identical traces (${size} bytes)")
+message(STATUS "two runs of ${SCENE}: ${STEPS} steps, identical traces (${size} bytes)${compared}")
