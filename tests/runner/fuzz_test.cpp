@@ -131,6 +131,16 @@ const char *const kJointValues[] = {"\"ball\"", "\"hinge\"", "\"fixed\"", "\"sli
                                     "{\"speed\": -1e300, \"max_force\": 1e300}", "-1", "0", "2", "1e-300",
                                     "true"};
 
+// Sets one of `fields` of an element of the document's list `list` (when it has one) to
+// one of `values`.
+template <std::size_t F, std::size_t V>
+void setSomeField(json &doc, const char *list, const char *const (&fields)[F], const char *const (&values)[V],
+                  Draw &draw) {
+    if (!doc.is_object() || !doc.contains(list) || !doc[list].is_array() || doc[list].empty()) return;
+    json &element = doc[list][draw.below(doc[list].size())];
+    if (element.is_object()) element[fields[draw.below(F)]] = json::parse(values[draw.below(V)]);
+}
+
 // One structural mutation of the document, returned as text.
 std::string mutateStructure(const json &original, Draw &draw) {
     json doc = original;
@@ -194,22 +204,10 @@ std::string mutateStructure(const json &original, Draw &draw) {
             }
             break;
         case 9:  // a field of the second version on a body
-            if (doc.is_object() && doc.contains("bodies") && doc["bodies"].is_array() && !doc["bodies"].empty()) {
-                json &body = doc["bodies"][draw.below(doc["bodies"].size())];
-                if (body.is_object()) {
-                    body[kSecondVersionFields[draw.below(std::size(kSecondVersionFields))]] =
-                        json::parse(kSecondVersionValues[draw.below(std::size(kSecondVersionValues))]);
-                }
-            }
+            setSomeField(doc, "bodies", kSecondVersionFields, kSecondVersionValues, draw);
             break;
         case 10:  // a joint's field given another value, good or bad
-            if (doc.is_object() && doc.contains("joints") && doc["joints"].is_array() && !doc["joints"].empty()) {
-                json &joint = doc["joints"][draw.below(doc["joints"].size())];
-                if (joint.is_object()) {
-                    joint[kJointFields[draw.below(std::size(kJointFields))]] =
-                        json::parse(kJointValues[draw.below(std::size(kJointValues))]);
-                }
-            }
+            setSomeField(doc, "joints", kJointFields, kJointValues, draw);
             break;
         }
     }
