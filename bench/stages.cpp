@@ -4,13 +4,19 @@
 //
 //   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T] [--defaults]
 //                  [--substeps S] [--iterations N] [--positions N] [--landing on|off]
+//                  [--carrier on|off] [--slowest K]
 // --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
 // benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
-// --landing off steps them without the landing correction (WorldSettings::landingCorrection).
+// --landing off steps them without the landing correction (WorldSettings::landingCorrection),
+// --carrier off without the carrier pass (WorldSettings::shockPropagation).
+// --slowest K prints, instead of the medians, each stage's mean over the K slowest steps
+// after the first second (by total): the steps that make a benchmark's p95 (the 30
+// slowest of its 600 steps).
 // `shared` is StageTimes::shared (on one thread, the work two threads would share) and
 // `serial` the rest of the step. The last column counts the steps (of all, the first
 // second included) that took fewer sub-steps than the settings' (resting steps,
 // StepStats::substeps).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iterator>
@@ -59,6 +65,8 @@ int run(int argc, char **argv) {
     bool worldDefaults = false;
     int substeps = 0, iterations = 0, positions = -1;  // 0 / -1: the scene's own
     bool landing = true;  // WorldSettings::landingCorrection, for comparing
+    bool carrier = true;  // WorldSettings::shockPropagation, for comparing
+    int slowest = 0;      // 0: medians; K: means over the K slowest steps
     for (int i = 1; i < argc; ++i) {
         std::string arg, value;
         if (std::string(argv[i]) == "--defaults") {
@@ -80,6 +88,14 @@ int run(int argc, char **argv) {
             positions = std::atoi(value.c_str());
         } else if (arg == "--landing" && (value == "on" || value == "off")) {
             landing = value == "on";
+        } else if (arg == "--carrier" && (value == "on" || value == "off")) {
+            carrier = value == "on";
+        } else if (arg == "--slowest") {
+            slowest = std::atoi(value.c_str());
+            if (slowest < 1) {
+                std::fprintf(stderr, "cyclone-stages: --slowest must be >= 1, got \"%s\"\n", value.c_str());
+                return 2;
+            }
         } else {
             std::fprintf(stderr, "cyclone-stages: unknown option %s\n", arg.c_str());
             return 2;
@@ -89,10 +105,16 @@ int run(int argc, char **argv) {
         std::fprintf(stderr, "cyclone-stages: --steps must be > 60 (the first second is not counted)\n");
         return 2;
     }
+    if (slowest > steps - 60) {
+        std::fprintf(stderr, "cyclone-stages: --slowest %d is more than the %d steps after the first second\n",
+                     slowest, steps - 60);
+        return 2;
+    }
     if (scenes.empty()) scenes = bench::sceneNames();
     std::vector<bench::Scene> built;  // every name checked before the table starts
     for (const std::string &name : scenes) built.push_back(bench::makeScene(name));
 
+    if (slowest > 0) std::printf("Means over the %d slowest steps after the first second, ms:\n\n", slowest);
     std::printf("| scene |");
     for (const Column &c : kColumns) std::printf(" %s |", c.name);
     std::printf(" resting steps |\n|---|");
@@ -105,6 +127,7 @@ int run(int argc, char **argv) {
         if (iterations > 0) scene.world.velocityIterations = iterations;
         if (positions >= 0) scene.world.positionIterations = positions;
         scene.world.landingCorrection = landing;
+        scene.world.shockPropagation = carrier;
         World world(scene.world);
         for (const BodySettings &body : scene.bodies) world.addBody(body);
         std::vector<StageTimes> times;
@@ -114,11 +137,17 @@ int run(int argc, char **argv) {
             if (world.stats().substeps < scene.world.substeps) ++resting;
             if (i >= 60) times.push_back(world.stats().ms);
         }
+        if (slowest > 0) {
+            // The slowest steps first, each stage then averaged over them.
+            std::stable_sort(times.begin(), times.end(),
+                             [](const StageTimes &x, const StageTimes &y) { return x.total > y.total; });
+            times.resize(static_cast<std::size_t>(slowest));
+        }
         std::printf("| %s |", scene.name.c_str());
         for (const Column &c : kColumns) {
             std::vector<double> values;
             for (const StageTimes &t : times) values.push_back(c.read(t));
-            std::printf(" %.3f |", bench::median(values));
+            std::printf(" %.3f |", slowest > 0 ? bench::mean(values) : bench::median(values));
         }
         std::printf(" %d / %d |\n", resting, steps);
     }

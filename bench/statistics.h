@@ -14,6 +14,13 @@ inline double percentile(std::vector<double> values, double fraction) {
     return values[std::max<std::size_t>(rank, 1) - 1];
 }
 
+/// The arithmetic mean (0 for no values).
+inline double mean(const std::vector<double> &values) {
+    double sum = 0;
+    for (double v : values) sum += v;
+    return values.empty() ? 0 : sum / static_cast<double>(values.size());
+}
+
 /// The middle value (the mean of the two middle ones for an even count).
 inline double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
