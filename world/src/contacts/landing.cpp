@@ -51,15 +51,109 @@ real pairTolerance(const BodyRecord &a, const BodyRecord &b, real slop) {
 
 }  // namespace
 
-// Whether the passes may move the body: awake and moved fast by this step, and in no
-// joint (a push would open the joint, which the next step's projection closes only as far
-// as the contacts then allow). A body that hardly moved did not make the overlap, and
-// its pairs with third bodies (the ground under it) are not tested: pushed, it would be
-// driven into them unseen.
+// Whether the passes may move the body: awake and moved fast by this step, and, in a
+// joint, in a group that may move (buildJointGroups). A body that hardly moved did not
+// make the overlap, and its pairs with third bodies (the ground under it) are not
+// tested: pushed, it would be driven into them unseen.
 bool LandingCorrection::movable(const BodyStore &bodies, std::uint32_t index) const {
     const BodyRecord &r = bodies[index];
     return r.simulated && !r.isolated && index < movedRound_.size() && movedRound_[index] >= 0 &&
-           (jointed_.empty() || !jointed_[index]);
+           (group_.empty() || group_[index] < 0 || groupMovable_[static_cast<std::size_t>(group_[index])]);
+}
+
+void LandingCorrection::markFast(std::uint32_t index) {
+    if (movedRound_[index] == 0) return;
+    movedRound_[index] = 0;
+    activeBodies_.push_back(index);
+}
+
+// A group may move when every member is an awake dynamic body with a collision shape and
+// no joint holds a member to the world: a push moves all members, so a member that may not
+// move (static, kinematic, asleep) holds the group still, as the world does. A group none of
+// whose members moved fast does not move either (its members' pairs are not tested); one
+// that has such a member has all its members marked fast, so that all their pairs are.
+void LandingCorrection::buildJointGroups(const WorldState &world) {
+    const BodyStore &bodies = world.bodies;
+    const std::size_t n = bodies.size();
+    group_.assign(n, -1);
+    groupMovable_.assign(n, 0);
+    groupInverseMass_.assign(n, 0);
+    firstMember_.assign(n, -1);
+    nextMember_.assign(n, -1);
+    // Union-find over the joints' bodies: group_ holds each joined body's parent first.
+    const auto root = [&](std::int32_t i) {
+        while (group_[static_cast<std::size_t>(i)] != i) {
+            std::int32_t &parent = group_[static_cast<std::size_t>(i)];
+            parent = group_[static_cast<std::size_t>(parent)];  // path halving
+            i = parent;
+        }
+        return i;
+    };
+    const auto join = [&](std::uint32_t index) {
+        if (group_[index] < 0) group_[index] = static_cast<std::int32_t>(index);
+    };
+    for (const JointRecord &joint : world.joints.records) {
+        if (!joint.alive) continue;
+        join(joint.settings.a.index);
+        if (!joint.settings.b) continue;
+        join(joint.settings.b->index);
+        const std::int32_t x = root(static_cast<std::int32_t>(joint.settings.a.index));
+        const std::int32_t y = root(static_cast<std::int32_t>(joint.settings.b->index));
+        if (x != y) group_[static_cast<std::size_t>(std::max(x, y))] = std::min(x, y);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (group_[i] < 0) continue;
+        const std::int32_t g = root(static_cast<std::int32_t>(i));
+        group_[i] = g;
+        const auto at = static_cast<std::size_t>(g);
+        nextMember_[i] = firstMember_[at];
+        firstMember_[at] = static_cast<std::int32_t>(i);
+    }
+    // Movable until a member or a joint to the world says otherwise; the summed mass.
+    for (std::size_t i = 0; i < n; ++i)
+        if (group_[i] == static_cast<std::int32_t>(i)) groupMovable_[i] = 1;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (group_[i] < 0) continue;
+        const auto g = static_cast<std::size_t>(group_[i]);
+        const BodyRecord &r = bodies[i];
+        if (!r.simulated || r.isolated || !r.object || !(r.body.getInverseMass() > 0)) groupMovable_[g] = 0;
+        else groupInverseMass_[g] += r.body.getMass();
+    }
+    for (const JointRecord &joint : world.joints.records)
+        if (joint.alive && !joint.settings.b) groupMovable_[static_cast<std::size_t>(group_[joint.settings.a.index])] = 0;
+    for (std::size_t g = 0; g < n; ++g) {
+        if (!groupMovable_[g]) continue;
+        groupInverseMass_[g] = 1 / groupInverseMass_[g];
+        bool fast = false;
+        for (std::int32_t m = firstMember_[g]; m >= 0 && !fast; m = nextMember_[static_cast<std::size_t>(m)])
+            fast = movedRound_[static_cast<std::size_t>(m)] == 0;
+        if (!fast) {
+            groupMovable_[g] = 0;  // no member moved fast: none of its members' pairs is tested
+            continue;
+        }
+        for (std::int32_t m = firstMember_[g]; m >= 0; m = nextMember_[static_cast<std::size_t>(m)])
+            markFast(static_cast<std::uint32_t>(m));
+    }
+}
+
+real LandingCorrection::pushedInverseMass(const BodyStore &bodies, std::uint32_t index) const {
+    if (!group_.empty() && group_[index] >= 0) return groupInverseMass_[static_cast<std::size_t>(group_[index])];
+    return bodies[index].body.getInverseMass();
+}
+
+void LandingCorrection::translate(BodyStore &bodies, std::uint32_t index, const Vector3 &delta, real length) {
+    if (group_.empty() || group_[index] < 0) {
+        RigidBody &body = bodies[index].body;
+        body.setPosition(body.getPosition() + delta);
+        noteMove(index, length);
+        return;
+    }
+    for (std::int32_t m = firstMember_[static_cast<std::size_t>(group_[index])]; m >= 0;
+         m = nextMember_[static_cast<std::size_t>(m)]) {
+        RigidBody &body = bodies[static_cast<std::size_t>(m)].body;
+        body.setPosition(body.getPosition() + delta);
+        noteMove(static_cast<std::uint32_t>(m), length);
+    }
 }
 
 void LandingCorrection::correct(WorldState &world) {
@@ -74,11 +168,6 @@ void LandingCorrection::correct(WorldState &world) {
         movedRound_.resize(bodies.size(), -1);
         sunk_.resize(bodies.size(), 0);
     }
-    const auto markFast = [&](std::uint32_t index) {
-        if (movedRound_[index] == 0) return;
-        movedRound_[index] = 0;
-        activeBodies_.push_back(index);
-    };
     // Each test below is made on the threads, and the bodies it picks are marked after,
     // in order.
     const auto movedFast = [&](std::size_t k) {
@@ -119,15 +208,8 @@ void LandingCorrection::correct(WorldState &world) {
     });
     world.contacts.clearEndNormals();
     if (activeBodies_.empty()) return;
-    jointed_.clear();
-    if (!world.joints.empty()) {
-        jointed_.resize(bodies.size(), 0);
-        for (const JointRecord &joint : world.joints.records) {
-            if (!joint.alive) continue;
-            jointed_[joint.settings.a.index] = 1;
-            if (joint.settings.b) jointed_[joint.settings.b->index] = 1;
-        }
-    }
+    group_.clear();
+    if (!world.joints.empty()) buildJointGroups(world);
 
     points_.clear();
     const auto movedIn = [&](std::uint32_t index, int round) {
@@ -316,21 +398,18 @@ int LandingCorrection::push(WorldState &world, int round) {
             if (!(depth > point.target)) continue;
             bool moveA = movable(bodies, point.a);
             bool moveB = movable(bodies, point.b);
+            // Two members of one joint group move together: no push parts them.
+            if (!group_.empty() && group_[point.a] >= 0 && group_[point.a] == group_[point.b]) continue;
             if (moveA != moveB && liftAbove(bodies, point, moveA, normal.dot(up), round)) moveA = moveB = true;
-            // The bodies move along the normal only, split by their inverse masses.
-            const real massA = moveA ? a.body.getInverseMass() : 0;
-            const real massB = moveB ? b.body.getInverseMass() : 0;
+            // The bodies (or their joint groups) move along the normal only, split by their
+            // inverse masses.
+            const real massA = moveA ? pushedInverseMass(bodies, point.a) : 0;
+            const real massB = moveB ? pushedInverseMass(bodies, point.b) : 0;
             const real k = massA + massB;
             if (!(k > 0)) continue;
             const real lambda = (depth - point.target) / k;
-            if (massA > 0) {
-                a.body.setPosition(a.body.getPosition() - lambda * massA * normal);
-                noteMove(point.a, lambda * massA);
-            }
-            if (massB > 0) {
-                b.body.setPosition(b.body.getPosition() + lambda * massB * normal);
-                noteMove(point.b, lambda * massB);
-            }
+            if (massA > 0) translate(bodies, point.a, -lambda * massA * normal, lambda * massA);
+            if (massB > 0) translate(bodies, point.b, lambda * massB * normal, lambda * massB);
             if (pass == 0) ++pushed;
             any = true;
         }
@@ -362,7 +441,7 @@ bool LandingCorrection::liftAbove(const BodyStore &bodies, const Point &point, b
     // The still body must lie above the moving one (B lies along the normal).
     if (!sunk_[moving] || (moveA ? normalUp : -normalUp) < kSteepest) return false;
     const BodyRecord &r = bodies[still];
-    if (!r.simulated || r.isolated || !r.object || (!jointed_.empty() && jointed_[still])) return false;
+    if (!r.simulated || r.isolated || !r.object || (!group_.empty() && group_[still] >= 0)) return false;
     movedRound_[still] = round;
     sunk_[still] = 1;
     activeBodies_.push_back(still);

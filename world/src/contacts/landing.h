@@ -23,7 +23,11 @@
 // it. The bodies of a pair the step began deep in (kRestingFactor tolerances: sunk under
 // a pile's load) count as fast, and a body resting on one of them is lifted with it
 // rather than let the push drive it back down (liftAbove). Static, kinematic, sleeping
-// and just-woken bodies, and bodies in a joint, are immovable.
+// and just-woken bodies are immovable. Bodies held together by joints move as one group,
+// all by the same translation, which opens no joint (a hinge's or slider's angles and a
+// distance joint's length depend only on the members' relative poses): a fast member
+// makes the whole group fast, so that every member's pairs are tested, and a group joined
+// to the world or to a body that may not move does not move.
 // The points of every manifold found are kept, the shallow ones too, and shapes a hair
 // apart give points (WorldSettings::speculativeDistance, for the pairs with a test of
 // their own), so that a push does not drive a body into a neighbour the round tested;
@@ -75,8 +79,27 @@ private:
     /// Per body index: whether it is in a pair the step began deep in (sunk under a
     /// pile's load) or was lifted off such a body (liftAbove).
     std::vector<char> sunk_;
-    /// Per body index, while the world has joints: whether a joint holds the body.
-    std::vector<char> jointed_;
+    /// Bodies held together by joints (directly or through others) form a joint group,
+    /// which the passes move as one: all its members by the same translation, so that no
+    /// joint opens. Per body index, while the world has joints: its group, named by one
+    /// member's index, or -1 outside joints.
+    std::vector<std::int32_t> group_;
+    /// Per group (at the index that names it): whether the passes may move it, its
+    /// inverse mass (1 / the members' summed mass) and its first member; nextMember_
+    /// chains the rest (-1 ends the chain).
+    std::vector<char> groupMovable_;
+    std::vector<real> groupInverseMass_;
+    std::vector<std::int32_t> firstMember_;
+    std::vector<std::int32_t> nextMember_;
+    /// Builds group_ and the per-group lists from the world's joints; marks every member
+    /// of a movable group with a fast member fast too (its pairs are then all tested).
+    void buildJointGroups(const WorldState &world);
+    /// Counts the body as moved fast in the step (round 0).
+    void markFast(std::uint32_t index);
+    /// The inverse mass a push of the body moves: its group's, or its own outside joints.
+    real pushedInverseMass(const BodyStore &bodies, std::uint32_t index) const;
+    /// Moves the body, or every member of its group, by `delta`, noting the moves.
+    void translate(BodyStore &bodies, std::uint32_t index, const Vector3 &delta, real length);
     bool movable(const BodyStore &bodies, std::uint32_t index) const;
     /// For a point of which one body may move (A when `moveA`, else B): makes the other,
     /// still one movable (and sunk) when the moving one is sunk and the still one lies

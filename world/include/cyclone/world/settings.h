@@ -141,7 +141,9 @@ struct WorldSettings {
     /// position only, velocities unchanged, so that a body landing fast on a pile that is
     /// itself landing is not left sunk in it. Only the fast bodies are moved, and the
     /// bodies of a pair the step began deeper in than 1.6 tolerances (sunk under a pile's
-    /// load). A step in which neither is found does nothing more than compare each awake
+    /// load). Bodies held together by joints move as one, all by the same translation, so
+    /// that no joint opens (a group tied to the world or to a body that may not move stays
+    /// still). A step in which neither is found does nothing more than compare each awake
     /// body's poses and each contact point's depth (docs/solver.md, "Landing
     /// correction").
     bool landingCorrection = true;
