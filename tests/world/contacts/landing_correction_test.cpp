@@ -233,70 +233,74 @@ TEST(LandingCorrection, BallPassingCloseByIsNotMoved) {
 
 // A resting stack moves less than half the tolerance a step: nothing is tested, and the
 // run is the same to the bit as without the correction.
-// Two unit boxes held side by side by a fixed joint (1 kg each, centres 1.2 m apart) move
-// at 14 m/s, without gravity, towards a static box under the first only, 1 cm above it:
-// the step takes the first 223 mm into it. The joint's bodies move as one group: the
-// push takes the group's mass (2 kg) against the immovable static box, so the first box
-// goes back to kTarget as a box alone would, and the second moves by the same
-// translation, so that the joint stays as closed as without the correction. Velocities
-// are left alone. (Before joint groups, a jointed body was never moved: 223 mm deep.)
-TEST(LandingCorrection, JointGroupIsPushedOutAsOne) {
-    Vector3 between[2];
-    for (const bool landing : {true, false}) {
-        WorldSettings settings = withoutSpeculative(landing);
-        settings.gravity = Vector3::Zero();
-        WorldFixture f(settings);
-        const BodyId base = f.staticBox(Vector3(0, 0.5, 0), Vector3(0.5, 0.5, 0.5));
-        const BodyId first = f.box(Vector3(0, 1.51, 0));
-        const BodyId second = f.box(Vector3(1.2, 1.51, 0));
+// Two unit boxes held side by side by a fixed joint (1 kg each, centres 1.2 m apart),
+// moving at 14 m/s, without gravity, towards a static box under the first only, 1 cm
+// above it: the step takes the first 223 mm into it.
+struct JointedBoxes {
+    WorldFixture f;
+    BodyId base, first, second;
+    explicit JointedBoxes(bool landing) : f(withoutGravity(landing)) {
+        base = f.staticBox(Vector3(0, 0.5, 0), Vector3(0.5, 0.5, 0.5));
+        first = f.box(Vector3(0, 1.51, 0));
+        second = f.box(Vector3(1.2, 1.51, 0));
         JointSettings joint;
         joint.type = JointType::Fixed;
         joint.a = first;
         joint.b = second;
         joint.anchor = Vector3(0.6, 1.51, 0);
         f.world.addJoint(joint);
+    }
+    void step() {
         for (const BodyId id : {first, second}) f.world.setVelocity(id, Vector3(0, -14, 0));
         f.world.step(kDt);
-        between[landing] = f.position(second) - f.position(first);
+    }
+    static WorldSettings withoutGravity(bool landing) {
+        WorldSettings s = withoutSpeculative(landing);
+        s.gravity = Vector3::Zero();
+        return s;
+    }
+};
+
+// The joint's bodies move as one group: the push takes the group's mass (2 kg) against
+// the immovable static box, so the first box goes back to kTarget as a box alone would,
+// and the second moves by the same translation, so that the joint stays as closed as
+// without the correction. Velocities are left alone. (Before joint groups, a jointed body
+// was never moved: 223 mm deep.)
+TEST(LandingCorrection, JointGroupIsPushedOutAsOne) {
+    Vector3 between[2];
+    for (const bool landing : {true, false}) {
+        JointedBoxes boxes(landing);
+        boxes.step();
+        const World &world = boxes.f.world;
+        between[landing] = boxes.f.position(boxes.second) - boxes.f.position(boxes.first);
         if (landing) {
-            EXPECT_NEAR(overlap(f.world, base, first), kTarget, 1e-9);
-            EXPECT_EQ(f.world.stats().landingPushes, 1);
-            for (const BodyId id : {first, second}) EXPECT_NEAR((f.world.body(id).getVelocity() - Vector3(0, -14, 0)).norm(), 0, 1e-9);
+            EXPECT_NEAR(overlap(world, boxes.base, boxes.first), kTarget, 1e-9);
+            EXPECT_EQ(world.stats().landingPushes, 1);
+            for (const BodyId id : {boxes.first, boxes.second})
+                EXPECT_NEAR((world.body(id).getVelocity() - Vector3(0, -14, 0)).norm(), 0, 1e-9);
         } else {
-            EXPECT_NEAR(overlap(f.world, base, first), 14 * kDt - 0.01, 1e-9);
+            EXPECT_NEAR(overlap(world, boxes.base, boxes.first), 14 * kDt - 0.01, 1e-9);
         }
     }
     EXPECT_NEAR((between[true] - between[false]).norm(), 0, 1e-12);
 }
 
-// The same pair, the second box also tied to the world by a slack rope (a distance joint
-// of up to 100 m, which never pulls here): a push would drag the world's anchor along, so
+// The same boxes, the second also tied to the world by a slack rope (a distance joint of
+// up to 100 m, which never pulls here): a push would drag the world's anchor along, so
 // the group does not move and the first box stays where the step left it.
 TEST(LandingCorrection, JointGroupHeldByTheWorldIsNotMoved) {
-    WorldSettings settings = withoutSpeculative(true);
-    settings.gravity = Vector3::Zero();
-    WorldFixture f(settings);
-    const BodyId base = f.staticBox(Vector3(0, 0.5, 0), Vector3(0.5, 0.5, 0.5));
-    const BodyId first = f.box(Vector3(0, 1.51, 0));
-    const BodyId second = f.box(Vector3(1.2, 1.51, 0));
-    JointSettings fixed;
-    fixed.type = JointType::Fixed;
-    fixed.a = first;
-    fixed.b = second;
-    fixed.anchor = Vector3(0.6, 1.51, 0);
-    f.world.addJoint(fixed);
+    JointedBoxes boxes(true);
     JointSettings rope;
     rope.type = JointType::Distance;
-    rope.a = second;
+    rope.a = boxes.second;
     rope.anchor = Vector3(1.2, 1.51, 0);
     rope.anchorB = Vector3(1.2, 10, 0);
     rope.minDistance = 0;
     rope.maxDistance = 100;
-    f.world.addJoint(rope);
-    for (const BodyId id : {first, second}) f.world.setVelocity(id, Vector3(0, -14, 0));
-    f.world.step(kDt);
-    EXPECT_NEAR(overlap(f.world, base, first), 14 * kDt - 0.01, 1e-9);
-    EXPECT_EQ(f.world.stats().landingPushes, 0);
+    boxes.f.world.addJoint(rope);
+    boxes.step();
+    EXPECT_NEAR(overlap(boxes.f.world, boxes.base, boxes.first), 14 * kDt - 0.01, 1e-9);
+    EXPECT_EQ(boxes.f.world.stats().landingPushes, 0);
 }
 
 TEST(LandingCorrection, RestingStackIsUntouchedToTheBit) {
