@@ -291,21 +291,55 @@ void JointSet::storeImpulses() {
     }
 }
 
+JointSet::EqualityErrors JointSet::equalityErrors() const {
+    EqualityErrors e;
+    for (const int k : equality_) {
+        e.largest = std::max(e.largest, std::abs(rows_[k].error));
+        e.squares += rows_[k].error * rows_[k].error;
+    }
+    return e;
+}
+
+void JointSet::applyMoves(BodyStore &bodies, real scale) const {
+    for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+        const Vector3 dx = scale * moves_[2 * (k + 1)];
+        const Vector3 dq = scale * moves_[2 * (k + 1) + 1];
+        if (dx.isZero(0) && dq.isZero(0)) continue;
+        RigidBody &body = bodies[bodies.simulated[k]].body;
+        Quaternion q = body.getOrientation();
+        const Quaternion spin(0, dq.x(), dq.y(), dq.z());
+        q.coeffs() += 0.5 * (spin * q).coeffs();
+        body.setPosition(body.getPosition() + dx);
+        body.setOrientation(q);
+    }
+}
+
+// Newton's iteration on the positions: one step is exact for a joint alone, but a
+// whipping chain turns its links far enough in a sub-step that the linearisation needs a
+// few more; they stop once every row is within kProjectionTolerance. Near a singular pose
+// (a chain pulled straight by a heavy end) a full step can overshoot and leave the rows
+// further out than before, and sub-step after sub-step such steps can tear a thrown heavy
+// chain apart for good (docs/joints.md, "A Newton step that overshoots"). So a step
+// that leaves the sum of the squared row errors larger is taken back and halved, up to
+// kProjectionHalvings times; if it still does then, it is taken back and the projection
+// ends for the sub-step. A step that does not overshoot is taken whole. (The Newton step
+// lowers the sum of squares to first order, so a short enough part of it does too; the
+// largest error alone has no such guarantee.)
 void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody> &solverBodies, int iterations) {
     if (world.stats.joints == 0) return;
     BodyStore &bodies = world.bodies;
-    // Newton's iteration on the positions: one step is exact for a joint alone, but a
-    // whipping chain turns its links far enough in a sub-step that the linearisation needs
-    // a few more; they stop once every row is within kProjectionTolerance.
     const int projections = iterations > 0 ? std::max(iterations, kMaxProjections) : 0;
+    if (projections == 0) {
+        rows_.clear();
+        return;
+    }
+    makeRows(world, solverBodies, 1, true);
+    EqualityErrors errors = equalityErrors();
     for (int it = 0; it < projections; ++it) {
-        makeRows(world, solverBodies, 1, true);
-        const int n = static_cast<int>(equality_.size());
-        real largest = 0;
-        for (const int k : equality_) largest = std::max(largest, std::abs(rows_[k].error));
-        if (!(largest > kProjectionTolerance)) break;
+        if (!(errors.largest > kProjectionTolerance)) break;
         factorise(solverBodies);
         if (!factorised_) break;
+        const int n = static_cast<int>(equality_.size());
         for (int i = 0; i < n; ++i) rhs_[i] = -rows_[equality_[i]].error;
         delta_ = ldlt_.solve(rhs_);
         if (!delta_.allFinite()) break;
@@ -318,16 +352,33 @@ void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody>
             moves_[2 * r.b] += r.mLinB * delta_[i];
             moves_[2 * r.b + 1] += r.mAngB * delta_[i];
         }
+        savedPositions_.resize(bodies.simulated.size());
+        savedOrientations_.resize(bodies.simulated.size());
         for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
-            const Vector3 &dx = moves_[2 * (k + 1)];
-            const Vector3 &dq = moves_[2 * (k + 1) + 1];
-            if (dx.isZero(0) && dq.isZero(0)) continue;
-            RigidBody &body = bodies[bodies.simulated[k]].body;
-            Quaternion q = body.getOrientation();
-            const Quaternion spin(0, dq.x(), dq.y(), dq.z());
-            q.coeffs() += 0.5 * (spin * q).coeffs();
-            body.setPosition(body.getPosition() + dx);
-            body.setOrientation(q);
+            const RigidBody &body = bodies[bodies.simulated[k]].body;
+            savedPositions_[k] = body.getPosition();
+            savedOrientations_[k] = body.getOrientation();
+        }
+        const auto takeBack = [&] {
+            for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+                RigidBody &body = bodies[bodies.simulated[k]].body;
+                body.setPosition(savedPositions_[k]);
+                body.setOrientation(savedOrientations_[k]);
+            }
+        };
+        bool progressed = false;
+        real scale = 1;
+        for (int halving = 0; halving <= kProjectionHalvings && !progressed; ++halving, scale *= 0.5) {
+            if (halving > 0) takeBack();
+            applyMoves(bodies, scale);
+            makeRows(world, solverBodies, 1, true);
+            const EqualityErrors after = equalityErrors();
+            progressed = after.squares <= errors.squares;
+            if (progressed) errors = after;
+        }
+        if (!progressed) {
+            takeBack();
+            break;
         }
     }
     rows_.clear();

@@ -39,6 +39,10 @@ inline constexpr int kMaxJointRows = 8;
 inline constexpr int kMaxProjections = 4;
 /// The projection stops once every row's error is below this, m or rad.
 inline constexpr real kProjectionTolerance = 1e-9;
+/// Times a Newton step of the projection that leaves the sum of the squared row errors
+/// larger than before is taken back and halved before the projection gives up for the
+/// sub-step (near a singular pose a full step can be many times too long).
+inline constexpr int kProjectionHalvings = 20;
 
 struct JointRecord {
     JointSettings settings;      ///< As given, the axis normalised.
@@ -162,6 +166,19 @@ private:
     std::vector<int> bounded_;             ///< The other rows but the pulls', in row order.
     std::vector<PullBlock> pulls_;         ///< Mouse joints' rows, in row order.
     std::vector<Vector3> moves_;           ///< Scratch of correctPositions: each solver body's move and turn.
+    /// Scratch of correctPositions: each simulated body's pose before a Newton step, to
+    /// take the step back.
+    std::vector<Vector3> savedPositions_;
+    std::vector<Quaternion> savedOrientations_;
+    /// The errors of the equality rows (rows_ as made last): the largest, m or rad, and
+    /// the sum of their squares.
+    struct EqualityErrors {
+        real largest = 0;
+        real squares = 0;
+    };
+    EqualityErrors equalityErrors() const;
+    /// Moves and turns each simulated body by `scale` times its entry in moves_.
+    void applyMoves(BodyStore &bodies, real scale) const;
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<real>> ldlt_;
     bool factorised_ = false;
     Eigen::VectorXd rhs_, delta_;
