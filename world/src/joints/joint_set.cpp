@@ -169,13 +169,20 @@ void JointSet::factorise(const std::vector<SolverBody> &solverBodies) {
 // which one pass stops a limit exactly. A pull block's 3x3 mass is held the same way.
 void JointSet::constrainBoundedMasses(const std::vector<SolverBody> &solverBodies) {
     const bool held = !equality_.empty() && factorised_;
-    for (const int k : bounded_) {
-        JointRow &r = rows_[k];
+    const std::size_t n = equality_.size();
+    heldResponse_.assign(bounded_.size() * n, 0);
+    responds_.assign(bounded_.size(), 0);
+    for (std::size_t b = 0; b < bounded_.size(); ++b) {
+        JointRow &r = rows_[bounded_[b]];
         if (!held || !solveCoupling(solverBodies, r)) continue;
         const real k0 = r.mass > 0 ? 1 / r.mass - r.gamma : 0;
         const real schur = k0 - rhs_.dot(delta_);
         // A row the equality rows fix entirely (schur ~ 0) keeps its free mass.
-        if (schur > 1e-9 * k0 && std::isfinite(schur)) r.mass = 1 / (schur + r.gamma);
+        if (!(schur > 1e-9 * k0 && std::isfinite(schur)) || !delta_.allFinite()) continue;
+        r.mass = 1 / (schur + r.gamma);
+        // K^-1 J_e M^-1 J_r^T: what the equality rows give back per N s of this row.
+        for (std::size_t i = 0; i < n; ++i) heldResponse_[b * n + i] = delta_[static_cast<Eigen::Index>(i)];
+        responds_[b] = 1;
     }
     for (PullBlock &p : pulls_) {
         const JointRow *r = &rows_[p.row];
@@ -220,9 +227,33 @@ void JointSet::warmStart(std::vector<SolverBody> &solverBodies) const {
         if (r.impulse != 0) apply(r, r.impulse, solverBodies);
 }
 
+// The equality rows at once: the impulses that make J v = 0 exactly.
+void JointSet::solveEquality(std::vector<SolverBody> &solverBodies) {
+    const int n = static_cast<int>(equality_.size());
+    for (int i = 0; i < n; ++i) rhs_[i] = -rate(rows_[equality_[i]], solverBodies);
+    delta_ = ldlt_.solve(rhs_);
+    for (int i = 0; i < n; ++i) {
+        JointRow &r = rows_[equality_[i]];
+        if (!std::isfinite(delta_[i])) continue;
+        r.impulse += delta_[i];
+        apply(r, delta_[i], solverBodies);
+    }
+}
+
+// The bounded rows' and pulls' masses are those with the equality rows held
+// (constrainBoundedMasses): right only for velocities that keep the equality rows, and
+// only if each row's impulse is answered by the equality rows before the next row looks.
+// So the equality rows are solved first as well as last, and each bounded row's impulse
+// is followed at once by their answer to it (heldResponse_): the bounded rows then make a
+// Gauss-Seidel pass over the held system. Without either, a ragdoll whose limbs were thrown
+// apart had its limits' impulses overshoot more with every pass until its state was no
+// longer finite (docs/joints.md, "Limits and pulls see held velocities").
 void JointSet::solveVelocities(std::vector<SolverBody> &solverBodies) {
-    for (const int k : bounded_) {
-        JointRow &r = rows_[k];
+    const bool held = factorised_ && !equality_.empty();
+    if (held && (!bounded_.empty() || !pulls_.empty())) solveEquality(solverBodies);
+    const std::size_t n = equality_.size();
+    for (std::size_t b = 0; b < bounded_.size(); ++b) {
+        JointRow &r = rows_[bounded_[b]];
         real delta;
         const real old = r.impulse;
         if (r.bound == RowBound::Motor) {
@@ -232,10 +263,19 @@ void JointSet::solveVelocities(std::vector<SolverBody> &solverBodies) {
             delta = -r.mass * (rate(r, solverBodies) + r.bias + r.gamma * old);
             r.impulse = r.bound == RowBound::Lower ? std::max(old + delta, real(0)) : std::min(old + delta, real(0));
         }
-        apply(r, r.impulse - old, solverBodies);
+        const real change = r.impulse - old;
+        apply(r, change, solverBodies);
+        // The equality rows' answer at once, as the held mass assumed: the bounded rows
+        // then see each other through the held system, not the free one.
+        if (!held || !responds_[b] || change == 0) continue;
+        for (std::size_t i = 0; i < n; ++i) {
+            const real answer = -heldResponse_[b * n + i] * change;
+            JointRow &e = rows_[equality_[i]];
+            e.impulse += answer;
+            apply(e, answer, solverBodies);
+        }
     }
     if (!pulls_.empty()) solvePulls(solverBodies);
-    const int n = static_cast<int>(equality_.size());
     if (n == 0) return;
     if (!factorised_) {
         // Sequential impulses, should the factorisation ever fail.
@@ -247,14 +287,7 @@ void JointSet::solveVelocities(std::vector<SolverBody> &solverBodies) {
         }
         return;
     }
-    for (int i = 0; i < n; ++i) rhs_[i] = -rate(rows_[equality_[i]], solverBodies);
-    delta_ = ldlt_.solve(rhs_);
-    for (int i = 0; i < n; ++i) {
-        JointRow &r = rows_[equality_[i]];
-        if (!std::isfinite(delta_[i])) continue;
-        r.impulse += delta_[i];
-        apply(r, delta_[i], solverBodies);
-    }
+    solveEquality(solverBodies);
 }
 
 // Catto's soft step for the three rows at once: the impulse that makes J v + bias +

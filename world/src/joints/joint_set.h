@@ -121,8 +121,12 @@ public:
     void prepare(WorldState &world, const std::vector<SolverBody> &solverBodies, real h);
     /// Applies the rows' warm-start impulses.
     void warmStart(std::vector<SolverBody> &solverBodies) const;
-    /// One velocity pass: the bounded rows one by one, then the equality rows at once.
+    /// One velocity pass: the equality rows at once (when there are bounded rows or
+    /// pulls), the bounded rows one by one, each followed by the equality rows' answer to
+    /// it, the pulls, then the equality rows at once.
     void solveVelocities(std::vector<SolverBody> &solverBodies);
+    /// The equality rows at once (factorised_ must hold).
+    void solveEquality(std::vector<SolverBody> &solverBodies);
     /// Keeps the sub-step's impulses for warm starting and for the step's force.
     void storeImpulses();
     /// After integration: projects the positions onto the joints (no projection when
@@ -148,6 +152,10 @@ private:
     void factorise(const std::vector<SolverBody> &solverBodies);
     /// Gives each bounded row and pull block its effective mass with the equality rows held.
     void constrainBoundedMasses(const std::vector<SolverBody> &solverBodies);
+    /// Per bounded row (in bounded_'s order), when it has its held mass: K^-1 of its
+    /// coupling to the equality rows, n entries each (what they give back per N s of it).
+    std::vector<real> heldResponse_;
+    std::vector<char> responds_;
     /// K^-1 k_e,row into delta_ (k_e,row: the row's couplings to the equality rows, into
     /// rhs_); false when the row shares no body with them.
     bool solveCoupling(const std::vector<SolverBody> &solverBodies, const JointRow &row);
