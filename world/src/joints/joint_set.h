@@ -125,8 +125,6 @@ public:
     /// pulls), the bounded rows one by one, each followed by the equality rows' answer to
     /// it, the pulls, then the equality rows at once.
     void solveVelocities(std::vector<SolverBody> &solverBodies);
-    /// The equality rows at once (factorised_ must hold).
-    void solveEquality(std::vector<SolverBody> &solverBodies);
     /// Keeps the sub-step's impulses for warm starting and for the step's force.
     void storeImpulses();
     /// After integration: projects the positions onto the joints (no projection when
@@ -152,6 +150,8 @@ private:
     void factorise(const std::vector<SolverBody> &solverBodies);
     /// Gives each bounded row and pull block its effective mass with the equality rows held.
     void constrainBoundedMasses(const std::vector<SolverBody> &solverBodies);
+    /// The equality rows at once (factorised_ must hold).
+    void solveEquality(std::vector<SolverBody> &solverBodies);
     /// Per bounded row (in bounded_'s order), when it has its held mass: K^-1 of its
     /// coupling to the equality rows, n entries each (what they give back per N s of it).
     std::vector<real> heldResponse_;
