@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "collision/time_of_impact.h"
+#include "dynamics/union_find.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
@@ -80,30 +81,21 @@ void LandingCorrection::buildJointGroups(const WorldState &world) {
     groupInverseMass_.assign(n, 0);
     firstMember_.assign(n, -1);
     nextMember_.assign(n, -1);
-    // Union-find over the joints' bodies: group_ holds each joined body's parent first.
-    const auto root = [&](std::int32_t i) {
-        while (group_[static_cast<std::size_t>(i)] != i) {
-            std::int32_t &parent = group_[static_cast<std::size_t>(i)];
-            parent = group_[static_cast<std::size_t>(parent)];  // path halving
-            i = parent;
-        }
-        return i;
-    };
+    // Union-find over the joints' bodies (the others stay at -1): group_ holds each joined
+    // body's parent first, then its root.
     const auto join = [&](std::uint32_t index) {
-        if (group_[index] < 0) group_[index] = static_cast<std::int32_t>(index);
+        if (group_[index] < 0) group_[index] = static_cast<int>(index);
     };
     for (const JointRecord &joint : world.joints.records) {
         if (!joint.alive) continue;
         join(joint.settings.a.index);
         if (!joint.settings.b) continue;
         join(joint.settings.b->index);
-        const std::int32_t x = root(static_cast<std::int32_t>(joint.settings.a.index));
-        const std::int32_t y = root(static_cast<std::int32_t>(joint.settings.b->index));
-        if (x != y) group_[static_cast<std::size_t>(std::max(x, y))] = std::min(x, y);
+        uniteSets(group_, static_cast<int>(joint.settings.a.index), static_cast<int>(joint.settings.b->index));
     }
     for (std::size_t i = 0; i < n; ++i) {
         if (group_[i] < 0) continue;
-        const std::int32_t g = root(static_cast<std::int32_t>(i));
+        const int g = findRoot(group_, static_cast<int>(i));
         group_[i] = g;
         const auto at = static_cast<std::size_t>(g);
         nextMember_[i] = firstMember_[at];

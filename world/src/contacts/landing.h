@@ -83,7 +83,7 @@ private:
     /// which the passes move as one: all its members by the same translation, so that no
     /// joint opens. Per body index, while the world has joints: its group, named by one
     /// member's index, or -1 outside joints.
-    std::vector<std::int32_t> group_;
+    std::vector<int> group_;
     /// Per group (at the index that names it): whether the passes may move it, its
     /// inverse mass (1 / the members' summed mass) and its first member; nextMember_
     /// chains the rest (-1 ends the chain).

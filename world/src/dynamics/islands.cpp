@@ -3,31 +3,17 @@
 #include <algorithm>
 #include <numeric>
 
+#include "dynamics/union_find.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
-namespace {
-
-int findRoot(std::vector<int> &parent, int i) {
-    while (parent[i] != i) {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
-    }
-    return i;
-}
-
-}  // namespace
 
 void Islands::build(WorldState &world) {
     BodyStore &bodies = world.bodies;
     const int n = static_cast<int>(bodies.simulated.size());
     parent_.resize(n);
     std::iota(parent_.begin(), parent_.end(), 0);
-    auto unite = [&](int x, int y) {
-        x = findRoot(parent_, x);
-        y = findRoot(parent_, y);
-        if (x != y) parent_[std::max(x, y)] = std::min(x, y);
-    };
+    const auto unite = [&](int x, int y) { uniteSets(parent_, x, y); };
     // Static and kinematic bodies (entry 0, entries past the simulated) join no island.
     for (const SolverManifold &m : world.solver.manifolds())
         if (m.a > 0 && m.b > 0 && m.a <= n && m.b <= n) unite(m.a - 1, m.b - 1);
