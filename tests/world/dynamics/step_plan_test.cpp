@@ -1,7 +1,8 @@
 // Resting steps (WorldSettings::restingSubsteps, dynamics/step_plan.h): a step in which
 // every awake body touches something, on contacts solved last step of which at least one
-// carried a normal impulse, and moves less than 1 mm takes restingSubsteps sub-steps with the same velocity passes in
-// all; any other step takes `substeps`.
+// carried a normal impulse, and moves less than 1 mm takes restingSubsteps sub-steps with
+// restingIterations velocity passes in all (at most a full step's); any other step takes
+// `substeps`.
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -11,11 +12,12 @@
 namespace cyclone::test {
 namespace {
 
-// The defaults: 4 sub-steps of 3 velocity passes, 1 sub-step when resting, so a resting
-// step runs 3 * 4 / 1 = 12 velocity passes in its one sub-step, as many as a full step.
+// The defaults: 4 sub-steps of 3 velocity passes, 3 * 4 = 12 passes in a full step; 1
+// sub-step of 8 passes when resting.
 constexpr int kPassesPerStep = 12;
+constexpr int kRestingPasses = 8;
 
-TEST(RestingStep, ABoxAtRestOnTheGroundTakesOneSubstepWithEveryPass) {
+TEST(RestingStep, ABoxAtRestOnTheGroundTakesOneSubstepOfTheRestingPasses) {
     WorldFixture f(noSleep());
     f.ground();
     const BodyId box = f.box(Vector3(0, 0.5, 0));  // touching the plane from the first step
@@ -25,7 +27,7 @@ TEST(RestingStep, ABoxAtRestOnTheGroundTakesOneSubstepWithEveryPass) {
     for (int i = 1; i < 60; ++i) {
         f.world.step(kDt);
         ASSERT_EQ(f.world.stats().substeps, 1) << "step " << i;
-        ASSERT_EQ(f.world.stats().velocityIterations, kPassesPerStep) << "step " << i;
+        ASSERT_EQ(f.world.stats().velocityIterations, kRestingPasses) << "step " << i;
     }
     // At rest it stays: within 0.1 mm of where it was put (the slop is 0.2 mm).
     EXPECT_NEAR(f.position(box).y(), 0.5, 1e-4);
@@ -96,6 +98,7 @@ TEST(RestingStep, ABodySlidingFasterThanAMillimetreAStepTakesEverySubstep) {
     f.world.setVelocity(box, Vector3(0.03, 0, 0));
     f.world.step(kDt);
     EXPECT_EQ(f.world.stats().substeps, 1);
+    EXPECT_EQ(f.world.stats().velocityIterations, kRestingPasses);
 }
 
 TEST(RestingStep, OneMovingBodyAnywhereKeepsEverySubstep) {
@@ -130,8 +133,38 @@ TEST(RestingStep, TwoRestingSubstepsShareThePasses) {
     f.box(Vector3(0, 0.5, 0));
     f.simulate(2 * kDt);
     EXPECT_EQ(f.world.stats().substeps, 2);
-    // 3 * 4 passes over 2 sub-steps: 6 each.
+    // 8 passes over 2 sub-steps: 4 each.
+    EXPECT_EQ(f.world.stats().velocityIterations, kRestingPasses);
+}
+
+TEST(RestingStep, PassesThatDoNotShareEvenlyAreRoundedUp) {
+    WorldSettings s = noSleep();
+    s.restingSubsteps = 2;
+    s.restingIterations = 7;
+    WorldFixture f(s);
+    f.ground();
+    f.box(Vector3(0, 0.5, 0));
+    f.simulate(2 * kDt);
+    EXPECT_EQ(f.world.stats().substeps, 2);
+    // 7 passes over 2 sub-steps: 4 each, 8 in all.
+    EXPECT_EQ(f.world.stats().velocityIterations, 8);
+}
+
+TEST(RestingStep, NeverTakesMorePassesThanAFullStep) {
+    WorldSettings s = noSleep();
+    s.restingIterations = 50;
+    WorldFixture f(s);
+    f.ground();
+    f.box(Vector3(0, 0.5, 0));
+    f.simulate(2 * kDt);
+    EXPECT_EQ(f.world.stats().substeps, 1);
     EXPECT_EQ(f.world.stats().velocityIterations, kPassesPerStep);
+    // With more passes per sub-step, the resting step takes the 50 asked for.
+    s.velocityIterations = 20;
+    f.world.setSettings(s);
+    f.world.step(kDt);
+    EXPECT_EQ(f.world.stats().substeps, 1);
+    EXPECT_EQ(f.world.stats().velocityIterations, 50);
 }
 
 TEST(RestingStep, JointsKeepEverySubstep) {
@@ -217,6 +250,23 @@ TEST(RestingStep, ACountBeyondTheSubstepsIsRefused) {
             EXPECT_EQ(e.field(), "restingSubsteps") << e.what();
             EXPECT_NE(std::string(e.what()).find(std::to_string(resting)), std::string::npos) << e.what();
         }
+    }
+}
+
+TEST(RestingStep, APassCountOutsideItsRangeIsRefusedAndTheSettingsKept) {
+    WorldFixture f(noSleep());
+    for (const int passes : {0, -1, 10001}) {
+        WorldSettings s = noSleep();
+        s.restingIterations = passes;
+        try {
+            f.world.setSettings(s);
+            FAIL() << "accepted restingIterations " << passes;
+        } catch (const InvalidArgument &e) {
+            EXPECT_EQ(e.field(), "restingIterations") << e.what();
+            EXPECT_NE(std::string(e.what()).find("World::setSettings"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(std::to_string(passes)), std::string::npos) << e.what();
+        }
+        EXPECT_EQ(f.world.settings().restingIterations, kRestingPasses);
     }
 }
 

@@ -1,5 +1,6 @@
 #include "dynamics/step_plan.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "world/world_impl.h"
@@ -58,8 +59,9 @@ StepPlan planStep(const WorldState &world, real dt) {
         const real reach = (body.getVelocity().norm() + body.getRotation().norm() * r.boundingRadius) * dt;
         if (reach >= kRestingReach || !restsOnWarmContacts(r, pairs, world.stepCount)) return full;
     }
-    // The same velocity passes per step, rounded up.
-    const int passes = settings.velocityIterations * settings.substeps;
+    // restingIterations passes per step, at most a full step's, shared by the sub-steps
+    // (rounded up).
+    const int passes = std::min(settings.restingIterations, settings.velocityIterations * settings.substeps);
     return plan(resting, (passes + resting - 1) / resting, settings);
 }
 

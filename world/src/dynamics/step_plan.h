@@ -3,12 +3,14 @@
 //
 // Sub-steps buy accuracy for what moves: a landing body meets its contact within a
 // fraction of the step, a fast turn is integrated in small pieces, stiff joints and
-// springs stay stable. A body at rest on its contacts gains nothing from them that the
-// same number of velocity passes in one sub-step does not give, and each sub-step costs
-// its warm start, carrier pass, penetration pass and integration again. So a step in
-// which every awake body rests on contacts warm from the last step and moves less than
-// kRestingReach takes restingSubsteps sub-steps with the same velocity passes in all
-// (docs/solver.md, "Resting steps").
+// springs stay stable. A body at rest on its contacts gains nothing from them that
+// velocity passes in one sub-step do not give, and each sub-step costs its warm start,
+// carrier pass, penetration pass and integration again. So a step in which every awake
+// body rests on contacts warm from the last step and moves less than kRestingReach takes
+// restingSubsteps sub-steps with restingIterations velocity passes in all: its warm start
+// already carries the load and the carrier pass holds a stack up, so it needs fewer
+// passes than a full step (docs/solver.md, "Resting steps" and "Fewer passes in a
+// resting step").
 #pragma once
 
 #include "cyclone/world/world.h"

@@ -51,6 +51,8 @@ void validateSettings(const char *function, const WorldSettings &s) {
     if (s.restingSubsteps < 0 || s.restingSubsteps > s.substeps)
         refuse(function, "restingSubsteps",
                "must be in [0, substeps = " + std::to_string(s.substeps) + "], got " + std::to_string(s.restingSubsteps));
+    if (s.restingIterations < 1 || s.restingIterations > 10000)
+        refuse(function, "restingIterations", "must be in [1, 10000], got " + std::to_string(s.restingIterations));
     requirePositive(function, "sleepEpsilon", s.sleepEpsilon);
     if (!(s.sleepDelay >= 0 && s.sleepDelay <= kMaxSleepDelay))
         refuse(function, "sleepDelay", "must be in [0, log2(10) = 3.32], got " + show(s.sleepDelay));

@@ -75,13 +75,19 @@ struct WorldSettings {
     int substeps = 4;
     /// Sub-steps of a step in which every awake body rests (touches something, each of its
     /// contacts was solved last step and one at least carried a normal impulse, and it
-    /// moves less than 1 mm in the step), in [0, substeps]: that step takes the same velocity
-    /// passes in all, velocityIterations * substeps / restingSubsteps per sub-step
-    /// (rounded up), and costs a carrier pass, a penetration pass and an integration per
-    /// sub-step less. Only for SplitImpulse, without joints, springs or moving kinematic
-    /// bodies, and while |gravity| (dt / restingSubsteps)^2 <= speculativeDistance.
-    /// 0 or substeps: every step takes `substeps`.
+    /// moves less than 1 mm in the step), in [0, substeps]: that step takes
+    /// restingIterations velocity passes in all, restingIterations / restingSubsteps per
+    /// sub-step (rounded up), and costs a carrier pass, a penetration pass and an
+    /// integration per sub-step less. Only for SplitImpulse, without joints, springs or
+    /// moving kinematic bodies, and while |gravity| (dt / restingSubsteps)^2 <=
+    /// speculativeDistance. 0 or substeps: every step takes `substeps`.
     int restingSubsteps = 1;
+    /// Velocity passes of a resting step in all (see restingSubsteps), >= 1; a resting step
+    /// takes at most the passes of a full step, velocityIterations * substeps. In a resting
+    /// step the warm start carries the load and the carrier pass holds a stack up, so it
+    /// needs fewer passes than a step in which something lands (docs/solver.md, "Fewer
+    /// passes in a resting step").
+    int restingIterations = 8;
     /// Whether bodies may fall asleep.
     bool sleep = true;
     /// Threshold of the motion average (v.v + w.w) below which an island may sleep,
