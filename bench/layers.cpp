@@ -65,7 +65,7 @@ int run(int argc, char **argv) {
         }
     }
     if (name.rfind("pyramid", 0) != 0) {
-        std::fprintf(stderr, "cyclone-layers: --scene must be a pyramid (pyramid10 ... pyramid100), got %s\n", name.c_str());
+        std::fprintf(stderr, "cyclone-layers: --scene must be a pyramid (pyramid10 ... pyramid200), got %s\n", name.c_str());
         return 2;
     }
     bench::Scene scene = bench::makeScene(name);

@@ -221,8 +221,8 @@ Scene sphereAlone() {
 }  // namespace
 
 std::vector<std::string> sceneNames() {
-    return {"pyramid10", "pyramid20",    "pyramid40",    "pyramid60",
-            "pyramid100", "mixed1000", "mixed5000", "sleeping1000", "sphere_alone"};
+    return {"pyramid10",  "pyramid20",  "pyramid40", "pyramid60", "pyramid100",   "pyramid150",
+            "pyramid200", "mixed1000", "mixed5000", "sleeping1000", "sphere_alone"};
 }
 
 Scene makeScene(const std::string &name, std::uint64_t seed) {
@@ -231,6 +231,8 @@ Scene makeScene(const std::string &name, std::uint64_t seed) {
     if (name == "pyramid40") return pyramid(40);
     if (name == "pyramid60") return pyramid(60);
     if (name == "pyramid100") return pyramid(100);
+    if (name == "pyramid150") return pyramid(150);
+    if (name == "pyramid200") return pyramid(200);
     if (name == "mixed1000") return mixed(seed, 10, 10, 10);
     if (name == "mixed5000") return mixed(seed, 25, 20, 10);
     if (name == "sleeping1000") return sleeping();
