@@ -104,9 +104,10 @@ inline constexpr int kCarrierLevels = 20;
 
 /// The carrier pass's stopping test for a world whose tallest stack has `levels` levels
 /// of carried bodies: kCarrierTolerance and kCarrierSweeps up to kCarrierLevels levels;
-/// beyond, the tolerance times (kCarrierLevels / levels)^4 and the cap times
-/// levels / kCarrierLevels (the power chosen on the 60-level pyramid: docs/solver.md,
-/// "Taller pyramids").
+/// beyond, the tolerance times (kCarrierLevels / levels)^5 and the cap times
+/// levels / kCarrierLevels (the power chosen on the 200-level pyramid, whose top layers a
+/// power of 4 let sway past 1 cm: docs/solver.md, "Taller pyramids" and "The stop's power
+/// after the patch's centre").
 struct CarrierStop {
     real tolerance = kCarrierTolerance;  ///< m/s
     int sweeps = kCarrierSweeps;
@@ -116,7 +117,7 @@ inline CarrierStop carrierStop(int levels) {
     CarrierStop stop;
     if (levels <= kCarrierLevels) return stop;
     const real ratio = real(kCarrierLevels) / levels;
-    stop.tolerance *= (ratio * ratio) * (ratio * ratio);
+    stop.tolerance *= (ratio * ratio) * (ratio * ratio) * ratio;
     stop.sweeps = kCarrierSweeps * levels / kCarrierLevels;
     return stop;
 }
