@@ -82,11 +82,11 @@ struct WorldSettings {
     /// moving kinematic bodies, and while |gravity| (dt / restingSubsteps)^2 <=
     /// speculativeDistance. 0 or substeps: every step takes `substeps`.
     int restingSubsteps = 1;
-    /// Velocity passes of a resting step in all (see restingSubsteps), >= 1; a resting step
-    /// takes at most the passes of a full step, velocityIterations * substeps. In a resting
-    /// step the warm start carries the load and the carrier pass holds a stack up, so it
-    /// needs fewer passes than a step in which something lands (docs/solver.md, "Fewer
-    /// passes in a resting step").
+    /// Velocity passes of a resting step in all (see restingSubsteps), in [1, 10000]; a
+    /// resting step takes at most the passes of a full step, velocityIterations * substeps.
+    /// In a resting step the warm start carries the load and the carrier pass holds a stack
+    /// up, so it needs fewer passes than a step in which something lands (docs/solver.md,
+    /// "Fewer passes in a resting step").
     int restingIterations = 8;
     /// Whether bodies may fall asleep.
     bool sleep = true;
