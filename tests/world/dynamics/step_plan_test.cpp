@@ -125,38 +125,31 @@ TEST(RestingStep, ZeroOrAllSubstepsTurnsItOff) {
     }
 }
 
-TEST(RestingStep, TwoRestingSubstepsShareThePasses) {
-    WorldSettings s = noSleep();
-    s.restingSubsteps = 2;
-    WorldFixture f(s);
+// A box put on the ground and stepped twice: the second step rests (its contact is warm).
+void restABox(WorldFixture &f) {
     f.ground();
     f.box(Vector3(0, 0.5, 0));
     f.simulate(2 * kDt);
-    EXPECT_EQ(f.world.stats().substeps, 2);
-    // 8 passes over 2 sub-steps: 4 each.
-    EXPECT_EQ(f.world.stats().velocityIterations, kRestingPasses);
 }
 
-TEST(RestingStep, PassesThatDoNotShareEvenlyAreRoundedUp) {
-    WorldSettings s = noSleep();
-    s.restingSubsteps = 2;
-    s.restingIterations = 7;
-    WorldFixture f(s);
-    f.ground();
-    f.box(Vector3(0, 0.5, 0));
-    f.simulate(2 * kDt);
-    EXPECT_EQ(f.world.stats().substeps, 2);
-    // 7 passes over 2 sub-steps: 4 each, 8 in all.
-    EXPECT_EQ(f.world.stats().velocityIterations, 8);
+TEST(RestingStep, TwoRestingSubstepsShareThePassesRoundedUp) {
+    // The default 8 passes over 2 sub-steps: 4 each. 7 passes: 4 each too, 8 in all.
+    for (const int passes : {kRestingPasses, 7}) {
+        WorldSettings s = noSleep();
+        s.restingSubsteps = 2;
+        s.restingIterations = passes;
+        WorldFixture f(s);
+        restABox(f);
+        EXPECT_EQ(f.world.stats().substeps, 2) << "restingIterations " << passes;
+        EXPECT_EQ(f.world.stats().velocityIterations, 8) << "restingIterations " << passes;
+    }
 }
 
 TEST(RestingStep, NeverTakesMorePassesThanAFullStep) {
     WorldSettings s = noSleep();
     s.restingIterations = 50;
     WorldFixture f(s);
-    f.ground();
-    f.box(Vector3(0, 0.5, 0));
-    f.simulate(2 * kDt);
+    restABox(f);
     EXPECT_EQ(f.world.stats().substeps, 1);
     EXPECT_EQ(f.world.stats().velocityIterations, kPassesPerStep);
     // With more passes per sub-step, the resting step takes the 50 asked for.
