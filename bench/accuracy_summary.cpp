@@ -68,14 +68,13 @@ void writeSummary(std::ostream &md, const std::vector<Row> &rows) {
        << percent(at("pendulum", "period", ne)) << " off the exact one, energy within "
        << percent(at("pendulum", "energy", ne)) << " over 10 s (1 sub-step: " << percent(at("pendulum", "period", ne, 1))
        << " and " << percent(at("pendulum", "energy", ne, 1)) << ") |\n";
-    md << "| balls that must roll to a stop where they should (rolling friction) | 1/120 s steps or shorter | "
-       << "deceleration against the closed form: " << percent(at("rolling-resistance", "deceleration", ne, 1, dt / 2))
-       << " off at 1/120 s with 1 sub-step, " << percent(at("rolling-resistance", "deceleration", ne, 4, dt / 2))
-       << " with 4; at 1/60 s " << percent(at("rolling-resistance", "deceleration", ne))
-       << " with 4 sub-steps (10 iterations: " << percent(at("rolling-resistance", "deceleration", ne, 4, dt, 10))
-       << ") and " << percent(at("rolling-resistance", "deceleration", ne, 1)) << " with 1, where 100 % means no "
-       << "resistance at all: the rows' limit comes from the warm start, which a ball at 2 m/s outruns at 60 Hz "
-       << "(docs/solver.md, Rolling and spinning resistance) |\n";
+    md << "| balls that must roll to a stop where they should (rolling friction) | the defaults | "
+       << "deceleration against the closed form: " << percent(at("rolling-resistance", "deceleration", ne))
+       << " off at 1/60 s with 4 sub-steps (10 iterations: " << percent(at("rolling-resistance", "deceleration", ne, 4, dt, 10))
+       << "), " << percent(at("rolling-resistance", "deceleration", ne, 1)) << " with 1; at 1/120 s "
+       << percent(at("rolling-resistance", "deceleration", ne, 4, dt / 2)) << " with 4 sub-steps, "
+       << percent(at("rolling-resistance", "deceleration", ne, 1, dt / 2)) << " with 1 (docs/solver.md, Rolling and "
+       << "spinning resistance) |\n";
     md << "| asymmetric bodies spinning freely (tools, debris, satellites, the Dzhanibekov effect) | `" << mc << "` | "
        << "Dzhanibekov box over 10 s: angular momentum drift " << value(at("dzhanibekov", "momentum", mc))
        << " and energy drift " << value(at("dzhanibekov", "energy", mc)) << " (`" << gyro << "`: "
