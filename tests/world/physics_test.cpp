@@ -279,5 +279,35 @@ TEST(Physics, EveryShapeRestsOnALargeStaticBox) {
     EXPECT_LT(f.world.stats().maxPenetration, 0.002);
 }
 
+// A column of three unit boxes on a ramp (friction 0.6, which holds it from sliding up to
+// atan 0.6 = 31 degrees) tips over once its centre of mass, 1.5 m above the ramp's surface,
+// passes over the downhill edge of its 1 m base: beyond atan(0.5 / 1.5) = 18.4 degrees.
+// Returns how far the top box moved in 10 s, sleep off.
+double topOfColumnMoved(double degrees) {
+    WorldFixture f(noSleep());
+    const Quaternion tilt(Eigen::AngleAxis<real>(degrees * kPi / 180, Vector3::UnitZ()));
+    f.staticBox(Vector3::Zero(), Vector3(20, 0.25, 3), tilt);
+    const Vector3 up = tilt * Vector3::UnitY();
+    BodyId top{};
+    Vector3 start;
+    for (int k = 0; k < 3; ++k) {
+        BodySettings s;
+        s.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
+        s.position = up * (0.75 + k);
+        s.orientation = tilt;
+        top = f.world.addBody(s);
+        start = s.position;
+    }
+    f.simulate(10);
+    return (f.position(top) - start).norm();
+}
+
+TEST(Physics, ColumnOnARampStandsBelowItsTippingAngleAndFallsBeyond) {
+    // 3.4 degrees either side of 18.4: standing, the top box may settle by the slop of its
+    // three contacts (0.2 mm each); falling, it ends on the ramp, more than its height away.
+    EXPECT_LT(topOfColumnMoved(15), 3 * 0.0002);
+    EXPECT_GT(topOfColumnMoved(21.8), 1.0);
+}
+
 }  // namespace
 }  // namespace cyclone::test
