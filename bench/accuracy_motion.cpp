@@ -463,7 +463,8 @@ void addMotionScenes(std::vector<Scene> &all, bool quick) {
 
     all.push_back({"sliding-box", "unit box at 5 m/s on a plane, friction 0.5: stops after v0^2 / (2 mu g) = 2.548 m",
                    sweep(seed, {3, 10}, {1, 4}, quick), slidingBox});
-    all.push_back({"rolling-sphere", "0.25 m ball on a 30 degree ramp, friction 0.6, no rolling resistance: a = 5/7 g sin 30 = 3.504 m/s^2",
+    all.push_back({"rolling-sphere",
+                   "0.25 m ball on a 30 degree ramp, friction 0.6, no rolling resistance: a = 5/7 g sin 30 = 3.504 m/s^2",
                    sweep(seed, {3, 10}, {1, 4}, quick), rollingSphere});
     all.push_back({"bouncing-ball", "0.1 m ball dropped from 1 m, restitution 0.8: apexes e^(2n) h",
                    sweep(seed, {3, 10}, {1, 4}, quick), bouncingBall});

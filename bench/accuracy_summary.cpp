@@ -70,8 +70,9 @@ void writeSummary(std::ostream &md, const std::vector<Row> &rows) {
        << " and " << percent(at("pendulum", "energy", ne, 1)) << ") |\n";
     md << "| balls that must roll to a stop where they should (rolling friction) | the defaults | "
        << "deceleration against the closed form: " << percent(at("rolling-resistance", "deceleration", ne))
-       << " off at 1/60 s with 4 sub-steps (10 iterations: " << percent(at("rolling-resistance", "deceleration", ne, 4, dt, 10))
-       << "), " << percent(at("rolling-resistance", "deceleration", ne, 1)) << " with 1; at 1/120 s "
+       << " off at 1/60 s with 4 sub-steps (10 iterations: "
+       << percent(at("rolling-resistance", "deceleration", ne, 4, dt, 10)) << "), "
+       << percent(at("rolling-resistance", "deceleration", ne, 1)) << " with 1; at 1/120 s "
        << percent(at("rolling-resistance", "deceleration", ne, 4, dt / 2)) << " with 4 sub-steps, "
        << percent(at("rolling-resistance", "deceleration", ne, 1, dt / 2)) << " with 1 (docs/solver.md, Rolling and "
        << "spinning resistance) |\n";
