@@ -87,6 +87,17 @@ struct WorldFixture {
         return world.addBody(s);
     }
 
+    /// Joins a and b by a joint of `type` at `anchor` (world space), its other settings the
+    /// defaults.
+    JointId joint(JointType type, BodyId a, BodyId b, const Vector3 &anchor) {
+        JointSettings s;
+        s.type = type;
+        s.a = a;
+        s.b = b;
+        s.anchor = anchor;
+        return world.addJoint(s);
+    }
+
     /// Steps for `seconds` at `dt`.
     void simulate(double seconds, double dt = kDt) {
         const int steps = static_cast<int>(std::lround(seconds / dt));

@@ -243,12 +243,7 @@ struct JointedBoxes {
         base = f.staticBox(Vector3(0, 0.5, 0), Vector3(0.5, 0.5, 0.5));
         first = f.box(Vector3(0, 1.51, 0));
         second = f.box(Vector3(1.2, 1.51, 0));
-        JointSettings joint;
-        joint.type = JointType::Fixed;
-        joint.a = first;
-        joint.b = second;
-        joint.anchor = Vector3(0.6, 1.51, 0);
-        f.world.addJoint(joint);
+        f.joint(JointType::Fixed, first, second, Vector3(0.6, 1.51, 0));
     }
     void step() {
         for (const BodyId id : {first, second}) f.world.setVelocity(id, Vector3(0, -14, 0));

@@ -165,12 +165,7 @@ TEST(RestingStep, JointsKeepEverySubstep) {
     f.ground();
     const BodyId a = f.box(Vector3(0, 0.5, 0));
     const BodyId b = f.box(Vector3(1.05, 0.5, 0));
-    JointSettings j;
-    j.type = JointType::Ball;
-    j.a = a;
-    j.b = b;
-    j.anchor = Vector3(0.525, 0.5, 0);
-    f.world.addJoint(j);
+    f.joint(JointType::Ball, a, b, Vector3(0.525, 0.5, 0));
     f.simulate(3 * kDt);
     EXPECT_EQ(f.world.stats().substeps, 4);
 }
