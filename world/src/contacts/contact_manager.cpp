@@ -200,10 +200,26 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
 }
 
 void ContactManager::updateContacts(WorldState &world, real dt) {
-    BodyStore &bodies = world.bodies;
-    const std::uint64_t stepCount = world.stepCount;
-    // The step's pairs, each once, in the broadphase's order.
     stepPairs_.clear();
+    touchingPairs.clear();
+    listCandidates(world);
+    // A body woken by a contact joins this step (Integration::admit), and so do its
+    // island's pairs: they were not candidates, the broadphase skipping sleeping bodies.
+    // Tested in turn, they may wake further islands.
+    BodyStore &bodies = world.bodies;
+    for (std::size_t begin = 0; begin < stepPairs_.size();) {
+        const std::size_t end = stepPairs_.size();
+        const std::size_t simulated = bodies.simulated.size();
+        testPairs(world, dt, begin, end);
+        begin = end;
+        for (std::size_t k = simulated; k < bodies.simulated.size(); ++k) listPairsOf(world, bodies.simulated[k]);
+    }
+    removeUnseenPairs(world);
+}
+
+// The step's pairs, each once, in the broadphase's order.
+void ContactManager::listCandidates(WorldState &world) {
+    BodyStore &bodies = world.bodies;
     // The broadphase lists a settled scene's pairs in the same order step after step:
     // the slot each candidate had last step is checked first, saving most table look-ups.
     // That check and the look-up of the others are made on several threads (both miss the
@@ -239,34 +255,46 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             p = findOrAddPair(bodies, c.a, c.b, created);
             candidateSlots_[k] = p;
         }
-        if (stepIndex_.size() < pairs.slots()) stepIndex_.resize(pairs.slots(), 0);
-        if (inStep(p)) continue;  // reported twice
-        stepIndex_[p] = static_cast<std::uint32_t>(stepPairs_.size());
-        eventSlots_.push_back(p);
-        stepPairs_.push_back(p);
+        listPair(p);
     }
-    world.workers.forEach(stepPairs_.size(), [&](std::size_t k) {
-        pairs.prefetchAhead(stepPairs_, k, stepPairs_.size());
-        pairs[stepPairs_[k]].lastSeen = stepCount;
-    });
+}
 
-    // Each pair on its own, in chunks shared between the threads: pairs that hardly moved
-    // keep their manifolds, the others go through the narrowphase, which writes what it
-    // finds into its chunk's list. The finds are then merged into the pairs one after
-    // another in the pairs' order (anchors are numbered in that order), so the results do
-    // not depend on the thread count.
-    const std::size_t count = stepPairs_.size();
+void ContactManager::listPair(std::uint32_t p) {
+    if (stepIndex_.size() < pairs.slots()) stepIndex_.resize(pairs.slots(), 0);
+    if (inStep(p)) return;  // reported twice
+    stepIndex_[p] = static_cast<std::uint32_t>(stepPairs_.size());
+    eventSlots_.push_back(p);
+    stepPairs_.push_back(p);
+}
+
+// A woken body's pairs kept from before it slept: with its island's other members (woken
+// with it) and with static bodies, each touching as it was when the island fell asleep.
+void ContactManager::listPairsOf(const WorldState &world, std::uint32_t index) {
+    for (std::uint32_t p : world.bodies[index].pairs)
+        if (!world.joints.excludesContact(pairs[p].a, pairs[p].b)) listPair(p);
+}
+
+// Each pair on its own, in chunks shared between the threads: pairs that hardly moved
+// keep their manifolds, the others go through the narrowphase, which writes what it finds
+// into its chunk's list. The finds are then merged into the pairs one after another in
+// the pairs' order (anchors are numbered in that order), so the results do not depend on
+// the thread count. Pairs that touch after it are listed, and wake their sleeping bodies.
+void ContactManager::testPairs(WorldState &world, real dt, std::size_t first, std::size_t last) {
+    const std::uint64_t stepCount = world.stepCount;
+    const std::size_t count = last - first;
+    world.workers.forEach(count, [&](std::size_t k) { pairs[stepPairs_[first + k]].lastSeen = stepCount; });
     const std::size_t chunks = Workers::chunksOf(count);
     // Room for one manifold per pair (convex pairs find at most one), so that a chunk's
     // list is not grown by a few more touching pairs in a later step.
     while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
-    finds_.resize(count);
+    finds_.resize(last);
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
-        for (std::size_t k = begin; k < end; ++k) {
-            pairs.prefetchAhead(stepPairs_, k, end);
+        for (std::size_t k = first + begin; k < first + end; ++k) {
+            pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
+            find = Find();
             find.reused = reuseManifolds(world, stepPairs_[k]);
             if (find.reused) continue;
             find.first = static_cast<std::uint32_t>(out.size());
@@ -275,13 +303,16 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             find.anchors = static_cast<std::uint32_t>(anchorsIssuedBy(world, stepPairs_[k], find.count));
         }
     });
-    // The finds are merged into their pairs, again chunk by chunk: a merge writes only its
-    // own pair (but the detection above reads other pairs' manifolds, so it comes after
-    // all of them). The anchor numbers each merge issues, counted with the tests, are
-    // handed out first, in the pairs' order, so that each pair gets the same numbers
-    // whichever thread merges it.
+    countAnchors(world, first, last);
+    mergePairs(world, first, last);
+    wakeTouched(world, first, last);
+}
+
+// The anchor numbers each merge issues, counted with the tests, are handed out first, in
+// the pairs' order, so that each pair gets the same numbers whichever thread merges it.
+void ContactManager::countAnchors(WorldState &world, std::size_t first, std::size_t last) {
     std::uint64_t issued = anchorsIssued_;
-    for (std::size_t k = 0; k < count; ++k) {
+    for (std::size_t k = first; k < last; ++k) {
         Find &find = finds_[k];
         if (find.reused) {
             ++world.stats.pairsReused;
@@ -292,18 +323,22 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         issued += find.anchors;
     }
     anchorsIssued_ = issued;
-    while (mergeScratch_.size() < chunks) mergeScratch_.emplace_back();
+}
+
+// The finds are merged into their pairs, chunk by chunk: a merge writes only its own pair
+// (but the detection reads other pairs' manifolds, so it comes after all of them).
+void ContactManager::mergePairs(WorldState &world, std::size_t first, std::size_t last) {
+    const BodyStore &bodies = world.bodies;
+    const std::size_t count = last - first;
+    while (mergeScratch_.size() < Workers::chunksOf(count)) mergeScratch_.emplace_back();
     world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         const std::vector<Manifold> &out = chunkFinds_[chunk];
-        for (std::size_t k = begin; k < end; ++k) {
-            pairs.prefetchAhead(stepPairs_, k, end);
+        for (std::size_t k = first + begin; k < first + end; ++k) {
+            pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
             if (!find.reused)
-                mergeFinds(world, p, out.data() + find.first, find.count, find.issuedBefore,
-                           mergeScratch_[chunk]);
-            // A new contact with an awake or moving kinematic body wakes a sleeping one
-            // (from the next step on; waking changes none of the flags read here).
+                mergeFinds(world, p, out.data() + find.first, find.count, find.issuedBefore, mergeScratch_[chunk]);
             const PairState &pair = pairs[p];
             find.touching = pair.touching();
             if (!find.touching) continue;
@@ -313,9 +348,12 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
             find.wakeA = (b.simulated || b.moving) && !a.immovable && !a.simulated;
         }
     });
+}
 
-    touchingPairs.clear();
-    for (std::size_t k = 0; k < count; ++k) {
+// A contact, touching or speculative, of an awake or moving kinematic body wakes the
+// sleeping body it reaches, which joins this step (Integration::admit).
+void ContactManager::wakeTouched(WorldState &world, std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < last; ++k) {
         const Find &find = finds_[k];
         if (!find.touching) continue;
         const std::uint32_t p = stepPairs_[k];
@@ -323,11 +361,15 @@ void ContactManager::updateContacts(WorldState &world, real dt) {
         if (find.wakeB) world.wake(pairs[p].b);
         if (find.wakeA) world.wake(pairs[p].a);
     }
+}
 
-    // Pairs with an awake member that the broadphase no longer reports have separated
-    // (walked body by body: sleeping bodies' pairs cost nothing). Which bodies have such
-    // a pair is found on several threads; removing pairs only shortens the lists, so the
-    // walk over those bodies alone removes the same pairs in the same order.
+// Pairs with an awake member that the broadphase no longer reports have separated
+// (walked body by body: sleeping bodies' pairs cost nothing). Which bodies have such a pair
+// is found on several threads; removing pairs only shortens the lists, so the walk over
+// those bodies alone removes the same pairs in the same order.
+void ContactManager::removeUnseenPairs(WorldState &world) {
+    BodyStore &bodies = world.bodies;
+    const std::uint64_t stepCount = world.stepCount;
     const auto unseen = [&](std::uint32_t p) { return pairs[p].lastSeen != stepCount; };
     forFlaggedBodies(
         world, flags_,

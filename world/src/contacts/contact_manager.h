@@ -35,8 +35,9 @@ public:
     /// apart).
     void findCandidates(WorldState &world, real dt);
     /// The narrowphase stage: each candidate's manifolds, kept or made anew (speculative
-    /// ones for shapes apart that can meet within `dt`); wakes sleeping bodies a new
-    /// contact touches; drops the pairs that separated.
+    /// ones for shapes apart that can meet within `dt`); wakes the sleeping bodies a
+    /// contact reaches, which join this step with their island's pairs; drops the pairs
+    /// that separated.
     void updateContacts(WorldState &world, real dt);
     /// Records the contacts that began or ended since the last call in the step's events.
     void reportContactEvents(WorldState &world);
@@ -74,6 +75,23 @@ public:
     void keepEndNormal(std::uint32_t p, const NormalMemo &memo, std::uint64_t step);
 
 private:
+    /// Lists the candidates' pair slots in stepPairs_ (creating new pairs).
+    void listCandidates(WorldState &world);
+    /// Appends pair slot p to stepPairs_ unless it is there already.
+    void listPair(std::uint32_t p);
+    /// Appends the pairs of a body woken in this step to stepPairs_.
+    void listPairsOf(const WorldState &world, std::uint32_t index);
+    /// Tests stepPairs_[first, last): manifolds kept or found and merged; touching ones
+    /// appended to touchingPairs, waking the sleeping bodies they reach.
+    void testPairs(WorldState &world, real dt, std::size_t first, std::size_t last);
+    /// Hands out the anchor numbers of the merges of stepPairs_[first, last), in order.
+    void countAnchors(WorldState &world, std::size_t first, std::size_t last);
+    /// Merges the finds of stepPairs_[first, last) into their pairs.
+    void mergePairs(WorldState &world, std::size_t first, std::size_t last);
+    /// Lists the touching pairs of stepPairs_[first, last) and wakes what they reach.
+    void wakeTouched(WorldState &world, std::size_t first, std::size_t last);
+    /// Drops the simulated and moving bodies' pairs that this step did not list.
+    void removeUnseenPairs(WorldState &world);
     /// Refreshes pair p's manifolds from their anchors when its bodies hardly moved
     /// relative to each other since it was last tested; false: it must be tested.
     bool reuseManifolds(const WorldState &world, std::uint32_t p);

@@ -23,24 +23,10 @@ void Integration::beginStep(WorldState &world, real dt) {
     // `simulated` of the bodies simulated last step; the others are already false.
     for (std::uint32_t index : bodies.simulated) bodies[index].simulated = false;
     bodies.simulated.clear();
-    for (std::size_t k = 0; k < bodies.awake.size(); ++k) {
-        const std::uint32_t index = bodies.awake[k];
-        BodyRecord &r = bodies[index];
-        r.simulated = true;
-        // A force whose velocity overflows within the step (1e300 N on 1 kg) would reach
-        // other bodies through springs before the solver's check: isolate the body now.
-        const RigidBody &body = r.body;
-        const Vector3 v = body.getVelocity() +
-                          dt * (body.getAcceleration() + body.getInverseMass() * body.getAccumulatedForce());
-        const Vector3 w = body.getRotation() + dt * (body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque());
-        if (!std::isfinite(v.squaredNorm() + w.squaredNorm())) {
-            world.isolate(index);  // takes it out of `awake`: slot k now holds another body
-            --k;
-            continue;
-        }
-        r.solverIndex = static_cast<int>(bodies.simulated.size()) + 1;
-        bodies.simulated.push_back(index);
-    }
+    stepSeconds_ = dt;
+    admitting_ = true;
+    for (std::size_t k = 0; k < bodies.awake.size(); ++k)
+        if (!enter(world, bodies.awake[k])) --k;  // isolated: slot k now holds another body
     for (SpringRecord &s : world.springs) {
         if (!s.alive) continue;
         BodyRecord &a = bodies[s.settings.a.index];
@@ -48,18 +34,47 @@ void Integration::beginStep(WorldState &world, real dt) {
         if (!a.simulated && !(b && b->simulated)) continue;
         // An isolated (non-finite) end would carry its state to the other: the spring is off.
         if (a.isolated || (b && b->isolated)) continue;
-        // A spring joins its bodies: one awake end wakes the other.
+        // A spring joins its bodies: one awake end wakes the other, which joins this step.
         if (!a.simulated) world.wake(s.settings.a.index);
         if (b && !b->simulated) world.wake(s.settings.b->index);
         ++world.stats.springs;
     }
-    if (world.settings.substeps > 1) {
-        savedForces_.resize(bodies.simulated.size());
-        savedTorques_.resize(bodies.simulated.size());
-        for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
-            savedForces_[k] = bodies[bodies.simulated[k]].body.getAccumulatedForce();
-            savedTorques_[k] = bodies[bodies.simulated[k]].body.getAccumulatedTorque();
-        }
+}
+
+void Integration::admit(WorldState &world, std::uint32_t index) {
+    const BodyRecord &r = world.bodies[index];
+    if (!admitting_ || r.simulated || r.immovable || r.isolated || !r.body.getAwake()) return;
+    enter(world, index);
+}
+
+bool Integration::enter(WorldState &world, std::uint32_t index) {
+    BodyStore &bodies = world.bodies;
+    BodyRecord &r = bodies[index];
+    // A force whose velocity overflows within the step (1e300 N on 1 kg) would reach
+    // other bodies through springs before the solver's check: isolate the body now.
+    const RigidBody &body = r.body;
+    const real dt = stepSeconds_;
+    const Vector3 v = body.getVelocity() + dt * (body.getAcceleration() + body.getInverseMass() * body.getAccumulatedForce());
+    const Vector3 w = body.getRotation() + dt * (body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque());
+    if (!std::isfinite(v.squaredNorm() + w.squaredNorm())) {
+        world.isolate(index);
+        return false;
+    }
+    r.simulated = true;
+    r.solverIndex = static_cast<int>(bodies.simulated.size()) + 1;
+    bodies.simulated.push_back(index);
+    return true;
+}
+
+void Integration::closeAdmission(WorldState &world) {
+    admitting_ = false;
+    BodyStore &bodies = world.bodies;
+    if (world.settings.substeps <= 1) return;
+    savedForces_.resize(bodies.simulated.size());
+    savedTorques_.resize(bodies.simulated.size());
+    for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+        savedForces_[k] = bodies[bodies.simulated[k]].body.getAccumulatedForce();
+        savedTorques_[k] = bodies[bodies.simulated[k]].body.getAccumulatedTorque();
     }
 }
 

@@ -14,8 +14,14 @@ class Integration {
 public:
     /// The forces stage: lists the bodies the step moves (BodyStore::simulated, awake
     /// when it starts), isolating any whose forces overflow its velocity; wakes the other
-    /// end of a spring on a moving body; keeps the user's forces for later sub-steps.
+    /// end of a spring on a moving body. Admission stays open until closeAdmission.
     void beginStep(WorldState &world, real dt);
+    /// Adds a body woken during the step (by a contact, joint, spring or kinematic body)
+    /// to the bodies it moves, while admission is open; otherwise nothing.
+    void admit(WorldState &world, std::uint32_t index);
+    /// Ends admission once the contacts are known: the step's bodies are final. Keeps the
+    /// user's forces for the later sub-steps.
+    void closeAdmission(WorldState &world);
     /// Forces of one sub-step of h seconds: the user's forces again after the first
     /// sub-step (integrate cleared them), then the springs at the sub-step's start.
     void addSubstepForces(WorldState &world, real h, bool firstSubstep);
@@ -24,6 +30,11 @@ public:
     void integrate(WorldState &world, real h);
 
 private:
+    /// Lists one awake body as simulated, or isolates it (false) if its forces overflow.
+    bool enter(WorldState &world, std::uint32_t index);
+
+    real stepSeconds_ = 0;   ///< The step's dt, s.
+    bool admitting_ = false; ///< Between beginStep and closeAdmission.
     std::vector<Vector3> savedForces_;   ///< Per simulated body: the user's force this step, N.
     std::vector<Vector3> savedTorques_;  ///< And torque, N m.
     std::vector<char> nonFinite_;        ///< Per simulated body: integrate left it non-finite.

@@ -17,10 +17,14 @@ void KinematicBodies::beginStep(WorldState &world) {
             world.setTree(index, Tree::Static);
         }
         r.solverIndex = 0;
-        if (!moving) continue;
-        r.solverIndex = static_cast<int>(bodies.simulated.size() + bodies.moving.size()) + 1;
-        bodies.moving.push_back(index);
+        if (moving) bodies.moving.push_back(index);
     }
+}
+
+void KinematicBodies::number(BodyStore &bodies) {
+    const std::size_t simulated = bodies.simulated.size();
+    for (std::size_t k = 0; k < bodies.moving.size(); ++k)
+        bodies[bodies.moving[k]].solverIndex = static_cast<int>(simulated + k) + 1;
 }
 
 void KinematicBodies::startMoving(WorldState &world, std::uint32_t index) {

@@ -13,13 +13,16 @@
 namespace cyclone::detail {
 
 struct WorldState;
+struct BodyStore;
 
 class KinematicBodies {
 public:
     /// At the start of a step, after the simulated bodies are listed: lists the moving
-    /// kinematic bodies (BodyStore::moving) with their solver indices and puts each in
-    /// the tree its motion asks for.
+    /// kinematic bodies (BodyStore::moving) and puts each in the tree its motion asks for.
     void beginStep(WorldState &world);
+    /// Gives the moving kinematic bodies their solver indices, after the simulated
+    /// bodies' (once the step's simulated bodies are final).
+    static void number(BodyStore &bodies);
     /// Moves each moving kinematic body over h seconds at its velocity and rotation
     /// (the rotation exactly: a turn of |w| h about w).
     void integrate(WorldState &world, real h);

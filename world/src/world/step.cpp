@@ -22,6 +22,9 @@ void WorldState::step(real dt) {
     }
     { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
     { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
+    // The step's bodies are final: those woken by its contacts, joints and springs are in.
+    integration.closeAdmission(*this);
+    KinematicBodies::number(bodies);
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
     if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(*this); }
     plan = planStep(*this, dt);

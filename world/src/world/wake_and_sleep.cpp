@@ -1,6 +1,8 @@
 // How a body moves between awake, asleep and isolated. A body sleeps and wakes with its
 // island (RigidBody::setAwake), moving between the broadphase's awake and sleeping trees;
-// an isolated body (non-finite state) leaves collision and the solve for good.
+// an isolated body (non-finite state) leaves collision and the solve for good. A body
+// woken during a step, before its contacts are final, joins that step's solve
+// (Integration::admit): a hit on a sleeping body is a hit on a body with mass.
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
@@ -14,6 +16,7 @@ void WorldState::wake(std::uint32_t index) {
             events.sink->wokeUp.push_back(bodies.idOf(index));
         }
         bodies.updateAwakeList(index);
+        integration.admit(*this, index);
         return;
     }
     const int island = r.sleepingIsland;
@@ -25,6 +28,7 @@ void WorldState::wake(std::uint32_t index) {
         member.object->place(member.body.getTransform(), kBroadphaseMargin);
         setTree(m, Tree::Awake);
         bodies.updateAwakeList(m);
+        integration.admit(*this, m);
     }
     islands.sleeping[island].clear();
     islands.freeSleeping.push_back(island);

@@ -1,9 +1,9 @@
 // The World's private state: the subsystems a step runs through, each owning its state
 // and scratch (kept between steps, so that a steady step allocates nothing).
 //
-// A step simulates the bodies awake when it starts ("simulated"): a body woken during the
-// step (touched by an awake body) acts as immovable for the rest of that step and moves
-// from the next one.
+// A step simulates the bodies awake when it starts ("simulated") and those its contacts,
+// joints, springs and kinematic bodies wake before the solve: a sleeping body that is hit
+// joins the step of the hit with its mass and its island (Integration::admit).
 #pragma once
 
 #include <cstdint>

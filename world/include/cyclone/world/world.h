@@ -13,9 +13,11 @@
 /// spring or a joint (its bodies), setting a joint's motor speed or a new mouse target
 /// (its bodies), and removing a spring, a joint or a body (the bodies it joined or touched);
 /// setCollisionFilter and setPairCollision wake as they say. Sensors wake nothing.
-/// During a step, an awake body that touches a sleeping one, or is joined to it by a
-/// spring or a joint, wakes it (and its island) from the next step on; a joint that
-/// breaks wakes its bodies. Reading (body(), events(),
+/// During a step, a sleeping body that an awake or moving kinematic body's contact
+/// (touching or speculative) reaches, or that a spring or a joint joins to an awake
+/// body, wakes with its island and is solved in that same step with its real mass: a
+/// hit on a sleeping body moves it as a hit on an awake one does. A joint that breaks
+/// wakes its bodies. Reading (body(), events(),
 /// rayCast(), overlap(), debugDraw(), ...) and setMaterial() wake nothing.
 ///
 /// Errors: bad input throws cyclone::InvalidArgument naming the function, the field and
