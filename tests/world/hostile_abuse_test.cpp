@@ -56,12 +56,12 @@ TEST(HostileAbuse, AnInertiaFarBelowTheShapesIsRefused) {
 
 // diag(0.002) is 0.012 of the shape's moment, within the range: the box rests on the
 // floor. Its normal rows then have effective masses of 1 / (1 + 0.5 / 0.002) = 1/251 kg at
-// a corner, and the passes keep it from sinking three millimetres (it used to sink 36.7 m
-// at 1e-6). In a resting step (one sub-step, WorldSettings::restingSubsteps) it sinks about
-// 1.2 mm in the Release build and 2.2 mm in the sanitized Debug one. The sink follows the
-// rounding of this ill-conditioned case: before the velocity passes summed each side's
-// lever impulses and turned the sum by the inertia once (docs/solver.md, "Rows without
-// angular terms"), it was 0.4 mm with fused multiply-adds and 1.1 mm without.
+// a corner, and the passes keep it from sinking three millimetres (at 1e-6 it would sink
+// 36.7 m in 3 s: docs/hostile_input.md). In a resting step (one sub-step,
+// WorldSettings::restingSubsteps) it sinks about 1.2 mm in the Release build and 2.2 mm
+// in the sanitized Debug one. The sink follows the
+// rounding of this ill-conditioned case, which the velocity passes' order of sums
+// (docs/solver.md, "How the passes are made fast") and fused multiply-adds change.
 TEST(HostileAbuse, AnInertiaJustWithinTheRangeRests) {
     WorldFixture f(noSleep());
     f.ground();

@@ -79,8 +79,8 @@ PyramidDrift pyramidDrift(double edge, int levels) {
 // (5 % of an edge) that way before the touch margin; the bound is a third of one such
 // fall, so any missed contact fails it. What nothing rules out is the sideways residue of
 // the order in which points are solved, which grows with the step and not with the
-// boxes (bench/README.md, cyclone-scale: 0.03-0.05 mm at every size from 1 cm to 10 m),
-// a tenth of the bound here. Contacts never go deeper than that fall either.
+// boxes (0.03-0.05 mm at every size from 1 cm to 10 m: docs/solver.md, "Small bodies:
+// the touch margin and the sleep threshold"), a tenth of the bound here. Contacts never go deeper than that fall either.
 TEST(Scale, APyramidOfFiveCentimetreBoxesHolds) {
     const double edge = 0.05;
     const PyramidDrift d = pyramidDrift(edge, 10);

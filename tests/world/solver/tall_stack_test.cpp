@@ -1,12 +1,11 @@
 // Pyramids of 60 and 200 levels (1830 and 20,100 unit boxes) stand at the World's default
 // settings.
 //
-// Before the carrier pass's stopping test tightened with the stack's height
-// (carrierStop, solver/contact_solver.h), the 60-level pyramid went from its top at the
-// defaults: the top layer moved past 1 cm in the first second and the top boxes turned and
-// rose (bench/README.md, "Why the tall pyramids fall"). The 200-level one swayed past 1 cm
-// near its top while the tolerance fell as (20 / levels)^4 (docs/solver.md, "The stop's
-// power after the patch's centre").
+// Without the carrier pass's stopping test tightened with the stack's height
+// (carrierStop, solver/contact_solver.h), the 60-level pyramid goes from its top at the
+// defaults: the top layer moves past 1 cm in the first second and the top boxes turn and
+// rise. With the tolerance falling as (20 / levels)^4 instead of ^5 the 200-level one
+// sways past 1 cm near its top (docs/solver.md, "The carrier pass").
 #include <cmath>
 #include <vector>
 

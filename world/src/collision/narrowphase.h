@@ -50,8 +50,8 @@ struct NarrowphaseSettings {
 /// compound): whether FCL found them touching and, if so, the normal chosen. Both depend
 /// on the two shapes and their poses only, so a later test of the same shapes at the same
 /// poses, bit for bit, takes them from here instead of FCL's test and the choice of
-/// normal, and builds the very manifold the full test would (docs/solver.md, "The end
-/// poses' normals").
+/// normal, and builds the very manifold the full test would (docs/solver.md, "Landing
+/// correction").
 struct NormalMemo {
     const CollisionShape *a = nullptr;  ///< The shapes tested; null: nothing kept.
     const CollisionShape *b = nullptr;

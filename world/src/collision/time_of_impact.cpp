@@ -1,7 +1,7 @@
 // Time of impact between two shapes moving from one pose to another over a step, by
 // sampling and bisection with FCL's contact test (collideShapes: fcl::collide without its
 // allocations; two boxes by the separating axes, box_box.h; why not
-// fcl::continuousCollide: docs/solver.md).
+// fcl::continuousCollide: docs/solver.md, "Figures behind constants in the code").
 #include "collision/time_of_impact.h"
 
 #include <algorithm>

@@ -66,7 +66,7 @@ public:
     // End normals: what the landing correction's FCL tests found (collide's memos). It
     // tests its pairs at the poses the next step's narrowphase starts from, which then
     // builds the manifolds of the pairs whose bodies stayed there without FCL's test and
-    // the choice of normal (docs/solver.md, "The end poses' normals"). Only the pairs
+    // the choice of normal (docs/solver.md, "Landing correction"). Only the pairs
     // that reached FCL have one.
 
     /// Forgets the end normals of the step before (the landing correction starts anew).

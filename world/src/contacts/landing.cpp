@@ -23,8 +23,8 @@ constexpr real kLandingFraction = 0.1;
 constexpr int kRounds = 4;
 // A pair the step began deeper in than this times its tolerance has its bodies pushed
 // too, though they did not move fast: 8 mm at the 5 mm tolerance, under the 1 cm a pile
-// may show; a pile held at the tolerance itself, pushed every step, took longer to sleep
-// (docs/contacts_and_sleep.md, "The deepest contact traced").
+// may show; at the tolerance itself a resting pile would be pushed every step and sleep
+// later (docs/contacts_and_sleep.md, "Deep contacts in a falling pile").
 constexpr real kRestingFactor = 1.6;
 // Nonlinear Gauss-Seidel passes a round makes over its points.
 constexpr int kPasses = 8;
@@ -418,14 +418,14 @@ int LandingCorrection::push(WorldState &world, int round) {
 
 // A sunk body (in a pair the step began deep in) pushed down by a body above it that may
 // not move would be driven back into what carries it: a column's bottom box, pushed up out
-// of the ground by the point before, then down again by the box it carries, ended the
-// passes deeper than it began (in the benchmark pile, 8 -> 12.5 mm in one step). The body
+// of the ground by the point before, then down again by the box it carries, would end the
+// passes deeper than it began. The body
 // above is lifted instead: it becomes movable and sunk, and as a body moved in this round
 // its pairs are tested in the next, so that a column is lifted box by box (kRounds of
 // them). Only an awake dynamic body outside joints, and only up (the normal within 60
 // degrees of gravity's opposite), so that it goes into no ground unseen; only above a
-// sunk body, as a fast one lifting what rests on it kept piles rocking
-// (docs/contacts_and_sleep.md, "A column's load lifted").
+// sunk body, as a fast one lifting what rests on it keeps piles rocking
+// (docs/contacts_and_sleep.md, "Deep contacts in a falling pile").
 bool LandingCorrection::liftAbove(const BodyStore &bodies, const Point &point, bool moveA, real normalUp, int round) {
     constexpr real kSteepest = 0.5;  // cos 60 degrees
     const std::uint32_t moving = moveA ? point.a : point.b;

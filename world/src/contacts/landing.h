@@ -15,12 +15,12 @@
 // normal, split by their inverse masses, until it is no deeper than half the tolerance.
 // Translation only: two convex shapes moved apart by d along a normal along which they
 // overlap by p overlap by at most p - d, so a push never leaves a pair deeper elsewhere,
-// which a turn (splitting by the inertias too) did on round sides. Velocities are left
+// which a turn (splitting by the inertias too) does on round sides. Velocities are left
 // as they are (the next step's contacts, now touching, stop the bodies).
 // Only the fast bodies move: every pair of theirs is tested, so a push meets every
 // neighbour it can reach. A body that hardly moved made none of the overlap, and its
-// pairs with third bodies are not tested: pushed, it went unseen into the ground under
-// it. The bodies of a pair the step began deep in (kRestingFactor tolerances: sunk under
+// pairs with third bodies are not tested: pushed, it would go unseen into the ground
+// under it. The bodies of a pair the step began deep in (kRestingFactor tolerances: sunk under
 // a pile's load) count as fast, and a body resting on one of them is lifted with it
 // rather than let the push drive it back down (liftAbove). Static, kinematic, sleeping
 // and just-woken bodies are immovable. Bodies held together by joints move as one group,

@@ -119,7 +119,7 @@ void refreshFromAnchors(ManifoldState &m, const Matrix4 &poseA, const Matrix4 &p
         depth[i] = p.depth;
     }
     // In the order a fresh manifold would have: a frozen order makes Gauss-Seidel favour
-    // the same corner step after step, which rocked a 12-box tower 3 cm (docs/solver.md).
+    // the same corner step after step, and a tall stack sways.
     int order[Manifold::kMaxPoints];
     contactOrder(pointB, depth, m.count, m.normal, order);
     if (std::is_sorted(order, order + m.count)) return;  // already in that order

@@ -10,9 +10,10 @@ namespace {
 
 // Whether the body rests on warm contacts: it touches something (a manifold with any
 // body, static ones too), each of its manifolds was solved last step, and at least one
-// of them carried a normal impulse, which warm-starts it. A contact new in this step must build its whole impulse within the
-// step: a box with a twelfth of its shape's inertia, placed on the floor, sank 1.5 mm in
-// its first step at one sub-step of 12 passes and 0.5 mm at four of 3. A manifold solved
+// of them carried a normal impulse, which warm-starts it. A contact new in this step
+// must build its whole impulse within the step: a box with a twelfth of its shape's
+// inertia, placed on the floor, sinks about three times as deep in a first step of one
+// sub-step as in one of four (docs/solver.md, "Resting steps"). A manifold solved
 // last step that carried nothing is a support the load did not need (a box of a pyramid
 // on two boxes below, one of which took the load): it counts as warm, else a tall stack
 // whose passes leave some support unloaded never takes a resting step.

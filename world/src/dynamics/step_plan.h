@@ -9,8 +9,7 @@
 // body rests on contacts warm from the last step and moves less than kRestingReach takes
 // restingSubsteps sub-steps with restingIterations velocity passes in all: its warm start
 // already carries the load and the carrier pass holds a stack up, so it needs fewer
-// passes than a full step (docs/solver.md, "Resting steps" and "Fewer passes in a
-// resting step").
+// passes than a full step (docs/solver.md, "Resting steps").
 #pragma once
 
 #include "cyclone/world/world.h"

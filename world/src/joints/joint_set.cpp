@@ -245,8 +245,8 @@ void JointSet::solveEquality(std::vector<SolverBody> &solverBodies) {
 // only if each row's impulse is answered by the equality rows before the next row looks.
 // So the equality rows are solved first as well as last, and each bounded row's impulse
 // is followed at once by their answer to it (heldResponse_): the bounded rows then make a
-// Gauss-Seidel pass over the held system. Without either, a ragdoll whose limbs were thrown
-// apart had its limits' impulses overshoot more with every pass until its state was no
+// Gauss-Seidel pass over the held system. Without either, a ragdoll whose limbs are thrown
+// apart has its limits' impulses overshoot more with every pass until its state is no
 // longer finite (docs/joints.md, "Limits and pulls see held velocities").
 void JointSet::solveVelocities(std::vector<SolverBody> &solverBodies) {
     const bool held = factorised_ && !equality_.empty();

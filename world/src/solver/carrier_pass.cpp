@@ -49,7 +49,7 @@ RunLanes laneRuns(const std::vector<SolverManifold> &manifolds, const CarrierRun
 // across the patch left out. A box on two carriers whose tops move apart vertically must
 // turn to rest on both; taken with its carriers' turns, that turn reaches the next level
 // as a difference of vertical velocity, and a pyramid's layers hand such differences up
-// growing (docs/solver.md, "Taller pyramids"). Done for stacks of more than
+// growing (docs/solver.md, "The carrier pass", tall stacks). Done for stacks of more than
 // kCarrierLevels levels only.
 CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
                                 const CarrierRuns &runs, const RunLanes &lanes, int slot, bool patchCentre,
@@ -285,10 +285,9 @@ void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifol
     for (int k = 0; k < count; ++k) active[k] = -1;
 
     // Every sweep of a run takes the points in one direction (the caller alternates it from
-    // step to step). Sweeps that alternated ended, where no velocity meets all of a body's
-    // contacts at once, in a cycle of two states that no one-sweep test ends: pyramid40's
-    // runs of levels 20-39 swept 10.9-11.1 times on average, in one direction 8.8-9.6
-    // (docs/solver.md, "Sweeps in one direction").
+    // step to step). Sweeps that alternate end, where no velocity meets all of a body's
+    // contacts at once, in a cycle of two states that no one-sweep test ends, and the run
+    // sweeps to its cap (docs/solver.md, "The carrier pass").
     for (int k = 0; k < kWideLanes; ++k) scratch.laneSweeps[k] = 0;
     for (int sweep = 0; sweep < stop.sweeps && anyLane(active); ++sweep) {
         for (int k = 0; k < count; ++k) scratch.laneSweeps[k] += active[k] != 0;

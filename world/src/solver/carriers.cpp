@@ -113,7 +113,7 @@ void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::v
     // carry it on that face alone. Such bodies, and those that stand on nothing reached,
     // get their levels in a second search over every contact, each from its lowest
     // neighbour, so that every touching body has a level (the carrier pass's runs are
-    // ordered by it). docs/solver.md, "Carrier levels".
+    // ordered by it). docs/solver.md, "The carrier pass".
     constexpr int kUnreached = std::numeric_limits<int>::max();
     std::vector<int> &level = scratch.level;
     level.assign(bodyCount, kUnreached);

@@ -72,7 +72,7 @@ void ConstraintSolver::build(WorldState &world) {
     // Gauss-Seidel carries a stack's weight down in one pass when the contacts nearest
     // the ground come first; the order must not depend on the broadphase's. Equal heights
     // keep the order of the pair walk: the radix sort is stable. A comparison sort on
-    // (height, place in the walk) mispredicted most of its branches here: a layer's
+    // (height, place in the walk) would mispredict most of its branches here: a layer's
     // heights are equal but for rounding, so their order changes from step to step.
     sortByHeight(keys_, keysScratch_);
     assignSlots(world);

@@ -45,9 +45,9 @@ struct SolverRow {
     Lanes angB{};      ///< IB^-1 (rB x d).
 };
 
-/// The fields that the depth loop (World::Impl::solve) and loadBatches read and write come
-/// first, in the point's first cache lines, and the row last, where its lanes need no
-/// padding: 256 bytes in all. loadPseudo (penetration_pass.h) reads localA, localB and depth
+/// The fields that the depth loop (ConstraintSolver::solveVelocities) and loadBatches
+/// read and write come first, in the point's first cache lines, and the row last, where
+/// its lanes need no padding: 256 bytes in all. loadPseudo (penetration_pass.h) reads localA, localB and depth
 /// as one run of reals.
 struct SolverPoint {
     Vector3 localA;          ///< Anchor on A, A's body space, m.
@@ -106,8 +106,7 @@ inline constexpr int kCarrierLevels = 20;
 /// of carried bodies: kCarrierTolerance and kCarrierSweeps up to kCarrierLevels levels;
 /// beyond, the tolerance times (kCarrierLevels / levels)^5 and the cap times
 /// levels / kCarrierLevels (the power chosen on the 200-level pyramid, whose top layers a
-/// power of 4 let sway past 1 cm: docs/solver.md, "Taller pyramids" and "The stop's power
-/// after the patch's centre").
+/// power of 4 let sway past 1 cm: docs/solver.md, "The carrier pass").
 struct CarrierStop {
     real tolerance = kCarrierTolerance;  ///< m/s
     int sweeps = kCarrierSweeps;
@@ -163,7 +162,7 @@ struct alignas(64) SolverManifold {
     int count = 0;
     /// The order the passes solve the points in: the k-th is points[order[k]] (k past
     /// count: k itself). A point's row stays where its Jacobians were made; when a kept
-    /// manifold's points come in another order (World::Impl::addSolverManifold), this
+    /// manifold's points come in another order (ConstraintSolver::addSolverManifold), this
     /// changes, not where the rows are.
     signed char order[kMaxManifoldPoints] = {0, 1, 2, 3};
     SolverPoint points[kMaxManifoldPoints];

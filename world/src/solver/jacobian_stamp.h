@@ -5,7 +5,7 @@
 // effective masses, the friction block's inverse) depend on its anchors and normal and
 // on its bodies' poses and masses, not on velocities. In a resting stack none of these
 // change from one step to the next by more than the manifold-reuse tolerance, and making
-// them again was a quarter of the solve. A slot keeps them while it holds a manifold with
+// them again is a quarter of the solve of a resting stack. A slot keeps them while it holds a manifold with
 // the same anchors (ManifoldState::anchorsId: new contacts found by the narrowphase are new
 // anchors, and a number belongs to one manifold, so to one pair of bodies), its bodies in
 // the same roles (movable or not in the solver), and neither body moved more than

@@ -2,8 +2,8 @@
 //
 // Design note. A pseudo-velocity pass is a velocity pass without friction, on the bodies'
 // pseudo-velocities: each point's normal row pushes towards a target set from its depth.
-// Solved one manifold at a time, each manifold's rows wait on one another, as the
-// velocity passes' did before they went wide (velocity_pass.h). This pass runs on the same
+// Solved one manifold at a time, each manifold's rows would wait on one another, as a
+// velocity pass's would (velocity_pass.h). This pass runs on the same
 // groups and the same wide rows (ManifoldBatch, copied by loadBatches), plus what only it
 // needs (PenetrationBatch, copied with them): the anchors its depths come from and which
 // bodies the carrier pass moves. The groups keep the results of the plain order

@@ -3,8 +3,8 @@
 // each anchor a point fixed on its body. On a rolling ball, capsule or cylinder that
 // point turns away from the contact with the body, r (1 - cos a) after a turn by a
 // (0.65 mm per sub-step for a 0.25 m ball at 4.3 m/s and 60 Hz x 4), while the surface's
-// deepest point stays below the core: the depths read too shallow and the body sank
-// through the later sub-steps. The round side's share of the depth is corrected by
+// deepest point stays below the core: read from the anchors alone, the depths are too
+// shallow and the body sinks through the later sub-steps. The round side's share of the depth is corrected by
 // roundDepthChange (collision/round_side.h), the same for every point of the manifold,
 // so it goes into the frame's offset (docs/solver.md, "Round bodies").
 //

@@ -77,8 +77,8 @@ void buildSchedule(const std::vector<SolverManifold> &manifolds, std::vector<int
 
 void buildLevelSchedule(const std::vector<SolverManifold> &manifolds, const std::vector<real> &heights,
                         std::vector<int> &order, std::vector<SolverGroup> &groups, ScheduleScratch &scratch) {
-    // A static body's side sits at -inf (World::Impl::contactHeight): level with nothing,
-    // as the difference is then infinite or NaN.
+    // A static body's side sits at -inf (contactHeight, constraint_builder.cpp): level
+    // with nothing, as the difference is then infinite or NaN.
     schedule(manifolds, order, groups, scratch,
              [&](int lower, int upper) { return heights[upper] - heights[lower] <= kLevelBand; });
 }

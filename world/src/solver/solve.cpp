@@ -154,7 +154,8 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     // of w is that of an angular impulse through that inertia. The momentum-conserving
     // step turns w into angular momentum through the current one: it is given that
     // impulse (I_start dw) instead, or a body whose contacts cancel its torque-free wobble
-    // in every sub-step would gain energy (docs/solver.md).
+    // in every sub-step would gain energy (docs/solver.md, "Figures behind constants in
+    // the code").
     //
     // Each body on its own, in chunks shared between the threads, as above.
     const bool conserving = settings.integrator == Integrator::MomentumConserving;

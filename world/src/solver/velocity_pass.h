@@ -18,8 +18,8 @@
 // 2304). The rows hold no angular terms I^-1 (r x d): a pass sums each side's lever
 // impulses, sum of impulse times (r x d), and turns the sum by the body's inverse inertia
 // once, which the group holds per lane (the passes stream the rows from memory on large
-// scenes, so bytes count more than the extra products: docs/solver.md, "Rows without
-// angular terms"). A lane past a group's size, and a point past a member's count, hold
+// scenes, so bytes count more than the extra products: docs/solver.md, "How the passes
+// are made fast"). A lane past a group's size, and a point past a member's count, hold
 // zero rows, which change nothing.
 #pragma once
 

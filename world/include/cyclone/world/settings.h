@@ -86,7 +86,7 @@ struct WorldSettings {
     /// resting step takes at most the passes of a full step, velocityIterations * substeps.
     /// In a resting step the warm start carries the load and the carrier pass holds a stack
     /// up, so it needs fewer passes than a step in which something lands (docs/solver.md,
-    /// "Fewer passes in a resting step").
+    /// "Resting steps").
     int restingIterations = 8;
     /// Whether bodies may fall asleep.
     bool sleep = true;
@@ -157,7 +157,8 @@ struct WorldSettings {
     /// last narrowphase keeps its manifold (depths refreshed from the anchors), and a
     /// manifold keeps its solver Jacobians while neither body moved more than this since
     /// they were made; m (translation plus rotation times the bounding radius), >= 0;
-    /// 0 tests every pair and makes every Jacobian every step (docs/solver.md).
+    /// 0 tests every pair and makes every Jacobian every step (docs/solver.md, "How the
+    /// passes are made fast").
     real manifoldReuseTolerance = 0.0005;
     /// Whether impulses of the last step seed the solver (warm starting).
     bool warmStarting = true;
@@ -223,8 +224,8 @@ struct Material {
 /// a body that flies beyond it is isolated (StepStats::isolatedBodies). Why 1e12: there
 /// the spacing of doubles is 2^-13 m = 1.2e-4 m, below the default penetration slop
 /// (2e-4 m) and far below the speculative distance and the broadphase margin (0.02 m), so
-/// contacts hold as at the origin; at 1e14 m (spacing 0.016 m) a ball and a crate fell
-/// through a static floor (docs/hostile_input.md).
+/// contacts hold as at the origin; at 1e14 m (spacing 0.016 m) a ball and a crate fall
+/// through a static floor (docs/hostile_input.md, "Coordinate range").
 inline constexpr real kMaxCoordinate = 1e12;
 
 /// Longest step World::step takes, s (FixedStepper's stepSeconds has the same bound).
@@ -232,7 +233,8 @@ inline constexpr real kMaxCoordinate = 1e12;
 /// 2 s (creeping sideways 4-5 cm per 1,000 s; at 0.25 s and below it does not creep), and
 /// its top box slides off at 5 s (after 500 s) and 10 s (after 170 s): a body that touches
 /// something when the step begins gets no speculative contact for the fall the step
-/// brings, so a long step drops it through what it slides onto (docs/hostile_input.md).
+/// brings, so a long step drops it through what it slides onto (docs/hostile_input.md,
+/// "Long steps").
 /// A longer span is taken as several steps (FixedStepper), as Jolt has the caller split a
 /// long update into collision steps.
 inline constexpr real kMaxStep = 1;
@@ -244,7 +246,7 @@ inline constexpr real kMaxStep = 1;
 /// 3 x 3 blocks of such rows (friction and twist) by cofactors, whose determinant is a sum
 /// of six products of three k: 6 (4e100)^3 = 4e302 stays below the largest double
 /// (1.8e308) with room for rounding. Below the range, 1 / m or its products overflow and
-/// the solve turns NaN (a 1e-155 kg body once froze every step).
+/// the solve turns NaN.
 inline constexpr real kMinMass = 1e-100;
 /// Largest mass of a dynamic body, kg; also the largest principal moment of inertia over
 /// R^2. Why: the blocks' determinants shrink as (1/m)^3, and below 1e-300 they leave the

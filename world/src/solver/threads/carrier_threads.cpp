@@ -57,8 +57,8 @@ void countingSort(CarrierThreads &threads, std::vector<int> &from, std::vector<i
 
 // A group sweeps until its last run stops: the runs of a level are taken in the order of
 // the sweeps they took in the last carrier pass, most first, so that a group's runs stop
-// near one another (a run that swept long last pass tends to again; docs/solver.md, "The
-// carrier pass's groups", says how much of the idle lanes' cost that saves). Any
+// near one another (a run that swept long last pass tends to again; docs/solver.md, "How
+// the passes are made fast", says what that saves). Any
 // order of a level's runs gives the same numbers: no run reads or writes another of its
 // level. `list` holds its runs level by level, and keeps that order.
 void orderBySweeps(CarrierThreads &threads, std::vector<int> &list) {
