@@ -291,5 +291,155 @@ TEST(SleepingHits, AJoinedSleepingPairIsHitWithItsWholeMass) {
     EXPECT_NEAR(world.body(near).getVelocity().x(), 3, 0.06);
 }
 
+
+// Ten bowling pins (1.5 kg cylinders, 0.38 m tall, 0.12 m across, 12 inches apart) asleep
+// on the lane when a 7 kg ball arrives at `speed`; how many lie down at the end, with
+// their axis within 45 degrees of the floor.
+int pinsDown(real speed, int threads = 1) {
+    WorldSettings settings;
+    settings.threads = threads;
+    World world(settings);
+    BodySettings lane;
+    lane.motion = Motion::Static;
+    lane.shape = Shape::plane(Vector3::UnitY(), 0);
+    lane.material.friction = 0.2;
+    world.addBody(lane);
+    std::vector<BodyId> pins;
+    const real spacing = 0.3048;
+    for (int row = 0; row < 4; ++row)
+        for (int k = 0; k <= row; ++k) {
+            BodySettings pin;
+            pin.shape = Shape::cylinder(0.06, 0.38);
+            pin.mass = 1.5;
+            pin.material.friction = 0.4;
+            pin.orientation = Quaternion(Eigen::AngleAxis<real>(kPi / 2, Vector3::UnitX()));
+            pin.position = Vector3(4 + row * spacing * std::sqrt(3.0) / 2, 0.19, (k - row / 2.0) * spacing);
+            pins.push_back(world.addBody(pin));
+        }
+    for (int i = 0; i < 90; ++i) world.step(kDt);
+    for (BodyId pin : pins) EXPECT_FALSE(world.body(pin).getAwake());  // asleep before the ball comes
+    BodySettings ball;
+    ball.shape = Shape::sphere(0.108);
+    ball.mass = 7;
+    ball.position = Vector3(0, 0.108, 0.03);
+    ball.velocity = Vector3(speed, 0, 0);
+    ball.rotation = Vector3(0, 0, -speed / 0.108);
+    ball.material.friction = 0.2;
+    world.addBody(ball);
+    for (int i = 0; i < 180; ++i) world.step(kDt);
+    int down = 0;
+    for (BodyId pin : pins) {
+        const Vector3 axis = world.body(pin).getTransform().linear() * Vector3::UnitZ();
+        if (std::abs(axis.y()) < std::sqrt(0.5)) ++down;
+    }
+    return down;
+}
+
+TEST(SleepingHits, ABowlingBallKnocksMostOfTenSleepingPinsDown) {
+    for (real speed : {7.0, 8.0}) EXPECT_GE(pinsDown(speed), 6) << speed << " m/s";
+}
+
+// A wall of 80 bricks (0.2 x 0.2 x 0.4 m, 2 kg, in staggered courses) asleep when a 50 kg
+// ball rolls into it at 13.4 m/s.
+struct WallHit {
+    int knockedOut = 0;     // bricks moved more than a brick's depth
+    real fastest = 0;       // m/s, any brick at any step
+    std::vector<RigidBody> end;
+};
+
+WallHit hitWall(int threads) {
+    WorldSettings settings;
+    settings.threads = threads;
+    World world(settings);
+    BodySettings ground;
+    ground.motion = Motion::Static;
+    ground.shape = Shape::plane(Vector3::UnitY(), 0);
+    world.addBody(ground);
+    std::vector<BodyId> bricks;
+    for (int course = 0; course < 8; ++course)
+        for (int k = 0; k < 10; ++k) {
+            BodySettings brick;
+            brick.shape = Shape::box(Vector3(0.1, 0.1, 0.2));
+            brick.mass = 2;
+            brick.position = Vector3(0, 0.1 + 0.2 * course, -1.8 + 0.4 * k + (course % 2 ? 0.2 : 0.0));
+            bricks.push_back(world.addBody(brick));
+        }
+    for (int i = 0; i < 150; ++i) world.step(kDt);
+    int asleep = 0;
+    for (BodyId b : bricks) asleep += !world.body(b).getAwake();
+    EXPECT_GE(asleep, 76) << "the wall should be asleep before the ball comes";
+    BodySettings ball;
+    ball.shape = Shape::sphere(0.4);
+    ball.mass = 50;
+    ball.position = Vector3(-4, 0.4, 0.1);
+    ball.velocity = Vector3(13.4, 0, 0);
+    ball.rotation = Vector3(0, 0, -13.4 / 0.4);
+    world.addBody(ball);
+    WallHit out;
+    std::vector<Vector3> start;
+    for (BodyId b : bricks) start.push_back(world.body(b).getPosition());
+    for (int i = 0; i < 120; ++i) {
+        world.step(kDt);
+        for (BodyId b : bricks) out.fastest = std::max(out.fastest, world.body(b).getVelocity().norm());
+    }
+    for (std::size_t k = 0; k < bricks.size(); ++k) {
+        if ((world.body(bricks[k]).getPosition() - start[k]).norm() > 0.2) ++out.knockedOut;
+        out.end.push_back(world.body(bricks[k]));
+    }
+    return out;
+}
+
+TEST(SleepingHits, AHeavyBallKnocksBricksOutOfASleepingWallNoneFasterThan20) {
+    // The ball's 13.4 m/s bounds what it can give a brick in an elastic-free hit:
+    // 2 * 50 / 52 * 13.4 = 25.8 m/s at the very most; bricks slowed by the wall's other
+    // bricks leave well below it, and nothing may fly off faster than 20 m/s.
+    const WallHit one = hitWall(1);
+    EXPECT_GE(one.knockedOut, 10);
+    EXPECT_LE(one.fastest, 20);
+    const WallHit two = hitWall(2);
+    ASSERT_EQ(one.end.size(), two.end.size());
+    for (std::size_t k = 0; k < one.end.size(); ++k) EXPECT_TRUE(sameBits(one.end[k], two.end[k])) << "brick " << k;
+}
+
+// A column of three 1 kg boxes on the ground, asleep or awake (it cannot sleep), hit at
+// its bottom box by a 5 kg ball at 7 m/s: the bottom box's fastest speed.
+real hitStack(bool asleep) {
+    World world;
+    BodySettings ground;
+    ground.motion = Motion::Static;
+    ground.shape = Shape::plane(Vector3::UnitY(), 0);
+    world.addBody(ground);
+    std::vector<BodyId> boxes;
+    for (int k = 0; k < 3; ++k) {
+        BodySettings box;
+        box.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
+        box.position = Vector3(0, 0.5 + k, 0);
+        box.canSleep = asleep;
+        boxes.push_back(world.addBody(box));
+    }
+    for (int i = 0; i < 120; ++i) world.step(kDt);
+    for (BodyId b : boxes) EXPECT_EQ(world.body(b).getAwake(), !asleep);
+    BodySettings ball;
+    ball.shape = Shape::sphere(0.4);
+    ball.mass = 5;
+    ball.position = Vector3(-3, 0.4, 0);
+    ball.velocity = Vector3(7, 0, 0);
+    ball.rotation = Vector3(0, 0, -7 / 0.4);
+    world.addBody(ball);
+    real fastest = 0;
+    for (int i = 0; i < 60; ++i) {
+        world.step(kDt);
+        fastest = std::max(fastest, world.body(boxes[0]).getVelocity().norm());
+    }
+    return fastest;
+}
+
+TEST(SleepingHits, ASleepingStackIsHitAsAnAwakeOne) {
+    const real awake = hitStack(false);
+    const real asleep = hitStack(true);
+    EXPECT_GT(awake, 1.0);
+    EXPECT_NEAR(asleep, awake, 0.05 * awake);
+}
+
 }  // namespace
 }  // namespace cyclone::test

@@ -22,8 +22,9 @@
 // pairs with third bodies are not tested: pushed, it would go unseen into the ground
 // under it. The bodies of a pair the step began deep in (kRestingFactor tolerances: sunk under
 // a pile's load) count as fast, and a body resting on one of them is lifted with it
-// rather than let the push drive it back down (liftAbove). Static, kinematic, sleeping
-// and just-woken bodies are immovable. Bodies held together by joints move as one group,
+// rather than let the push drive it back down (liftAbove). Static, kinematic and
+// sleeping bodies are immovable (a body woken by this step's contacts was solved in it,
+// and moves). Bodies held together by joints move as one group,
 // all by the same translation, which opens no joint (a hinge's or slider's angles and a
 // distance joint's length depend only on the members' relative poses): a fast member
 // makes the whole group fast, so that every member's pairs are tested, and a group joined
