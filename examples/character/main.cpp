@@ -79,13 +79,13 @@ int main() {
         {5.2, {2, 0, 0}},    // off onto the far landing, down the ramp, push the crate
         {11.0, {0, 0, 1.5}}, // step aside
         {12.0, {2, 0, 0}},
-        {12.6, {2, 5, 0}},   // jump onto the block
-        {12.7, {2, 0, 0}},
-        {14.0, {0, 0, 0}},
+        {13.6, {2, 5, 0}},   // jump onto the block
+        {13.7, {2, 0, 0}},
+        {15.0, {0, 0, 0}},
     };
     const real dt = 1.0 / 60;
     std::size_t next = 0;
-    for (int step = 0; step < 15 * 60; ++step) {
+    for (int step = 0; step < 16 * 60; ++step) {
         const real t = step * dt;
         if (next < sizeof(script) / sizeof(script[0]) && t >= script[next].time - 1e-9)
             world.setCharacterVelocity(player, script[next++].velocity);

@@ -6,14 +6,14 @@ namespace cyclone::test {
 namespace {
 
 TEST(CharacterCarry, KeepsItsPlaceOnAPlatformThatReversesAndMovesDown) {
-    // A kinematic platform 4 m square, its top at y = 1, moves at 2 m/s along +x for 1 s,
+    // A kinematic platform 4 m square, its top at y = 3, moves at 2 m/s along +x for 1 s,
     // back at 2 m/s for 1 s, then diagonally down at (2, -1.5, 0) m/s (faster down than a
     // fall starts) for 1 s. The character stands still on it: its feet keep their place
     // over the platform's top centre within 2 cm, and it is on the ground every step.
     CharacterLevel level;
     level.floor();
-    const BodyId platform = level.block({-2, 0.6, -2}, {2, 1, 2}, Motion::Kinematic);
-    const CharacterId rider = level.character({0, 1, 0});
+    const BodyId platform = level.block({-2, 2.6, -2}, {2, 3, 2}, Motion::Kinematic);
+    const CharacterId rider = level.character({0, 3, 0});
     level.world.step(kDt);
     const auto offset = [&] {
         return Vector3(level.feet(rider) - (level.world.body(platform).getPosition() + Vector3(0, 0.2, 0)));

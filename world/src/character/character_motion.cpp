@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "character/characters.h"
+#include "character/character_record.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
@@ -79,13 +79,13 @@ private:
     void walk(bool grounded, bool jumps) {
         walkVelocity_ = across(c_.desired) + c_.push;
         if (grounded) {
-            c_.rise = 0;
+            c_.flight.setZero();
             slide(along(walkVelocity_ * dt_, c_.groundNormal), true);
             return;
         }
-        const real before = jumps ? c_.desired.dot(up_) : c_.rise;
-        c_.rise = before + world_.settings.gravity.dot(up_) * dt_;
-        slide(walkVelocity_ * dt_ + up_ * ((before + c_.rise) / 2 * dt_), false);
+        const Vector3 before = jumps ? Vector3(up_ * c_.desired.dot(up_)) : c_.flight;
+        c_.flight = before + world_.settings.gravity * dt_;
+        slide(walkVelocity_ * dt_ + (before + c_.flight) / 2 * dt_, false);
     }
 
     void slide(Vector3 motion, bool grounded) {
@@ -95,7 +95,7 @@ private:
             push(*hit);
             Vector3 rest = motion * (1 - hit->fraction);
             const Vector3 &normal = hit->normal;
-            stopRise(normal);
+            stopFlight(normal);
             if (walkable(normal)) {
                 rest = along(rest, normal);  // a slope, or the ground it lands on
             } else {
@@ -109,11 +109,11 @@ private:
         }
     }
 
-    // The speed along up loses its part into a surface met (landing, a ceiling).
-    void stopRise(const Vector3 &normal) {
-        Vector3 v = up_ * c_.rise;
-        if (v.dot(normal) < 0) v -= v.dot(normal) * normal;
-        c_.rise = v.dot(up_);
+    // The flight loses its part into a surface met (a landing, a ceiling, a steep slope
+    // it then slides down).
+    void stopFlight(const Vector3 &normal) {
+        const real into = c_.flight.dot(normal);
+        if (into < 0) c_.flight -= into * normal;
     }
 
     // Up by the step height, across, and down onto walkable ground: false when blocked.
@@ -131,6 +131,9 @@ private:
         const auto down = moveUntilHit(feet, -up_ * lifted);
         Vector3 normal;
         if (!down || !supports(*down, feet, normal)) return false;
+        // The height of what it lands on, not of its feet, which a round bottom resting
+        // on a step's edge keeps lower.
+        if ((down->point - c_.feet).dot(up_) > c_.settings.stepHeight + kSkin) return false;
         c_.feet = feet;
         return true;
     }
@@ -156,12 +159,12 @@ private:
         Vector3 feet = c_.feet;
         const auto hit = moveUntilHit(feet, -up_ * ((stick ? c_.settings.stepHeight : 0) + 2 * kSkin));
         Vector3 normal;
-        if (c_.rise <= 0 && hit && supports(*hit, feet, normal)) {
+        if (c_.flight.dot(up_) <= 0 && hit && supports(*hit, feet, normal)) {
             c_.feet = feet;
             c_.onGround = true;
             c_.groundBody = hit->body;
             c_.groundNormal = normal;
-            c_.rise = 0;
+            c_.flight.setZero();
             press(hit->body, hit->point);
             return;
         }
@@ -171,33 +174,31 @@ private:
     }
 
     // Pushes a dynamic body it walks into towards its walking velocity, with at most its
-    // weight (once per body and step).
+    // weight, at its centre of mass (where along a face it touches is arbitrary; once per
+    // body and step).
     void push(const ShapeCastHit &hit) {
         BodyRecord &b = world_.bodies[hit.body.index];
         if (b.immovable || std::find(pushed_.begin(), pushed_.end(), hit.body.index) != pushed_.end()) return;
         pushed_.push_back(hit.body.index);
         const Vector3 into = -hit.normal;
-        const Vector3 arm = hit.point - b.body.getPosition();
-        const real bodySpeed = (b.body.getVelocity() + b.body.getRotation().cross(arm)).dot(into);
-        const real approach = walkVelocity_.dot(into) - bodySpeed;
+        const real approach = walkVelocity_.dot(into) - b.body.getVelocity().dot(into);
         if (!(approach > 0)) return;
-        const Matrix3 inverseInertia = b.body.getInverseInertiaTensorWorld();
-        const Vector3 turn = arm.cross(into);
-        const real inverseMass = b.body.getInverseMass() + turn.dot(inverseInertia * turn);
-        applyImpulse(hit.body.index, into * std::min(approach / inverseMass, weight_ * dt_), hit.point);
+        applyImpulse(hit.body.index, into * std::min(approach * b.body.getMass(), weight_ * dt_));
     }
 
     // Its weight on a dynamic body it stands on.
     void press(BodyId ground, const Vector3 &point) {
         if (world_.bodies[ground.index].immovable) return;
-        applyImpulse(ground.index, -up_ * (weight_ * dt_), point);
-    }
-
-    void applyImpulse(std::uint32_t index, const Vector3 &impulse, const Vector3 &point) {
-        RigidBody &body = world_.bodies[index].body;
-        world_.wake(index);
+        RigidBody &body = world_.bodies[ground.index].body;
+        world_.wake(ground.index);
+        const Vector3 impulse = -up_ * (weight_ * dt_);
         body.addVelocity(impulse * body.getInverseMass());
         body.addRotation(body.getInverseInertiaTensorWorld() * (point - body.getPosition()).cross(impulse));
+    }
+
+    void applyImpulse(std::uint32_t index, const Vector3 &impulse) {
+        world_.wake(index);
+        world_.bodies[index].body.addVelocity(impulse * world_.bodies[index].body.getInverseMass());
     }
 
     // A push given by a body that ran into it slows on the ground as by friction.

@@ -9,7 +9,7 @@
 // head, lifting it) are left to the solver and to the carrying.
 #include <cmath>
 
-#include "character/characters.h"
+#include "character/character_record.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
@@ -22,8 +22,8 @@ void keepGroundPose(const WorldState &world, CharacterRecord &c) {
         c.groundStart = world.bodies[c.groundBody->index].body.getTransform();
 }
 
-// The impulse along `n` that brings a body (inverse mass along n `bodyInverse`) and the
-// character to one speed when they approach at `approach`, N s.
+// The impulse that brings a body of inverse mass `bodyInverse` and the character to one
+// speed when they approach at `approach`, N s.
 real sharedImpulse(real approach, real bodyInverse, real characterMass) {
     return approach / (bodyInverse + 1 / characterMass);
 }
@@ -51,12 +51,9 @@ void shareMomentum(WorldState &world, const World &queries, CharacterRecord &c, 
         // The character walking into the body is the body being pushed (character_motion.cpp).
         const real approach = b.body.getVelocity().dot(n) - std::max(real(0), c.velocity.dot(n));
         if (!(approach > 0)) continue;
-        const Vector3 arm = hit->point - b.body.getPosition();
-        const Vector3 turn = arm.cross(n);
-        const Matrix3 inverseInertia = b.body.getInverseInertiaTensorWorld();
-        const real impulse = sharedImpulse(approach, b.body.getInverseMass() + turn.dot(inverseInertia * turn), c.settings.mass);
+        // At the centre of mass: where along a face it touches is arbitrary.
+        const real impulse = sharedImpulse(approach, b.body.getInverseMass(), c.settings.mass);
         b.body.addVelocity(-n * (impulse * b.body.getInverseMass()));
-        b.body.addRotation(inverseInertia * arm.cross(-n * impulse));
         c.push += n * (impulse / c.settings.mass);
     }
 }

@@ -8,7 +8,6 @@
 // (character_pushes.cpp), so that it is pushed instead of standing like a wall.
 #pragma once
 
-#include <optional>
 #include <vector>
 
 #include "cyclone/world/world.h"
@@ -17,33 +16,18 @@ namespace cyclone::detail {
 
 struct WorldState;
 
-/// One character: its settings, capsule and motion state.
-struct CharacterRecord {
-    CharacterSettings settings;
-    Shape capsule;                     ///< The capsule's shape, along local z.
-    BodyId body;                       ///< Its kinematic body.
-    std::uint32_t generation = 0;
-    bool alive = false;
-    Vector3 feet = Vector3::Zero();     ///< Lowest point of the capsule, m.
-    Vector3 desired = Vector3::Zero();  ///< Velocity asked by World::setCharacterVelocity, m/s.
-    real rise = 0;                      ///< Speed along up while airborne (a jump, a fall), m/s.
-    Vector3 push = Vector3::Zero();     ///< Velocity across up given by bodies that ran into it, m/s.
-    Vector3 velocity = Vector3::Zero(); ///< How fast the feet moved over the last step, m/s.
-    bool onGround = false;
-    std::optional<BodyId> groundBody;
-    Vector3 groundNormal = Vector3::UnitY();
-    Vector3 groundPoint = Vector3::Zero();  ///< Where it touches the ground, m.
-    Matrix4 groundStart = Matrix4::Identity();  ///< The ground body's pose when the step began.
-};
+struct CharacterRecord;
 
 /// The characters of a World, indexed by CharacterId::index; removed slots are reused.
 class Characters {
 public:
-    std::vector<CharacterRecord> records;
+    std::vector<CharacterRecord> records;  ///< Complete in character_record.h.
     std::vector<std::uint32_t> free;
 
+    Characters();
+    ~Characters();
     /// Whether there is no live character (the step then does nothing for them).
-    bool empty() const { return records.size() == free.size(); }
+    bool empty() const;
     /// The character `id` names; refused with `function`'s name when it names none.
     CharacterRecord &record(CharacterId id, const char *function);
     const CharacterRecord &record(CharacterId id, const char *function) const;
@@ -60,17 +44,5 @@ public:
 private:
     std::vector<BodyId> near_;  ///< Scratch of beginStep: the bodies near a character.
 };
-
-/// Up for the characters: against gravity, +y when there is none.
-Vector3 characterUp(const Vector3 &gravity);
-/// The turn that stands a capsule (along local z) along `up`.
-Quaternion uprightFor(const Vector3 &up);
-/// The centre of a character's capsule whose feet are at `feet`.
-inline Vector3 capsuleCentre(const CharacterRecord &c, const Vector3 &up, const Vector3 &feet) {
-    return feet + up * (c.settings.height / 2);
-}
-/// What a character's casts consider: the layers of its mask whose bodies' masks hold its
-/// layer, its own capsule and sensors left out.
-QueryFilter characterFilter(const WorldState &world, const CharacterRecord &c);
 
 }  // namespace cyclone::detail

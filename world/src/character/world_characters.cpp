@@ -2,13 +2,18 @@
 #include <cmath>
 #include <string>
 
-#include "character/characters.h"
+#include "character/character_record.h"
 #include "world/validation.h"
 #include "world/world_impl.h"
 
 namespace cyclone {
 
 namespace detail {
+
+Characters::Characters() = default;
+Characters::~Characters() = default;
+
+bool Characters::empty() const { return records.size() == free.size(); }
 
 CharacterRecord &Characters::record(CharacterId id, const char *function) {
     if (id.index >= records.size() || !records[id.index].alive || records[id.index].generation != id.generation)
