@@ -35,6 +35,7 @@ TEST(CharacterApi, RefusesBadSettingsAndAddsNothing) {
     };
     refuses([](CharacterSettings &s) { s.position.x() = kNaN; }, "position", "nan");
     refuses([](CharacterSettings &s) { s.position.y() = 2e12; }, "position", "2e+12");
+    refuses([](CharacterSettings &s) { s.position.y() = 1e12; }, "position", "1e+12");  // its centre 0.9 m beyond
     refuses([](CharacterSettings &s) { s.radius = 0; }, "radius", "0");
     refuses([](CharacterSettings &s) { s.radius = -1; }, "radius", "-1");
     refuses([](CharacterSettings &s) { s.height = 0.5; }, "height", "0.5");

@@ -87,6 +87,9 @@ CharacterId World::addCharacter(const CharacterSettings &settings) {
     body.orientation = detail::uprightFor(up);
     body.layer = settings.layer;
     body.collidesWith = settings.collidesWith;
+    if (!(body.position.cwiseAbs().maxCoeff() <= detail::kMaxCoordinate))
+        detail::refuse("World::addCharacter", "position",
+                       "puts the capsule's centre beyond 1e12 m of the origin, got " + detail::show(settings.position));
     c.body = addBody(body);
 
     std::uint32_t index;
