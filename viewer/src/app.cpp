@@ -105,6 +105,7 @@ void App::openScene(const std::string &path) {
     try {
         auto next = std::make_unique<Session>(path);
         session_ = std::move(next);
+        character_.forget();
     } catch (const std::exception &error) {
         problem_ = error.what();
         return;
@@ -130,6 +131,35 @@ void App::shootBall() {
     } catch (const std::exception &error) {
         problem_ = error.what();
     }
+}
+
+void App::toggleCharacter() {
+    World &world = session_->world();
+    if (character_.on()) {
+        character_.stop(world);
+        return;
+    }
+    const Vector3 target = toReal(camera_.target);
+    const auto ground = world.rayCast(target + Vector3(0, 50, 0), Vector3(0, -1, 0));
+    try {
+        character_.start(world, ground ? ground->point : target);
+    } catch (const std::exception &error) {
+        problem_ = error.what();
+    }
+}
+
+void App::walk() {
+    if (!character_.on() || options_.frames) return;
+    WalkKeys keys;
+    const bool typing = ImGui::GetIO().WantCaptureKeyboard;
+    const auto held = [&](int key) { return !typing && glfwGetKey(window_, key) == GLFW_PRESS; };
+    keys.forward = held(GLFW_KEY_W);
+    keys.back = held(GLFW_KEY_S);
+    keys.left = held(GLFW_KEY_A);
+    keys.right = held(GLFW_KEY_D);
+    keys.jump = held(GLFW_KEY_SPACE);
+    character_.drive(session_->world(), keys, toReal(camera_.forward()));
+    camera_.target = character_.focus(session_->world()).cast<float>();
 }
 
 void App::handleMouse() {
@@ -194,7 +224,10 @@ void App::handleKeys(UiRequests &requests) {
     keys.swap(pressedKeys_);
     if (ImGui::GetIO().WantCaptureKeyboard) return;
     for (int key : keys) {
+        // In the character mode Space jumps and S walks back (walk() reads them held).
+        if (character_.on() && (key == GLFW_KEY_SPACE || key == GLFW_KEY_S)) continue;
         switch (key) {
+        case GLFW_KEY_C: toggleCharacter(); break;
         case GLFW_KEY_SPACE: controls_.paused = !controls_.paused; break;
         case GLFW_KEY_N: requests.singleStep = true; break;
         case GLFW_KEY_R: requests.restart = true; break;
@@ -213,6 +246,7 @@ void App::carryOut(const UiRequests &requests) {
         return;
     }
     if (requests.restart) {
+        character_.forget();
         session_->restart();
         worldView_.clear();
         overlay_->clearHistory();
@@ -287,6 +321,7 @@ int App::run() {
             if (clicked.openScene) requests.openScene = clicked.openScene;
         }
         carryOut(requests);
+        walk();
         simulate(options_.frames ? kHeadlessFrameSeconds : std::min(realSeconds, 0.25));
         // The last frame is shown only now: its picture was handed to the renderer (glFlush)
         // before this frame's simulation, so that a software renderer's threads draw it

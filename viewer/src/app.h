@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "camera.h"
+#include "character_mode.h"
 #include "options.h"
 #include "renderer.h"
 #include "session.h"
@@ -42,6 +43,10 @@ private:
     void carryOut(const UiRequests &requests);
     void openScene(const std::string &path);
     void shootBall();
+    /// C: turns the character mode on at the camera's target (on the ground below it) or off.
+    void toggleCharacter();
+    /// In the character mode: W, A, S, D and Space held drive the character; the camera follows.
+    void walk();
     void frameScene();
     float aspect() const;
     /// Simulates `seconds` of time (scaled by slow motion); records the steps run.
@@ -56,6 +61,7 @@ private:
     WorldView worldView_;
     std::unique_ptr<Overlay> overlay_;
     OrbitCamera camera_;
+    CharacterMode character_;
     RunControls controls_;
     ViewOptions view_;
     Drag drag_ = Drag::None;

@@ -1,12 +1,13 @@
-// World::step: forces -> broadphase -> narrowphase -> contact events -> sensors -> constraints ->
-// islands -> per sub-step (forces, solve, integrate, penetration) -> continuous
-// collision -> landing correction -> sleep. Each stage adds its time to stats().ms.
+// World::step: (characters' pushes) -> forces -> broadphase -> narrowphase -> contact events ->
+// sensors -> constraints -> islands -> per sub-step (forces, solve, integrate, penetration) ->
+// continuous collision -> landing correction -> sleep -> characters. Each stage adds its
+// time to stats().ms.
 #include "world/stage_timer.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
 
-void WorldState::step(real dt) {
+void WorldState::step(real dt, const World &queries) {
     stats = StepStats();
     ++stepCount;
     events.openStep();
@@ -14,6 +15,7 @@ void WorldState::step(real dt) {
     workers.match(settings.threads);  // the narrowphase and the solver share their work
     workers.resetTimes();
 
+    if (!characters.empty()) { const StageTimer t(ms.characters); characters.beginStep(*this, queries, dt); }
     {
         const StageTimer t(ms.forces);
         integration.beginStep(*this, dt);
@@ -64,6 +66,7 @@ void WorldState::step(real dt) {
     { const StageTimer t(ms.ccd); ccd.sweep(*this); }
     { const StageTimer t(ms.landing); landing.correct(*this); }
     { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
+    if (!characters.empty()) { const StageTimer t(ms.characters); characters.update(*this, queries, dt); }
     events.closeStep();
 
     stats.integratedBodies = static_cast<int>(bodies.simulated.size());
@@ -72,7 +75,7 @@ void WorldState::step(real dt) {
     stats.awakeBodies = static_cast<int>(bodies.awake.size());
     stats.isolatedBodies = bodies.isolatedCount;
     ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.sensors + ms.manifolds + ms.islands + ms.solve +
-               ms.integrate + ms.ccd + ms.landing + ms.sleep;
+               ms.integrate + ms.ccd + ms.landing + ms.sleep + ms.characters;
     ms.shared = workers.shared();
 }
 

@@ -272,6 +272,8 @@ BodyId World::addBody(const BodySettings &settings) {
 void World::removeBody(BodyId id) {
     Impl &w = *impl_;
     detail::BodyRecord &r = w.bodies.record(id, "World::removeBody");
+    if (w.characters.owns(id))
+        detail::refuse("World::removeBody", "id", "names a character's capsule; removeCharacter removes it");
     const std::uint32_t index = id.index;
     // Bodies touching the removed one lose their support: wake them (and their islands).
     for (std::uint32_t p : r.pairs) {
@@ -587,7 +589,7 @@ void World::step(real dt) {
         detail::refuse("World::step", "dt",
                        "must be finite and in (0, 1] s (kMaxStep; take a longer span as several steps), got " +
                            detail::show(dt));
-    impl_->step(dt);
+    impl_->step(dt, *this);
 }
 
 const StepStats &World::stats() const { return impl_->stats; }

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "character/characters.h"
 #include "collision/broadphase.h"
 #include "contacts/contact_manager.h"
 #include "contacts/landing.h"
@@ -43,6 +44,7 @@ struct WorldState {
     Islands islands;
     ContinuousCollision ccd;
     LandingCorrection landing;
+    Characters characters;
     EventLog events;
     Workers workers;
     StepStats stats;
@@ -51,8 +53,9 @@ struct WorldState {
 
     explicit WorldState(const WorldSettings &s) : settings(s) {}
 
-    /// One step of dt seconds, stage by stage (world/step.cpp).
-    void step(real dt);
+    /// One step of dt seconds, stage by stage (world/step.cpp); the characters cast
+    /// through `queries`, the World this state belongs to.
+    void step(real dt, const World &queries);
 
     // How a body moves between awake, asleep and isolated (world/wake_and_sleep.cpp).
     /// Wakes the body and the rest of its sleeping island; static and isolated bodies

@@ -30,6 +30,7 @@ struct StageTimes {
     double ccd = 0;          ///< Continuous collision of fast bodies with BodySettings::ccd.
     double landing = 0;      ///< The landing correction (WorldSettings::landingCorrection).
     double sleep = 0;        ///< Island sleep decisions.
+    double characters = 0;   ///< Moving the characters, and the bodies that run into them (0 without characters).
     double total = 0;        ///< The whole step.
     /// Of the total, the time in work shared between threads (WorldSettings::threads): on
     /// one thread, the work that two would share. total - shared is the serial part.

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "cyclone/body.h"
+#include "cyclone/world/character.h"
 #include "cyclone/world/debug_draw.h"
 #include "cyclone/world/error.h"
 #include "cyclone/world/events.h"
@@ -85,7 +86,8 @@ public:
     /// Removes a body; the bodies touching it or joined to it by a spring or a joint wake,
     /// and so do the others of its sleeping island. Its springs, joints and
     /// setPairCollision rules are removed, and its overlaps with sensors end (reported with
-    /// the next step's events). Throws InvalidArgument on a stale handle.
+    /// the next step's events). Throws InvalidArgument on a stale handle or a character's
+    /// capsule (removeCharacter removes it).
     void removeBody(BodyId id);
     /// True while `id` names a body of this world.
     bool contains(BodyId id) const;
@@ -232,6 +234,22 @@ public:
     /// a new target wakes the body it pulls. Throws InvalidArgument on a stale handle, a
     /// joint that is not a mouse joint, or a target out of range.
     void setMouseTarget(JointId id, const Vector3 &target);
+
+    // --- Characters (cyclone/world/character.h) -------------------------------------------
+
+    /// Adds a character standing with its feet at settings.position, and its capsule as a
+    /// kinematic body (CharacterState::body); it moves from the next step. Throws
+    /// InvalidArgument (nothing added) on a field out of its range.
+    CharacterId addCharacter(const CharacterSettings &settings);
+    /// Removes a character and its capsule. Throws InvalidArgument on a stale handle.
+    void removeCharacter(CharacterId id);
+    /// The velocity the character walks at from the next step on, m/s, finite: its part
+    /// across the up direction is the walk; an upward part while it is on the ground is a
+    /// jump at that speed (ignored while airborne). Throws InvalidArgument on a stale
+    /// handle or a non-finite velocity.
+    void setCharacterVelocity(CharacterId id, const Vector3 &desired);
+    /// The character's state after the last step. Throws InvalidArgument on a stale handle.
+    CharacterState character(CharacterId id) const;
 
     // --- Stepping -----------------------------------------------------------------------
 

@@ -1,0 +1,42 @@
+// A character's record (character/characters.h holds the list): its settings, capsule and
+// motion state, and the helpers its motion shares.
+#pragma once
+
+#include <optional>
+
+#include "character/characters.h"
+
+namespace cyclone::detail {
+
+/// One character: its settings, capsule and motion state.
+struct CharacterRecord {
+    CharacterSettings settings;
+    Shape capsule;                     ///< The capsule's shape, along local z.
+    BodyId body;                       ///< Its kinematic body.
+    std::uint32_t generation = 0;
+    bool alive = false;
+    Vector3 feet = Vector3::Zero();     ///< Lowest point of the capsule, m.
+    Vector3 desired = Vector3::Zero();  ///< Velocity asked by World::setCharacterVelocity, m/s.
+    Vector3 flight = Vector3::Zero();   ///< Velocity of its own while airborne (a jump, a fall, a slide down a steep slope), m/s.
+    Vector3 push = Vector3::Zero();     ///< Velocity across up given by bodies that ran into it, m/s.
+    Vector3 velocity = Vector3::Zero(); ///< How fast the feet moved over the last step, m/s.
+    bool onGround = false;
+    std::optional<BodyId> groundBody;
+    Vector3 groundNormal = Vector3::UnitY();
+    Vector3 groundPoint = Vector3::Zero();  ///< Where it touches the ground, m.
+    Matrix4 groundStart = Matrix4::Identity();  ///< The ground body's pose when the step began.
+};
+
+/// Up for the characters: against gravity, +y when there is none.
+Vector3 characterUp(const Vector3 &gravity);
+/// The turn that stands a capsule (along local z) along `up`.
+Quaternion uprightFor(const Vector3 &up);
+/// The centre of a character's capsule whose feet are at `feet`.
+inline Vector3 capsuleCentre(const CharacterRecord &c, const Vector3 &up, const Vector3 &feet) {
+    return feet + up * (c.settings.height / 2);
+}
+/// What a character's casts consider: the layers of its mask whose bodies' masks hold its
+/// layer, its own capsule and sensors left out.
+QueryFilter characterFilter(const WorldState &world, const CharacterRecord &c);
+
+}  // namespace cyclone::detail
