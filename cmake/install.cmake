@@ -1,4 +1,4 @@
-# Installation: headers, libraries, the cyclone-world runner, a CMake package
+# Installation: headers, libraries, the cyclone-world runner and cyclone-viewer, a CMake package
 # (find_package(cyclone CONFIG): cyclone::core, cyclone::world) and a pkg-config file.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -14,9 +14,12 @@ install(TARGETS ${cyclone_install_targets} EXPORT cycloneTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-if(TARGET cyclone-world)
-  install(TARGETS cyclone-world RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-endif()
+# The tools, when built: the scene runner and the viewer.
+foreach(tool cyclone-world cyclone-viewer)
+  if(TARGET ${tool})
+    install(TARGETS ${tool} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  endif()
+endforeach()
 
 set(cyclone_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/cyclone)
 install(EXPORT cycloneTargets NAMESPACE cyclone:: DESTINATION ${cyclone_cmake_dir})

@@ -41,6 +41,10 @@ while (($# > 0)); do
   shift
 done
 
+# One line per phase on stderr, so that a long build is not silent.
+phase() { echo "test.sh: [$1/4] $2" >&2; }
+
+phase 1 "checking the Debian packages (scripts/deps.sh)"
 bash "$root/scripts/deps.sh"
 
 cmake_args=(-DCYCLONE_BUILD_TESTS=ON)
@@ -85,6 +89,9 @@ if [[ ! -f $build_dir/CMakeCache.txt && -z ${CMAKE_GENERATOR:-} ]] && command -v
   done
 fi
 
+phase 2 "configuring ${build_dir#"$root"/}"
 cmake -S "$root" -B "$build_dir" ${generator[@]+"${generator[@]}"} "${cmake_args[@]}" ${extra_cmake_args[@]+"${extra_cmake_args[@]}"}
+phase 3 "building everything with $jobs jobs"
 cmake --build "$build_dir" --parallel "$jobs"
+phase 4 "running the suite (ctest, $jobs at a time)"
 ctest --test-dir "$build_dir" --output-on-failure --parallel "$jobs"

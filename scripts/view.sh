@@ -15,8 +15,13 @@ if (($# > 0)) && [[ $1 != -* ]]; then
   shift
 fi
 
+phase() { echo "view.sh: [$1/4] $2" >&2; }
+
+phase 1 "checking the Debian packages (scripts/deps.sh)"
 bash "$root/scripts/deps.sh"
-cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DCYCLONE_BUILD_VIEWER=ON
+phase 2 "configuring build/ (Release)"
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release -DCYCLONE_BUILD_VIEWER=ON >/dev/null
+phase 3 "building cyclone-viewer"
 cmake --build "$root/build" --target cyclone-viewer --parallel "$(nproc 2>/dev/null || echo 2)"
 
 viewer=$root/build/bin/cyclone-viewer
@@ -29,4 +34,5 @@ if [[ -z ${DISPLAY:-} && -z ${WAYLAND_DISPLAY:-} ]]; then
   echo "  xvfb-run -s '-screen 0 1280x720x24' $viewer $scene --frames 90 --screenshot out.png" >&2
   exit 1
 fi
+phase 4 "opening ${scene#"$root"/}"
 exec "$viewer" "$scene" "$@"

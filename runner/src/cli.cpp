@@ -20,6 +20,7 @@
 #include "report.h"
 #include "run_loop.h"
 #include "scene_fields.h"
+#include "scene_file.h"
 #include "scene_loader.h"
 #include "scene_world.h"
 #include "summary.h"
@@ -77,14 +78,6 @@ const char *const kHelpText =
 namespace {
 
 constexpr std::int64_t kMaxEvery = kMaxSteps;
-
-// Names from the command line or a file system go into one-line messages.
-std::string oneLine(std::string text) {
-    for (char &c : text) {
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    }
-    return text;
-}
 
 [[noreturn]] void usage(const std::string &problem) {
     throw UsageError("cyclone-world: " + oneLine(problem) + " (see cyclone-world --help)");
@@ -162,22 +155,20 @@ bool sameFile(const std::string &a, const std::string &b) {
 int runLoaded(const std::string &text, const Invocation &invocation, std::ostream &out, std::ostream &err,
               bool progress) {
     const std::string &file = invocation.scene;
-    Scene scene;
+    std::unique_ptr<SceneFile> loaded;
+    try {
+        loaded = std::make_unique<SceneFile>(text, sceneStem(file), invocation.strict);
+    } catch (const SceneError &error) {
+        return refuse(err, file, error.path(), error.message());
+    }
+    Scene &scene = loaded->scene();
     std::unique_ptr<SceneWorld> built;
     try {
-        scene = loadScene(text, sceneStem(file));
-        if (invocation.strict && !scene.warnings.empty()) {
-            const SceneWarning &first = scene.warnings.front();
-            const std::size_t more = scene.warnings.size() - 1;
-            return refuse(err, file, first.path,
-                          first.message + " (refused by --strict" +
-                              (more ? "; " + std::to_string(more) + " more unknown field" + (more > 1 ? "s" : "") : "") + ")");
-        }
         if (invocation.steps) scene.steps = *invocation.steps;
         if (invocation.dt) scene.dt = *invocation.dt;
         built = std::make_unique<SceneWorld>(buildWorld(scene));
     } catch (const SceneError &error) {
-        return refuse(err, file, error.path(), error.message());
+        return refuse(err, file, loaded->place(error.path()), error.message());
     }
 
     std::unique_ptr<AtomicFile> summaryFile;
@@ -195,13 +186,7 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
     }
 
     // Told once the scene is sure to run, so that a refusal stays one line.
-    for (std::size_t i = 0; i < scene.warnings.size() && i < kMaxWarningsShown; ++i) {
-        err << oneLine(file) << ": " << oneLine(scene.warnings[i].path) << ": " << oneLine(scene.warnings[i].message)
-            << "\n";
-    }
-    if (scene.warnings.size() > kMaxWarningsShown) {
-        err << oneLine(file) << ": " << scene.warnings.size() - kMaxWarningsShown << " more unknown fields\n";
-    }
+    loaded->writeWarnings(err, file);
 
     RunOptions options;
     options.steps = scene.steps;
@@ -219,7 +204,7 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
         result = runScene(scene, *built, options);
     } catch (const SceneError &error) {
         meter.reset();
-        return refuse(err, file, error.path(), error.message());
+        return refuse(err, file, loaded->place(error.path()), error.message());
     } catch (const std::exception &error) {
         meter.reset();
         return refuse(err, file, "run", error.what());

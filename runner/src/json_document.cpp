@@ -1,5 +1,6 @@
 #include "json_document.h"
 
+#include <algorithm>
 #include <cctype>
 #include <vector>
 
@@ -17,13 +18,18 @@ bool isIdentifier(const std::string &key) {
     return true;
 }
 
-// nlohmann's messages start with "[json.exception.parse_error.101] "; the place is ours
-// to give, so the prefix goes. Control bytes are replaced so the message stays one line.
-std::string plainMessage(const char *what) {
-    std::string text(what);
+// nlohmann's messages start with "[json.exception.parse_error.101] parse error at line
+// 1, column 2: "; the place is ours to give, so the prefix goes. Control bytes are
+// replaced so the message stays one line.
+std::string syntaxMessage(const nlohmann::detail::exception &error) {
+    std::string text(error.what());
     if (!text.empty() && text[0] == '[') {
         const auto end = text.find("] ");
         if (end != std::string::npos) text.erase(0, end + 2);
+    }
+    if (text.compare(0, 11, "parse error") == 0) {
+        const auto colon = text.find(": ");
+        if (colon != std::string::npos) text.erase(0, colon + 2);
     }
     for (char &c : text) {
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
@@ -70,10 +76,36 @@ public:
                                  "invalid JSON: a NUL byte at offset " + std::to_string(at) + ", which no JSON text holds");
             }
         }
-        throw SceneError(currentPath(), "invalid JSON: " + plainMessage(error.what()));
+        throw SceneError(currentPath(), "invalid JSON at " + lineAndColumn(position) + ": " + syntaxMessage(error) +
+                                            trailingCommaHint(position));
     }
 
 private:
+    // The offending character is the last one the parser read: `position` counts the
+    // characters read, so it is at position - 1 (the end of the text when it ran out).
+    std::size_t offendingIndex(std::size_t position) const {
+        return std::min(position > 0 ? position - 1 : 0, text_.size());
+    }
+
+    // "line L, column C" of the offending character, both counted from 1, in bytes.
+    std::string lineAndColumn(std::size_t position) const {
+        const std::size_t at = offendingIndex(position);
+        const std::size_t lineStart = at == 0 ? 0 : text_.rfind('\n', at - 1);
+        const std::size_t line = 1 + static_cast<std::size_t>(std::count(text_.begin(), text_.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+        const std::size_t column = lineStart == std::string::npos || at == 0 ? at + 1 : at - lineStart;
+        return "line " + std::to_string(line) + ", column " + std::to_string(column);
+    }
+
+    // A '}' or ']' right after a comma is JSON's most common mistake; it is named as such.
+    std::string trailingCommaHint(std::size_t position) const {
+        const std::size_t at = offendingIndex(position);
+        if (at >= text_.size() || (text_[at] != '}' && text_[at] != ']')) return "";
+        std::size_t before = at;
+        while (before > 0 && std::isspace(static_cast<unsigned char>(text_[before - 1]))) --before;
+        if (before == 0 || text_[before - 1] != ',') return "";
+        return " (a comma before '" + std::string(1, text_[at]) + "': JSON allows none after the last element)";
+    }
+
     struct Frame {
         json *value;
         std::string path;

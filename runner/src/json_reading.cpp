@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "scene_fields.h"
 #include "scene_loader.h"
 
 namespace cyclone::scene {
@@ -52,8 +53,13 @@ const json *member(const json &object, const char *key) {
 
 const json &required(const json &object, const std::string &path, const char *key) {
     const json *value = member(object, key);
-    if (!value) fail(memberPath(path, key), "required field missing");
-    return *value;
+    if (value) return *value;
+    // A misspelt required field is named where it stands, with the word that was meant.
+    if (const std::string typed = misspellingOf(object, key); !typed.empty()) {
+        fail(memberPath(path, typed), "unknown field; did you mean " + jsonQuoted(key) + "? (" + jsonQuoted(key) +
+                                          " is required)");
+    }
+    fail(memberPath(path, key), "required field missing");
 }
 
 void expectObject(const json &value, const std::string &path) {

@@ -22,7 +22,8 @@ std::string describe(const nlohmann::json &value);
 
 /// The member `key` of `object`, or null.
 const nlohmann::json *member(const nlohmann::json &object, const char *key);
-/// The member `key` of `object` at `path`; refuses a missing one.
+/// The member `key` of `object` at `path`; refuses a missing one, at the key of `object`
+/// that looks like its misspelling when there is one.
 const nlohmann::json &required(const nlohmann::json &object, const std::string &path, const char *key);
 void expectObject(const nlohmann::json &value, const std::string &path);
 void expectArray(const nlohmann::json &value, const std::string &path, std::size_t maxSize);

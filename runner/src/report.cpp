@@ -46,14 +46,20 @@ std::optional<std::size_t> highestDynamicBody(const Scene &scene, const SceneWor
 void writeReport(std::ostream &out, const std::string &file, const Scene &scene, const SceneWorld &built,
                  const RunResult &result) {
     const World &world = built.world;
-    std::size_t dynamicBodies = 0;
+    std::size_t dynamicBodies = 0, kinematicBodies = 0, staticBodies = 0;
     for (const BodyId id : world.bodies()) {
-        if (world.motion(id) == Motion::Dynamic) ++dynamicBodies;
+        switch (world.motion(id)) {
+        case Motion::Dynamic: ++dynamicBodies; break;
+        case Motion::Kinematic: ++kinematicBodies; break;
+        case Motion::Static: ++staticBodies; break;
+        }
     }
     const StepTimes times = result.stepTimes.summary();
     out << "scene        " << scene.name << " (" << file << ")\n";
+    // Kinematic bodies are named only when there are some, so that a scene without them
+    // reads as it always has.
     out << "bodies       " << world.bodyCount() << " (" << dynamicBodies << " dynamic, "
-        << world.bodyCount() - dynamicBodies << " static)\n";
+        << (kinematicBodies ? std::to_string(kinematicBodies) + " kinematic, " : "") << staticBodies << " static)\n";
     out << "steps        " << result.steps << " x " << format("%g", result.dt * 1000.0) << " ms = "
         << format("%g", static_cast<double>(result.steps) * result.dt) << " s simulated in "
         << format("%.3f", result.wallSeconds) << " s\n";

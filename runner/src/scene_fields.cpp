@@ -50,29 +50,29 @@ const Variant kEvents[] = {
     {"remove_joint", {}},
 };
 
+// Whether `key` is a field at some place of the format: such a key is never taken for a
+// misspelling of another one ("b" beside a missing "a").
+bool isFieldAnywhere(const std::string &key) {
+    for (const Names *names : {&kTopFields, &kSettingsFields, &kBodyFields, &kChildFields, &kSpringFields,
+                               &kJointFields, &kMotorFields}) {
+        if (std::find(names->begin(), names->end(), key) != names->end()) return true;
+    }
+    for (const Variant &variant : kShapes) {
+        if (std::find(variant.fields.begin(), variant.fields.end(), key) != variant.fields.end()) return true;
+    }
+    for (const Variant &variant : kEvents) {
+        if (key == variant.name || std::find(variant.fields.begin(), variant.fields.end(), key) != variant.fields.end())
+            return true;
+    }
+    return key == "type" || key == "step";
+}
+
 std::string lower(std::string text) {
     for (char &c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return text;
 }
 
 bool among(const std::string &key, const Names &names) { return std::find(names.begin(), names.end(), key) != names.end(); }
-
-// The known name nearest to `key`, when it is near enough to be what was meant: within one
-// edit for short names, two up to eight characters, three beyond.
-std::string nearest(const std::string &key, const Names &known) {
-    const std::string typed = lower(key);
-    const std::size_t limit = typed.size() <= 4 ? 1 : typed.size() <= 8 ? 2 : 3;
-    std::string best;
-    std::size_t bestDistance = limit + 1;
-    for (const std::string &name : known) {
-        const std::size_t distance = editDistance(typed, name);
-        if (distance < bestDistance) {
-            best = name;
-            bestDistance = distance;
-        }
-    }
-    return best;
-}
 
 std::string list(const Names &names) {
     std::string text;
@@ -95,7 +95,7 @@ public:
             std::string message;
             if (among(key, otherVariants)) {
                 message = "not a field of " + what + " (its fields: " + list(known) + "); ignored";
-            } else if (const std::string guess = nearest(key, known); !guess.empty()) {
+            } else if (const std::string guess = nearestName(key, known); !guess.empty()) {
                 message = "unknown field; did you mean " + jsonQuoted(guess) + "?";
             } else if (path.empty() && among(key, kSettingsFields)) {
                 message = "unknown field here; did you mean \"settings." + key + "\"?";
@@ -172,6 +172,35 @@ std::size_t editDistance(const std::string &a, const std::string &b) {
         std::swap(last, current);
     }
     return last[b.size()];
+}
+
+std::string nearestName(const std::string &typed, const Names &known) {
+    const std::string text = lower(typed);
+    const std::size_t limit = text.size() <= 4 ? 1 : text.size() <= 8 ? 2 : 3;
+    std::string best;
+    std::size_t bestDistance = limit + 1;
+    for (const std::string &name : known) {
+        const std::size_t distance = editDistance(text, name);
+        if (distance < bestDistance) {
+            best = name;
+            bestDistance = distance;
+        }
+    }
+    return best;
+}
+
+std::string didYouMean(const std::string &typed, const Names &known) {
+    const std::string guess = nearestName(typed, known);
+    return guess.empty() ? "" : "; did you mean " + jsonQuoted(guess) + "?";
+}
+
+std::string misspellingOf(const json &object, const std::string &key) {
+    if (!object.is_object()) return "";
+    for (auto it = object.begin(); it != object.end(); ++it) {
+        if (isFieldAnywhere(it.key())) continue;
+        if (nearestName(it.key(), {key}) == key) return it.key();
+    }
+    return "";
 }
 
 std::vector<SceneWarning> unknownFields(const json &document) {

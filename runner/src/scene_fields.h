@@ -26,4 +26,17 @@ std::vector<SceneWarning> unknownFields(const nlohmann::json &document);
 /// two neighbouring characters ("frictoin" is 1 from "friction").
 std::size_t editDistance(const std::string &a, const std::string &b);
 
+/// The name of `known` nearest to `typed` (case aside), when it is near enough to be what
+/// was meant: within one edit for names up to 4 characters, two up to 8, three beyond;
+/// else "".
+std::string nearestName(const std::string &typed, const std::vector<std::string> &known);
+
+/// "; did you mean \"box\"?" when a name of `known` is near `typed`, else "".
+std::string didYouMean(const std::string &typed, const std::vector<std::string> &known);
+
+/// The member of `object` that is likely a misspelling of the missing field `key`
+/// ("halfextents" for "half_extents", "bodys" for "bodies"): a key near `key` that is no
+/// field of the format anywhere; else "".
+std::string misspellingOf(const nlohmann::json &object, const std::string &key);
+
 }  // namespace cyclone::scene

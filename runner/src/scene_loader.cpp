@@ -133,7 +133,8 @@ Shape readShape(const json &value, const std::string &path, bool isStatic) {
         }
     } else {
         fail(typePath, "unknown shape type " + jsonQuoted(type) +
-                           "; known: box, sphere, capsule, cylinder, convex, plane, mesh, compound");
+                           " (known: box, sphere, capsule, cylinder, convex, plane, mesh, compound)" +
+                           didYouMean(type, {"box", "sphere", "capsule", "cylinder", "convex", "plane", "mesh", "compound"}));
     }
     return shape;
 }
@@ -164,8 +165,12 @@ WorldSettings readSettings(const json &value, const std::string &path, Scene &sc
                                        [&](const IntegratorName &entry) { return name == entry.name; });
         if (row == std::end(kIntegrators)) {
             std::string known;
-            for (const auto &entry : kIntegrators) known += (known.empty() ? "" : ", ") + jsonQuoted(entry.name);
-            fail(integratorPath, "unknown integrator " + jsonQuoted(name) + "; known: " + known);
+            std::vector<std::string> names;
+            for (const auto &entry : kIntegrators) {
+                known += (known.empty() ? "" : ", ") + jsonQuoted(entry.name);
+                names.emplace_back(entry.name);
+            }
+            fail(integratorPath, "unknown integrator " + jsonQuoted(name) + " (known: " + known + ")" + didYouMean(name, names));
         }
         settings.integrator = row->integrator;
     }
@@ -187,7 +192,8 @@ SceneBody readBody(const json &value, const std::string &path) {
         if (name == "dynamic") settings.motion = Motion::Dynamic;
         else if (name == "static") settings.motion = Motion::Static;
         else if (name == "kinematic") settings.motion = Motion::Kinematic;
-        else fail(motionPath, "must be \"dynamic\", \"static\" or \"kinematic\", got " + jsonQuoted(name));
+        else fail(motionPath, "must be \"dynamic\", \"static\" or \"kinematic\", got " + jsonQuoted(name) +
+                                  didYouMean(name, {"dynamic", "static", "kinematic"}));
         if (member(value, "static") && settings.isStatic != (settings.motion == Motion::Static))
             fail(motionPath, jsonQuoted(name) + " disagrees with \"static\": " + (settings.isStatic ? "true" : "false"));
         settings.isStatic = false;
@@ -271,7 +277,8 @@ SceneSpring readSpring(const json &value, const std::string &path, const NameInd
         const std::string &name = readString(*force, forcePath);
         if (name == "automatic") settings.force = SpringForce::Automatic;
         else if (name == "explicit") settings.force = SpringForce::Explicit;
-        else fail(forcePath, "unknown spring force " + jsonQuoted(name) + "; known: \"automatic\", \"explicit\"");
+        else fail(forcePath, "unknown spring force " + jsonQuoted(name) + " (known: \"automatic\", \"explicit\")" +
+                                 didYouMean(name, {"automatic", "explicit"}));
     }
     return spring;
 }
@@ -283,7 +290,8 @@ JointType readJointType(const json &value, const std::string &path) {
     if (name == "fixed") return JointType::Fixed;
     if (name == "slider") return JointType::Slider;
     if (name == "distance") return JointType::Distance;
-    fail(path, "unknown joint type " + jsonQuoted(name) + "; known: \"ball\", \"hinge\", \"fixed\", \"slider\", \"distance\"");
+    fail(path, "unknown joint type " + jsonQuoted(name) + " (known: \"ball\", \"hinge\", \"fixed\", \"slider\", \"distance\")" +
+                   didYouMean(name, {"ball", "hinge", "fixed", "slider", "distance"}));
 }
 
 SceneJoint readJoint(const json &value, const std::string &path, const NameIndex &names) {
@@ -375,6 +383,22 @@ constexpr EventAction kEventActions[] = {
     {"remove_joint", EventKind::RemoveJoint, nullptr},
 };
 
+// An event with no known action: a key that looks like a misspelt action is named, with
+// the action meant; else the event is refused as a whole.
+[[noreturn]] void failWithoutAction(const json &event, const std::string &path) {
+    std::vector<std::string> actions;
+    for (const auto &action : kEventActions) actions.emplace_back(action.key);
+    for (auto it = event.begin(); it != event.end(); ++it) {
+        if (it.key() == "step") continue;
+        if (const std::string guess = nearestName(it.key(), actions); !guess.empty()) {
+            fail(memberPath(path, it.key()), "unknown event type " + jsonQuoted(it.key()) + "; did you mean " +
+                                                 jsonQuoted(guess) + "?");
+        }
+    }
+    fail(path, "needs one of \"remove\", \"set_velocity\", \"set_rotation\", \"set_position\", "
+               "\"apply_impulse\", \"set_awake\", \"remove_joint\"");
+}
+
 SceneEvent readEvent(const json &value, const std::string &path, const Scene &scene, const NameIndex &names,
                      const NameIndex &jointNames) {
     expectObject(value, path);
@@ -390,10 +414,7 @@ SceneEvent readEvent(const json &value, const std::string &path, const Scene &sc
         }
         action = &candidate;
     }
-    if (!action) {
-        fail(path, "needs one of \"remove\", \"set_velocity\", \"set_rotation\", \"set_position\", "
-                   "\"apply_impulse\", \"set_awake\", \"remove_joint\"");
-    }
+    if (!action) failWithoutAction(value, path);
     event.kind = action->kind;
     const std::string targetPath = memberPath(path, action->key);
     if (event.kind == EventKind::RemoveJoint) {

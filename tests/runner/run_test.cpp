@@ -246,6 +246,15 @@ TEST(Cli, HelpExplainsEveryCommandAndFlag) {
     EXPECT_NE(p.out.find("--every"), std::string::npos);
 }
 
+// moving-platform.json has 8 bodies: the ground (static), platform, elevator and turntable
+// (kinematic), and four dynamic boxes (crate0, crate1, rider, passenger).
+TEST(Cli, ReportCountsKinematicBodiesApart) {
+    TempDir dir;
+    const Process p = runWorld({"report", scenePath("moving-platform"), "--steps", "1"}, dir);
+    ASSERT_EQ(p.status, 0) << p.err;
+    EXPECT_NE(p.out.find("bodies       8 (4 dynamic, 3 kinematic, 1 static)\n"), std::string::npos) << p.out;
+}
+
 TEST(Cli, ReportTellsTheStory) {
     TempDir dir;
     const Process p = runWorld({"report", scenePath("tower"), "--summary", dir.file("s.json")}, dir);

@@ -2,6 +2,8 @@
 // stderr "FILE: PATH: message" naming the place, and no output file written.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "runner_test_support.h"
 #include "scene_loader.h"
 
@@ -210,6 +212,23 @@ const ErrorCase kErrors[] = {
      "events[1].remove_joint", "was removed by events[0]"},
 };
 
+// The place the runner prints: the body's or joint's name after its index, as in
+// `bodies[0] ("b").mass`, when the (valid JSON) file gives it one.
+std::string placeWithName(const std::string &path, const std::string &text) {
+    const nlohmann::json document = nlohmann::json::parse(text, nullptr, false);
+    for (const std::string array : {"bodies", "joints"}) {
+        if (path.rfind(array + "[", 0) != 0 || !document.is_object() || !document.contains(array)) continue;
+        const std::size_t close = path.find(']');
+        const std::size_t index = std::stoul(path.substr(array.size() + 1, close - array.size() - 1));
+        const nlohmann::json &element = document[array][index];
+        if (!element.is_object() || !element.contains("name") || !element["name"].is_string()) return path;
+        const std::string name = element["name"];
+        if (name.empty()) return path;
+        return path.substr(0, close + 1) + " (\"" + name + "\")" + path.substr(close + 1);
+    }
+    return path;
+}
+
 class SceneErrorClass : public ::testing::TestWithParam<ErrorCase> {};
 
 TEST_P(SceneErrorClass, LoaderNamesThePlace) {
@@ -231,7 +250,7 @@ TEST_P(SceneErrorClass, RunnerExitsTwoWithOneLineAndWritesNothing) {
     const Process p = runWorld({"run", scene, "--summary", dir.file("out.json"), "--trace", dir.file("out.csv")}, dir);
     EXPECT_EQ(p.status, 2);
     EXPECT_EQ(lineCount(p.err), 1) << p.err;
-    const std::string prefix = scene + ": " + c.path + ": ";
+    const std::string prefix = scene + ": " + placeWithName(c.path, c.scene) + ": ";
     EXPECT_EQ(p.err.compare(0, prefix.size(), prefix), 0) << p.err;
     EXPECT_NE(p.err.find(c.message), std::string::npos) << p.err;
     EXPECT_TRUE(p.out.empty()) << p.out;
@@ -251,7 +270,8 @@ TEST(SceneErrors, TheContractsExampleMessage) {
                      R"({"name": "b3", "shape": {"type": "sphere", "radius": 1}, "mass": -1}]})");
     const Process p = runWorld({"run", scene}, dir);
     EXPECT_EQ(p.status, 2);
-    EXPECT_EQ(p.err, scene + ": bodies[3].mass: must be finite and > 0, got -1\n");
+    // The place names the body (bodies[3] is "b3") as well as its index.
+    EXPECT_EQ(p.err, scene + ": bodies[3] (\"b3\").mass: must be finite and > 0, got -1\n");
 }
 
 TEST(SceneErrors, MissingFileAndDirectory) {

@@ -133,7 +133,8 @@ TEST(SceneFields, AnAxisOnAJointWithoutOneIsWarnedAbout) {
     writeText(scene, kAxisScene);
     const Process p = runWorld({"run", scene, "--steps", "2", "--quiet", "--summary", dir.file("s.json")}, dir);
     EXPECT_EQ(p.status, 0) << p.err;
-    EXPECT_EQ(p.err.rfind(scene + ": joints[0].axis: ignored for a ball joint", 0), 0u) << p.err;
+    // The runner's line names the joint (joints[0] is named "ball").
+    EXPECT_EQ(p.err.rfind(scene + ": joints[0] (\"ball\").axis: ignored for a ball joint", 0), 0u) << p.err;
     EXPECT_EQ(std::count(p.err.begin(), p.err.end(), '\n'), 3) << p.err;
 }
 
@@ -166,8 +167,8 @@ TEST(SceneFields, TheRunnerWarnsOneLineEachAndRuns) {
     const Process p = runWorld({"run", scene, "--steps", "2", "--quiet", "--summary", dir.file("s.json")}, dir);
     EXPECT_EQ(p.status, 0) << p.err;
     EXPECT_EQ(p.err, scene + ": settings.stesp: unknown field; did you mean \"steps\"?\n" + scene +
-                         ": bodies[0].frictoin: unknown field; did you mean \"friction\"?\n" + scene +
-                         ": bodies[0].positon: unknown field; did you mean \"position\"?\n");
+                         ": bodies[0] (\"b\").frictoin: unknown field; did you mean \"friction\"?\n" + scene +
+                         ": bodies[0] (\"b\").positon: unknown field; did you mean \"position\"?\n");
     EXPECT_TRUE(fs::exists(dir.file("s.json")));
 }
 

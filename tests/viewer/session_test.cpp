@@ -194,8 +194,25 @@ TEST(ViewerSession, ABadSceneFileIsRefusedWithItsName) {
         FAIL() << "a negative mass was accepted";
     } catch (const scene::SceneError &error) {
         EXPECT_NE(std::string(error.what()).find(file.path()), std::string::npos) << error.what();
-        EXPECT_NE(std::string(error.what()).find("bodies[0].mass"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("bodies[0] (\"b\").mass"), std::string::npos) << error.what();
     }
+}
+
+// The issue's "positon": the viewer warns as the runner does, naming the body, and with
+// strict (--strict) refuses the scene at that place.
+TEST(ViewerSession, AnUnknownFieldIsWarnedAboutAndRefusedWhenStrict) {
+    const SceneFile file("typo", R"({"bodies": [{"name": "crate", "shape": {"type": "box", "half_extents": [1, 1, 1]},
+                                    "positon": [0, 3, 0]}]})");
+    const Session session(file.path());
+    EXPECT_EQ(session.warnings(), file.path() + ": bodies[0] (\"crate\").positon: unknown field; did you mean \"position\"?\n");
+    try {
+        Session strict(file.path(), true);
+        FAIL() << "--strict accepted an unknown field";
+    } catch (const scene::SceneError &error) {
+        EXPECT_EQ(error.path(), file.path() + ": bodies[0] (\"crate\").positon");
+        EXPECT_EQ(error.message(), "unknown field; did you mean \"position\"? (refused by --strict)");
+    }
+    EXPECT_EQ(Session(scenePath("pyramid-20")).warnings(), "");
 }
 
 }  // namespace

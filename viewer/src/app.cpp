@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "scene_fields.h"
 #include "screenshot.h"
 
 namespace cyclone::viewer {
@@ -27,6 +28,11 @@ constexpr float kOrbitPerPixel = 0.005f;
 constexpr float kZoomPerNotch = 0.88f;
 // Frames left out of --benchmark's mean: Mesa compiles shaders on their first draws.
 constexpr int kWarmUpFrames = 10;
+// Follow mode: the camera covers this share of the way to its goal in 1/60 s (a time
+// constant of about 0.15 s), and frames at least this radius, m, so that a small body
+// is seen with what lies around it (a ragdoll with its stairs).
+constexpr double kFollowRatePerFrame = 0.1;
+constexpr float kFollowMinRadius = 2.5f;
 
 void reportGlfwError(int code, const char *message) { std::fprintf(stderr, "cyclone-viewer: GLFW error %d: %s\n", code, message); }
 
@@ -35,7 +41,14 @@ Vector3 toReal(const Eigen::Vector3f &v) { return v.cast<real>(); }
 }  // namespace
 
 App::App(const Options &options) : options_(options) {
-    session_ = std::make_unique<Session>(options.scene);
+    session_ = std::make_unique<Session>(options.scene, options.strict);
+    std::fputs(session_->warnings().c_str(), stderr);
+    if (!options.follow.empty() && !session_->world().findBody(options.follow)) {
+        std::vector<std::string> names;
+        for (const scene::SceneBody &body : session_->scene().bodies) names.push_back(body.settings.name);
+        throw std::invalid_argument("--follow: " + options.scene + " has no body named \"" + options.follow + "\"" +
+                                 scene::didYouMean(options.follow, names));
+    }
     overlay_ = std::make_unique<Overlay>(std::filesystem::path(options.scene).parent_path().empty()
                                              ? std::string(".")
                                              : std::filesystem::path(options.scene).parent_path().string());
@@ -94,18 +107,35 @@ float App::aspect() const {
     return height > 0 ? static_cast<float>(width) / static_cast<float>(height) : 1.0f;
 }
 
-void App::frameScene() {
-    Bounds bounds = sceneBounds(session_->world());
+Bounds App::followedBounds() const {
+    const World &world = session_->world();
+    if (!options_.follow.empty()) {
+        const std::optional<BodyId> id = world.findBody(options_.follow);
+        if (!id || !world.body(*id).getPosition().allFinite()) return Bounds();
+        return bodyBounds(world, *id);
+    }
+    Bounds bounds = sceneBounds(world);
     // A spring's world anchor belongs in the picture with the body it holds.
     for (const Vector3 &end : session_->springLines()) bounds.add(end.cast<float>());
-    camera_.frame(bounds, aspect());
+    return bounds;
+}
+
+void App::frameScene() {
+    if (options_.cameraEye) {
+        camera_.lookAt(*options_.cameraEye, options_.cameraTarget);
+        following_ = false;
+        return;
+    }
+    camera_.frame(followedBounds(), aspect(), kFollowMinRadius);
+    following_ = true;
 }
 
 void App::openScene(const std::string &path) {
     try {
-        auto next = std::make_unique<Session>(path);
+        auto next = std::make_unique<Session>(path, options_.strict);
         session_ = std::move(next);
         character_.forget();
+        std::fputs(session_->warnings().c_str(), stderr);
     } catch (const std::exception &error) {
         problem_ = error.what();
         return;
@@ -126,6 +156,8 @@ void App::shootBall() {
     const bool inside = x >= 0 && y >= 0 && x < width && y < height;
     const Ray ray = inside ? camera_.ray(static_cast<float>(x), static_cast<float>(y), width, height)
                            : Ray{camera_.eye(), camera_.forward()};
+    // The ball is a moving body: following it would pull the camera after it.
+    following_ = false;
     try {
         session_->shootBall(toReal(ray.origin), toReal(ray.direction));
     } catch (const std::exception &error) {
@@ -184,7 +216,10 @@ void App::handleMouse() {
         if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) || ImGui::IsMouseClicked(ImGuiMouseButton_Middle)) {
             drag_ = Drag::Pan;
         }
-        if (io.MouseWheel != 0) camera_.zoom(std::pow(kZoomPerNotch, io.MouseWheel));
+        if (io.MouseWheel != 0) {
+            camera_.zoom(std::pow(kZoomPerNotch, io.MouseWheel));
+            following_ = false;
+        }
     }
 
     const bool anyDown = ImGui::IsMouseDown(ImGuiMouseButton_Left) || ImGui::IsMouseDown(ImGuiMouseButton_Right) ||
@@ -196,7 +231,10 @@ void App::handleMouse() {
         if (moved) camera_.orbit(-dx * kOrbitPerPixel, -dy * kOrbitPerPixel);
         break;
     case Drag::Pan:
-        if (moved) camera_.pan(dx, dy, height);
+        if (moved) {
+            camera_.pan(dx, dy, height);
+            following_ = false;
+        }
         break;
     case Drag::Body: {
         const float along = ray.direction.dot(camera_.forward());
@@ -322,7 +360,12 @@ int App::run() {
         }
         carryOut(requests);
         walk();
-        simulate(options_.frames ? kHeadlessFrameSeconds : std::min(realSeconds, 0.25));
+        const double frameSeconds = options_.frames ? kHeadlessFrameSeconds : std::min(realSeconds, 0.25);
+        simulate(frameSeconds);
+        if (following_) {
+            const double rate = 1 - std::pow(1 - kFollowRatePerFrame, frameSeconds / kHeadlessFrameSeconds);
+            camera_.follow(followedBounds(), aspect(), static_cast<float>(rate), kFollowMinRadius);
+        }
         // The last frame is shown only now: its picture was handed to the renderer (glFlush)
         // before this frame's simulation, so that a software renderer's threads draw it
         // while this thread steps the World.

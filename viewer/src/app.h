@@ -21,7 +21,8 @@ namespace cyclone::viewer {
 /// The window and everything drawn in it.
 class App {
 public:
-    /// Opens the scene and the window; throws scene::SceneError on a bad scene file and
+    /// Opens the scene and the window; throws scene::SceneError on a bad scene file,
+    /// std::invalid_argument when --follow names no body of the scene, and
     /// std::runtime_error when no window or OpenGL 3.3 context can be had.
     explicit App(const Options &options);
     ~App();
@@ -47,7 +48,11 @@ private:
     void toggleCharacter();
     /// In the character mode: W, A, S, D and Space held drive the character; the camera follows.
     void walk();
+    /// Frames what the camera follows and follows it again (or puts a --camera back).
     void frameScene();
+    /// What follow mode keeps in view: the --follow body, or every moving body and the
+    /// springs' anchors.
+    Bounds followedBounds() const;
     float aspect() const;
     /// Simulates `seconds` of time (scaled by slow motion); records the steps run.
     void simulate(double seconds);
@@ -68,6 +73,9 @@ private:
     /// Distance along the view direction of the plane a held body is dragged in, m.
     float grabDepth_ = 0;
     std::string problem_;
+    /// Follow mode: the camera glides to keep followedBounds() in view; moving the
+    /// camera by hand (pan, zoom) or a fixed --camera turns it off, F turns it on.
+    bool following_ = true;
     /// Keys pressed (or repeated) since the last frame, GLFW key codes.
     std::vector<int> pressedKeys_;
 };

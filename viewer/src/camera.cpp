@@ -96,13 +96,42 @@ void OrbitCamera::pan(float dx, float dy, int height) {
 
 void OrbitCamera::zoom(float factor) { distance = std::clamp(distance * factor, kMinDistance, kMaxDistance); }
 
-void OrbitCamera::frame(const Bounds &bounds, float aspect) {
-    if (bounds.empty()) return;
-    target = (bounds.lo + bounds.hi) / 2;
-    const float radius = std::max(0.5f * (bounds.hi - bounds.lo).norm(), 0.5f);
+float OrbitCamera::framingDistance(float radius, float aspect) const {
     const float halfY = fovY / 2;
     const float halfX = std::atan(std::tan(halfY) * aspect);
-    distance = std::clamp(1.05f * radius / std::sin(std::min(halfX, halfY)), kMinDistance, kMaxDistance);
+    return std::clamp(1.05f * radius / std::sin(std::min(halfX, halfY)), kMinDistance, kMaxDistance);
+}
+
+void OrbitCamera::frame(const Bounds &bounds, float aspect, float minRadius) {
+    if (bounds.empty()) return;
+    target = (bounds.lo + bounds.hi) / 2;
+    distance = framingDistance(std::max(0.5f * (bounds.hi - bounds.lo).norm(), minRadius), aspect);
+}
+
+void OrbitCamera::follow(const Bounds &bounds, float aspect, float rate, float minRadius) {
+    if (bounds.empty()) return;
+    const Eigen::Vector3f centre = (bounds.lo + bounds.hi) / 2;
+    target += (centre - target) * rate;
+    const float goal = framingDistance(std::max(0.5f * (bounds.hi - bounds.lo).norm(), minRadius), aspect);
+    // The sphere about the new target that holds every corner of the box.
+    float reach = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Eigen::Vector3f p((corner & 1) ? bounds.hi.x() : bounds.lo.x(), (corner & 2) ? bounds.hi.y() : bounds.lo.y(),
+                                (corner & 4) ? bounds.hi.z() : bounds.lo.z());
+        reach = std::max(reach, (p - target).norm());
+    }
+    distance = std::max(distance + (goal - distance) * rate, framingDistance(reach, aspect));
+}
+
+void OrbitCamera::lookAt(const Eigen::Vector3f &eyeAt, const Eigen::Vector3f &targetAt) {
+    const Eigen::Vector3f towards = targetAt - eyeAt;
+    target = targetAt;
+    distance = std::clamp(towards.norm(), kMinDistance, kMaxDistance);
+    if (!(towards.norm() > 0)) return;
+    const Eigen::Vector3f f = towards.normalized();
+    pitch = std::clamp(std::asin(std::clamp(f.y(), -1.0f, 1.0f)), -kMaxPitch, kMaxPitch);
+    // forward() is (-sin(yaw) cos(pitch), sin(pitch), -cos(yaw) cos(pitch)).
+    if (std::abs(f.x()) + std::abs(f.z()) > 0) yaw = std::atan2(-f.x(), -f.z());
 }
 
 }  // namespace cyclone::viewer

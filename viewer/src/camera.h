@@ -63,9 +63,21 @@ public:
     void pan(float dx, float dy, int height);
     /// Multiplies the distance by `factor` (> 0), within [0.5 m, 2 km].
     void zoom(float factor);
-    /// Looks at the centre of `bounds` from far enough that its bounding sphere fits the
-    /// view of a picture `aspect` wide, keeping the direction of view.
-    void frame(const Bounds &bounds, float aspect);
+    /// Looks at the centre of `bounds` from far enough that its bounding sphere, of at
+    /// least `minRadius` m, fits the view of a picture `aspect` wide, keeping the
+    /// direction of view.
+    void frame(const Bounds &bounds, float aspect, float minRadius = 0.5f);
+    /// One frame of follow mode: moves the target the fraction `rate` (in (0, 1]) of the
+    /// way to the centre of `bounds`, and the distance as much towards the one frame()
+    /// would choose, but never nearer than the distance from which every corner of
+    /// `bounds` is in view: what moves never leaves the picture, and the camera glides.
+    void follow(const Bounds &bounds, float aspect, float rate, float minRadius);
+    /// Puts the eye at `eye` looking at `target` (m; the pitch kept within +-85 degrees,
+    /// the distance within [0.5 m, 2 km]).
+    void lookAt(const Eigen::Vector3f &eye, const Eigen::Vector3f &target);
+    /// Distance from which a sphere of `radius` m about the target fits the view of a
+    /// picture `aspect` wide, with a 5 % margin.
+    float framingDistance(float radius, float aspect) const;
 };
 
 }  // namespace cyclone::viewer

@@ -2,6 +2,7 @@
 // command line, app.h for the window).
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 
 #include "app.h"
 #include "json_document.h"
@@ -22,6 +23,9 @@ int main(int argc, char **argv) {
     try {
         App app(*options);
         return app.run();
+    } catch (const std::invalid_argument &usageError) {
+        std::fprintf(stderr, "cyclone-viewer: %s\n", usageError.what());
+        return 2;
     } catch (const cyclone::scene::SceneError &sceneError) {
         std::fprintf(stderr, "cyclone-viewer: %s\n", sceneError.what());
         return 2;

@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -9,6 +10,21 @@ namespace {
 
 constexpr int kMaxFrames = 1000000;
 constexpr int kMaxSize = 16384;
+
+// "EX,EY,EZ,TX,TY,TZ": six finite numbers.
+bool parseCamera(const char *text, Eigen::Vector3f &eye, Eigen::Vector3f &target) {
+    float values[6];
+    const char *at = text;
+    for (int i = 0; i < 6; ++i) {
+        char *end = nullptr;
+        values[i] = std::strtof(at, &end);
+        if (end == at || !std::isfinite(values[i]) || *end != (i < 5 ? ',' : '\0')) return false;
+        at = end + 1;
+    }
+    eye = Eigen::Vector3f(values[0], values[1], values[2]);
+    target = Eigen::Vector3f(values[3], values[4], values[5]);
+    return eye != target;
+}
 
 bool parseInt(const char *text, int lo, int hi, int &out) {
     char *end = nullptr;
@@ -22,7 +38,8 @@ bool parseInt(const char *text, int lo, int hi, int &out) {
 
 const char *usage() {
     return "usage: cyclone-viewer SCENE.json [--frames N [--screenshot OUT.png] [--benchmark]]\n"
-           "                      [--size WxH] [--no-ui] [--contacts]\n"
+           "                      [--size WxH] [--no-ui] [--contacts] [--strict]\n"
+           "                      [--follow NAME | --camera EX,EY,EZ,TX,TY,TZ]\n"
            "\n"
            "  --frames N         run N frames (1/60 s of simulation each), then exit\n"
            "  --screenshot FILE  write the last frame as a PNG (needs --frames)\n"
@@ -30,10 +47,14 @@ const char *usage() {
            "  --size WxH         window size in pixels, at least 640x480 (default 1280x720)\n"
            "  --no-ui            hide the overlay\n"
            "  --contacts         start with contact points and normals drawn\n"
+           "  --follow NAME      keep the body NAME in view (default: every moving body)\n"
+           "  --camera E,T       a fixed camera: eye at E = EX,EY,EZ looking at T = TX,TY,TZ (m)\n"
+           "  --strict           refuse a scene with a field the format has not (as cyclone-world)\n"
            "\n"
            "Mouse: left drag on a body pulls it with a spring, elsewhere orbits; right or\n"
            "middle drag pans; wheel zooms. Keys: Space pause, N one step, R restart,\n"
-           "S slow motion, F frame the scene, B shoot a ball, Esc quit.\n";
+           "S slow motion, F frame and follow the moving bodies again (moving the camera\n"
+           "stops following), B shoot a ball, Esc quit.\n";
 }
 
 std::optional<Options> parseOptions(int argc, char **argv, std::string &error) {
@@ -71,6 +92,22 @@ std::optional<Options> parseOptions(int argc, char **argv, std::string &error) {
             options.hideUi = true;
         } else if (std::strcmp(arg, "--contacts") == 0) {
             options.contacts = true;
+        } else if (std::strcmp(arg, "--strict") == 0) {
+            options.strict = true;
+        } else if (std::strcmp(arg, "--follow") == 0) {
+            if (!hasValue || argv[i + 1][0] == '\0') {
+                error = "--follow needs a body's name";
+                return std::nullopt;
+            }
+            options.follow = argv[++i];
+        } else if (std::strcmp(arg, "--camera") == 0) {
+            Eigen::Vector3f eye, target;
+            if (!hasValue || !parseCamera(argv[++i], eye, target)) {
+                error = "--camera needs EX,EY,EZ,TX,TY,TZ: six numbers, the eye and the point looked at (m), apart";
+                return std::nullopt;
+            }
+            options.cameraEye = eye;
+            options.cameraTarget = target;
         } else if (arg[0] == '-' && arg[1] != '\0') {
             error = std::string("unknown option ") + arg;
             return std::nullopt;
@@ -83,6 +120,10 @@ std::optional<Options> parseOptions(int argc, char **argv, std::string &error) {
     }
     if (options.scene.empty()) {
         error = "no scene file given";
+        return std::nullopt;
+    }
+    if (options.cameraEye && !options.follow.empty()) {
+        error = "--camera and --follow exclude each other (a fixed camera follows nothing)";
         return std::nullopt;
     }
     if (!options.frames && (!options.screenshot.empty() || options.benchmark)) {

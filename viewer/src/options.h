@@ -1,6 +1,8 @@
 // The viewer's command line.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <optional>
 #include <string>
 
@@ -24,6 +26,13 @@ struct Options {
     bool hideUi = false;
     /// Start with the contact points and normals drawn.
     bool contacts = false;
+    /// Follow this body (by its name in the scene) instead of all the moving ones.
+    std::string follow;
+    /// A fixed camera: the eye and the point looked at, m (no follow mode).
+    std::optional<Eigen::Vector3f> cameraEye;
+    Eigen::Vector3f cameraTarget = Eigen::Vector3f::Zero();
+    /// Refuse a scene with a field the format has not, as cyclone-world --strict does.
+    bool strict = false;
 };
 
 /// The usage text.

@@ -6,8 +6,10 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "run_loop.h"
+#include "scene_file.h"
 #include "scene_loader.h"
 
 namespace cyclone::viewer {
@@ -38,9 +40,13 @@ std::string stem(const std::string &path) {
 
 }  // namespace
 
-Session::Session(const std::string &path) : path_(path) {
+Session::Session(const std::string &path, bool strict) : path_(path) {
     try {
-        scene_ = scene::loadScene(readFile(path), stem(path));
+        scene::SceneFile file(readFile(path), stem(path), strict);
+        std::ostringstream warnings;
+        file.writeWarnings(warnings, path);
+        warnings_ = warnings.str();
+        scene_ = std::move(file.scene());
     } catch (const scene::SceneError &error) {
         throw scene::SceneError(path + ": " + error.path(), error.message());
     }

@@ -51,14 +51,19 @@ struct BallSettings {
 /// A loaded scene and its running World.
 class Session {
 public:
-    /// Loads the scene file at `path` and builds its World; throws scene::SceneError (with
-    /// the file's name in the message) or std::runtime_error when it cannot.
-    explicit Session(const std::string &path);
+    /// Loads the scene file at `path` as the runner does (scene_file.h) and builds its
+    /// World; throws scene::SceneError (with the file's name in the message, the place
+    /// naming its body or joint) or std::runtime_error when it cannot. With `strict`, a
+    /// field the format has not is refused, as cyclone-world --strict does.
+    explicit Session(const std::string &path, bool strict = false);
 
     /// The scene file's path.
     const std::string &path() const { return path_; }
     /// The scene as loaded.
     const scene::Scene &scene() const { return scene_; }
+    /// The runner's warnings about the fields the format has not, one line each
+    /// ("FILE: PLACE: unknown field; did you mean ...?"), or "".
+    const std::string &warnings() const { return warnings_; }
     World &world() { return built_->world; }
     const World &world() const { return built_->world; }
     FixedStepper &stepper() { return *stepper_; }
@@ -107,6 +112,7 @@ private:
 
     std::string path_;
     scene::Scene scene_;
+    std::string warnings_;
     std::unique_ptr<scene::SceneWorld> built_;
     std::unique_ptr<FixedStepper> stepper_;
     std::vector<std::size_t> eventOrder_;  ///< Indices of scene_.events by step (stable).

@@ -18,20 +18,35 @@ Shape Shape::sphere(real radius) {
     return shape;
 }
 
-Shape Shape::capsule(real radius, real length) {
+namespace {
+
+// `shape` (along z) turned so that it lies along `axis`: a compound of one child.
+Shape alongAxis(Shape shape, Axis axis) {
+    if (axis == Axis::Z) return shape;
+    CompoundChild child;
+    // A quarter turn about y takes z to x; a quarter turn about -x takes z to y.
+    const Vector3 turnAxis = axis == Axis::X ? Vector3::UnitY() : Vector3(-Vector3::UnitX());
+    child.orientation = Quaternion(Eigen::AngleAxis<real>(real(1.5707963267948966), turnAxis));
+    child.shape = std::move(shape);
+    return Shape::compound({std::move(child)});
+}
+
+}  // namespace
+
+Shape Shape::capsule(real radius, real length, Axis axis) {
     Shape shape;
     shape.type = ShapeType::Capsule;
     shape.radius = radius;
     shape.length = length;
-    return shape;
+    return alongAxis(std::move(shape), axis);
 }
 
-Shape Shape::cylinder(real radius, real length) {
+Shape Shape::cylinder(real radius, real length, Axis axis) {
     Shape shape;
     shape.type = ShapeType::Cylinder;
     shape.radius = radius;
     shape.length = length;
-    return shape;
+    return alongAxis(std::move(shape), axis);
 }
 
 Shape Shape::convex(std::vector<Vector3> points) {

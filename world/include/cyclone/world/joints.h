@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 
@@ -120,6 +121,11 @@ struct JointId {
     bool operator==(const JointId &other) const { return index == other.index && generation == other.generation; }
     /// True when they name different joints.
     bool operator!=(const JointId &other) const { return !(*this == other); }
+    /// Orders handles by slot, then generation (for std::map, std::set and sorting; the
+    /// order says nothing about when the joints were added).
+    bool operator<(const JointId &other) const {
+        return index != other.index ? index < other.index : generation < other.generation;
+    }
 };
 
 /// What a joint did in the last step (World::jointState).
@@ -140,3 +146,15 @@ struct JointState {
 };
 
 }  // namespace cyclone
+
+// The joint handle's hash, for std::unordered_map and std::unordered_set.
+namespace std {
+/// Hash of a JointId: its slot and generation.
+template <>
+struct hash<cyclone::JointId> {
+    /// The hash of `id`.
+    size_t operator()(const cyclone::JointId &id) const noexcept {
+        return hash<uint64_t>()(uint64_t{id.generation} << 32 | id.index);
+    }
+};
+}  // namespace std

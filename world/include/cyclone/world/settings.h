@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -329,6 +330,11 @@ struct BodyId {
     bool operator==(const BodyId &other) const { return index == other.index && generation == other.generation; }
     /// True when they name different bodies.
     bool operator!=(const BodyId &other) const { return !(*this == other); }
+    /// Orders handles by slot, then generation (for std::map, std::set and sorting; the
+    /// order says nothing about when the bodies were added).
+    bool operator<(const BodyId &other) const {
+        return index != other.index ? index < other.index : generation < other.generation;
+    }
 };
 
 /// How a spring's force is integrated (with an integrator other than NewtonEulerImplicit,
@@ -372,6 +378,31 @@ struct SpringId {
     bool operator==(const SpringId &other) const { return index == other.index && generation == other.generation; }
     /// True when they name different springs.
     bool operator!=(const SpringId &other) const { return !(*this == other); }
+    /// Orders handles by slot, then generation (for std::map, std::set and sorting; the
+    /// order says nothing about when the springs were added).
+    bool operator<(const SpringId &other) const {
+        return index != other.index ? index < other.index : generation < other.generation;
+    }
 };
 
 }  // namespace cyclone
+
+// Hashes of the handles, for std::unordered_map and std::unordered_set.
+namespace std {
+/// Hash of a BodyId: its slot and generation.
+template <>
+struct hash<cyclone::BodyId> {
+    /// The hash of `id`.
+    size_t operator()(const cyclone::BodyId &id) const noexcept {
+        return hash<uint64_t>()(uint64_t{id.generation} << 32 | id.index);
+    }
+};
+/// Hash of a SpringId: its slot and generation.
+template <>
+struct hash<cyclone::SpringId> {
+    /// The hash of `id`.
+    size_t operator()(const cyclone::SpringId &id) const noexcept {
+        return hash<uint64_t>()(uint64_t{id.generation} << 32 | id.index);
+    }
+};
+}  // namespace std

@@ -31,6 +31,13 @@ enum class MeshSides {
 
 struct CompoundChild;
 
+/// A local axis: the one a capsule or cylinder lies along.
+enum class Axis {
+    X,  ///< Local x.
+    Y,  ///< Local y: upright when the body is not turned and gravity is along -y.
+    Z,  ///< Local z: FCL's convention and the scene format's, the default.
+};
+
 /// Most corners a convex shape keeps (Shape::convex says how a larger hull is
 /// simplified); as Jolt's cap, since each contact test walks them.
 inline constexpr int kMaxHullVertices = 256;
@@ -56,12 +63,16 @@ struct Shape {
     static Shape box(const Vector3 &halfExtents);
     /// A sphere centred on the origin (radius in m, finite, > 0).
     static Shape sphere(real radius);
-    /// A capsule along z centred on the origin: a cylinder of radius `radius` and length
-    /// `length` capped by two half spheres (m; radius finite > 0, length finite >= 0; the
-    /// whole capsule is length + 2 radius long).
-    static Shape capsule(real radius, real length);
-    /// A cylinder along z centred on the origin (m; radius and total length finite, > 0).
-    static Shape cylinder(real radius, real length);
+    /// A capsule along `axis` centred on the origin: a cylinder of radius `radius` and
+    /// length `length` capped by two half spheres (m; radius finite > 0, length finite
+    /// >= 0; the whole capsule is length + 2 radius long). Along z by default (FCL's
+    /// convention and the scene format's); Axis::Y stands a character upright. Along x
+    /// or y it is a compound of one z capsule turned a quarter turn, so its type is
+    /// Compound (mass, inertia and collisions are the turned capsule's).
+    static Shape capsule(real radius, real length, Axis axis = Axis::Z);
+    /// A cylinder along `axis` centred on the origin (m; radius and total length finite,
+    /// > 0); along x or y a compound of one turned z cylinder, as capsule().
+    static Shape cylinder(real radius, real length, Axis axis = Axis::Z);
     /// The convex hull of `points` (m, finite; at least 4 not all in one plane). The body's
     /// origin is the frame of the points, not necessarily the hull's centre of mass.
     /// A hull of more than kMaxHullVertices corners is replaced by the hull of

@@ -1,0 +1,46 @@
+# README.md is a guide: at most 250 lines, no commit hashes, every example scene listed,
+# and its first C++ block is examples/first_game.cpp (which the build compiles), word for word.
+#
+#   cmake -DSOURCE_DIR=... -P readme_check.cmake
+cmake_minimum_required(VERSION 3.16)
+file(READ ${SOURCE_DIR}/README.md readme)
+string(REGEX REPLACE "[^\n]" "" newlines "${readme}")
+string(LENGTH "${newlines}" count)
+if(count GREATER 250)
+  message(FATAL_ERROR "README.md has ${count} lines, more than 250")
+endif()
+
+# A commit hash: 7 to 40 hexadecimal digits with both a digit and a letter, standing alone.
+string(REGEX MATCHALL "[^0-9a-zA-Z_][0-9a-f]*[0-9][0-9a-f]*[a-f][0-9a-f]*[^0-9a-zA-Z_]" words "${readme}")
+string(REGEX MATCHALL "[^0-9a-zA-Z_][0-9a-f]*[a-f][0-9a-f]*[0-9][0-9a-f]*[^0-9a-zA-Z_]" more "${readme}")
+foreach(word IN LISTS words more)
+  string(LENGTH "${word}" length)
+  if(length GREATER_EQUAL 9)
+    message(FATAL_ERROR "README.md cites what looks like a commit: '${word}'")
+  endif()
+endforeach()
+
+file(GLOB scenes ${SOURCE_DIR}/examples/scenes/*.json)
+foreach(scene IN LISTS scenes)
+  get_filename_component(name ${scene} NAME_WE)
+  string(FIND "${readme}" "`${name}`" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "README.md does not list the example scene ${name}")
+  endif()
+endforeach()
+
+string(FIND "${readme}" "```cpp\n" start)
+if(start EQUAL -1)
+  message(FATAL_ERROR "README.md has no C++ block")
+endif()
+math(EXPR start "${start} + 7")
+string(SUBSTRING "${readme}" ${start} -1 rest)
+string(FIND "${rest}" "```" end)
+string(SUBSTRING "${rest}" 0 ${end} block)
+file(READ ${SOURCE_DIR}/examples/first_game.cpp program)
+string(FIND "${program}" "${block}" found)
+if(found EQUAL -1)
+  message(FATAL_ERROR "README.md's C++ block is not the text of examples/first_game.cpp")
+endif()
+list(LENGTH scenes listed)
+message(STATUS "README.md: ${count} lines, ${listed} example scenes listed, its program is examples/first_game.cpp")
