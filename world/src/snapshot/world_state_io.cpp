@@ -16,6 +16,7 @@
 // a field added to a struct is one line there. Scratch that a step rewrites before it
 // reads it is not saved. Sizes and timings: docs/rollback.md.
 #include <algorithm>
+#include <initializer_list>
 #include <unordered_map>
 
 #include "collision/time_of_impact.h"
@@ -75,10 +76,28 @@ struct StateFields {
     template <class A>
     static void body(A &a, RigidBody &b) {
         io(a, b.inverseMass, b.inverseInertiaTensor, b.linearDamping, b.angularDamping);
-        io(a, b.position, b.orientation, b.velocity, b.rotation);
+        io(a, b.position, b.orientation, b.acceleration);
         io(a, b.inverseInertiaTensorWorld, b.motion, b.sleepEpsilon, b.movingMotionCap, b.isAwake, b.canSleep);
         io(a, b.gyroscopicStep, b.rotationStep, b.transformMatrix);
-        io(a, b.forceAccum, b.torqueAccum, b.acceleration, b.lastFrameAcceleration);
+        // Zero in a body at rest or asleep: a bit each says so, and only the others follow.
+        mostlyZero(a, {&b.velocity, &b.rotation, &b.forceAccum, &b.torqueAccum, &b.lastFrameAcceleration});
+    }
+
+    /// Vectors written as a mask of those whose bits are all zero, then the others.
+    template <class A>
+    static void mostlyZero(A &a, std::initializer_list<Vector3 *> vectors) {
+        std::uint8_t zero = 0;
+        int k = 0;
+        if constexpr (!A::kReading) {
+            static const Vector3 kZero = Vector3::Zero();
+            for (const Vector3 *v : vectors) zero |= (std::memcmp(v->data(), kZero.data(), sizeof(Vector3)) == 0) << k++;
+        }
+        io(a, zero);
+        k = 0;
+        for (Vector3 *v : vectors) {
+            if (!(zero >> k++ & 1)) io(a, *v);
+            else if constexpr (A::kReading) v->setZero();
+        }
     }
 
     /// A live body's record but its shape and collision object.
@@ -187,9 +206,34 @@ struct StateFields {
         }
     }
 
+    /// A solver slot's manifold: the kept Jacobians and the rest, and only the points in
+    /// use (those past `count` are never read; a kept slot has the same points).
+    template <class A>
+    static void solverManifold(A &a, SolverManifold &m) {
+        auto *bytes = reinterpret_cast<std::uint8_t *>(&m);
+        a.bytes(bytes, static_cast<std::size_t>(reinterpret_cast<std::uint8_t *>(&m.points[0]) - bytes));
+        if (m.count < 0 || m.count > kMaxManifoldPoints) throw UnreadableState{"a solver manifold's point count is out of range"};
+        a.bytes(m.points, static_cast<std::size_t>(m.count) * sizeof(SolverPoint));
+    }
+
     template <class A>
     static void solver(A &a, ConstraintSolver &s) {
-        io(a, s.manifolds_, s.stamps_);
+        const std::size_t n = a.count(s.manifolds_.size(), 1);
+        if constexpr (A::kReading) s.manifolds_.resize(n);
+        for (SolverManifold &m : s.manifolds_) solverManifold(a, m);
+        io(a, s.stamps_);
+    }
+
+    /// A collision object's fat box, and its box when that differs (BodyObject::place
+    /// makes them equal).
+    template <class A>
+    static void boxes(A &a, BodyObject &object) {
+        io(a, object.fat_);
+        std::uint8_t apart = 0;
+        if constexpr (!A::kReading) apart = !(object.aabb.min_ == object.fat_.min_ && object.aabb.max_ == object.fat_.max_);
+        io(a, apart);
+        if (apart) io(a, object.aabb);
+        else if constexpr (A::kReading) object.aabb = object.fat_;
     }
 
     template <class A>
@@ -357,7 +401,7 @@ void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) 
         io(a, r.alive, r.generation);
         if (!r.alive) continue;
         record(a, r);
-        if (r.object) io(a, r.object->fat_, r.object->aabb);
+        if (r.object) boxes(a, *r.object);
     }
     bodyLists(a, bodies);
 
@@ -409,7 +453,7 @@ void StateFields::restoreBody(StateReader &a, WorldState &w, std::uint32_t index
     // Only awake bodies' objects lie away from their bodies' poses between steps, and the
     // step places those before reading them.
     r.object->setTransform(r.body.getTransform());
-    io(a, r.object->fat_, r.object->aabb);
+    boxes(a, *r.object);
 }
 
 void StateFields::restore(WorldState &w, const std::uint8_t *data, std::size_t size) {
