@@ -33,7 +33,8 @@ const char *usage() {
            "\n"
            "Mouse: left drag on a body pulls it with a spring, elsewhere orbits; right or\n"
            "middle drag pans; wheel zooms. Keys: Space pause, N one step, R restart,\n"
-           "S slow motion, F frame the scene, B shoot a ball, Esc quit.\n";
+           "S slow motion, F frame the scene, B shoot a ball, F5 keep the state, F9 rewind\n"
+           "to it, Esc quit.\n";
 }
 
 std::optional<Options> parseOptions(int argc, char **argv, std::string &error) {
