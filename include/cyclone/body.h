@@ -78,6 +78,10 @@ enum class RotationStep {
     MomentumConserving,
 };
 
+namespace detail {
+struct StateFields;
+}  // namespace detail
+
 /// A rigid body: position and orientation with their first derivatives, mass and
 /// inertia, damping, accumulated force and torque, and sleep state.
 ///
@@ -90,6 +94,7 @@ enum class RotationStep {
 /// state alone (a World's setters wake the body themselves).
 class RigidBody {
 public:
+    friend struct detail::StateFields;  ///< Saves and restores the state (World::saveState).
     /// A unit body at rest: mass 1 kg, inertia identity (kg m^2), at the origin,
     /// identity orientation, no damping (1), no constant acceleration, awake, allowed to
     /// sleep, sleep threshold kDefaultSleepEpsilon, motion average twice that threshold.

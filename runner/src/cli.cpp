@@ -19,6 +19,8 @@
 #include "atomic_file.h"
 #include "report.h"
 #include "run_loop.h"
+#include "saved_run.h"
+#include "scene_writer.h"
 #include "scene_fields.h"
 #include "scene_file.h"
 #include "scene_loader.h"
@@ -55,6 +57,12 @@ const char *const kHelpText =
     "                      step,time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,awake\n"
     "  --every K           trace only every K-th step (steps K-1, 2K-1, ... counted from 0)\n"
     "                      and the last step; K >= 1, default 1\n"
+    "  --save-state FILE   write the world's state after the last step (binary), to resume\n"
+    "                      the run from with --load-state\n"
+    "  --load-state FILE   resume a run of this scene saved by --save-state: its steps,\n"
+    "                      events and trace rows are numbered on from the saved run's\n"
+    "  --save-scene FILE   write a scene file of the world after the last step (poses,\n"
+    "                      velocities, sleep, joints as they are; the events still to come)\n"
     "  --quiet             no result line on stdout (run) and no progress on stderr\n"
     "  --strict            refuse (exit 2) a scene with a field the format does not have,\n"
     "                      instead of warning about it (one line each on stderr, e.g.\n"
@@ -170,12 +178,24 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
     } catch (const SceneError &error) {
         return refuse(err, file, loaded->place(error.path()), error.message());
     }
+    std::int64_t firstStep = 0;
+    if (!invocation.loadState.empty()) {
+        try {
+            firstStep = resumeSavedRun(readSavedRun(invocation.loadState), text, built->world);
+        } catch (const SavedRunError &error) {
+            return refuse(err, invocation.loadState, "state", error.what());
+        }
+    }
 
     std::unique_ptr<AtomicFile> summaryFile;
     std::unique_ptr<AtomicFile> traceFile;
+    std::unique_ptr<AtomicFile> stateFile;
+    std::unique_ptr<AtomicFile> sceneFile;
     std::unique_ptr<TraceWriter> trace;
     try {
         if (!invocation.summary.empty()) summaryFile = std::make_unique<AtomicFile>(invocation.summary);
+        if (!invocation.saveState.empty()) stateFile = std::make_unique<AtomicFile>(invocation.saveState);
+        if (!invocation.saveScene.empty()) sceneFile = std::make_unique<AtomicFile>(invocation.saveScene);
         if (!invocation.trace.empty()) {
             traceFile = std::make_unique<AtomicFile>(invocation.trace);
             trace = std::make_unique<TraceWriter>(traceFile->stream());
@@ -190,6 +210,7 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
 
     RunOptions options;
     options.steps = scene.steps;
+    options.firstStep = firstStep;
     options.dt = scene.dt;
     options.traceEvery = invocation.every;
     options.trace = trace.get();
@@ -213,11 +234,16 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
 
     try {
         if (summaryFile) summaryFile->stream() << summaryText(summaryJson(scene, *built, result));
-        // Both closed whole before either is renamed: a failed write leaves neither.
-        if (summaryFile) summaryFile->close();
-        if (traceFile) traceFile->close();
-        if (summaryFile) summaryFile->commit();
-        if (traceFile) traceFile->commit();
+        if (stateFile) {
+            const std::vector<std::uint8_t> state = savedRunBytes(text, firstStep + result.steps, built->world);
+            stateFile->stream().write(reinterpret_cast<const char *>(state.data()), static_cast<std::streamsize>(state.size()));
+        }
+        if (sceneFile) sceneFile->stream() << sceneAsItIs(text, scene, *built, firstStep + result.steps);
+        // All closed whole before any is renamed: a failed write leaves none.
+        for (AtomicFile *f : {summaryFile.get(), traceFile.get(), stateFile.get(), sceneFile.get()})
+            if (f) f->close();
+        for (AtomicFile *f : {summaryFile.get(), traceFile.get(), stateFile.get(), sceneFile.get()})
+            if (f) f->commit();
     } catch (const std::exception &error) {
         err << "cyclone-world: " << oneLine(error.what()) << "\n";
         return kExitRefused;
@@ -289,7 +315,8 @@ Invocation parseCommandLine(const std::vector<std::string> &args) {
         if (equals != std::string::npos) {
             value = arg.substr(equals + 1);
             arg.resize(equals);
-        } else if (arg == "--steps" || arg == "--dt" || arg == "--summary" || arg == "--trace" || arg == "--every") {
+        } else if (arg == "--steps" || arg == "--dt" || arg == "--summary" || arg == "--trace" || arg == "--every" ||
+                   arg == "--save-state" || arg == "--load-state" || arg == "--save-scene") {
             if (i + 1 >= args.size()) usage(arg + " needs a value");
             value = args[++i];
         }
@@ -298,6 +325,8 @@ Invocation parseCommandLine(const std::vector<std::string> &args) {
             seen = true;
         };
         bool seenSummary = !invocation.summary.empty(), seenTrace = !invocation.trace.empty();
+        bool seenSave = !invocation.saveState.empty(), seenLoad = !invocation.loadState.empty();
+        bool seenScene = !invocation.saveScene.empty();
         if (arg == "--steps") {
             once(haveSteps);
             invocation.steps = parseCount(arg, value, 0, kMaxSteps);
@@ -311,6 +340,15 @@ Invocation parseCommandLine(const std::vector<std::string> &args) {
             once(arg == "--summary" ? seenSummary : seenTrace);
             if (value.empty()) usage(arg + " needs a file name");
             (arg == "--summary" ? invocation.summary : invocation.trace) = value;
+        } else if (arg == "--save-scene") {
+            once(seenScene);
+            if (value.empty()) usage(arg + " needs a file name");
+            invocation.saveScene = value;
+        } else if (arg == "--save-state" || arg == "--load-state") {
+            const bool save = arg == "--save-state";
+            once(save ? seenSave : seenLoad);
+            if (value.empty()) usage(arg + " needs a file name");
+            (save ? invocation.saveState : invocation.loadState) = value;
         } else {
             usage("unknown option '" + arg + "'");
         }
@@ -350,8 +388,9 @@ std::string readSceneFile(const std::string &path, std::uintmax_t maxBytes) {
 }
 
 void checkOutputPaths(const Invocation &invocation) {
-    const std::pair<const char *, const std::string *> outputs[] = {{"--summary", &invocation.summary},
-                                                                    {"--trace", &invocation.trace}};
+    const std::pair<const char *, const std::string *> outputs[] = {
+        {"--summary", &invocation.summary}, {"--trace", &invocation.trace}, {"--save-state", &invocation.saveState},
+        {"--save-scene", &invocation.saveScene}};
     for (const auto &[flag, path] : outputs) {
         if (path->empty()) continue;
         std::error_code error;

@@ -42,6 +42,12 @@ struct Invocation {
     /// Output paths; empty: not written.
     std::string summary;
     std::string trace;
+    /// (v3) Where to write the run's state after its last step (--save-state), and the
+    /// state to resume from (--load-state); empty: none.
+    std::string saveState;
+    std::string loadState;
+    /// (v3) Where to write the scene of the world after the last step (--save-scene).
+    std::string saveScene;
     /// Trace every K-th step, >= 1.
     std::int64_t every = 1;
     /// No result line on stdout, no progress on stderr.

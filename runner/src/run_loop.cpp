@@ -133,7 +133,12 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
     std::stable_sort(eventOrder.begin(), eventOrder.end(),
                      [&](std::size_t x, std::size_t y) { return scene.events[x].step < scene.events[y].step; });
     std::size_t nextEvent = 0;
+    // A resumed run's World lacks the bodies removed before the save.
     std::vector<bool> present(scene.bodies.size(), true);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) present[i] = world.contains(built.ids[i]);
+    const std::int64_t first = options.firstStep;
+    const std::int64_t end = first + options.steps;
+    result.firstStep = first;
     // Scene index by BodyId, for sensor events (whose ids may be stale: a removed body's).
     std::unordered_map<std::uint64_t, std::size_t> sceneIndex;
     const auto key = [](BodyId id) { return std::uint64_t(id.generation) << 32 | id.index; };
@@ -150,7 +155,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
     result.jointMaxError.assign(scene.joints.size(), 0);
     result.jointBrokenAt.assign(scene.joints.size(), std::nullopt);
     const auto runStart = Clock::now();
-    for (std::int64_t step = 0; step < options.steps; ++step) {
+    for (std::int64_t step = first; step < end; ++step) {
         std::string eventsOfStep;  // for a failure of the step: what this step was given
         for (; nextEvent < eventOrder.size() && scene.events[eventOrder[nextEvent]].step <= step; ++nextEvent) {
             const SceneEvent &event = scene.events[eventOrder[nextEvent]];
@@ -190,7 +195,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
             stepFailure = error.what();
         }
         result.stepTimes.add(secondsSince(stepStart) * 1000.0);
-        result.steps = step + 1;
+        result.steps = step + 1 - first;
         result.maxPenetrationOfRun = std::max(result.maxPenetrationOfRun, world.stats().maxPenetration);
         if (stepFailure.empty()) recordSensorEvents(step);
         if (world.stats().errors & StepError::PairBudgetExceeded) {
@@ -234,7 +239,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
             result.jointMaxError[j] = std::max(result.jointMaxError[j], error);
         }
 
-        const bool last = step + 1 == options.steps || result.nonFinite;
+        const bool last = step + 1 == end || result.nonFinite;
         if (options.trace && ((step + 1) % options.traceEvery == 0 || last)) {
             const real time = static_cast<real>(step + 1) * options.dt;
             for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -245,7 +250,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
                 }
             }
         }
-        if (options.progress) options.progress(step + 1, options.steps);
+        if (options.progress) options.progress(step + 1 - first, options.steps);
         if (result.nonFinite) break;
     }
     result.wallSeconds = secondsSince(runStart);
@@ -254,7 +259,8 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
     if (!result.nonFinite && !std::isfinite(world.kineticEnergy())) {
         result.nonFinite = true;
         result.nonFiniteWhat = "the kinetic energy exceeds the largest double (1.8e308 J) " +
-                               (result.steps ? "after step " + std::to_string(result.steps - 1) : std::string("at load"));
+                               (result.steps ? "after step " + std::to_string(result.firstStep + result.steps - 1)
+                                             : std::string("at load"));
     }
     return result;
 }

@@ -17,6 +17,9 @@ namespace cyclone::scene {
 struct RunOptions {
     /// Steps to take, in [0, kMaxSteps].
     std::int64_t steps = 600;
+    /// Number of the first step (0-based): a resumed run (--load-state) numbers its steps
+    /// on from the saved run's, and its events, trace rows and times follow.
+    std::int64_t firstStep = 0;
     /// Fixed step, s, finite, > 0.
     real dt = 1.0 / 60.0;
     /// Trace every K-th step (steps K-1, 2K-1, ... 0-based) and always the last one, >= 1.
@@ -69,6 +72,8 @@ struct SensorEventRecord {
 struct RunResult {
     /// Steps actually taken (fewer than asked when the state became non-finite).
     std::int64_t steps = 0;
+    /// Number of the first of them (RunOptions::firstStep).
+    std::int64_t firstStep = 0;
     /// The step used, s.
     real dt = 0;
     /// Wall-clock time of the whole run loop, s.

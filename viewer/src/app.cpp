@@ -272,6 +272,8 @@ void App::handleKeys(UiRequests &requests) {
         case GLFW_KEY_S: controls_.slowMotion = !controls_.slowMotion; break;
         case GLFW_KEY_F: requests.frameScene = true; break;
         case GLFW_KEY_B: requests.shootBall = true; break;
+        case GLFW_KEY_F5: session_->keep(); break;
+        case GLFW_KEY_F9: session_->rewind(); break;
         case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;
         default: break;
         }

@@ -54,7 +54,7 @@ const char *usage() {
            "Mouse: left drag on a body pulls it with a spring, elsewhere orbits; right or\n"
            "middle drag pans; wheel zooms. Keys: Space pause, N one step, R restart,\n"
            "S slow motion, F frame and follow the moving bodies again (moving the camera\n"
-           "stops following), B shoot a ball, Esc quit.\n";
+           "stops following), B shoot a ball, F5 keep the state, F9 rewind to it, Esc quit.\n";
 }
 
 std::optional<Options> parseOptions(int argc, char **argv, std::string &error) {

@@ -65,8 +65,28 @@ void Session::build() {
     steps.stepSeconds = scene_.dt;
     stepper_ = std::make_unique<FixedStepper>(built_->world, steps);
     nextEvent_ = 0;
+    stepsBefore_ = 0;
     present_.assign(scene_.bodies.size(), true);
     problem_.clear();
+}
+
+void Session::keep() {
+    keptState_ = world().saveState();
+    keptStep_ = sceneStep();
+    keptNextEvent_ = nextEvent_;
+    keptPresent_ = present_;
+}
+
+bool Session::rewind() {
+    if (keptState_.empty()) return false;
+    release();
+    world().restoreState(keptState_);
+    const FixedStepSettings steps = stepper_->settings();
+    stepper_ = std::make_unique<FixedStepper>(built_->world, steps);
+    stepsBefore_ = keptStep_;
+    nextEvent_ = keptNextEvent_;
+    present_ = keptPresent_;
+    return true;
 }
 
 void Session::restart() {
@@ -93,7 +113,7 @@ void Session::applyEvents(std::int64_t step) {
 }
 
 int Session::advance(real frameSeconds) {
-    return stepper_->advance(frameSeconds, [&](real) { applyEvents(static_cast<std::int64_t>(stepper_->totalSteps())); });
+    return stepper_->advance(frameSeconds, [&](real) { applyEvents(sceneStep()); });
 }
 
 void Session::singleStep() {

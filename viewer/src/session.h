@@ -98,6 +98,17 @@ public:
     /// Adds a ball at `origin` moving along `direction` (unit) at the ball's speed.
     void shootBall(const Vector3 &origin, const Vector3 &direction, const BallSettings &ball = BallSettings());
 
+    /// Keeps the World's state (World::saveState) and the scene's place in its events, for
+    /// rewind(); replaces the one kept before.
+    void keep();
+    /// Puts the World back in the state keep() kept (bodies shot or grabbed since are let
+    /// go), the scene's events following from there; false when nothing was kept.
+    bool rewind();
+    /// Whether keep() has kept a state.
+    bool kept() const { return !keptState_.empty(); }
+    /// The step the scene's events count to: the stepper's steps since the World was
+    /// built or rewound, plus the steps before that.
+    std::int64_t sceneStep() const { return stepsBefore_ + static_cast<std::int64_t>(stepper_->totalSteps()); }
     /// The state a body's colour shows.
     BodyState state(BodyId id) const;
     /// The scene's springs whose bodies are all still in the World, and the grab's pull
@@ -120,6 +131,11 @@ private:
     std::vector<bool> present_;            ///< By scene body: not removed by an event.
     std::optional<Grab> grab_;
     std::string problem_;
+    std::int64_t stepsBefore_ = 0;          ///< Steps taken before the stepper was made (rewind).
+    std::vector<std::uint8_t> keptState_;   ///< keep()'s World state; empty: none.
+    std::int64_t keptStep_ = 0;             ///< The scene step it was kept at.
+    std::size_t keptNextEvent_ = 0;
+    std::vector<bool> keptPresent_;
 };
 
 }  // namespace cyclone::viewer

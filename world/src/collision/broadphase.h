@@ -16,6 +16,8 @@
 
 namespace cyclone::detail {
 
+struct StateFields;
+
 /// How far a broadphase box reaches beyond its body, m: a body that moves less than this
 /// costs no tree update.
 inline constexpr double kBroadphaseMargin = 0.02;
@@ -50,6 +52,7 @@ inline bool boxesApart(const fcl::CollisionGeometryd &a, const fcl::Transform3d 
 /// a body moving a little stays in its tree node and the tree is not rebuilt each step.
 class BodyObject : public fcl::CollisionObjectd {
 public:
+    friend struct StateFields;  ///< Saves and restores the fat box (snapshot/world_state_io.cpp).
     using fcl::CollisionObjectd::CollisionObjectd;
 
     /// Places the object at `pose` and refreshes its fat box; true when the tight box,
@@ -115,6 +118,7 @@ struct BroadphasePairs {
 
 class Broadphase {
 public:
+    friend struct StateFields;  ///< Saves and restores the state (snapshot/world_state_io.cpp).
     Broadphase();
 
     /// Puts `object` (whose user data is its body index) into `tree`, moving it out of

@@ -26,6 +26,7 @@ struct ContactTrack {
 
 class ContactManager {
 public:
+    friend struct StateFields;  ///< Saves and restores the state (snapshot/world_state_io.cpp).
     PairCache pairs;
     /// Pairs touching after this step's narrowphase, in the broadphase's order.
     std::vector<std::uint32_t> touchingPairs;

@@ -66,6 +66,7 @@ static_assert(sizeof(PairState) == 64, "a pair's state fills one cache line");
 
 class PairCache {
 public:
+    friend struct StateFields;  ///< Saves and restores the state (snapshot/world_state_io.cpp).
     /// The pair of bodies i and j (any order), created if new; returns its index.
     std::uint32_t findOrAdd(std::uint32_t i, std::uint32_t j, bool &created);
     /// Index of the pair of i and j, or -1.

@@ -24,6 +24,7 @@ struct WorldState;
 
 class Sensors {
 public:
+    friend struct StateFields;  ///< Saves and restores the state (snapshot/world_state_io.cpp).
     /// Body `index` was just added: a sensor, or a body not awake while there are sensors,
     /// is tested against every body its box overlaps in the next step.
     void added(WorldState &world, std::uint32_t index);

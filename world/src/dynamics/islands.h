@@ -13,6 +13,7 @@ struct WorldState;
 
 class Islands {
 public:
+    friend struct StateFields;  ///< Saves and restores the state (snapshot/world_state_io.cpp).
     /// Sleeping islands' members, by BodyRecord::sleepingIsland (cleared when woken).
     std::vector<std::vector<std::uint32_t>> sleeping;
     std::vector<int> freeSleeping;  ///< Entries of `sleeping` free for reuse.

@@ -94,6 +94,7 @@ struct JointRow {
 
 class JointSet {
 public:
+    friend struct StateFields;  ///< Saves and restores the state (snapshot/world_state_io.cpp).
     std::vector<JointRecord> records;
     std::vector<std::uint32_t> free;  ///< Slots of removed joints, reused first.
     int count = 0;                    ///< Live joints.

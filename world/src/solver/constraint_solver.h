@@ -44,6 +44,7 @@ CYCLONE_INLINE real velocityBias(const SolverManifold &m, const SolverPoint &p, 
 
 class ConstraintSolver {
 public:
+    friend struct StateFields;  ///< Saves and restores the kept Jacobians (snapshot/world_state_io.cpp).
     /// The step's solver manifolds, in their slots (solve order: solveOrder_).
     const std::vector<SolverManifold> &manifolds() const { return manifolds_; }
 

@@ -19,6 +19,7 @@ namespace cyclone::detail {
 struct BodyRecord {
     RigidBody body;
     std::shared_ptr<const CollisionShape> shape;
+    std::uint32_t shapeIndex = 0;  ///< Its shape's place in WorldState::shapes.
     std::unique_ptr<BodyObject> object;  ///< Null for planes.
     std::string name;
     Material material;

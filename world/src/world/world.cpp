@@ -218,6 +218,8 @@ BodyId World::addBody(const BodySettings &settings) {
     detail::BodyRecord &r = w.bodies[index];
     r.body = body;
     r.shape = shape;
+    r.shapeIndex = static_cast<std::uint32_t>(w.shapes.size());
+    w.shapes.push_back(shape);
     r.name = settings.name;
     r.material = settings.material;
     r.alive = true;

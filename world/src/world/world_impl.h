@@ -50,6 +50,9 @@ struct WorldState {
     StepStats stats;
     std::uint64_t stepCount = 0;
     StepPlan plan;  ///< This step's sub-steps and velocity passes (dynamics/step_plan.h).
+    /// Every shape a body was added with, in the order of the calls (kept after the body is
+    /// removed): a saved state names its bodies' shapes by place in it (snapshot/world_state_io.cpp).
+    std::vector<std::shared_ptr<const CollisionShape>> shapes;
 
     explicit WorldState(const WorldSettings &s) : settings(s) {}
 

@@ -35,6 +35,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -262,6 +263,22 @@ public:
     /// Total kinetic energy of the dynamic bodies, J, >= 0; infinite only when it exceeds
     /// the largest double (about 1.8e308 J).
     real kineticEnergy() const;
+
+    // --- Saved states (rollback) --------------------------------------------------------
+
+    /// Everything the next step reads, as bytes: the bodies' poses, velocities, pending
+    /// forces and sleep states, the contacts and their warm-start impulses, the joints,
+    /// springs, sensor overlaps, the broadphase's trees and the id generations. Shapes are
+    /// not copied: a state names them by the order of the addBody calls, so it can be
+    /// restored in this World or in another built by the same calls. Settings are not part
+    /// of it. See docs/rollback.md for its size.
+    std::vector<std::uint8_t> saveState() const;
+    /// Puts the World back in `state` (from saveState() of this World or of one built by the
+    /// same calls): stepping on gives the same bits as the saving World did. Bodies, joints
+    /// and springs added since are gone, those removed are back with the same ids; the
+    /// events of the last step are cleared. Throws InvalidArgument, changing nothing, on a
+    /// damaged state (its checksum fails) or one of another World (other shapes).
+    void restoreState(const std::vector<std::uint8_t> &state);
 
     // --- Events -------------------------------------------------------------------------
 

@@ -1,0 +1,221 @@
+// World::saveState and World::restoreState: a restored World steps on bit for bit as the
+// World that saved did (or one that never saved), in itself or in a second World built by
+// the same calls; foreign and damaged states are refused and change nothing.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "cyclone/world.h"
+#include "mixed_pile.h"
+
+namespace cyclone::test {
+namespace {
+
+constexpr real kDt = 1.0 / 60;
+constexpr int kSaveStep = 100;
+constexpr int kAfter = 150;
+
+// A mixed pile (every shape pair, contacts and sleep), a chain of three boxes hanging
+// from a static beam by hinges and balls (joints), a spring pulling a sphere, and a row
+// of boxes added asleep beside the pile that the chain's swing does not reach: joints,
+// contacts, sleeping and waking bodies in one World.
+struct RollbackScene {
+    World world;
+    std::vector<BodyId> ids;
+    std::vector<JointId> joints;
+
+    explicit RollbackScene(int threads) : world(settingsWith(threads)) {
+        ids = addMixedPile(world, 4, 2);
+        BodySettings beam;
+        beam.isStatic = true;
+        beam.shape = Shape::box(Vector3(0.5, 0.1, 0.1));
+        beam.position = Vector3(0, 5, 4);
+        const BodyId top = world.addBody(beam);
+        BodyId previous = top;
+        for (int k = 0; k < 3; ++k) {
+            BodySettings link;
+            link.shape = Shape::box(Vector3(0.1, 0.3, 0.1));
+            link.position = Vector3(0.4 * (k + 1), 5, 4);  // level with the beam: the chain swings down
+            link.orientation = Quaternion(Eigen::AngleAxis<real>(1.5707963267948966, Vector3::UnitZ()));
+            const BodyId id = world.addBody(link);
+            JointSettings joint;
+            joint.type = k == 0 ? JointType::Hinge : JointType::Ball;
+            joint.a = previous == top ? id : previous;
+            joint.b = previous == top ? top : id;
+            joint.anchor = Vector3(0.4 * k + 0.2, 5, 4);
+            joint.axis = Vector3::UnitZ();
+            joints.push_back(world.addJoint(joint));
+            ids.push_back(id);
+            previous = id;
+        }
+        BodySettings ball;
+        ball.shape = Shape::sphere(0.2);
+        ball.position = Vector3(-3, 3, 4);
+        const BodyId ballId = world.addBody(ball);
+        ids.push_back(ballId);
+        SpringSettings spring;
+        spring.a = ballId;
+        spring.bPoint = Vector3(-3, 5, 4);
+        spring.stiffness = 40;
+        spring.restLength = 1;
+        world.addSpring(spring);
+        for (int k = 0; k < 4; ++k) {
+            BodySettings sleeper;
+            sleeper.shape = Shape::box(Vector3(0.2, 0.2, 0.2));
+            sleeper.position = Vector3(-3 + 0.5 * k, 0.2, -4);
+            sleeper.awake = false;
+            ids.push_back(world.addBody(sleeper));
+        }
+    }
+
+    static WorldSettings settingsWith(int threads) {
+        WorldSettings s;
+        s.threads = threads;
+        return s;
+    }
+
+    void run(int steps) {
+        for (int i = 0; i < steps; ++i) world.step(kDt);
+    }
+};
+
+// Every dynamic quantity of the listed bodies, as bits.
+std::vector<std::uint8_t> stateBits(const World &world, const std::vector<BodyId> &ids) {
+    std::vector<std::uint8_t> bits;
+    const auto add = [&](const real *data, int n) {
+        const auto *b = reinterpret_cast<const std::uint8_t *>(data);
+        bits.insert(bits.end(), b, b + n * sizeof(real));
+    };
+    for (BodyId id : ids) {
+        const RigidBody &b = world.body(id);
+        const Vector3 p = b.getPosition(), v = b.getVelocity(), w = b.getRotation();
+        const Quaternion q = b.getOrientation();
+        add(p.data(), 3);
+        add(v.data(), 3);
+        add(w.data(), 3);
+        add(q.coeffs().data(), 4);
+        bits.push_back(b.getAwake());
+    }
+    return bits;
+}
+
+// The states after each of `steps` steps.
+std::vector<std::vector<std::uint8_t>> trajectory(RollbackScene &scene, int steps) {
+    std::vector<std::vector<std::uint8_t>> states;
+    for (int i = 0; i < steps; ++i) {
+        scene.world.step(kDt);
+        states.push_back(stateBits(scene.world, scene.ids));
+    }
+    return states;
+}
+
+::testing::AssertionResult sameTrajectory(const std::vector<std::vector<std::uint8_t>> &got,
+                                          const std::vector<std::vector<std::uint8_t>> &expected) {
+    if (got.size() != expected.size()) return ::testing::AssertionFailure() << "lengths differ";
+    for (std::size_t i = 0; i < got.size(); ++i)
+        if (got[i] != expected[i]) return ::testing::AssertionFailure() << "differs after step " << i + 1 << " of the run on";
+    return ::testing::AssertionSuccess();
+}
+
+class WorldState : public ::testing::TestWithParam<int> {
+protected:
+    // The run of a World that never saves: steps kSaveStep + 1 to kSaveStep + kAfter.
+    std::vector<std::vector<std::uint8_t>> reference() {
+        RollbackScene scene(GetParam());
+        scene.run(kSaveStep);
+        return trajectory(scene, kAfter);
+    }
+};
+
+TEST_P(WorldState, RestoredRunIsBitIdenticalToOneThatNeverSaved) {
+    const auto expected = reference();
+    RollbackScene scene(GetParam());
+    scene.run(kSaveStep);
+    const std::vector<std::uint8_t> state = scene.world.saveState();
+    // Saving changes nothing.
+    ASSERT_TRUE(sameTrajectory(trajectory(scene, kAfter), expected));
+    scene.world.restoreState(state);
+    ASSERT_TRUE(sameTrajectory(trajectory(scene, kAfter), expected));
+    // The scene has what the state must carry at the save: joints, contacts, sleepers.
+    RollbackScene probe(GetParam());
+    probe.run(kSaveStep);
+    EXPECT_GT(probe.world.stats().contacts, 20);
+    int asleep = 0;
+    for (BodyId id : probe.ids) asleep += !probe.world.body(id).getAwake();
+    EXPECT_GT(asleep, 0);
+    EXPECT_TRUE(probe.world.contains(probe.joints[2]));
+}
+
+TEST_P(WorldState, SecondWorldBuiltTheSameWayRunsOnTheSame) {
+    const auto expected = reference();
+    RollbackScene first(GetParam());
+    first.run(kSaveStep);
+    const std::vector<std::uint8_t> state = first.world.saveState();
+    RollbackScene second(GetParam());  // built by the same calls, never stepped
+    second.world.restoreState(state);
+    ASSERT_TRUE(sameTrajectory(trajectory(second, kAfter), expected));
+}
+
+TEST_P(WorldState, BodyAddedAfterTheSaveIsGoneAndRemovedOneIsBack) {
+    const auto expected = reference();
+    RollbackScene scene(GetParam());
+    scene.run(kSaveStep);
+    const std::vector<std::uint8_t> state = scene.world.saveState();
+    BodySettings falling;
+    falling.shape = Shape::box(Vector3(0.3, 0.3, 0.3));
+    falling.position = Vector3(0, 4, 0);
+    const BodyId added = scene.world.addBody(falling);
+    const BodyId removed = scene.ids[3];
+    scene.world.removeBody(removed);
+    scene.world.removeJoint(scene.joints[1]);
+    scene.run(40);
+    scene.world.restoreState(state);
+    EXPECT_FALSE(scene.world.contains(added));
+    EXPECT_TRUE(scene.world.contains(removed));
+    EXPECT_TRUE(scene.world.contains(scene.joints[1]));
+    EXPECT_EQ(scene.world.bodyCount(), scene.ids.size() + 6);  // the plane, four walls and the beam
+    ASSERT_TRUE(sameTrajectory(trajectory(scene, kAfter), expected));
+}
+
+// A World built by other calls (another shape) refuses the state and is unchanged.
+TEST_P(WorldState, ForeignStateIsRefusedAndChangesNothing) {
+    RollbackScene scene(GetParam());
+    scene.run(kSaveStep);
+    const std::vector<std::uint8_t> state = scene.world.saveState();
+    World other(RollbackScene::settingsWith(GetParam()));
+    addMixedPile(other, 3, 2);
+    other.step(kDt);
+    const std::vector<std::uint8_t> before = other.saveState();
+    EXPECT_THROW(other.restoreState(state), InvalidArgument);
+    EXPECT_EQ(other.saveState(), before);
+    try {
+        other.restoreState(state);
+    } catch (const InvalidArgument &e) {
+        EXPECT_EQ(e.function(), "World::restoreState");
+        EXPECT_EQ(e.field(), "state");
+    }
+}
+
+// A flipped byte anywhere (header or payload) or a cut-short state is refused, and the
+// World is unchanged.
+TEST_P(WorldState, DamagedStateIsRefusedAndChangesNothing) {
+    RollbackScene scene(GetParam());
+    scene.run(kSaveStep);
+    const std::vector<std::uint8_t> state = scene.world.saveState();
+    scene.run(10);
+    const std::vector<std::uint8_t> before = scene.world.saveState();
+    for (std::size_t at : {std::size_t(2), std::size_t(20), state.size() / 2, state.size() - 1}) {
+        std::vector<std::uint8_t> damaged = state;
+        damaged[at] ^= 0x10;
+        EXPECT_THROW(scene.world.restoreState(damaged), InvalidArgument) << "byte " << at;
+    }
+    std::vector<std::uint8_t> cut(state.begin(), state.end() - 8);
+    EXPECT_THROW(scene.world.restoreState(cut), InvalidArgument);
+    EXPECT_THROW(scene.world.restoreState({}), InvalidArgument);
+    EXPECT_EQ(scene.world.saveState(), before);
+}
+
+INSTANTIATE_TEST_SUITE_P(Threads, WorldState, ::testing::Values(1, 2));
+
+}  // namespace
+}  // namespace cyclone::test
