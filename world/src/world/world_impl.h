@@ -48,6 +48,9 @@ struct WorldState {
     StepStats stats;
     std::uint64_t stepCount = 0;
     StepPlan plan;  ///< This step's sub-steps and velocity passes (dynamics/step_plan.h).
+    /// Calls of the World's non-const members so far (World::State counts them): a
+    /// callback that must only read is refused when this changed while it ran.
+    std::uint64_t changingCalls = 0;
 
     explicit WorldState(const WorldSettings &s) : settings(s) {}
 
