@@ -58,10 +58,15 @@ TEST(HostileContacts, SpheresSpawnedAtOnePointStayOnAThinFloor) {
     std::vector<BodyId> spheres;
     for (int i = 0; i < 30; ++i) spheres.push_back(f.sphere(Vector3(0, 0.2, 0), 0.2));
     f.simulate(5.0);
+    std::vector<real> xs;
     for (BodyId id : spheres) {
         EXPECT_GT(f.position(id).y(), 0.19);
         EXPECT_LT(f.position(id).y(), 0.4);
+        xs.push_back(f.position(id).x());
     }
+    // Apart: neighbours along the row touch, their centres 2 r = 0.4 m apart (less 1 cm).
+    std::sort(xs.begin(), xs.end());
+    for (std::size_t k = 1; k < xs.size(); ++k) EXPECT_GT(xs[k] - xs[k - 1], 0.39) << "spheres " << k - 1 << ", " << k;
 }
 
 }  // namespace
