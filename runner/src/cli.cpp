@@ -49,7 +49,7 @@ const char *const kHelpText =
     "\n"
     "Options of run and report (also as --option=VALUE):\n"
     "  --steps N           steps to take, 0..100000000; overrides settings.steps (default 600)\n"
-    "  --dt S              fixed step in seconds, in (0, 1]; overrides settings.dt\n"
+    "  --dt S              fixed step in seconds, in [1e-06, 1]; overrides settings.dt\n"
     "                      (default 1/60)\n"
     "  --summary OUT.json  write the run's summary (JSON): scene, steps, dt, wall_seconds,\n"
     "                      step_ms, metrics, the final state of every body\n"
@@ -105,8 +105,8 @@ double parseStep(const std::string &flag, const std::string &text) {
     char *end = nullptr;
     errno = 0;
     const double value = text.empty() ? 0 : std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !(value > 0 && value <= kMaxStep)) {
-        usage(flag + " needs a finite number of seconds in (0, 1] (kMaxStep), got '" + text + "'");
+    if (text.empty() || *end != '\0' || !(value >= kMinStep && value <= kMaxStep)) {
+        usage(flag + " needs a finite number of seconds in [1e-06, 1] (kMinStep, kMaxStep), got '" + text + "'");
     }
     return value;
 }

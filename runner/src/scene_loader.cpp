@@ -149,6 +149,7 @@ WorldSettings readSettings(const json &value, const std::string &path, Scene &sc
     readOptional(value, path, "dt", scene.dt, [](const json &v, const std::string &p) {
         const real dt = readNumber(v, p, Range::Positive);
         if (dt > kMaxStep) fail(p, "must be at most 1 s (kMaxStep; a longer step lets a resting stack slide apart), got " + describe(v));
+        if (dt < kMinStep) fail(p, "must be at least 1e-06 s (kMinStep; the step divides by it), got " + describe(v));
         return dt;
     });
     readOptional(value, path, "steps", scene.steps, [](const json &v, const std::string &p) { return readInteger(v, p, 0, kMaxSteps); });

@@ -175,10 +175,17 @@ TEST(Manifold, CollideAppendsAndCountsWhatItAppended) {
     EXPECT_EQ(out[2].count, 4);
 }
 
-TEST(Manifold, ConcentricSpheresGiveNoNormalAndNoManifold) {
-    // FCL's normal between coincident centres has no direction: dropped, no NaN leaks.
+TEST(Manifold, ConcentricSpheresArePushedApartSideways) {
+    // Coincident centres have no line between them: the normal is +x (sideways), and the
+    // depth the sum of the radii, 0.5 + 0.3 = 0.8 m (the overlap along any direction).
     const std::vector<Manifold> out = collide(Shape::sphere(0.5), Matrix4::Identity(), Shape::sphere(0.3), Matrix4::Identity());
-    for (const Manifold &m : out) EXPECT_TRUE(m.normal.allFinite());
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_EQ(out[0].normal, Vector3::UnitX());
+    EXPECT_NEAR(out[0].points[0].depth, 0.8, 1e-15);
+    // 1e-200 m apart along z: that direction still (it does not underflow to none).
+    const std::vector<Manifold> apart = collide(Shape::sphere(0.5), Matrix4::Identity(), Shape::sphere(0.3), pose(Vector3(0, 0, 1e-200)));
+    ASSERT_EQ(apart.size(), 1u);
+    EXPECT_EQ(apart[0].normal, Vector3::UnitZ());
 }
 
 TEST(Manifold, SharedShapeBetweenTwoBodies) {

@@ -374,6 +374,115 @@ TEST(Fuzz, HundredsOfMutatedScenesThroughTheExecutable) {
     EXPECT_GT(counts[2], 0);
 }
 
+// Scenes of the kinds the third hostile campaign built (issue 61), with drawn sizes and
+// counts: ropes of light beads holding a heavy ball (ball or distance joints, mass ratios
+// up to 1:10,000), bodies spawned at one point on a box, mesh or plane floor, thin rods and
+// needles, compounds with children far out, and steps near and below the shortest. Each
+// runs or is refused with one located line; nothing crashes.
+json floorOf(int kind) {
+    if (kind == 0) return {{"name", "floor"}, {"static", true}, {"shape", {{"type", "box"}, {"half_extents", {20, 0.1, 20}}}},
+                           {"position", {0, -0.1, 0}}};
+    if (kind == 1)
+        return {{"name", "floor"}, {"static", true},
+                {"shape", {{"type", "mesh"}, {"vertices", {{-20, 0, -20}, {20, 0, -20}, {20, 0, 20}, {-20, 0, 20}}},
+                           {"triangles", {{0, 2, 1}, {0, 3, 2}}}}}};
+    return {{"name", "floor"}, {"static", true}, {"shape", {{"type", "plane"}, {"normal", {0, 1, 0}}, {"offset", 0}}}};
+}
+
+json roundShape(Draw &draw, double size) {
+    switch (draw.below(4)) {
+    case 0: return {{"type", "sphere"}, {"radius", size}};
+    case 1: return {{"type", "capsule"}, {"radius", size}, {"length", 3 * size}};
+    case 2: return {{"type", "cylinder"}, {"radius", size}, {"length", 3 * size}};
+    default:
+        return {{"type", "compound"},
+                {"children", {{{"shape", {{"type", "box"}, {"half_extents", {size, size / 2, size / 2}}}}, {"position", {0, 0, 0}}},
+                              {{"shape", {{"type", "sphere"}, {"radius", size / 2}}}, {"position", {size, 0, 0}}}}}};
+    }
+}
+
+json rope(Draw &draw) {
+    const double ratios[] = {1, 100, 1000, 10000};
+    const int beads = 2 + static_cast<int>(draw.below(19));
+    const double gap = 0.25;
+    json bodies = json::array(), joints = json::array();
+    const bool distance = draw.chance(50);
+    for (int i = 0; i <= beads; ++i) {
+        const bool ball = i == beads;
+        bodies.push_back({{"name", "b" + std::to_string(i)}, {"mass", ball ? 0.1 * ratios[draw.below(4)] : 0.1},
+                          {"shape", {{"type", "sphere"}, {"radius", ball ? 0.2 : 0.05}}},
+                          {"position", {gap * (i + 1), 5, 0}}});
+        json joint = {{"name", "j" + std::to_string(i)}, {"type", distance ? "distance" : "ball"},
+                      {"a", "b" + std::to_string(i)}, {"b", i == 0 ? json(nullptr) : json("b" + std::to_string(i - 1))},
+                      {"anchor", {gap * (i + 1), 5, 0}}};
+        if (distance) joint["anchor_b"] = {gap * i, 5, 0};
+        joints.push_back(joint);
+    }
+    return {{"bodies", bodies}, {"joints", joints}};
+}
+
+json onePointSpawn(Draw &draw) {
+    const int count = 2 + static_cast<int>(draw.below(30));
+    const double size = 0.1 + 0.1 * static_cast<double>(draw.below(3));
+    json shape = roundShape(draw, size);
+    json bodies = json::array({floorOf(static_cast<int>(draw.below(3)))});
+    for (int i = 0; i < count; ++i)
+        bodies.push_back({{"name", "s" + std::to_string(i)}, {"shape", shape}, {"position", {0, size, 0}}});
+    return {{"bodies", bodies}};
+}
+
+json thinShape(Draw &draw) {
+    const double radii[] = {1e-4, 5e-4, 1e-3, 2e-3, 1e-2};
+    const double r = radii[draw.below(5)];
+    json shape = draw.chance(50) ? json{{"type", "cylinder"}, {"radius", r}, {"length", 0.7}}
+                                 : json{{"type", "box"}, {"half_extents", {r, 0.35, r}}};
+    return {{"bodies", {floorOf(static_cast<int>(draw.below(3))),
+                        {{"name", "rod"}, {"mass", 0.1}, {"shape", shape}, {"position", {0, 0.6, 0}},
+                         {"orientation", {0.7071067811865476, 0.7071067811865476, 0, 0}}}}}};
+}
+
+json farChildren(Draw &draw) {
+    const double far[] = {1e3, 1e11, 9e11, 1e12, 2e12, 1e300};
+    const double frame[] = {0, 9e11, -5e11};
+    json children = {{{"shape", {{"type", "sphere"}, {"radius", 1}}}, {"position", {0, 0, 0}}},
+                     {{"shape", {{"type", "box"}, {"half_extents", {1, 1, 1}}}}, {"position", {far[draw.below(6)], 0, 0}}}};
+    return {{"bodies", {floorOf(2), {{"name", "c"}, {"shape", {{"type", "compound"}, {"children", children}}},
+                                    {"position", {frame[draw.below(3)], 2, 0}}}}}};
+}
+
+TEST(Fuzz, HostileSceneKinds) {
+    constexpr int kScenes = 120 / kScale;
+    const double steps[] = {5e-324, 1e-310, 1e-7, 1e-6, 1e-3, 1.0 / 60};
+    Draw draw(0x61);
+    std::map<int, int> counts;
+    Invocation invocation;
+    invocation.command = Invocation::Command::Run;
+    invocation.scene = "kind.json";
+    invocation.steps = 30;
+    invocation.quiet = true;
+    for (int i = 0; i < kScenes; ++i) {
+        json scene;
+        switch (i % 4) {
+        case 0: scene = rope(draw); break;
+        case 1: scene = onePointSpawn(draw); break;
+        case 2: scene = thinShape(draw); break;
+        default: scene = farChildren(draw); break;
+        }
+        if (draw.chance(25)) scene["settings"] = {{"dt", steps[draw.below(std::size(steps))]}};
+        const std::string text = scene.dump();
+        std::ostringstream out, err;
+        const int status = runSceneText(text, invocation, out, err, false);
+        ++counts[status];
+        ASSERT_TRUE(status == 0 || status == 2 || status == 3) << status << " for:\n" << text;
+        if (status == 2) {
+            ASSERT_TRUE(locatedRefusal(err.str(), "kind.json")) << "for:\n" << text;
+        }
+    }
+    std::cout << "[ fuzz     ] " << kScenes << " hostile scene kinds:" << countsText(counts) << "\n";
+    EXPECT_GT(counts[0], 0);
+    EXPECT_GT(counts[2], 0);
+}
+
 // Inputs no mutation of a scene would reach.
 TEST(Fuzz, PathologicalDocuments) {
     Invocation invocation;

@@ -332,7 +332,7 @@ const UsageCase kUsage[] = {
     {"ZeroDt", {"run", "SCENE", "--dt", "0"}, "--dt needs a finite number"},
     {"NanDt", {"run", "SCENE", "--dt=nan"}, "--dt needs a finite number"},
     {"InfiniteDt", {"run", "SCENE", "--dt", "inf"}, "--dt needs a finite number"},
-    {"LongDt", {"run", "SCENE", "--dt", "1.5"}, "--dt needs a finite number of seconds in (0, 1]"},
+    {"LongDt", {"run", "SCENE", "--dt", "1.5"}, "--dt needs a finite number of seconds in [1e-06, 1]"},
     {"GivenTwice", {"run", "SCENE", "--steps", "1", "--steps", "2"}, "given twice"},
     {"SameOutputTwice", {"run", "SCENE", "--summary", "x", "--trace", "x"}, "same file"},
 };

@@ -17,6 +17,7 @@
 #include "collision/convex_hull.h"
 #include "collision/mesh_features.h"
 #include "cyclone/world/error.h"
+#include "cyclone/world/settings.h"
 
 namespace cyclone::detail {
 namespace {
@@ -244,6 +245,10 @@ void compileCompound(const Shape &shape, CollisionShape &c) {
         } catch (const InvalidArgument &e) {
             refuse(field + "." + e.field(), e.problem());
         }
+        const real reach = child.position.stableNorm() + compiled->boundingRadius();
+        if (!(reach <= kMaxCoordinate))
+            refuse(field + ".position", "puts the child " + str(reach) +
+                                            " m from the compound's frame; every child must be within 1e12 m of it");
         const real length = child.orientation.norm();
         const Quaternion q = length > 0 ? Quaternion(child.orientation.coeffs() / length) : Quaternion::Identity();
         CompoundPart part;

@@ -14,9 +14,47 @@ namespace {
 
 constexpr real kPi = 3.14159265358979323846;
 
+// The game's DebugDraw, checked after each call: a DebugDraw must only read the World,
+// and one that changed it (removed a body, stepped) has pulled the records and contacts
+// being drawn from under the walk, so the walk stops before touching them again.
+class CheckedDraw {
+public:
+    CheckedDraw(DebugDraw &draw, const detail::WorldState &world)
+        : draw_(draw), world_(world), calls_(world.changingCalls) {}
+    void line(const Vector3 &from, const Vector3 &to, const DebugColor &color) {
+        draw_.line(from, to, color);
+        check();
+    }
+    void box(const Matrix4 &pose, const Vector3 &halfExtents, const DebugColor &color) {
+        draw_.box(pose, halfExtents, color);
+        check();
+    }
+    void circle(const Vector3 &centre, const Vector3 &normal, real radius, int segments, const DebugColor &color) {
+        draw_.circle(centre, normal, radius, segments, color);
+        check();
+    }
+    void contact(const Vector3 &point, const Vector3 &normal, real depth, real normalLength,
+                 const DebugColor &pointColor, const DebugColor &normalColor) {
+        draw_.contact(point, normal, depth, normalLength, pointColor, normalColor);
+        check();
+    }
+
+private:
+    void check() const {
+        if (world_.changingCalls != calls_)
+            detail::refuse("World::debugDraw", "draw",
+                           "changed the world while drawing (called a World member that changes it, such as "
+                           "removeBody or step); a DebugDraw must only read");
+    }
+    DebugDraw &draw_;
+    const detail::WorldState &world_;
+    const std::uint64_t calls_;
+};
+
 // The points of an arc of `radius` around `centre`, from angle `from` to `to` (rad) in
 // the plane spanned by the unit vectors u and v, as `segments` lines.
-void arc(DebugDraw &draw, const Vector3 &centre, const Vector3 &u, const Vector3 &v, real radius, real from, real to,
+template <class Draw>
+void arc(Draw &draw, const Vector3 &centre, const Vector3 &u, const Vector3 &v, real radius, real from, real to,
          int segments, const DebugColor &color) {
     Vector3 previous = centre + radius * (std::cos(from) * u + std::sin(from) * v);
     for (int i = 1; i <= segments; ++i) {
@@ -27,7 +65,7 @@ void arc(DebugDraw &draw, const Vector3 &centre, const Vector3 &u, const Vector3
     }
 }
 
-void drawShape(DebugDraw &draw, const detail::CollisionShape &shape, const Matrix4 &pose,
+void drawShape(CheckedDraw &draw, const detail::CollisionShape &shape, const Matrix4 &pose,
                const DebugDrawOptions &options, const DebugColor &color) {
     const Shape &s = shape.shape();
     const Matrix3 rotation = pose.linear();
@@ -152,9 +190,10 @@ void DebugDraw::contact(const Vector3 &point, const Vector3 &normal, real, real 
     line(point, point + normalLength * normal, normalColor);
 }
 
-void World::debugDraw(DebugDraw &draw, const DebugDrawOptions &options) const {
+void World::debugDraw(DebugDraw &game, const DebugDrawOptions &options) const {
     validate(options);
     const Impl &w = *impl_;
+    CheckedDraw draw(game, w);
     for (std::uint32_t index : w.bodies.order) {
         const BodyRecord &r = w.bodies[index];
         const bool isStatic = r.immovable && !r.kinematic;  // a kinematic body is drawn awake while it moves

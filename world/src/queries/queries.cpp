@@ -103,6 +103,31 @@ Quaternion unitOrIdentity(const Quaternion &q) {
     return length > 0 ? Quaternion(q.coeffs() / length) : Quaternion::Identity();
 }
 
+// A query shape compiled and placed as World::addBody places a body (a compound by its
+// frame), refused as addBody refuses one: a size or a place beyond the coordinate range.
+struct PlacedShape {
+    std::shared_ptr<const detail::CollisionShape> shape;
+    Matrix4 pose = Matrix4::Identity();
+};
+
+PlacedShape placeQueryShape(const char *function, const Shape &shape, const Vector3 &position,
+                            const Quaternion &orientation) {
+    PlacedShape placed;
+    try {
+        placed.shape = detail::compileShape(shape);
+    } catch (const InvalidArgument &e) {
+        throw InvalidArgument(function, e.field(), e.problem());
+    }
+    const real radius = placed.shape->boundingRadius();
+    if (!(radius <= detail::kMaxCoordinate))
+        detail::refuse(function, "shape",
+                       "must fit within 1e12 m of its origin, got a shape reaching " + detail::show(radius) + " m from it");
+    placed.pose.linear() = unitOrIdentity(orientation).toRotationMatrix();
+    placed.pose.translation() = position + placed.pose.linear() * placed.shape->frameToCentre();
+    detail::requireReach(function, "position", placed.pose.translation(), radius);
+    return placed;
+}
+
 }  // namespace
 
 bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter) const {
@@ -115,12 +140,14 @@ bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter)
     if (!filter.accept) return true;
     // The query walks the broadphase trees and the body records: an accept() that adds,
     // removes or moves a body pulls them from under the walk (QueryFilter forbids it).
-    const std::uint64_t changes = broadphase.changes();
+    const std::uint64_t changes = broadphase.changes(), calls = changingCalls;
     const std::size_t records = bodies.size(), live = bodies.order.size();
     const bool accepted = filter.accept(id);
-    if (broadphase.changes() != changes || bodies.size() != records || bodies.order.size() != live)
-        refuse("World query", "filter.accept", "changed the world during the query (a body was added, removed, moved "
-                                               "or woken); a QueryFilter::accept must only read");
+    if (broadphase.changes() != changes || changingCalls != calls || bodies.size() != records ||
+        bodies.order.size() != live)
+        refuse("World query", "filter.accept", "changed the world during the query (called a World member that "
+                                               "changes it, such as removeBody or step); a QueryFilter::accept must "
+                                               "only read");
     return accepted;
 }
 
@@ -155,19 +182,11 @@ std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Qu
     detail::requireFinite(function, "orientation", orientation);
     if (shape.type == ShapeType::Plane)
         detail::refuse(function, "shape.type", "\"plane\" is unbounded and cannot be a query shape");
-    std::shared_ptr<const detail::CollisionShape> compiled;
-    try {
-        compiled = detail::compileShape(shape);
-    } catch (const InvalidArgument &e) {
-        throw InvalidArgument(function, e.field(), e.problem());
-    }
+    const PlacedShape placed = placeQueryShape(function, shape, position, orientation);
+    const std::shared_ptr<const detail::CollisionShape> &compiled = placed.shape;
+    const Matrix4 &pose = placed.pose;
     out.clear();
 
-    Matrix4 pose = Matrix4::Identity();
-    pose.linear() = unitOrIdentity(orientation).toRotationMatrix();
-    pose.translation() = position;
-    // A compound query shape is placed by its frame, as a body is.
-    pose.translation() += pose.linear() * compiled->frameToCentre();
     const fcl::CollisionObjectd query(compiled->geometry(), pose);
     const auto test = [&](std::uint32_t index) {
         if (!w.accepts(index, filter)) return;
@@ -193,15 +212,10 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
     if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh)
         detail::refuse(function, "shape.type",
                        std::string("\"") + shapeTypeName(shape.type) + "\" cannot be cast; cast a solid shape");
-    std::shared_ptr<const detail::CollisionShape> compiled;
-    try {
-        compiled = detail::compileShape(shape);
-    } catch (const InvalidArgument &e) {
-        throw InvalidArgument(function, e.field(), e.problem());
-    }
-    Matrix4 start = Matrix4::Identity();
-    start.linear() = unitOrIdentity(orientation).toRotationMatrix();
-    start.translation() = position + start.linear() * compiled->frameToCentre();
+    const PlacedShape placed = placeQueryShape(function, shape, position, orientation);
+    const std::shared_ptr<const detail::CollisionShape> &compiled = placed.shape;
+    const Matrix4 &start = placed.pose;
+    detail::requireReach(function, "translation", start.translation() + translation, compiled->boundingRadius());
 
     // Every body whose box meets the box swept by the shape's.
     const fcl::CollisionObjectd query(compiled->geometry(), start);

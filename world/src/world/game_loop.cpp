@@ -15,8 +15,9 @@ namespace {
 constexpr real kStepTolerance = 1e-9;
 
 void validate(const char *function, const FixedStepSettings &s) {
-    if (!(std::isfinite(s.stepSeconds) && s.stepSeconds > 0 && s.stepSeconds <= kMaxStep))
-        detail::refuse(function, "stepSeconds", "must be finite and in (0, 1], got " + detail::show(s.stepSeconds));
+    if (!(s.stepSeconds >= kMinStep && s.stepSeconds <= kMaxStep))
+        detail::refuse(function, "stepSeconds",
+                       "must be finite and in [1e-06, 1] s (kMinStep, kMaxStep), got " + detail::show(s.stepSeconds));
     if (s.maxStepsPerFrame < 1 || s.maxStepsPerFrame > 1000)
         detail::refuse(function, "maxStepsPerFrame",
                        "must be in [1, 1000], got " + std::to_string(s.maxStepsPerFrame));
@@ -39,9 +40,9 @@ void FixedStepper::setSettings(const FixedStepSettings &settings) {
 }
 
 int FixedStepper::plan(real frameSeconds) {
-    if (!(std::isfinite(frameSeconds) && frameSeconds >= 0))
+    if (!(frameSeconds >= 0 && frameSeconds <= kMaxFrameSeconds))
         detail::refuse("FixedStepper::advance", "frameSeconds",
-                       "must be finite and >= 0, got " + detail::show(frameSeconds));
+                       "must be finite and in [0, 1e9] s (kMaxFrameSeconds), got " + detail::show(frameSeconds));
     const real step = settings_.stepSeconds;
     const real total = accumulator_ + frameSeconds;
     // Capped before converting, so that a huge frame time cannot overflow the count.

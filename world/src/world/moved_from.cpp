@@ -1,4 +1,5 @@
-// What a call on a moved-from World does: throw, naming the misuse.
+// What a call on a moved-from World does: throw, naming the misuse; and the count of
+// calls that may change the World, which read-only callbacks are checked against.
 #include "world/validation.h"
 #include "world/world_impl.h"
 
@@ -12,6 +13,12 @@ World::State &World::State::operator=(State &&) noexcept = default;
 World::State &World::State::operator=(std::unique_ptr<Impl> impl) {
     impl_ = std::move(impl);
     return *this;
+}
+
+World::Impl *World::State::changing() {
+    Impl *impl = get();
+    ++impl->changingCalls;
+    return impl;
 }
 
 void World::State::throwMovedFrom() {

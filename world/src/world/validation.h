@@ -15,4 +15,15 @@ inline void requirePlace(const char *function, const char *field, const Vector3 
         refuse(function, field, "must be finite and within 1e12 m of the origin, got " + show(v));
 }
 
+/// Refuses a body or query shape of bounding radius `radius` (m, from `centre`) that
+/// reaches beyond kMaxCoordinate in some coordinate: where its far side lies is where its
+/// contacts are computed, and beyond the range they are lost.
+inline void requireReach(const char *function, const char *field, const Vector3 &centre, real radius) {
+    const real reach = centre.cwiseAbs().maxCoeff() + radius;
+    if (!(radius <= kMaxCoordinate && reach <= kMaxCoordinate))
+        refuse(function, field,
+               "puts part of the shape " + show(reach) + " m from the origin (its centre at " + show(centre) +
+                   ", its farthest point " + show(radius) + " m from it); every point must be within 1e12 m");
+}
+
 }  // namespace cyclone::detail

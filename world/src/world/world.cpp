@@ -200,11 +200,14 @@ BodyId World::addBody(const BodySettings &settings) {
         throw InvalidArgument(function, e.field(), e.problem());
     }
     if (!(shape->boundingRadius() <= detail::kMaxCoordinate))
-        detail::refuse(function, "shape", "must fit within 1e12 m of its origin");
+        detail::refuse(function, "shape", "must fit within 1e12 m of its origin, got a shape reaching " +
+                                              detail::show(shape->boundingRadius()) + " m from it");
     if (settings.layer < 0 || settings.layer > 31)
         detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
     RigidBody body = makeBody(function, settings, *shape, w.settings);
     if (shape->isCompound()) body.setPosition(body.getPosition() + detail::frameToCentre(body, *shape));
+    if (settings.shape.type != ShapeType::Plane)
+        detail::requireReach(function, "position", body.getPosition(), shape->boundingRadius());
 
     // Nothing below throws on user input: the world changes only from here on.
     std::uint32_t index;
@@ -374,6 +377,7 @@ void World::setPosition(BodyId id, const Vector3 &position) {
     detail::BodyRecord &r = w.bodies.changeableRecord(id, function);
     detail::requirePlace(function, "position", position);
     if (r.isPlane) detail::refuse(function, "id", "names a plane; planes are placed by their offset");
+    detail::requireReach(function, "position", position, r.boundingRadius);
     r.body.setPosition(position);
     w.refreshCollisionObject(id.index);
 }
@@ -587,10 +591,10 @@ void World::removeSpring(SpringId id) {
 // --- Stepping ---------------------------------------------------------------------------
 
 void World::step(real dt) {
-    if (!(dt > 0 && dt <= kMaxStep))
+    if (!(dt >= kMinStep && dt <= kMaxStep))
         detail::refuse("World::step", "dt",
-                       "must be finite and in (0, 1] s (kMaxStep; take a longer span as several steps), got " +
-                           detail::show(dt));
+                       "must be finite and in [1e-06, 1] s (kMinStep, kMaxStep; take a longer span as several "
+                       "steps), got " + detail::show(dt));
     impl_->step(dt, *this);
 }
 

@@ -53,6 +53,9 @@ struct WorldState {
     /// Every shape a body was added with, in the order of the calls (kept after the body is
     /// removed): a saved state names its bodies' shapes by place in it (snapshot/world_state_io.cpp).
     std::vector<std::shared_ptr<const CollisionShape>> shapes;
+    /// Calls of the World's non-const members so far (World::State counts them): a
+    /// callback that must only read is refused when this changed while it ran.
+    std::uint64_t changingCalls = 0;
 
     explicit WorldState(const WorldSettings &s) : settings(s) {}
 

@@ -27,9 +27,14 @@
 
 namespace cyclone {
 
+/// Longest frame FixedStepper::advance() takes, s (about 32 years). Why a bound: the time
+/// a frame drops is added to droppedSeconds(), and two frames of the largest double made
+/// it infinite; at 1e9 s a frame, it stays finite for 1e299 frames.
+inline constexpr real kMaxFrameSeconds = 1e9;
+
 /// Settings of a FixedStepper.
 struct FixedStepSettings {
-    /// Duration of one World::step(), s, finite, in (0, 1]. Every step has this size,
+    /// Duration of one World::step(), s, in [kMinStep, kMaxStep] = [1e-6, 1]. Every step has this size,
     /// which keeps the simulation stable and reproducible.
     real stepSeconds = real(1) / 60;
     /// Most steps run by one FixedStepper::advance(), in [1, 1000]. When a frame took
@@ -65,9 +70,9 @@ public:
     /// time is kept, capped below the new step size.
     void setSettings(const FixedStepSettings &settings);
 
-    /// Adds `frameSeconds` (the real time since the last frame, s, finite, >= 0) and runs
+    /// Adds `frameSeconds` (the real time since the last frame, s, in [0, kMaxFrameSeconds]) and runs
     /// the whole steps it completes, at most FixedStepSettings::maxStepsPerFrame. Returns
-    /// the number of steps run. Throws InvalidArgument on a negative or non-finite time
+    /// the number of steps run. Throws InvalidArgument on a time outside that range
     /// (nothing changes).
     int advance(real frameSeconds) {
         return advance(frameSeconds, [](real) {});

@@ -31,8 +31,9 @@ struct QueryFilter {
     std::optional<BodyId> ignore;
     /// When set, a body is considered only if this returns true for it. It is called
     /// only for bodies that pass the fields above and whose bounding box the query
-    /// reaches, before the exact test; it must not change the World: one that adds,
-    /// removes, moves or wakes a body makes the query throw InvalidArgument (field
+    /// reaches, before the exact test; it must not change the World: one that calls a
+    /// member of the World that may change it (addBody, removeBody, setVelocity, step,
+    /// any non-const one) makes the query throw InvalidArgument (field
     /// "filter.accept") as soon as it returns (the change itself stays made).
     std::function<bool(BodyId)> accept;
 };

@@ -240,6 +240,14 @@ inline constexpr real kMaxCoordinate = 1e12;
 /// long update into collision steps.
 inline constexpr real kMaxStep = 1;
 
+/// Shortest step World::step takes, s (FixedStepper's stepSeconds has the same bound).
+/// Why 1e-6 s: the step divides by its sub-step h = dt / substeps (velocities from
+/// position errors, speculative reach), and below about 1e-308 s that quotient is no
+/// longer a double (dt = 5e-324 made eleven ragdoll bodies non-finite in the first step).
+/// A microsecond is a thousand times shorter than any rate a game or a robot steps at
+/// and leaves twelve orders of magnitude of margin (docs/hostile_input.md).
+inline constexpr real kMinStep = 1e-6;
+
 /// Smallest mass of a dynamic body, kg; also the smallest principal moment of inertia
 /// over the squared bounding radius R (the farthest point of the shape from its origin).
 /// Why: a contact's effective inverse mass along a row is at most

@@ -80,7 +80,8 @@ public:
     /// Adds a body and returns its handle; throws InvalidArgument (nothing added) on a bad
     /// shape, mass, inertia or number, a plane or mesh on a dynamic or kinematic body
     /// (sensor or not),
-    /// `isStatic` with Motion::Kinematic, or a duplicate non-empty name. A kinematic body
+    /// `isStatic` with Motion::Kinematic, a shape any point of which (a compound's child
+    /// too) would lie beyond 1e12 m of the origin, or a duplicate non-empty name. A kinematic body
     /// added with a velocity or rotation moves from the first step. A dynamic body added awake (the default) is simulated from the
     /// next step; one added with `awake = false` sleeps until something wakes it.
     BodyId addBody(const BodySettings &settings);
@@ -254,7 +255,7 @@ public:
 
     // --- Stepping -----------------------------------------------------------------------
 
-    /// Advances the world by dt seconds (in (0, kMaxStep] = (0, 1]; 1/60 is typical). Use a fixed dt
+    /// Advances the world by dt seconds (in [kMinStep, kMaxStep] = [1e-6, 1]; 1/60 is typical). Use a fixed dt
     /// (FixedStepper does it for a game loop): results depend on it, and a fixed one
     /// keeps runs reproducible.
     void step(real dt);
@@ -304,7 +305,8 @@ public:
     /// by its frame), placed at `position` (m, finite, within 1e12 m of the origin) with
     /// `orientation` (finite; normalised; (0,0,0,0) means identity) and moved by
     /// `translation` (m, finite, not zero) without turning, touches, among those `filter`
-    /// accepts; none when it touches nothing on the way. The shapes are apart by at most
+    /// accepts; none when it touches nothing on the way. Validated as for addBody(): every
+    /// point of the shape, at the start and at the end, within 1e12 m of the origin. The shapes are apart by at most
     /// 0.1 mm, never overlapping, at the distance reported (conservative advancement on
     /// the GJK distance; planes exact). A body the shape overlaps at the start is hit at
     /// 0 only if the translation goes deeper into it; otherwise it is left out, so that a
@@ -318,7 +320,7 @@ public:
     /// (m, finite, within 1e12 m of the origin) with `orientation` (finite, normalised;
     /// (0,0,0,0) means identity), among those `filter` accepts, written into `out`
     /// (cleared first) in increasing BodyId::index. Returns how many. `shape` is
-    /// validated as for addBody(); a plane is refused (it is unbounded); a compound is
+    /// validated as for addBody() (every point within 1e12 m of the origin); a plane is refused (it is unbounded); a compound is
     /// placed by its frame. Tested exactly with FCL (a compound child by child).
     std::size_t overlap(const Shape &shape, const Vector3 &position, const Quaternion &orientation,
                         std::vector<BodyId> &out, const QueryFilter &filter = QueryFilter()) const;
@@ -328,7 +330,9 @@ public:
     /// Draws the world through `draw` as `options` asks (validated first: a bad option
     /// throws InvalidArgument before anything is drawn): shapes as wireframes coloured by
     /// state (awake, asleep, static, isolated), broadphase boxes, and the contact points
-    /// and normals of touching pairs.
+    /// and normals of touching pairs. A `draw` that calls a member of the World that may
+    /// change it (removeBody, step, any non-const one) makes debugDraw throw
+    /// InvalidArgument (field "draw") as soon as that call of `draw` returns; what it changed stays changed.
     void debugDraw(DebugDraw &draw, const DebugDrawOptions &options = DebugDrawOptions()) const;
 
 private:
@@ -344,12 +348,17 @@ private:
         State &operator=(std::unique_ptr<Impl> impl);
         Impl *operator->() const { return get(); }
         Impl &operator*() const { return *get(); }
+        /// The same for the World's non-const members, counted: a callback that must only
+        /// read (QueryFilter::accept, a DebugDraw) is refused once it made such a call.
+        Impl *operator->() { return changing(); }
+        Impl &operator*() { return *changing(); }
 
     private:
         Impl *get() const {
             if (!impl_) throwMovedFrom();
             return impl_.get();
         }
+        Impl *changing();
         [[noreturn]] static void throwMovedFrom();
         std::unique_ptr<Impl> impl_;
     };
