@@ -109,14 +109,14 @@ def ragdolls_scene():
 
 def servo_scene():
     door = {"name": "door", "shape": {"type": "box", "half_extents": [0.5, 1.0, 0.05]}, "mass": 10,
-            "position": [0.5, 1.0, 0]}
+            "position": [0.5, 1.2, 0]}
     cabin = {"name": "cabin", "shape": {"type": "box", "half_extents": [0.5, 0.1, 0.5]}, "mass": 50,
              "position": [3, 0.5, 0]}
     arm = {"name": "arm", "shape": {"type": "box", "half_extents": [0.5, 0.05, 0.05]}, "mass": 2,
            "position": [-2.5, 1.5, 0]}
     floor = {"name": "floor", "static": True, "shape": {"type": "plane", "normal": [0, 1, 0], "offset": 0}}
     joints = [
-        {"name": "door_hinge", "type": "hinge", "a": "door", "b": None, "anchor": [0, 1, 0], "axis": [0, 1, 0],
+        {"name": "door_hinge", "type": "hinge", "a": "door", "b": None, "anchor": [0, 1.2, 0], "axis": [0, 1, 0],
          "motor": {"target": 1.2, "frequency": 1.0, "damping_ratio": 1.0, "max_force": 200}},
         {"name": "lift", "type": "slider", "a": "cabin", "b": None, "anchor": [3, 0.5, 0], "axis": [0, 1, 0],
          "limits": [0, 3], "motor": {"target": 2.0, "frequency": 0.5, "damping_ratio": 1.0, "max_force": 2000}},
