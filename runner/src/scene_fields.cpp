@@ -28,8 +28,8 @@ const Names kChildFields = {"shape", "position", "orientation"};
 const Names kSpringFields = {"a", "a_point", "b", "b_point", "stiffness", "damping", "rest_length", "force"};
 const Names kJointFields = {"name", "type", "a", "b", "anchor", "anchor_b", "axis", "limits", "motor",
                                 "min_distance", "max_distance", "stiffness", "damping", "break_force",
-                                "collide_connected"};
-const Names kMotorFields = {"speed", "max_force"};
+                                "collide_connected", "swing_limit", "twist_limit", "normal"};
+const Names kMotorFields = {"speed", "max_force", "target", "frequency", "damping_ratio"};
 // The joint types without an axis: one given to them is ignored, and said so.
 const Names kJointTypesWithoutAxis = {"ball", "fixed", "distance"};
 
@@ -222,7 +222,9 @@ std::vector<SceneWarning> unknownFields(const json &document) {
         if (!joint.is_object()) return;
         if (joint.contains("motor")) checker.check(joint.at("motor"), memberPath(path, "motor"), kMotorFields);
         const auto type = joint.find("type");
-        if (joint.contains("axis") && type != joint.end() && type->is_string() && among(*type, kJointTypesWithoutAxis)) {
+        const bool limitedBall = joint.contains("swing_limit") || joint.contains("twist_limit");
+        if (joint.contains("axis") && type != joint.end() && type->is_string() && among(*type, kJointTypesWithoutAxis) &&
+            !(limitedBall && *type == "ball")) {
             checker.warnings.push_back({memberPath(path, "axis"), "ignored for a " + type->get<std::string>() +
                                                                       " joint (only hinge and slider joints have an axis)"});
         }

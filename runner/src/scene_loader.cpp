@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <utility>
 #include <unordered_map>
 
 #include "json_reading.h"
@@ -295,6 +296,70 @@ JointType readJointType(const json &value, const std::string &path) {
                    didYouMean(name, {"ball", "hinge", "fixed", "slider", "distance"}));
 }
 
+// A motor: {"speed", "max_force"}, or (v3) a servo's {"target", "frequency",
+// "damping_ratio", "max_force"}; both a speed and a target is an error.
+void readMotor(const json &motor, const std::string &path, JointSettings &s) {
+    expectObject(motor, path);
+    const real maxForce = readNumber(required(motor, path, "max_force"), memberPath(path, "max_force"), Range::NonNegative);
+    const json *target = member(motor, "target");
+    if (!target) {
+        for (const char *key : {"frequency", "damping_ratio"})
+            if (member(motor, key)) fail(memberPath(path, key), "only a servo (a motor with a \"target\") has it");
+        s.motor = JointMotor{readNumber(required(motor, path, "speed"), memberPath(path, "speed")), maxForce};
+        return;
+    }
+    if (member(motor, "speed"))
+        fail(memberPath(path, "speed"), "a motor has either a \"speed\" or a \"target\" (a servo), not both");
+    const std::string targetPath = memberPath(path, "target");
+    JointServo servo;
+    servo.target = readNumber(*target, targetPath);
+    if (s.type == JointType::Hinge && (servo.target < -M_PI || servo.target > M_PI))
+        fail(targetPath, "a hinge's target must be within [-pi, pi], got " + describe(*target));
+    servo.frequency = readNumber(required(motor, path, "frequency"), memberPath(path, "frequency"), Range::Positive);
+    servo.dampingRatio = readNumber(required(motor, path, "damping_ratio"), memberPath(path, "damping_ratio"), Range::NonNegative);
+    servo.maxForce = maxForce;
+    s.servo = servo;
+}
+
+// A ball joint's v3 limits: "swing_limit" [a, b] (each in (0, pi]) with "normal" (required
+// when a != b, perpendicular to the axis) and "twist_limit" [lo, hi] within [-pi, pi].
+void readBallLimits(const json &value, const std::string &path, JointSettings &s) {
+    const auto pairOf = [&](const json &pair, const std::string &pairPath) {
+        expectArray(pair, pairPath, 2);
+        if (pair.size() != 2) fail(pairPath, "must be two numbers, got " + describe(pair));
+        return std::pair(readNumber(pair[0], elementPath(pairPath, 0)), readNumber(pair[1], elementPath(pairPath, 1)));
+    };
+    const json *swing = member(value, "swing_limit");
+    const json *normal = member(value, "normal");
+    if (normal && !swing) fail(memberPath(path, "normal"), "only a ball joint with a \"swing_limit\" has it");
+    if (swing) {
+        const std::string swingPath = memberPath(path, "swing_limit");
+        const auto [a, b] = pairOf(*swing, swingPath);
+        for (int k = 0; k < 2; ++k) {
+            const real angle = k == 0 ? a : b;
+            if (!(angle > 0 && angle <= M_PI))
+                fail(elementPath(swingPath, static_cast<std::size_t>(k)),
+                     "must be in (0, pi], got " + describe((*swing)[static_cast<std::size_t>(k)]));
+        }
+        s.swingLimit = JointSwingLimit{a, b};
+        if (!normal && a != b) fail(swingPath, "a \"swing_limit\" whose two angles differ needs a \"normal\"");
+        if (normal) {
+            const std::string normalPath = memberPath(path, "normal");
+            const Vector3 n = readVector3(*normal, normalPath);
+            if (!(n.norm() > 1e-12)) fail(normalPath, "must not be zero, got " + describe(*normal));
+            if (std::abs(n.normalized().dot(s.axis.normalized())) > 1e-6)
+                fail(normalPath, "must be perpendicular to \"axis\", got " + describe(*normal));
+            s.normal = n;
+        }
+    }
+    if (const json *twist = member(value, "twist_limit")) {
+        const std::string twistPath = memberPath(path, "twist_limit");
+        const auto [lo, hi] = pairOf(*twist, twistPath);
+        if (!(-M_PI <= lo && lo <= hi && hi <= M_PI)) fail(twistPath, "must satisfy -pi <= lo <= hi <= pi, got " + describe(*twist));
+        s.twistLimit = JointLimits{lo, hi};
+    }
+}
+
 SceneJoint readJoint(const json &value, const std::string &path, const NameIndex &names) {
     expectObject(value, path);
     SceneJoint joint;
@@ -318,14 +383,19 @@ SceneJoint readJoint(const json &value, const std::string &path, const NameIndex
             fail(memberPath(path, key), std::string("only ") + types + " joints have it, not a " + jsonQuoted(typeName) + " joint");
     };
     onlyFor("anchor_b", distance, "distance");
+    const bool ball = s.type == JointType::Ball;
     onlyFor("limits", axial, "hinge and slider");
+    onlyFor("swing_limit", ball, "ball");
+    onlyFor("twist_limit", ball, "ball");
+    onlyFor("normal", ball, "ball");
     onlyFor("motor", axial, "hinge and slider");
     onlyFor("min_distance", distance, "distance");
     onlyFor("max_distance", distance, "distance");
     onlyFor("stiffness", distance, "distance");
     onlyFor("damping", distance, "distance");
     if (const json *anchorB = member(value, "anchor_b")) s.anchorB = readVector3(*anchorB, memberPath(path, "anchor_b"), Range::Length);
-    if (axial) {
+    const bool limitedBall = ball && (member(value, "swing_limit") || member(value, "twist_limit"));
+    if (axial || limitedBall) {
         const std::string axisPath = memberPath(path, "axis");
         s.axis = readVector3(required(value, path, "axis"), axisPath);
         if (!(s.axis.norm() > 1e-12)) fail(axisPath, "must not be zero, got " + describe(value.at("axis")));
@@ -342,14 +412,8 @@ SceneJoint readJoint(const json &value, const std::string &path, const NameIndex
             fail(limitsPath, "a hinge's angles must be within [-pi, pi], got " + describe(*limits));
         s.limits = l;
     }
-    if (const json *motor = member(value, "motor")) {
-        const std::string motorPath = memberPath(path, "motor");
-        expectObject(*motor, motorPath);
-        JointMotor m;
-        m.speed = readNumber(required(*motor, motorPath, "speed"), memberPath(motorPath, "speed"));
-        m.maxForce = readNumber(required(*motor, motorPath, "max_force"), memberPath(motorPath, "max_force"), Range::NonNegative);
-        s.motor = m;
-    }
+    if (const json *motor = member(value, "motor")) readMotor(*motor, memberPath(path, "motor"), s);
+    if (ball) readBallLimits(value, path, s);
     const auto nonNegative = [](const json &v, const std::string &p) { return readNumber(v, p, Range::NonNegative); };
     if (const json *d = member(value, "min_distance")) s.minDistance = readNumber(*d, memberPath(path, "min_distance"), Range::NonNegativeLength);
     if (const json *d = member(value, "max_distance")) s.maxDistance = readNumber(*d, memberPath(path, "max_distance"), Range::NonNegativeLength);

@@ -147,6 +147,7 @@ void Overlay::drawControls(Session &session, RunControls &controls, ViewOptions 
         ImGui::Checkbox("broadphase", &view.boundingBoxes);
         ImGui::Checkbox("springs", &view.springs);
         ImGui::SameLine();
+        ImGui::Checkbox("joints", &view.joints);
         ImGui::Checkbox("box edges", &view.edges);
     }
 

@@ -80,11 +80,12 @@ void WorldView::draw(Renderer &renderer, const Session &session, const ViewOptio
     }
     renderer.drawLines(lines_, false);
 
-    if (options.wireframes || options.contacts || options.boundingBoxes) {
+    if (options.wireframes || options.contacts || options.boundingBoxes || options.joints) {
         DebugDrawOptions debug;
         debug.shapes = options.wireframes;
         debug.staticBodies = options.wireframes;
         debug.contacts = options.contacts;
+        debug.joints = options.joints;
         debug.boundingBoxes = options.boundingBoxes;
         debug.planeHalfSize = kPlaneHalfSize;
         LineCollector collector(overlay_);

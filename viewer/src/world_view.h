@@ -23,6 +23,8 @@ struct ViewOptions {
     bool contacts = false;
     /// Broadphase boxes (DebugDrawOptions::boundingBoxes).
     bool boundingBoxes = false;
+    /// Joints' anchors, axes and limits (DebugDrawOptions::joints).
+    bool joints = true;
     /// The scene's springs and the mouse's, as lines.
     bool springs = true;
 };

@@ -196,6 +196,86 @@ TEST(DebugDraw, RefusesBadOptionsBeforeDrawing) {
     o = DebugDrawOptions();
     o.asleep.g = 1.5f;
     expectRefused(o, "options.asleep");
+    o = DebugDrawOptions();
+    o.jointSize = 0;
+    expectRefused(o, "options.jointSize");
+    o = DebugDrawOptions();
+    o.jointLimit.a = -1;
+    expectRefused(o, "options.jointLimit");
+}
+
+// A door on a hinge about y at the origin, limits [-1, 1] rad, with 24 segments a circle
+// and joints of size 0.5: the anchor's three-line cross; the axis, 0.5 m either side of
+// the anchor, and the current angle (the door's perpendicular to the axis, at angle 0:
+// the hinge's zero line); the range as an arc of ceil(24 * 2 / (2 pi)) = 8 segments
+// between two spokes 0.5 m long, whose ends are the zero line turned by -1 and +1 rad.
+TEST(DebugDraw, AHingeIsDrawnWithItsAxisAndLimits) {
+    World world;
+    BodySettings s;
+    s.shape = Shape::box(Vector3(0.5, 1, 0.05));
+    s.position = Vector3(0.5, 0, 0);
+    const BodyId door = world.addBody(s);
+    JointSettings j;
+    j.type = JointType::Hinge;
+    j.a = door;
+    j.axis = Vector3::UnitY();
+    j.limits = JointLimits{-1, 1};
+    world.addJoint(j);
+    DebugDrawOptions o;
+    o.shapes = false;
+    o.jointSize = 0.5;
+    Recorder r;
+    world.debugDraw(r, o);
+    EXPECT_EQ(r.count(o.jointAnchor), 3);
+    EXPECT_EQ(r.count(o.jointAxis), 2);
+    EXPECT_EQ(r.count(o.jointLimit), 8 + 2);
+    EXPECT_EQ(r.lines.size(), 15u);
+    Vector3 zero = Vector3::Zero();
+    std::vector<Vector3> spokes;
+    for (const Recorder::Line &l : r.lines) {
+        if (same(l.color, o.jointAxis) && l.from.isZero(0) && l.to.y() == 0) zero = l.to;
+        if (same(l.color, o.jointLimit) && l.from.isZero(0)) spokes.push_back(l.to);
+    }
+    EXPECT_NEAR(zero.norm(), 0.5, 1e-12);
+    ASSERT_EQ(spokes.size(), 2u);
+    for (const Vector3 &end : spokes) {
+        EXPECT_NEAR(end.norm(), 0.5, 1e-12);
+        EXPECT_NEAR(end.y(), 0, 1e-12);
+        EXPECT_NEAR(std::acos(end.dot(zero) / 0.25), 1, 1e-9);
+    }
+}
+
+// A ball joint with a swing cone of half-angles 0.6 (towards the normal x) and 0.3 (z)
+// about the axis -y, size 1: the rim's 24 lines and four spokes; the spokes towards +-x
+// lean 0.6 rad from -y and those towards +-z 0.3 rad (their ends at (sin 0.6, -cos 0.6, 0)
+// and so on).
+TEST(DebugDraw, ABallJointsSwingConeIsDrawnWithItsHalfAngles) {
+    World world;
+    BodySettings s;
+    s.shape = Shape::capsule(0.05, 0.8);
+    s.position = Vector3(0, -0.5, 0);
+    const BodyId rod = world.addBody(s);
+    JointSettings j;
+    j.type = JointType::Ball;
+    j.a = rod;
+    j.axis = -Vector3::UnitY();
+    j.normal = Vector3::UnitX();
+    j.swingLimit = JointSwingLimit{0.6, 0.3};
+    world.addJoint(j);
+    DebugDrawOptions o;
+    o.shapes = false;
+    o.jointSize = 1;
+    Recorder r;
+    world.debugDraw(r, o);
+    EXPECT_EQ(r.count(o.jointLimit), 24 + 4);
+    int spokes = 0;
+    for (const Recorder::Line &l : r.lines) {
+        if (!same(l.color, o.jointLimit) || !l.from.isZero(0)) continue;
+        ++spokes;
+        const real lean = std::acos(-l.to.y());
+        EXPECT_NEAR(lean, std::abs(l.to.x()) > std::abs(l.to.z()) ? 0.6 : 0.3, 1e-9);
+    }
+    EXPECT_EQ(spokes, 4);
 }
 
 }  // namespace

@@ -114,21 +114,33 @@ private:
     std::uint32_t joint_;
 };
 
-// The limit rows of a value (hinge angle, slider offset); `row(slot)` makes a row whose
-// rate is the value's. In the position pass only a violated limit has a row.
+// Makes a limit row a spring of `spring` (none: rigid).
+void springOf(JointRow &r, const std::optional<JointSpring> &spring) {
+    if (!spring) return;
+    r.frequency = spring->frequency;
+    r.dampingRatio = spring->dampingRatio;
+}
+
+// The limit rows of a value (hinge angle, slider offset, twist); `row(slot)` makes a row
+// whose rate is the value's. In the position pass only a violated rigid limit has a row
+// (a soft one is a spring: it has none).
 template <class MakeRow>
-void addLimits(const JointLimits &limits, int slot, bool positions, const MakeRow &row, real value) {
+void addLimits(const JointLimits &limits, const std::optional<JointSpring> &spring, int slot, bool positions,
+               const MakeRow &row, real value) {
+    if (positions && spring) return;
     const real lower = value - limits.lower;  // >= 0 within the range
     const real upper = value - limits.upper;  // <= 0 within the range
     if (!positions || lower < 0) {
         JointRow &r = row(slot);
         r.bound = RowBound::Lower;
         r.error = lower;
+        springOf(r, spring);
     }
     if (!positions || upper > 0) {
         JointRow &r = row(slot + 1);
         r.bound = RowBound::Upper;
         r.error = upper;
+        springOf(r, spring);
     }
 }
 
@@ -140,6 +152,50 @@ void addMotor(const JointMotor &motor, int slot, const MakeRow &row, real h) {
     r.bound = RowBound::Motor;
     r.target = motor.speed;
     r.maxImpulse = motor.maxForce * h;
+}
+
+// A servo's row in `slot`: a spring pulling `value` (angle or offset) to its target, with
+// at most maxForce over the sub-step `h`; a hinge measures the error the short way round
+// (`period` 2 pi; 0: none).
+template <class MakeRow>
+void addServo(const JointServo &servo, int slot, const MakeRow &row, real h, real value, real period) {
+    JointRow &r = row(slot);
+    r.bound = RowBound::Motor;
+    r.maxImpulse = servo.maxForce * h;
+    real error = value - servo.target;
+    if (period > 0) error = std::remainder(error, period);
+    r.error = error;
+    r.frequency = servo.frequency;
+    r.dampingRatio = servo.dampingRatio;
+}
+
+// A ball joint's swing row: b's twist axis n_m leans from a's n_c by theta in the
+// direction d (unit, perpendicular to n_c), at phi from a's normal. The cone allows
+// theta_max(phi) = 1 / E(phi), E = sqrt((cos phi / A)^2 + (sin phi / B)^2); the row's
+// value is C = theta - theta_max(phi) (<= 0 within the cone). With w = w_b - w_a and
+// s = n_c x d, theta's rate is w.s and phi's is w.(n_c - cot theta d); the row takes the
+// rate of F = theta E(phi) over E, exact on the cone (F = 1) and bounded near its axis:
+// J = s + (E'/E)(theta n_c - theta cot theta d), E' = dE/dphi. Returns false (no row)
+// when the lean has no direction (theta ~ 0, far inside the cone, or ~ pi).
+bool swingRow(const JointFrame &f, const JointRecord &j, Vector3 *jacobian, real *error) {
+    const JointSwingLimit &cone = *j.settings.swingLimit;
+    const Vector3 nc = f.qa * j.axisA;
+    const Vector3 normal = f.qa * j.normalA;
+    const Vector3 nm = f.axis;
+    const Vector3 across = nc.cross(nm);
+    const real sine = across.norm();
+    if (!(sine > 1e-9)) return false;
+    const real theta = std::atan2(sine, nc.dot(nm));
+    const Vector3 s = across / sine;
+    const Vector3 d = s.cross(nc);
+    const real c = d.dot(normal), sn = d.dot(nc.cross(normal));
+    const real ia = 1 / cone.normalAngle, ib = 1 / cone.binormalAngle;
+    const real e = std::sqrt(c * c * ia * ia + sn * sn * ib * ib);
+    const real eDash = c * sn * (ib * ib - ia * ia) / e;
+    const real thetaCot = theta * nc.dot(nm) / std::max(sine, real(1e-3));
+    *jacobian = s + (eDash / e) * (theta * nc - thetaCot * d);
+    *error = theta - 1 / e;
+    return true;
 }
 
 }  // namespace
@@ -199,8 +255,35 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
             const Vector3 e = rotationError(f, j);
             for (int k = 0; k < 3; ++k) make.angular(slot + k, Vector3::Unit(k), e[k]);
         };
+        // A rotation row about world axis k, for friction (its value is not used).
+        const auto unitRow = [&](int k) {
+            return [&make, k](int slot) -> JointRow & { return make.angular(slot, Vector3::Unit(k), 0); };
+        };
         switch (s.type) {
-            case JointType::Ball: point(); break;
+            case JointType::Ball: {
+                point();
+                Vector3 swing;
+                real swingError = 0;
+                if (s.swingLimit && swingRow(f, j, &swing, &swingError) && (!positions || (swingError > 0 && !s.limitSpring))) {
+                    JointRow &r = make.angular(3, Vector3::Zero(), swingError);
+                    r.angA = -swing;
+                    r.angB = swing;
+                    r.bound = RowBound::Upper;
+                    springOf(r, s.limitSpring);
+                }
+                const Vector3 na = f.qa * j.axisA;
+                const real sum = 1 + na.dot(f.axis);
+                if (s.twistLimit && sum > 1e-6) {
+                    // The twist's rate is (w_a - w_b).(n_a + n_b) / (1 + n_a.n_b) (docs/joints.md).
+                    const Vector3 about = (na + f.axis) / sum;
+                    const real twist = hingeAngle(f, j);
+                    const auto row = [&](int slot) -> JointRow & { return make.angular(slot, about, twist); };
+                    addLimits(*s.twistLimit, s.limitSpring, 4, positions, row, twist);
+                }
+                if (s.friction > 0 && !positions)
+                    for (int k = 0; k < 3; ++k) addMotor(JointMotor{0, s.friction}, 6 + k, unitRow(k), h);
+                break;
+            }
             case JointType::Fixed:
                 point();
                 lockRotation(3);
@@ -215,8 +298,10 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
                 make.angular(4, t2, tilt.dot(t2));
                 const real angle = hingeAngle(f, j);
                 const auto about = [&](int slot) -> JointRow & { return make.angular(slot, f.axis, angle); };
-                if (s.limits) addLimits(*s.limits, 5, positions, about, angle);
+                if (s.limits) addLimits(*s.limits, s.limitSpring, 5, positions, about, angle);
                 if (s.motor && !positions) addMotor(*s.motor, 7, about, h);
+                if (s.servo && !positions) addServo(*s.servo, 7, about, h, angle, 2 * M_PI);
+                if (s.friction > 0 && !positions) addMotor(JointMotor{0, s.friction}, 8, about, h);
                 break;
             }
             case JointType::Slider: {
@@ -227,8 +312,9 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
                 lockRotation(2);
                 const real offset = (f.pa - f.pb).dot(f.axis);
                 const auto along = [&](int slot) -> JointRow & { return make.linear(slot, f.axis); };
-                if (s.limits) addLimits(*s.limits, 5, positions, along, offset);
+                if (s.limits) addLimits(*s.limits, s.limitSpring, 5, positions, along, offset);
                 if (s.motor && !positions) addMotor(*s.motor, 7, along, h);
+                if (s.servo && !positions) addServo(*s.servo, 7, along, h, offset, 0);
                 break;
             }
             case JointType::Distance: {

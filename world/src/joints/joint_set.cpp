@@ -72,6 +72,13 @@ JointId JointSet::add(const BodyStore &bodies, const JointSettings &s) {
         j.axisB = s.axis;
     }
     j.reference = qb.conjugate() * a.getOrientation();
+    if (s.swingLimit) {
+        // The cone's normal: the one given, or any perpendicular of a round cone's axis.
+        const Vector3 helper = std::abs(s.axis.x()) < 0.57 ? Vector3::UnitX() : Vector3::UnitY();
+        Vector3 normal = s.normal ? *s.normal : s.axis.cross(helper);
+        normal = (normal - normal.dot(s.axis) * s.axis).normalized();
+        j.normalA = a.getDirectionInLocalSpace(normal);
+    }
     const real distance = (s.anchor - anchorB).norm();
     j.minDistance = s.minDistance.value_or(distance);
     j.maxDistance = s.maxDistance.value_or(distance);
@@ -119,7 +126,7 @@ void JointSet::prepare(WorldState &world, const std::vector<SolverBody> &solverB
     stepTime_ += h;
     makeRows(world, solverBodies, h, false);
     factorise(solverBodies);
-    constrainBoundedMasses(solverBodies);
+    constrainBoundedMasses(solverBodies, h);
     world.stats.jointRows += static_cast<int>(rows_.size());
 }
 
@@ -167,22 +174,15 @@ void JointSet::factorise(const std::vector<SolverBody> &solverBodies) {
 // centre, but the hinge makes it turn about its edge. Its mass is therefore the one it has
 // with the equality rows held, 1 / (k_bb - k_be K^-1 k_eb) (the Schur complement), with
 // which one pass stops a limit exactly. A pull block's 3x3 mass is held the same way.
-void JointSet::constrainBoundedMasses(const std::vector<SolverBody> &solverBodies) {
+void JointSet::constrainBoundedMasses(const std::vector<SolverBody> &solverBodies, real h) {
     const bool held = !equality_.empty() && factorised_;
     const std::size_t n = equality_.size();
     heldResponse_.assign(bounded_.size() * n, 0);
     responds_.assign(bounded_.size(), 0);
     for (std::size_t b = 0; b < bounded_.size(); ++b) {
         JointRow &r = rows_[bounded_[b]];
-        if (!held || !solveCoupling(solverBodies, r)) continue;
-        const real k0 = r.mass > 0 ? 1 / r.mass - r.gamma : 0;
-        const real schur = k0 - rhs_.dot(delta_);
-        // A row the equality rows fix entirely (schur ~ 0) keeps its free mass.
-        if (!(schur > 1e-9 * k0 && std::isfinite(schur)) || !delta_.allFinite()) continue;
-        r.mass = 1 / (schur + r.gamma);
-        // K^-1 J_e M^-1 J_r^T: what the equality rows give back per N s of this row.
-        for (std::size_t i = 0; i < n; ++i) heldResponse_[b * n + i] = delta_[static_cast<Eigen::Index>(i)];
-        responds_[b] = 1;
+        holdMass(solverBodies, b, held);
+        if (r.frequency > 0) soften(r, h);
     }
     for (PullBlock &p : pulls_) {
         const JointRow *r = &rows_[p.row];
@@ -204,6 +204,41 @@ void JointSet::constrainBoundedMasses(const std::vector<SolverBody> &solverBodie
         k.diagonal().array() += r[0].gamma;
         p.mass = k.inverse();
     }
+}
+
+void JointSet::holdMass(const std::vector<SolverBody> &solverBodies, std::size_t b, bool held) {
+    JointRow &r = rows_[bounded_[b]];
+    if (!held || !solveCoupling(solverBodies, r)) return;
+    const std::size_t n = equality_.size();
+    const real k0 = r.mass > 0 ? 1 / r.mass - r.gamma : 0;
+    const real schur = k0 - rhs_.dot(delta_);
+    // A row the equality rows fix entirely (schur ~ 0) keeps its free mass.
+    if (!(schur > 1e-9 * k0 && std::isfinite(schur)) || !delta_.allFinite()) return;
+    r.mass = 1 / (schur + r.gamma);
+    // K^-1 J_e M^-1 J_r^T: what the equality rows give back per N s of this row.
+    for (std::size_t i = 0; i < n; ++i) heldResponse_[b * n + i] = delta_[static_cast<Eigen::Index>(i)];
+    responds_[b] = 1;
+}
+
+// A servo's or a soft limit's spring, stiffness m w^2 and damping 2 m zeta w for the
+// row's held mass m, taken implicitly over the sub-step h (Catto's soft step, in Box2D
+// v3's form): with a1 = 2 zeta + h w and a2 = h w a1, the impulse is
+// -a2/(1+a2) m (J v + w/a1 C) - 1/(1+a2) times the accumulated impulse. A soft limit
+// within its range stays a rigid, speculative one (it may close what is left of it).
+void JointSet::soften(JointRow &r, real h) {
+    const real omega = 2 * M_PI * r.frequency;
+    const real a1 = 2 * r.dampingRatio + h * omega;
+    const real a2 = h * omega * a1;
+    const bool within = (r.bound == RowBound::Lower && r.error >= 0) || (r.bound == RowBound::Upper && r.error <= 0);
+    if (within) {
+        r.massScale = 1;
+        r.impulseScale = 0;
+        r.bias = r.error / h;
+        return;
+    }
+    r.massScale = a2 / (1 + a2);
+    r.impulseScale = 1 / (1 + a2);
+    r.bias = omega / a1 * r.error;
 }
 
 bool JointSet::solveCoupling(const std::vector<SolverBody> &solverBodies, const JointRow &r) {
@@ -256,7 +291,12 @@ void JointSet::solveVelocities(std::vector<SolverBody> &solverBodies) {
         JointRow &r = rows_[bounded_[b]];
         real delta;
         const real old = r.impulse;
-        if (r.bound == RowBound::Motor) {
+        if (r.frequency > 0) {
+            // A servo or a soft limit: a spring (soften).
+            delta = -r.massScale * r.mass * (rate(r, solverBodies) + r.bias) - r.impulseScale * old;
+            if (r.bound == RowBound::Motor) r.impulse = std::clamp(old + delta, -r.maxImpulse, r.maxImpulse);
+            else r.impulse = r.bound == RowBound::Lower ? std::max(old + delta, real(0)) : std::min(old + delta, real(0));
+        } else if (r.bound == RowBound::Motor) {
             delta = -r.mass * (rate(r, solverBodies) - r.target);
             r.impulse = std::clamp(old + delta, -r.maxImpulse, r.maxImpulse);
         } else {

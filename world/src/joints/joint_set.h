@@ -24,6 +24,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "cyclone/world/debug_draw.h"
 #include "cyclone/world/joints.h"
 #include "solver/contact_solver.h"
 #include "world/body_store.h"
@@ -32,8 +33,9 @@ namespace cyclone::detail {
 
 struct WorldState;
 
-/// Most rows a joint has: a slider's 2 across + 3 rotation locks + lower, upper, motor.
-inline constexpr int kMaxJointRows = 8;
+/// Most rows a joint has: a slider's 2 across + 3 rotation locks + lower, upper, motor
+/// (a ball joint: 3 + swing + twist lower, upper + 3 friction; a hinge's friction: 8).
+inline constexpr int kMaxJointRows = 9;
 
 /// Most Newton iterations of the position projection per sub-step (joint_set.cpp).
 inline constexpr int kMaxProjections = 4;
@@ -52,6 +54,7 @@ struct JointRecord {
     Vector3 localB = Vector3::Zero();  ///< Anchor on b, b's body space (world space without b), m.
     Vector3 axisA = Vector3::UnitY();  ///< Axis in a's body space.
     Vector3 axisB = Vector3::UnitY();  ///< Axis in b's body space (world space without b).
+    Vector3 normalA = Vector3::UnitX();  ///< Ball joints' swing cone: its normal in a's body space.
     Quaternion reference = Quaternion::Identity();  ///< conj(q_b) q_a at creation.
     real minDistance = 0;  ///< Distance joints, m.
     real maxDistance = 0;
@@ -89,6 +92,11 @@ struct JointRow {
     real mass = 0;         ///< 1 / (J M^-1 J^T + gamma), kg.
     real gamma = 0;        ///< Soft rows: the softness (Catto's), 1/kg.
     real bias = 0;         ///< Soft rows: the spring's velocity bias, m/s.
+    /// Servos and soft limits: the spring's natural frequency (Hz) and damping ratio; its
+    /// softness is set once the row's held mass is known (constrainBoundedMasses).
+    real frequency = 0, dampingRatio = 0;
+    real massScale = 1;     ///< Servos and soft limits: the held mass's share the impulse sees.
+    real impulseScale = 0;  ///< Servos and soft limits: the accumulated impulse's share it gives back.
     real impulse = 0;      ///< Accumulated this sub-step (warm start included), N s.
 };
 
@@ -136,6 +144,8 @@ public:
     void finishStep(WorldState &world, real dt);
     /// Removes the joints of body `id`, waking their other bodies.
     void removeJointsOf(WorldState &world, BodyId id);
+    /// Draws every joint's anchors, axis and limits (joint_drawing.cpp).
+    void draw(const BodyStore &bodies, DebugDraw &draw, const DebugDrawOptions &options) const;
     /// Whether a sub-step has rows to solve.
     bool solving() const { return !rows_.empty(); }
 
@@ -149,8 +159,13 @@ private:
     void makeRows(const WorldState &world, const std::vector<SolverBody> &solverBodies, real h, bool positions);
     /// Factorises J M^-1 J^T of the equality rows (equality_).
     void factorise(const std::vector<SolverBody> &solverBodies);
-    /// Gives each bounded row and pull block its effective mass with the equality rows held.
-    void constrainBoundedMasses(const std::vector<SolverBody> &solverBodies);
+    /// Gives each bounded row and pull block its effective mass with the equality rows
+    /// held, and the servos and soft limits their softness for the sub-step `h`.
+    void constrainBoundedMasses(const std::vector<SolverBody> &solverBodies, real h);
+    /// Bounded row `b` (in bounded_'s order): its held mass and heldResponse_, when `held`.
+    void holdMass(const std::vector<SolverBody> &solverBodies, std::size_t b, bool held);
+    /// A servo's or soft limit's softness for the sub-step h, from its held mass.
+    static void soften(JointRow &r, real h);
     /// The equality rows at once (factorised_ must hold).
     void solveEquality(std::vector<SolverBody> &solverBodies);
     /// Per bounded row (in bounded_'s order), when it has its held mass: K^-1 of its

@@ -147,6 +147,7 @@ void validate(const DebugDrawOptions &o) {
     static const char *function = "World::debugDraw";
     detail::requirePositive(function, "options.normalLength", o.normalLength);
     detail::requirePositive(function, "options.planeHalfSize", o.planeHalfSize);
+    detail::requirePositive(function, "options.jointSize", o.jointSize);
     if (o.circleSegments < 4 || o.circleSegments > 256)
         detail::refuse(function, "options.circleSegments",
                        "must be in [4, 256], got " + std::to_string(o.circleSegments));
@@ -155,7 +156,8 @@ void validate(const DebugDrawOptions &o) {
         {"options.staticBody", &o.staticBody}, {"options.isolated", &o.isolated},
         {"options.sensor", &o.sensor},
         {"options.boundingBox", &o.boundingBox}, {"options.contactPoint", &o.contactPoint},
-        {"options.contactNormal", &o.contactNormal}};
+        {"options.contactNormal", &o.contactNormal}, {"options.jointAnchor", &o.jointAnchor},
+        {"options.jointAxis", &o.jointAxis},         {"options.jointLimit", &o.jointLimit}};
     for (const auto &[field, c] : colors)
         for (float channel : {c->r, c->g, c->b, c->a})
             if (!(channel >= 0 && channel <= 1))
@@ -212,6 +214,7 @@ void World::debugDraw(DebugDraw &game, const DebugDrawOptions &options) const {
             draw.box(pose, 0.5 * (box.max_ - box.min_), options.boundingBox);
         }
     }
+    if (options.joints) w.joints.draw(w.bodies, draw, options);
     if (!options.contacts) return;
     for (std::uint32_t p = 0; p < w.contacts.pairs.slots(); ++p) {
         const detail::PairState &pair = w.contacts.pairs[p];

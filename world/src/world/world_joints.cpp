@@ -1,6 +1,7 @@
 // The World's joint calls: validation, adding and removing, reading, the motor's target.
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "world/validation.h"
 #include "world/world_impl.h"
@@ -23,6 +24,59 @@ const char *typeName(JointType type) {
 // A threshold: > 0, infinity allowed.
 void requireThreshold(const char *function, const char *field, real value) {
     if (!(value > 0)) detail::refuse(function, field, "must be > 0 (infinity: never breaks), got " + detail::show(value));
+}
+
+// A spring's frequency (> 0) and damping ratio (>= 0), both finite.
+void validateSpring(const char *function, const std::string &field, real frequency, real dampingRatio) {
+    if (!(frequency > 0) || !std::isfinite(frequency))
+        detail::refuse(function, field + ".frequency", "must be finite and > 0, got " + detail::show(frequency));
+    if (!(dampingRatio >= 0) || !std::isfinite(dampingRatio))
+        detail::refuse(function, field + ".dampingRatio", "must be finite and >= 0, got " + detail::show(dampingRatio));
+}
+
+// A servo: its target (a hinge's within [-pi, pi]), spring and largest force.
+void validateServo(const char *function, JointType type, const JointServo &servo) {
+    if (!std::isfinite(servo.target)) detail::refuse(function, "servo.target", "must be finite, got " + detail::show(servo.target));
+    if (type == JointType::Hinge && (servo.target < -M_PI || servo.target > M_PI))
+        detail::refuse(function, "servo.target", "a hinge's target must be within [-pi, pi], got " + detail::show(servo.target));
+    validateSpring(function, "servo", servo.frequency, servo.dampingRatio);
+    detail::requireNonNegative(function, "servo.maxForce", servo.maxForce);
+}
+
+// A ball joint's swing cone (half-angles in (0, pi], a normal perpendicular to the twist
+// axis when they differ) and twist range (within [-pi, pi]); other types have neither.
+void validateBallLimits(const char *function, const JointSettings &s, const std::string &type, const Vector3 &axis) {
+    const bool ball = s.type == JointType::Ball;
+    if (s.swingLimit && !ball) detail::refuse(function, "swingLimit", "only ball joints have it (" + type + " joint)");
+    if (s.twistLimit && !ball) detail::refuse(function, "twistLimit", "only ball joints have it (" + type + " joint)");
+    if (s.normal && !s.swingLimit)
+        detail::refuse(function, "normal", "only ball joints with a swing limit have it (" + type + " joint)");
+    if (s.swingLimit) {
+        const JointSwingLimit &c = *s.swingLimit;
+        for (const auto &[field, angle] : {std::pair("swingLimit.normalAngle", c.normalAngle),
+                                           std::pair("swingLimit.binormalAngle", c.binormalAngle)}) {
+            if (!(angle > 0 && angle <= M_PI)) detail::refuse(function, field, "must be in (0, pi], got " + detail::show(angle));
+        }
+        if (!s.normal && c.normalAngle != c.binormalAngle)
+            detail::refuse(function, "normal", "is required when the swing limit's two half-angles differ");
+        if (s.normal) {
+            detail::requireFinite(function, "normal", *s.normal);
+            const real length = s.normal->norm();
+            if (!(length > 1e-12) || !std::isfinite(length))
+                detail::refuse(function, "normal", "must not be zero, got " + detail::show(*s.normal));
+            if (std::abs(s.normal->dot(axis)) > 1e-6 * length)
+                detail::refuse(function, "normal", "must be perpendicular to axis, got " + detail::show(*s.normal) +
+                                                       " with axis " + detail::show(axis));
+        }
+    }
+    if (s.twistLimit) {
+        const JointLimits &l = *s.twistLimit;
+        if (!std::isfinite(l.lower)) detail::refuse(function, "twistLimit.lower", "must be finite, got " + detail::show(l.lower));
+        if (!std::isfinite(l.upper)) detail::refuse(function, "twistLimit.upper", "must be finite, got " + detail::show(l.upper));
+        if (!(l.lower <= l.upper && l.lower >= -M_PI && l.upper <= M_PI))
+            detail::refuse(function, "twistLimit", "must satisfy -pi <= lower <= upper <= pi, got [" + detail::show(l.lower) +
+                                                       ", " + detail::show(l.upper) + "]");
+    }
 }
 
 // Everything addJoint refuses, before anything changes; returns the axis normalised.
@@ -61,8 +115,9 @@ Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
         if (!(p.maxForce > 0))
             detail::refuse(function, "pull.maxForce", "must be > 0 (infinity: no limit), got " + detail::show(p.maxForce));
     }
+    const bool limitedBall = s.type == JointType::Ball && (s.swingLimit || s.twistLimit);
     Vector3 axis = s.axis;
-    if (axial) {
+    if (axial || limitedBall) {
         detail::requireFinite(function, "axis", s.axis);
         const real length = s.axis.norm();
         if (!(length > 1e-12) || !std::isfinite(length))
@@ -86,6 +141,23 @@ Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
         if (!std::isfinite(s.motor->speed))
             detail::refuse(function, "motor.speed", "must be finite, got " + detail::show(s.motor->speed));
         detail::requireNonNegative(function, "motor.maxForce", s.motor->maxForce);
+    }
+    if (s.servo) {
+        if (!axial) detail::refuse(function, "servo", "only hinge and slider joints have servos (" + type + " joint)");
+        if (s.motor) detail::refuse(function, "servo", "a joint has a motor (a speed) or a servo (a target), not both");
+        validateServo(function, s.type, *s.servo);
+    }
+    validateBallLimits(function, s, type, axis);
+    if (s.friction != 0) {
+        if (s.type != JointType::Ball && s.type != JointType::Hinge)
+            detail::refuse(function, "friction", "only ball joints and hinges have it (" + type + " joint)");
+        detail::requireNonNegative(function, "friction", s.friction);
+    }
+    if (s.limitSpring) {
+        if (!axial && !limitedBall)
+            detail::refuse(function, "limitSpring", "only hinges, sliders and ball joints with a swing or twist limit have it (" + type + " joint)");
+        if (!s.limits && !limitedBall) detail::refuse(function, "limitSpring", "the joint has no limits to make soft");
+        validateSpring(function, "limitSpring", s.limitSpring->frequency, s.limitSpring->dampingRatio);
     }
     if ((s.minDistance || s.maxDistance || s.stiffness != 0 || s.damping != 0) && !distance) {
         const char *field = s.minDistance ? "minDistance" : s.maxDistance ? "maxDistance" : s.stiffness != 0 ? "stiffness" : "damping";
@@ -171,6 +243,18 @@ void World::setMotorSpeed(JointId id, real speed) {
     if (!j.settings.motor) detail::refuse(function, "id", "names a joint without a motor");
     if (!std::isfinite(speed)) detail::refuse(function, "speed", "must be finite, got " + detail::show(speed));
     j.settings.motor->speed = speed;
+    wakeJoined(w, j.settings.a, j.settings.b);
+}
+
+void World::setServoTarget(JointId id, real target) {
+    static const char *function = "World::setServoTarget";
+    Impl &w = *impl_;
+    detail::JointRecord &j = jointRecord(w, id, function);
+    if (!j.settings.servo) detail::refuse(function, "id", "names a joint without a servo");
+    if (!std::isfinite(target)) detail::refuse(function, "target", "must be finite, got " + detail::show(target));
+    if (j.settings.type == JointType::Hinge && (target < -M_PI || target > M_PI))
+        detail::refuse(function, "target", "a hinge's target must be within [-pi, pi], got " + detail::show(target));
+    j.settings.servo->target = target;
     wakeJoined(w, j.settings.a, j.settings.b);
 }
 

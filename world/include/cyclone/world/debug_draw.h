@@ -33,6 +33,15 @@ struct DebugDrawOptions {
     real planeHalfSize = 10;
     /// Line segments of a full circle of a sphere, capsule or cylinder, in [4, 256].
     int circleSegments = 24;
+    /// Joints: a small cross at each body's anchor (and the line between them when they
+    /// part: a distance joint, a mouse joint's target), the axis of hinges, sliders and
+    /// limited ball joints, and the limits: a hinge's or a ball joint's twist range as an
+    /// arc with a line at the current angle, a slider's as ticks along the axis, a ball
+    /// joint's swing cone as its rim and four spokes.
+    bool joints = true;
+    /// Size of a drawn joint (half the axis's length, the arcs' and the cone's radius), m,
+    /// finite, > 0.
+    real jointSize = 0.15;
 
     /// Dynamic bodies that are awake.
     DebugColor awake{0.3f, 0.9f, 0.3f, 1};
@@ -50,6 +59,12 @@ struct DebugDrawOptions {
     DebugColor contactPoint{1, 1, 0.2f, 1};
     /// Contact normals.
     DebugColor contactNormal{1, 0.3f, 0.3f, 1};
+    /// Joints' anchors (and the line between them).
+    DebugColor jointAnchor{1, 0.55f, 0.1f, 1};
+    /// Joints' axes and the current angle of a limited one.
+    DebugColor jointAxis{0.85f, 0.3f, 0.95f, 1};
+    /// Joints' limits.
+    DebugColor jointLimit{0.95f, 0.95f, 0.6f, 1};
 };
 
 /// The drawing interface a game implements. Only line() is required; the others have

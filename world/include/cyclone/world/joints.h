@@ -40,6 +40,18 @@ struct JointLimits {
     real upper = 0;
 };
 
+/// A ball joint's swing cone, fixed in `a`: b's twist axis may lean away from a's by at
+/// most `normalAngle` in the plane of `axis` and `normal`, by at most `binormalAngle` in
+/// the plane of `axis` and `axis x normal`, and within the ellipse between them elsewhere
+/// (the lean's angle theta in direction phi from `normal` obeys
+/// (theta cos phi / normalAngle)^2 + (theta sin phi / binormalAngle)^2 <= 1).
+struct JointSwingLimit {
+    /// Half-angle of the cone towards `normal`, rad, in (0, pi].
+    real normalAngle = 0;
+    /// Half-angle of the cone towards `axis x normal`, rad, in (0, pi].
+    real binormalAngle = 0;
+};
+
 /// A hinge's or a slider's motor: it drives the relative speed towards `speed`.
 struct JointMotor {
     /// Target relative speed of `a` with respect to `b` about (hinge, rad/s) or along
@@ -47,6 +59,33 @@ struct JointMotor {
     real speed = 0;
     /// Largest torque (hinge, N m) or force (slider, N) the motor exerts, finite, >= 0.
     real maxForce = 0;
+};
+
+/// A hinge's or a slider's servo: a motor that drives the angle or offset towards
+/// `target` as a spring of natural frequency `frequency` and damping ratio
+/// `dampingRatio` would (stiffness m (2 pi f)^2, damping 2 m zeta (2 pi f), m the mass the
+/// axis moves with the joint's other rows held; solved implicitly), with at most
+/// `maxForce`.
+struct JointServo {
+    /// The angle (hinge, rad, in [-pi, pi]) or offset (slider, m) it drives to, measured
+    /// as JointLimits are, finite.
+    real target = 0;
+    /// The spring's natural frequency, Hz, finite, > 0.
+    real frequency = 1;
+    /// The spring's damping ratio, finite, >= 0 (1: critical, no overshoot).
+    real dampingRatio = 1;
+    /// Largest torque (hinge, N m) or force (slider, N) it exerts, finite, >= 0.
+    real maxForce = 0;
+};
+
+/// A limit made soft: past it, the joint is pushed back as by a damped spring of this
+/// natural frequency and damping ratio (stiffness and damping scaled by the mass the
+/// limit moves, as for a servo), instead of being stopped dead.
+struct JointSpring {
+    /// Natural frequency, Hz, finite, > 0.
+    real frequency = 5;
+    /// Damping ratio, finite, >= 0.
+    real dampingRatio = 1;
 };
 
 /// How a mouse joint pulls its anchor to the target: as a damped spring of frequency
@@ -82,12 +121,32 @@ struct JointSettings {
     /// Distance joints: the anchor on `b` (or in the world), world space at creation, m;
     /// mouse joints: the target, world space, m. Empty means `anchor`. Other types have none.
     std::optional<Vector3> anchorB;
-    /// Hinge and slider: the axis, world space at creation, finite, not zero (normalised).
+    /// Hinge and slider, and ball joints with a swing or twist limit: the axis (a ball
+    /// joint's twist axis), world space at creation, finite, not zero (normalised).
     Vector3 axis = Vector3::UnitY();
     /// Hinge and slider: the range of the angle (rad) or offset (m); none means free.
     std::optional<JointLimits> limits;
     /// Hinge and slider: a motor; none means no drive.
     std::optional<JointMotor> motor;
+    /// Hinge and slider: a servo (not with `motor`); none means none.
+    std::optional<JointServo> servo;
+    /// Ball joints: the swing cone of b's twist axis (`axis`) about a's; none means free.
+    std::optional<JointSwingLimit> swingLimit;
+    /// Ball joints with a swing limit: the direction `normalAngle` is measured towards,
+    /// world space at creation, finite, perpendicular to `axis` (normalised); required
+    /// when the two half-angles differ, any perpendicular otherwise.
+    std::optional<Vector3> normal;
+    /// Ball joints: the range of the twist about `axis` (rad, in [-pi, pi]): a's turn
+    /// about b's twist axis since creation, once the swing that takes b's axis onto a's
+    /// is taken out (as a hinge's angle); none means free.
+    std::optional<JointLimits> twistLimit;
+    /// Ball joints and hinges: friction in the joint, N m, finite, >= 0: a torque of at
+    /// most this opposes the bodies' relative rotation (as a speed motor driving it to 0
+    /// would), so that a limb comes to rest instead of swinging on; 0 means none.
+    real friction = 0;
+    /// Hinges, sliders and limited ball joints: their limits (`limits`, `swingLimit`,
+    /// `twistLimit`) are springs of these; none means rigid limits.
+    std::optional<JointSpring> limitSpring;
     /// Distance joints: the shortest distance between the anchors, m, finite, >= 0;
     /// empty means their distance at creation.
     std::optional<real> minDistance;

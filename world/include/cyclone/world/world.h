@@ -232,6 +232,10 @@ public:
     /// wakes the joint's dynamic bodies. Throws InvalidArgument on a stale handle, a joint
     /// without a motor, or a non-finite speed.
     void setMotorSpeed(JointId id, real speed);
+    /// Sets a servo's target (angle, rad, within [-pi, pi] for a hinge; offset, m, for a
+    /// slider; finite) and wakes the joint's dynamic bodies. Throws InvalidArgument on a
+    /// stale handle, a joint without a servo, or a target out of range.
+    void setServoTarget(JointId id, real target);
     /// Moves a mouse joint's target (world space, m, finite, within kMaxCoordinate = 1e12 m of the origin);
     /// a new target wakes the body it pulls. Throws InvalidArgument on a stale handle, a
     /// joint that is not a mouse joint, or a target out of range.
