@@ -17,24 +17,25 @@ constexpr real kPi = 3.14159265358979323846;
 // The game's DebugDraw, checked after each call: a DebugDraw must only read the World,
 // and one that changed it (removed a body, stepped) has pulled the records and contacts
 // being drawn from under the walk, so the walk stops before touching them again.
-class CheckedDraw {
+class CheckedDraw final : public DebugDraw {
 public:
     CheckedDraw(DebugDraw &draw, const detail::WorldState &world)
         : draw_(draw), world_(world), calls_(world.changingCalls) {}
-    void line(const Vector3 &from, const Vector3 &to, const DebugColor &color) {
+    void line(const Vector3 &from, const Vector3 &to, const DebugColor &color) override {
         draw_.line(from, to, color);
         check();
     }
-    void box(const Matrix4 &pose, const Vector3 &halfExtents, const DebugColor &color) {
+    void box(const Matrix4 &pose, const Vector3 &halfExtents, const DebugColor &color) override {
         draw_.box(pose, halfExtents, color);
         check();
     }
-    void circle(const Vector3 &centre, const Vector3 &normal, real radius, int segments, const DebugColor &color) {
+    void circle(const Vector3 &centre, const Vector3 &normal, real radius, int segments,
+                const DebugColor &color) override {
         draw_.circle(centre, normal, radius, segments, color);
         check();
     }
     void contact(const Vector3 &point, const Vector3 &normal, real depth, real normalLength,
-                 const DebugColor &pointColor, const DebugColor &normalColor) {
+                 const DebugColor &pointColor, const DebugColor &normalColor) override {
         draw_.contact(point, normal, depth, normalLength, pointColor, normalColor);
         check();
     }
