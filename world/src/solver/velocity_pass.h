@@ -55,6 +55,7 @@ struct ManifoldBatch {
     WideVector normal, tangent[2];
     WidePoint points[kMaxManifoldPoints];
     WideRow friction[2];            ///< Along tangent[0], tangent[1].
+    Lanes frictionTarget[2]{};      ///< Their SolverRow::target, m/s.
     /// World-space inverse inertia of each lane's A and B (SolverBody::invInertia, the
     /// step's), 1/(kg m^2). The twist row's lever terms are the normal itself.
     WideSymmetric invInertiaA, invInertiaB;

@@ -1,6 +1,6 @@
 // World::step: forces -> broadphase -> narrowphase -> contact events -> sensors -> constraints ->
-// islands -> per sub-step (forces, solve, integrate, penetration) -> continuous
-// collision -> landing correction -> sleep. Each stage adds its time to stats().ms.
+// islands -> per sub-step (forces, solve, integrate, penetration, locked axes) -> continuous
+// collision -> landing correction -> locked axes -> sleep. Each stage adds its time to stats().ms.
 #include "world/stage_timer.h"
 #include "world/world_impl.h"
 
@@ -17,6 +17,7 @@ void WorldState::step(real dt) {
     {
         const StageTimer t(ms.forces);
         integration.beginStep(*this, dt);
+        axisLocks.beginStep(*this);
         kinematicBodies.beginStep(*this);
         joints.beginStep(*this);
     }
@@ -51,6 +52,7 @@ void WorldState::step(real dt) {
             kinematicBodies.integrate(*this, h);
         }
         { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position
+        { const StageTimer t(ms.integrate); axisLocks.hold(*this); }
     }
     {
         const StageTimer t(ms.solve);
@@ -60,6 +62,7 @@ void WorldState::step(real dt) {
     }
     { const StageTimer t(ms.ccd); ccd.sweep(*this); }
     { const StageTimer t(ms.landing); landing.correct(*this); }
+    { const StageTimer t(ms.integrate); axisLocks.hold(*this); }
     { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
     events.closeStep();
 

@@ -1,6 +1,8 @@
 // The World's own checks on top of the shared ones (cyclone/detail/validation.h).
 #pragma once
 
+#include <cmath>
+
 #include "cyclone/detail/validation.h"
 #include "cyclone/world/settings.h"
 
@@ -13,6 +15,12 @@ inline constexpr real kMaxCoordinate = cyclone::kMaxCoordinate;
 inline void requirePlace(const char *function, const char *field, const Vector3 &v) {
     if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kMaxCoordinate)
         refuse(function, field, "must be finite and within 1e12 m of the origin, got " + show(v));
+}
+
+/// A gravity scale: finite, and with `gravity` times it finite.
+inline void requireGravityScale(const char *function, const char *field, real scale, const Vector3 &gravity) {
+    if (!std::isfinite(scale) || !(gravity * scale).allFinite())
+        refuse(function, field, "must be finite (and times the gravity too), got " + show(scale));
 }
 
 }  // namespace cyclone::detail
