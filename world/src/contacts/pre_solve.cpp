@@ -8,6 +8,9 @@
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
+
+static_assert(Manifold::kMaxPoints <= kMaxContactPoints, "PreSolveContact holds every point of a manifold");
+
 namespace {
 
 // The contact as the listener sees it, set up from the materials and the built-in rules.
@@ -107,8 +110,11 @@ void PreSolve::run(WorldState &world, std::vector<ManifoldKey> &keys) {
     keys.resize(kept);
     std::sort(disabledPairs_.begin(), disabledPairs_.end());
     disabledPairs_.erase(std::unique(disabledPairs_.begin(), disabledPairs_.end()), disabledPairs_.end());
-    // A pair with several manifolds keeps its first decision.
-    std::stable_sort(oneWay_.begin(), oneWay_.end());
+    // A pair with several manifolds passes if one of them does (std::sort: a stable sort
+    // would allocate every step).
+    std::sort(oneWay_.begin(), oneWay_.end(), [](const OneWayPair &x, const OneWayPair &y) {
+        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.passing > y.passing;
+    });
     oneWay_.erase(std::unique(oneWay_.begin(), oneWay_.end(),
                               [](const OneWayPair &x, const OneWayPair &y) { return x.a == y.a && x.b == y.b; }),
                   oneWay_.end());
