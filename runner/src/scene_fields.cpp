@@ -22,7 +22,8 @@ const Names kSettingsFields = {"gravity", "dt", "steps", "velocity_iterations", 
 const Names kBodyFields = {"name", "shape", "static", "mass", "inertia", "position", "orientation",
                                "velocity", "rotation", "linear_damping", "angular_damping", "friction",
                                "restitution", "can_sleep", "awake", "ccd", "motion", "layer", "collides_with",
-                               "sensor", "rolling_friction", "spinning_friction"};
+                               "sensor", "rolling_friction", "spinning_friction", "gravity_scale", "locked_axes",
+                               "surface_velocity", "one_way"};
 const Names kChildFields = {"shape", "position", "orientation"};
 // A spring's "force" ("automatic" or "explicit") is the runner's own, beside the contract's.
 const Names kSpringFields = {"a", "a_point", "b", "b_point", "stiffness", "damping", "rest_length", "force"};

@@ -179,6 +179,25 @@ WorldSettings readSettings(const json &value, const std::string &path, Scene &sc
     return settings;
 }
 
+// "locked_axes": a list of distinct axis names.
+LockedAxes readLockedAxes(const json &value, const std::string &path) {
+    expectArray(value, path, 6);
+    LockedAxes locks;
+    const std::pair<const char *, bool LockedAxes::*> axes[] = {{"x", &LockedAxes::x},   {"y", &LockedAxes::y},
+                                                                {"z", &LockedAxes::z},   {"rx", &LockedAxes::rx},
+                                                                {"ry", &LockedAxes::ry}, {"rz", &LockedAxes::rz}};
+    for (std::size_t k = 0; k < value.size(); ++k) {
+        const std::string elementAt = elementPath(path, k);
+        const std::string &name = readString(value[k], elementAt);
+        const auto *axis = std::find_if(std::begin(axes), std::end(axes), [&](const auto &a) { return name == a.first; });
+        if (axis == std::end(axes))
+            fail(elementAt, "unknown axis " + jsonQuoted(name) + "; known: \"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\"");
+        if (locks.*(axis->second)) fail(elementAt, jsonQuoted(name) + " is given twice");
+        locks.*(axis->second) = true;
+    }
+    return locks;
+}
+
 SceneBody readBody(const json &value, const std::string &path) {
     expectObject(value, path);
     SceneBody body;
@@ -242,6 +261,14 @@ SceneBody readBody(const json &value, const std::string &path) {
             settings.collidesWith |= 1u << readInteger((*layers)[k], elementPath(layersPath, k), 0, 31);
     }
     readOptional(value, path, "sensor", settings.sensor, readBool);
+    readOptional(value, path, "gravity_scale", settings.gravityScale, finite);
+    readOptional(value, path, "locked_axes", settings.lockedAxes, readLockedAxes);
+    readOptional(value, path, "surface_velocity", settings.surfaceVelocity, vector);
+    if (const json *oneWay = member(value, "one_way")) {
+        const std::string oneWayPath = memberPath(path, "one_way");
+        settings.oneWay = readVector3(*oneWay, oneWayPath);
+        if (settings.oneWay->cwiseAbs().maxCoeff() == 0) fail(oneWayPath, "must not be zero");
+    }
     return body;
 }
 

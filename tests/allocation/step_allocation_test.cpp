@@ -195,5 +195,43 @@ TEST(StepAllocation, SpringsCcdAndForcesAllocateNothing) {
     EXPECT_EQ(c.ccdSweeps, 60) << "the fast body must be swept every counted step";
 }
 
+// The level features in steady motion: a crate riding a conveyor, a body locked to its
+// plane resting on a one-way ledge, a contact listener seeing every manifold, and the
+// contact impulses reported every step.
+TEST(StepAllocation, ConveyorsLedgesLocksAndAListenerAllocateNothing) {
+    if (!kCountingAllocator) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
+    struct Counting final : ContactListener {
+        long calls = 0;
+        void preSolve(PreSolveContact &) override { ++calls; }
+    } listener;
+    WorldSettings settings;
+    settings.sleep = false;
+    World world(settings);
+    addGround(world);
+    BodySettings belt;
+    belt.isStatic = true;
+    belt.shape = Shape::box(Vector3(50, 0.25, 1));
+    belt.position = Vector3(0, 0.25, 5);
+    belt.surfaceVelocity = Vector3(1, 0, 0);
+    world.addBody(belt);
+    addBody(world, Shape::box(Vector3(0.3, 0.3, 0.3)), Vector3(0, 0.8, 5));
+    BodySettings ledge;
+    ledge.isStatic = true;
+    ledge.shape = Shape::box(Vector3(1, 0.1, 1));
+    ledge.position = Vector3(0, 2, -5);
+    ledge.oneWay = Vector3(0, 1, 0);
+    world.addBody(ledge);
+    BodySettings player;
+    player.shape = Shape::box(Vector3(0.3, 0.3, 0.3));
+    player.position = Vector3(0, 2.4, -5);
+    player.lockedAxes.z = player.lockedAxes.rx = player.lockedAxes.ry = true;
+    world.addBody(player);
+    world.setContactListener(&listener);
+    const Counted c = countSteps(world, 60, 60);
+    EXPECT_EQ(c.allocations, 0);
+    EXPECT_GT(listener.calls, 60) << "the listener must see the counted steps' manifolds";
+    EXPECT_EQ(world.events().contactImpulses.size(), 2u) << "the crate on the belt, the player on the ledge";
+}
+
 }  // namespace
 }  // namespace cyclone::test

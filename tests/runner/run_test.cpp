@@ -46,7 +46,8 @@ std::vector<std::string> lines(const std::string &text) {
 const char *const kShippedScenes[] = {"tower",   "pyramid-20", "pyramid-10", "resting-shapes", "incline",
                                       "sleep-wake", "springs", "mixed-shapes", "pendulum", "chain-20",
                                       "chain-20-heavy", "chain-20-heavy-swing", "door", "crane",
-                                      "trigger-zone", "drops", "ragdoll-stairs", "servo"};
+                                      "trigger-zone", "drops", "ragdoll-stairs", "servo", "platformer",
+                                      "conveyor"};
 
 TEST(Run, EveryShippedSceneRunsAsItIs) {
     for (const char *name : kShippedScenes) {

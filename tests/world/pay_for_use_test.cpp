@@ -245,5 +245,23 @@ TEST(PayForUse, BroadphasePairsFollowMovedBodies) {
     EXPECT_EQ(f.world.stats().broadphasePairs, 0);
 }
 
+// The pre-solve stage runs only with a contact listener or a body with a one-way
+// direction or a surface velocity: a resting stack of three boxes (3 manifolds) costs
+// nothing there without them, and shows each manifold to the stage with a listener.
+TEST(PayForUse, PreSolveOnlyWithAListenerOrRules) {
+    struct Quiet final : ContactListener {
+        void preSolve(PreSolveContact &) override {}
+    } quiet;
+    for (const bool listening : {false, true}) {
+        WorldFixture f(noSleep());
+        f.ground();
+        for (int level = 0; level < 3; ++level) f.box(Vector3(0, 0.5 + level, 0));
+        if (listening) f.world.setContactListener(&quiet);
+        f.simulate(0.5);
+        EXPECT_EQ(f.world.stats().manifolds, 3);
+        EXPECT_EQ(f.world.stats().preSolvedManifolds, listening ? 3 : 0);
+    }
+}
+
 }  // namespace
 }  // namespace cyclone::test

@@ -176,10 +176,11 @@ TEST(Sensors, ADynamicSensorFallsThroughWithoutWakingOrPushing) {
     EXPECT_LT(f.position(sensor).y(), 0) << "it fell into the ground: 1 s of free fall from 3 m";
 }
 
-// The sensor's mask decides (the body's does not): a sensor on layer 3 that sees layer 1
-// reports the layer-1 ball, even one whose own mask is empty, and not the layer-0 one.
-// A new mask ends what it no longer sees.
-TEST(Sensors, TheSensorsMaskDecidesWhatItSees) {
+// Sensors filter both ways, as contacts do: a sensor on layer 3 that sees layer 1 reports
+// the layer-1 ball (whose mask, every layer, holds 3), not the layer-1 ghost whose own mask
+// is empty, nor the layer-0 ball. A new mask ends what it no longer sees. (Radius 0.25
+// balls 1 m apart: only the zone's pairs overlap in the broadphase.)
+TEST(Sensors, SensorsFilterBothWays) {
     WorldSettings settings;
     settings.gravity = Vector3::Zero();
     settings.sleep = false;
@@ -191,19 +192,50 @@ TEST(Sensors, TheSensorsMaskDecidesWhatItSees) {
     const BodyId plain = f.world.addBody(ball(Vector3(-1, 0, 0)));
     BodySettings seen = ball(Vector3(1, 0, 0));
     seen.layer = 1;
-    seen.collidesWith = 0;
     const BodyId layered = f.world.addBody(seen);
+    BodySettings ghost = ball(Vector3(0, 0, 0));
+    ghost.layer = 1;
+    ghost.collidesWith = 0;
+    f.world.addBody(ghost);
     f.world.step(kDt);
     ASSERT_EQ(f.world.events().sensorBegins.size(), 1u);
     EXPECT_EQ(f.world.events().sensorBegins[0].body, layered);
     EXPECT_EQ(f.world.stats().sensorPairs, 1);
-    EXPECT_EQ(f.world.stats().filteredPairs, 1) << "the layer-0 ball's pair never reaches a test";
+    EXPECT_EQ(f.world.stats().filteredPairs, 2) << "the layer-0 ball's and the ghost's pairs never reach a test";
     f.world.setCollisionFilter(zone, 3, 1u << 0);
     f.world.step(kDt);
     ASSERT_EQ(f.world.events().sensorEnds.size(), 1u);
     EXPECT_EQ(f.world.events().sensorEnds[0].body, layered);
     ASSERT_EQ(f.world.events().sensorBegins.size(), 1u);
     EXPECT_EQ(f.world.events().sensorBegins[0].body, plain);
+}
+
+// A body that changes its own mask to leave out the sensor's layer stops being seen (the
+// overlap ends at once, reported with the next step's events), and is seen again when its
+// mask holds that layer again.
+TEST(Sensors, ABodysOwnMaskHidesItFromASensor) {
+    WorldSettings settings;
+    settings.gravity = Vector3::Zero();
+    settings.sleep = false;
+    WorldFixture f(settings);
+    BodySettings zoneSettings = sensorBox(Vector3::Zero(), Vector3(1, 1, 1));
+    zoneSettings.layer = 2;
+    const BodyId zone = f.world.addBody(zoneSettings);
+    const BodyId body = f.world.addBody(ball(Vector3::Zero()));
+    f.world.step(kDt);
+    ASSERT_EQ(f.world.events().sensorBegins.size(), 1u);
+    f.world.setCollisionFilter(body, 0, kAllLayers & ~(1u << 2));
+    f.world.step(kDt);
+    ASSERT_EQ(f.world.events().sensorEnds.size(), 1u);
+    EXPECT_EQ(f.world.events().sensorEnds[0].sensor, zone);
+    EXPECT_EQ(f.world.events().sensorEnds[0].body, body);
+    EXPECT_TRUE(f.world.events().sensorBegins.empty());
+    f.world.step(kDt);
+    EXPECT_TRUE(f.world.events().sensorBegins.empty()) << "still hidden";
+    f.world.setCollisionFilter(body, 0, kAllLayers);
+    f.world.step(kDt);
+    ASSERT_EQ(f.world.events().sensorBegins.size(), 1u);
+    EXPECT_EQ(f.world.events().sensorBegins[0].body, body);
 }
 
 // Sensors never see sensors, and a pair rule hides a body from a sensor.

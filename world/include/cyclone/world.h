@@ -4,6 +4,7 @@
 #pragma once
 
 #include "cyclone/body.h"
+#include "cyclone/world/contact_listener.h"
 #include "cyclone/world/debug_draw.h"
 #include "cyclone/world/error.h"
 #include "cyclone/world/events.h"

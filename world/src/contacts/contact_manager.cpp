@@ -582,7 +582,7 @@ void ContactManager::reportContactEvents(WorldState &world) {
         ContactTrack &track = tracks_[p];
         const ContactTrack now = stateOf(p);
         if (track.touching && (!now.touching || track.a != now.a || track.b != now.b)) {
-            events.contactEnds.push_back({track.a, track.b});
+            events.contactEnds.push_back({track.a, track.b, track.userDataA, track.userDataB});
             track.touching = false;
         }
         if (!now.touching || track.touching) continue;
@@ -611,6 +611,8 @@ void ContactManager::reportContactEvents(WorldState &world) {
         const Vector3 va = ra.body.getVelocity() + ra.body.getRotation().cross(begin.point - ra.body.getPosition());
         const Vector3 vb = rb.body.getVelocity() + rb.body.getRotation().cross(begin.point - rb.body.getPosition());
         begin.approachSpeed = (va - vb).dot(begin.normal);
+        begin.userDataA = track.userDataA = ra.userData;
+        begin.userDataB = track.userDataB = rb.userData;
         events.contactBegins.push_back(begin);
     }
     eventSlots_.clear();

@@ -22,6 +22,7 @@ struct ContactTrack {
     BodyId a;
     BodyId b;
     bool touching = false;
+    std::uint64_t userDataA = 0, userDataB = 0;  ///< The bodies' user data when it began (for the end event).
 };
 
 class ContactManager {

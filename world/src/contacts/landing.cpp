@@ -176,7 +176,9 @@ void LandingCorrection::correct(WorldState &world) {
     // The bodies of a pair the step began deeper in than kRestingFactor times its
     // tolerance (a body sunk under a pile's load, which the solver does not carry).
     const std::vector<std::uint32_t> &touching = world.contacts.touchingPairs;
+    const PreSolve &preSolve = world.preSolve;
     const auto deepPair = [&](std::size_t k) {
+        if (preSolve.anyDisabled() && preSolve.disabled(touching[k])) return false;  // passing through, as asked
         const PairState &pair = world.contacts.pairs[touching[k]];
         const real deepest = kRestingFactor * pairTolerance(bodies[pair.a], bodies[pair.b], slop);
         for (const ManifoldState &m : pair.manifolds)
@@ -243,6 +245,9 @@ void LandingCorrection::correct(WorldState &world) {
             std::sort(pairs_.begin(), pairs_.end(),
                       [&](std::uint32_t x, std::uint32_t y) { return contacts.stepIndex(x) < contacts.stepIndex(y); });
         }
+        if (preSolve.anyDisabled())
+            pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [&](std::uint32_t p) { return preSolve.disabled(p); }),
+                         pairs_.end());
         if (pairs_.empty()) break;
         const auto retested = [&](const Point &x) { return movedIn(x.a, last) || movedIn(x.b, last); };
         points_.erase(std::remove_if(points_.begin(), points_.end(), retested), points_.end());

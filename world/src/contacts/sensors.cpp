@@ -53,8 +53,9 @@ void Sensors::end(WorldState &world, std::uint32_t slot) {
     const BodyStore &bodies = world.bodies;
     const PairState &pair = overlaps_[slot];
     const bool aIsSensor = bodies[pair.a].sensor;
+    const std::uint32_t sensor = aIsSensor ? pair.a : pair.b, body = aIsSensor ? pair.b : pair.a;
     world.events.sink->sensorEnds.push_back(
-        {bodies.idOf(aIsSensor ? pair.a : pair.b), bodies.idOf(aIsSensor ? pair.b : pair.a)});
+        {bodies.idOf(sensor), bodies.idOf(body), bodies[sensor].userData, bodies[body].userData});
     overlaps_.remove(slot);
 }
 
@@ -108,7 +109,8 @@ void Sensors::update(WorldState &world) {
             bool created = false;
             const std::uint32_t slot = overlaps_.findOrAdd(c.a, c.b, created);
             overlaps_[slot].lastSeen = step;
-            if (created) events.sensorBegins.push_back({bodies.idOf(c.a), bodies.idOf(c.b)});
+            if (created)
+                events.sensorBegins.push_back({bodies.idOf(c.a), bodies.idOf(c.b), bodies[c.a].userData, bodies[c.b].userData});
         } else if (const long slot = overlaps_.find(c.a, c.b); slot >= 0) {
             end(world, static_cast<std::uint32_t>(slot));
         }

@@ -168,6 +168,7 @@ std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direc
     if (!walk.found) return std::nullopt;
     RayHit hit;
     hit.body = w.bodies.idOf(walk.body);
+    hit.userData = w.bodies[walk.body].userData;
     hit.distance = walk.hit.distance;
     hit.point = walk.ray.origin + walk.hit.distance * walk.ray.direction;
     hit.normal = walk.hit.normal;
@@ -240,6 +241,7 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
     if (!found) return std::nullopt;
     ShapeCastHit result;
     result.body = w.bodies.idOf(best);
+    result.userData = w.bodies[best].userData;
     result.fraction = hit.fraction;
     result.distance = hit.fraction * length;
     result.point = hit.point;

@@ -128,6 +128,10 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
         const auto row = [&](int k) -> const SolverRow & { return m[k]->frictionRow[r]; };
         loadRow(row, c.tangent[r], c.friction[r], c.frictionCarrier[r]);
         lanesOf([&](int k) { return row(k).impulse; }, c.frictionImpulse[r]);
+        // The relative velocity is B's less A's in every lane (loadRow): its target too.
+        Lanes target;
+        lanesOf([&](int k) { return row(k).target; }, target);
+        c.frictionCarrier[r] -= target;
     }
     // The twist row's lever terms are the normal itself, on either side.
     vectors([&](int k) -> const Lanes & { return m[k]->twist.*ang[k]; }, c.twist);

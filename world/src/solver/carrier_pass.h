@@ -50,7 +50,7 @@ struct WideCarriedContact {
     Lanes carrier[kMaxManifoldPoints]{};  ///< The carrier's share of the normal velocity, m/s.
     WideCarriedRow friction[2];           ///< Along tangent[0], tangent[1].
     WideVector twist;                     ///< I^-1 normal (the twist row's r x d is the normal).
-    Lanes frictionCarrier[3]{};  ///< The carrier's share along the tangents (m/s) and about the normal (rad/s).
+    Lanes frictionCarrier[3]{};  ///< The carrier's share along the tangents (m/s) and about the normal (rad/s), less the tangents' targets (SolverRow::target).
     Lanes frictionImpulse[2]{};  ///< N s.
     Lanes twistImpulse{};        ///< N m s.
     Lanes frictionInverse[6]{};  ///< SolverManifold::carriedFrictionInverse.

@@ -75,6 +75,14 @@ void ConstraintSolver::build(WorldState &world) {
     // (height, place in the walk) would mispredict most of its branches here: a layer's
     // heights are equal but for rounding, so their order changes from step to step.
     sortByHeight(keys_, keysScratch_);
+    // The contact listener and the built-in rules may disable manifolds (their keys go)
+    // and change the others' friction, restitution and surface velocity.
+    if (world.preSolve.active(world)) {
+        world.stats.preSolvedManifolds += static_cast<int>(keys_.size());
+        world.preSolve.run(world, keys_);
+    } else if (world.preSolve.ran()) {
+        world.preSolve.skip();
+    }
     assignSlots(world);
     // Last step's manifolds are overwritten in place (see addSolverManifold); only new
     // slots are value-initialised.
@@ -90,7 +98,7 @@ void ConstraintSolver::build(WorldState &world) {
         ChunkCount &count = chunkCounts_[chunk];
         count = ChunkCount();
         for (std::size_t s = begin; s < end; ++s) {
-            addSolverManifold(world, keys_[keyOfSlot_[s]], s);
+            addSolverManifold(world, keyOfSlot_[s], s);
             const SolverManifold &m = manifolds_[s];
             count.contacts += m.count;
             for (int i = 0; i < m.count; ++i) count.deepest = std::max(count.deepest, m.points[i].depth);
@@ -119,13 +127,16 @@ void ConstraintSolver::build(WorldState &world) {
 static_assert(sizeof(SolverPoint) == 256 && sizeof(SolverManifold) == 2304,
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
-void ConstraintSolver::addSolverManifold(WorldState &world, const ManifoldKey &key, std::size_t slot) {
+void ConstraintSolver::addSolverManifold(WorldState &world, std::uint32_t keyIndex, std::size_t slot) {
+    const ManifoldKey &key = keys_[keyIndex];
     const BodyStore &bodies = world.bodies;
     const PairState &pair = world.contacts.pairs[key.manifold.pair];
     ManifoldState &m = world.contacts.manifold(key.manifold);
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
-    const real friction = std::sqrt(a.material.friction * b.material.friction);
+    const bool preSolved = world.preSolve.ran();
+    const real friction = preSolved ? world.preSolve.override(keyIndex).friction
+                                    : std::sqrt(a.material.friction * b.material.friction);
     // The slot holds an earlier step's manifold (or a value-initialised one). Resetting
     // all ~2.3 KB of it every step cost more than the rest of this function, and most of
     // it is the Jacobians, which prepareSolver writes anyway unless they still hold.
@@ -155,7 +166,13 @@ void ConstraintSolver::addSolverManifold(WorldState &world, const ManifoldKey &k
     sm.a = a.simulated || a.moving ? a.solverIndex : 0;
     sm.b = b.simulated || b.moving ? b.solverIndex : 0;
     sm.friction = friction;
-    sm.restitution = 0;
+    sm.restitution = preSolved ? world.preSolve.override(keyIndex).restitution
+                               : std::max(a.material.restitution, b.material.restitution);
+    // The surfaces do not slide while vB + sB = vA + sA: the bodies' relative velocity
+    // vB - vA is driven towards sA - sB, minus B's surface velocity relative to A's.
+    const Vector3 surface = preSolved ? world.preSolve.override(keyIndex).surfaceVelocity : Vector3::Zero();
+    sm.frictionRow[0].target = -surface.dot(sm.tangent[0]);
+    sm.frictionRow[1].target = -surface.dot(sm.tangent[1]);
     sm.touchesStatic = false;
     sm.carrier = Carrier::None;
     sm.count = m.count;
@@ -239,15 +256,18 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     linearFactor_.resize(n);
     angularFactor_.resize(n);
     positions_.resize(bodies_.size());
+    stepImpulse_.assign(manifolds_.size(), 0);
     resistance_.clear();
     world.workers.forEach(n, [&](std::size_t k) {
-        const RigidBody &body = bodies[bodies.simulated[k]].body;
+        const BodyRecord &r = bodies[bodies.simulated[k]];
+        const RigidBody &body = r.body;
         SolverBody &sb = bodies_[k + 1];
         sb = SolverBody();
         setLanes(sb.v, body.getVelocity());
         setLanes(sb.w, body.getRotation());
         sb.invMass = body.getInverseMass();
         sb.invInertia = body.getInverseInertiaTensorWorld();
+        if (r.locked.any()) lockSolverBody(r.locked, sb);
         body.getDampingFactors(h, &linearFactor_[k], &angularFactor_[k]);
         positions_[k + 1] = body.getPosition();
     });
@@ -354,7 +374,6 @@ void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, r
     const SlotBodies records = slotBodies_[s];
     const RigidBody &a = bodies[records.a].body;
     const RigidBody &b = bodies[records.b].body;
-    m.restitution = std::max(bodies[records.a].material.restitution, bodies[records.b].material.restitution);
     m.touchesStatic = m.a == 0 || m.b == 0 || m.a > static_cast<int>(bodies.simulated.size()) ||
                       m.b > static_cast<int>(bodies.simulated.size());
     const SolverBody &sa = bodies_[m.a];

@@ -62,12 +62,13 @@ public:
     void recoverPenetration(WorldState &world, real h);
     /// SoftStep's restitution pass, once per step.
     void applyRestitution(WorldState &world);
-    /// Hands the accumulated impulses back to the pairs' manifolds for warm starting.
+    /// Hands the accumulated impulses back to the pairs' manifolds for warm starting, and
+    /// reports each solved pair's normal impulse of the step (WorldEvents::contactImpulses).
     void storeImpulses(WorldState &world);
 
 private:
     // Building (constraint_builder.cpp).
-    void addSolverManifold(WorldState &world, const ManifoldKey &key, std::size_t slot);
+    void addSolverManifold(WorldState &world, std::uint32_t keyIndex, std::size_t slot);
     void assignSlots(WorldState &world);
     void prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split,
                          real restitutionThreshold);
@@ -81,6 +82,7 @@ private:
     void solveCarrierPass(WorldState &world, bool reverse);
     void solveResistancePass(WorldState &world);
     void recoverContactPenetration(WorldState &world, real h);
+    void reportImpulses(WorldState &world);
 
     /// The body records of a slot's A and B: the passes over the slots read them here,
     /// not from the pair, whose record is a cache miss away.
@@ -133,6 +135,7 @@ private:
     std::vector<real> linearFactor_;   ///< damping^h of each simulated body.
     std::vector<real> angularFactor_;
     std::vector<char> overflowed_;     ///< Simulated bodies whose penetration push overflowed this sub-step (isolated).
+    std::vector<real> stepImpulse_;    ///< Per slot: its points' normal impulses summed over the step's sub-steps, N s.
 };
 
 }  // namespace cyclone::detail

@@ -181,8 +181,8 @@ struct ManifoldSweep {
         real load = 0;
         for (int k = 0; k < kCount; ++k) load += m.points[m.order[k]].normal.impulse;
         const real limit = m.friction * load;
-        const real v0 = vel.along(m.direction[1], row0);
-        const real v1 = vel.along(m.direction[2], row1);
+        const real v0 = vel.along(m.direction[1], row0) - row0.target;
+        const real v1 = vel.along(m.direction[2], row1) - row1.target;
         const real v2 = turns ? vel.turning(twist) : 0;
         const real old0 = row0.impulse;
         const real old1 = row1.impulse;

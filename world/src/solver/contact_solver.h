@@ -39,6 +39,11 @@ struct SolverRow {
     real mass = 0;
     real carriedMass = 0;  ///< Effective mass with the carrier immovable (carrier pass), kg.
     real impulse = 0;  ///< Accumulated impulse, N s.
+    /// Relative velocity of the bodies along d the row drives towards, m/s: friction rows
+    /// only, minus B's surface velocity relative to A's along d
+    /// (PreSolveContact::surfaceVelocity), at which the surfaces do not slide; 0 on a
+    /// normal row, whose target is the point's velocityBias.
+    real target = 0;
     Lanes rAxd{};      ///< rA x d.
     Lanes rBxd{};      ///< rB x d.
     Lanes angA{};      ///< IA^-1 (rA x d).

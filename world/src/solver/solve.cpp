@@ -3,6 +3,7 @@
 // bodies through addVelocity / addRotation; then, after integration, penetration
 // recovered without adding energy: pseudo-velocities (SplitImpulse) or a rigid relax
 // pass (SoftStep).
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -77,6 +78,10 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         const Vector3 alpha = r.body.getInverseInertiaTensorWorld() * r.body.getAccumulatedTorque();
         predictedV_[k] = (r.body.getVelocity() + a * h) * linearFactor_[k];
         predictedW_[k] = (r.body.getRotation() + alpha * h) * angularFactor_[k];
+        if (r.locked.any()) {
+            predictedV_[k] = freeLinear(r.locked, predictedV_[k]);
+            predictedW_[k] = freeAngular(r.locked, predictedW_[k]);
+        }
         setLanes(sb.v, predictedV_[k]);
         setLanes(sb.w, predictedW_[k]);
         sb.pv = Lanes{};
@@ -146,6 +151,11 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         for (int it = 0; it < world.plan.velocityIterations; ++it) world.joints.solveVelocities(bodies_);
     }
     if (joints) world.joints.storeImpulses();
+    // What the sub-step's contacts gave: each point's accumulated impulse, warm start included.
+    for (std::size_t s = 0; s < manifolds_.size(); ++s) {
+        const SolverManifold &m = manifolds_[s];
+        for (int i = 0; i < m.count; ++i) stepImpulse_[s] += m.points[i].normal.impulse;
+    }
 
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.
@@ -169,7 +179,8 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         Vector3 dw = Vector3::Zero();
         if (angularFactor_[k] > 0) {
             dw = toVector3(sb.w) - predictedW_[k];
-            if (conserving && !firstSubstep && !r.body.hasIsotropicInertia())
+            // (A locked body's projected inertia has no inverse: its w is held anyway.)
+            if (conserving && !firstSubstep && !r.body.hasIsotropicInertia() && !r.locked.any())
                 dw = r.body.getInverseInertiaTensorWorld() * sb.invInertia.inverse() * dw;
             dw /= angularFactor_[k];
         }
@@ -363,6 +374,36 @@ void ConstraintSolver::storeImpulses(WorldState &world) {
         state.frictionImpulse = (m.frictionRow[0].impulse * m.tangent[0] + m.frictionRow[1].impulse * m.tangent[1]) * scale;
         state.twistImpulse = m.twist.impulse * scale;
     });
+    reportImpulses(world);
+}
+
+// One entry per solved pair, summed over its manifolds, in the order of the bodies'
+// indices (the slots' order changes with the heights); in place, so that a steady step
+// allocates nothing.
+void ConstraintSolver::reportImpulses(WorldState &world) {
+    const BodyStore &bodies = world.bodies;
+    std::vector<ContactImpulse> &out = world.events.sink->contactImpulses;
+    const std::size_t first = out.size();
+    for (std::size_t s = 0; s < manifolds_.size(); ++s) {
+        if (!world.contacts.pairs[sources_[s].pair].alive) continue;  // a body was isolated
+        const SlotBodies pair = slotBodies_[s];
+        out.push_back({bodies.idOf(pair.a), bodies.idOf(pair.b), bodies[pair.a].userData, bodies[pair.b].userData,
+                       stepImpulse_[s]});
+    }
+    const auto begin = out.begin() + static_cast<std::ptrdiff_t>(first);
+    std::sort(begin, out.end(), [](const ContactImpulse &x, const ContactImpulse &y) {
+        return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
+    });
+    auto kept = begin;
+    for (auto it = begin; it != out.end(); ++it) {
+        if (it != begin && kept->a == it->a && kept->b == it->b) {
+            kept->normalImpulse += it->normalImpulse;
+            continue;
+        }
+        if (it != begin) ++kept;
+        *kept = *it;
+    }
+    if (begin != out.end()) out.erase(kept + 1, out.end());
 }
 
 }  // namespace cyclone::detail

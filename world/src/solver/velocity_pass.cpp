@@ -89,6 +89,8 @@ struct WideSweep {
         }
         relative(m.tangent[0], vel.va, vel.vb, m.friction[0], vel.wa, vel.wb, v0);
         relative(m.tangent[1], vel.va, vel.vb, m.friction[1], vel.wa, vel.wb, v1);
+        v0 -= m.frictionTarget[0];
+        v1 -= m.frictionTarget[1];
         v2 = m.normal.x * dw.x + m.normal.y * dw.y + m.normal.z * dw.z;
     }
 
@@ -216,8 +218,10 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
             for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->couplings, i, entry[k]);
             transpose(entry[0], entry[1], entry[2], entry[3], w.normalCoupling[i]);
         }
-        for (int r = 0; r < 2; ++r)
+        for (int r = 0; r < 2; ++r) {
             loadRow(m[0]->frictionRow[r], m[1]->frictionRow[r], m[2]->frictionRow[r], m[3]->frictionRow[r], w.friction[r]);
+            gatherLanes(m, [r](const SolverManifold &x) { return x.frictionRow[r].target; }, w.frictionTarget[r]);
+        }
         for (int r = 0; r < 3; ++r) {
             for (int k = 0; k < kWideLanes; ++k) order[k].friction(m[k]->couplings, r, entry[k]);
             transpose(entry[0], entry[1], entry[2], entry[3], w.frictionCoupling[r]);

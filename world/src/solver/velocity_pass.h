@@ -14,7 +14,7 @@
 // bodies its warm-start impulses as it is copied (loadBatches); a later sub-step copies
 // again only what changed, the impulses and targets (reloadBatches). The accumulated
 // impulses go back after the velocity passes (storeBatches): a pass reads only the rows
-// it solves, 3584 bytes per group of four (896 per manifold; a SolverManifold is
+// it solves, 3648 bytes per group of four (912 per manifold; a SolverManifold is
 // 2304). The rows hold no angular terms I^-1 (r x d): a pass sums each side's lever
 // impulses, sum of impulse times (r x d), and turns the sum by the body's inverse inertia
 // once, which the group holds per lane (the passes stream the rows from memory on large
@@ -55,6 +55,7 @@ struct ManifoldBatch {
     WideVector normal, tangent[2];
     WidePoint points[kMaxManifoldPoints];
     WideRow friction[2];            ///< Along tangent[0], tangent[1].
+    Lanes frictionTarget[2]{};      ///< Their SolverRow::target, m/s.
     /// World-space inverse inertia of each lane's A and B (SolverBody::invInertia, the
     /// step's), 1/(kg m^2). The twist row's lever terms are the normal itself.
     WideSymmetric invInertiaA, invInertiaB;

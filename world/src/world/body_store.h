@@ -45,6 +45,11 @@ struct BodyRecord {
     std::uint32_t collidesWith = kAllLayers;  ///< Layers it collides with, bit k for layer k.
     bool sensor = false;        ///< Reports overlaps, never touches (contacts/sensors.h).
     std::vector<std::uint32_t> keptApart;  ///< Bodies it never collides with (World::setPairCollision), any order.
+    real gravityScale = 1;      ///< Factor of the world's gravity on it (BodySettings::gravityScale).
+    LockedAxes locked;          ///< Axes it may not move along or turn about (dynamics/axis_locks.h).
+    Vector3 surfaceVelocity = Vector3::Zero();  ///< Body space, m/s (BodySettings::surfaceVelocity).
+    Vector3 oneWay = Vector3::Zero();  ///< Unit, body space; zero: not one-way (contacts/pre_solve.h).
+    std::uint64_t userData = 0;  ///< BodySettings::userData.
 };
 
 /// The offset from a body's shape frame to its centre of mass, world space, m: zero
@@ -81,6 +86,11 @@ struct BodyStore final : PairFilter {
     int roundCount = 0;
     /// Pairs kept apart by World::setPairCollision.
     int keptApartCount = 0;
+    /// Live dynamic bodies with a locked axis: while there are none, no stage looks for them.
+    int lockedCount = 0;
+    /// Live bodies with a surface velocity or a one-way direction: while there are none
+    /// (and no contact listener), the pre-solve stage is skipped.
+    int ruledCount = 0;
     int isolatedCount = 0;  ///< Live bodies isolated for a non-finite state.
     std::vector<std::uint32_t> planes;
     std::unordered_map<std::string, std::uint32_t> names;
@@ -111,16 +121,14 @@ struct BodyStore final : PairFilter {
     /// sensor flag or a pair rule that is not the default.
     bool filtering() const { return filteredCount > 0 || sensorCount > 0 || keptApartCount > 0; }
     /// Contact when the layers let bodies i and j touch, Sensor when one is a sensor that
-    /// sees the other (its mask holds the other's layer), Filtered otherwise (two sensors,
-    /// or a pair rule).
+    /// sees the other (each one's mask holds the other's layer, as for contacts), Filtered
+    /// otherwise (two sensors, or a pair rule).
     PairKind classify(std::uint32_t i, std::uint32_t j) const override {
         const BodyRecord &a = records[i];
         const BodyRecord &b = records[j];
         PairKind kind;
         if (a.sensor || b.sensor) {
-            const BodyRecord &sensor = a.sensor ? a : b;
-            const BodyRecord &other = a.sensor ? b : a;
-            kind = !other.sensor && (sensor.collidesWith >> other.layer & 1u) ? PairKind::Sensor : PairKind::Filtered;
+            kind = !(a.sensor && b.sensor) && collide(i, j) ? PairKind::Sensor : PairKind::Filtered;
         } else {
             kind = collide(i, j) ? PairKind::Contact : PairKind::Filtered;
         }

@@ -1,7 +1,7 @@
 // World::step: (characters' pushes) -> forces -> broadphase -> narrowphase -> contact events ->
-// sensors -> constraints -> islands -> per sub-step (forces, solve, integrate, penetration) ->
-// continuous collision -> landing correction -> sleep -> characters. Each stage adds its
-// time to stats().ms.
+// sensors -> constraints -> islands -> per sub-step (forces, solve, integrate, penetration,
+// locked axes) -> continuous collision -> landing correction -> locked axes -> sleep ->
+// characters. Each stage adds its time to stats().ms.
 #include "world/stage_timer.h"
 #include "world/world_impl.h"
 
@@ -19,6 +19,7 @@ void WorldState::step(real dt, const World &queries) {
     {
         const StageTimer t(ms.forces);
         integration.beginStep(*this, dt);
+        axisLocks.beginStep(*this);
         kinematicBodies.beginStep(*this);
         joints.beginStep(*this);
     }
@@ -56,6 +57,7 @@ void WorldState::step(real dt, const World &queries) {
             kinematicBodies.integrate(*this, h);
         }
         { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position
+        { const StageTimer t(ms.integrate); axisLocks.hold(*this); }
     }
     {
         const StageTimer t(ms.solve);
@@ -65,6 +67,7 @@ void WorldState::step(real dt, const World &queries) {
     }
     { const StageTimer t(ms.ccd); ccd.sweep(*this); }
     { const StageTimer t(ms.landing); landing.correct(*this); }
+    { const StageTimer t(ms.integrate); axisLocks.hold(*this); }
     { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
     if (!characters.empty()) { const StageTimer t(ms.characters); characters.update(*this, queries, dt); }
     events.closeStep();

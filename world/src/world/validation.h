@@ -1,6 +1,8 @@
 // The World's own checks on top of the shared ones (cyclone/detail/validation.h).
 #pragma once
 
+#include <cmath>
+
 #include "cyclone/detail/validation.h"
 #include "cyclone/world/settings.h"
 
@@ -24,6 +26,12 @@ inline void requireReach(const char *function, const char *field, const Vector3 
         refuse(function, field,
                "puts part of the shape " + show(reach) + " m from the origin (its centre at " + show(centre) +
                    ", its farthest point " + show(radius) + " m from it); every point must be within 1e12 m");
+}
+
+/// A gravity scale: finite, and with `gravity` times it finite.
+inline void requireGravityScale(const char *function, const char *field, real scale, const Vector3 &gravity) {
+    if (!std::isfinite(scale) || !(gravity * scale).allFinite())
+        refuse(function, field, "must be finite (and times the gravity too), got " + show(scale));
 }
 
 }  // namespace cyclone::detail

@@ -141,9 +141,10 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
         refuse(function, "inertia", "must be finite, symmetric and positive definite, got " + shown.str());
     }
     body.setMass(s.mass);
-    body.setVelocity(s.velocity);
-    body.setRotation(s.rotation);
-    body.setAcceleration(world.gravity);
+    body.setVelocity(freeLinear(s.lockedAxes, s.velocity));
+    body.setRotation(freeAngular(s.lockedAxes, s.rotation));
+    requireGravityScale(function, "gravityScale", s.gravityScale, world.gravity);
+    body.setAcceleration(world.gravity * s.gravityScale);
     body.setRotationStep(rotationStep(world));
     body.setCanSleep(s.canSleep);
     if (!s.awake) body.setAwake(false);
@@ -167,13 +168,17 @@ const WorldSettings &World::settings() const { return impl_->settings; }
 
 void World::setSettings(const WorldSettings &settings) {
     validateSettings("World::setSettings", settings);
+    for (std::uint32_t index : impl_->bodies.order) {
+        const detail::BodyRecord &r = impl_->bodies[index];
+        if (!r.immovable) detail::requireGravityScale("World::setSettings", "gravity", r.gravityScale, settings.gravity);
+    }
     impl_->settings = settings;
     for (std::uint32_t index : impl_->bodies.order) {
         detail::BodyRecord &r = impl_->bodies[index];
         r.body.setSleepEpsilon(sleepEpsilonFor(settings.sleepEpsilon, r.boundingRadius));
         r.body.setMovingMotionCap(movingMotionCap(settings.sleepDelay));
         if (r.immovable) continue;
-        r.body.setAcceleration(settings.gravity);
+        r.body.setAcceleration(settings.gravity * r.gravityScale);
         r.body.setRotationStep(rotationStep(settings));
         impl_->wake(index);
     }
@@ -204,6 +209,9 @@ BodyId World::addBody(const BodySettings &settings) {
                                               detail::show(shape->boundingRadius()) + " m from it");
     if (settings.layer < 0 || settings.layer > 31)
         detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
+    detail::requireFinite(function, "surfaceVelocity", settings.surfaceVelocity);
+    if (settings.oneWay && (!settings.oneWay->allFinite() || settings.oneWay->isZero(0)))
+        detail::refuse(function, "oneWay", "must be finite and not zero, got " + detail::show(*settings.oneWay));
     RigidBody body = makeBody(function, settings, *shape, w.settings);
     if (shape->isCompound()) body.setPosition(body.getPosition() + detail::frameToCentre(body, *shape));
     if (settings.shape.type != ShapeType::Plane)
@@ -243,6 +251,13 @@ BodyId World::addBody(const BodySettings &settings) {
     r.boundingRadius = shape->boundingRadius();
     r.layer = settings.layer;
     r.collidesWith = settings.collidesWith;
+    r.gravityScale = motion == Motion::Dynamic ? settings.gravityScale : 1;
+    r.locked = motion == Motion::Dynamic ? settings.lockedAxes : LockedAxes();
+    w.bodies.lockedCount += r.locked.any();
+    r.surfaceVelocity = settings.surfaceVelocity;
+    r.userData = settings.userData;
+    r.oneWay = settings.oneWay ? Vector3(settings.oneWay->normalized()) : Vector3(Vector3::Zero());
+    w.bodies.ruledCount += !r.surfaceVelocity.isZero(0) || !r.oneWay.isZero(0);
     if (r.layer != 0 || r.collidesWith != kAllLayers) ++w.bodies.filteredCount;
     r.sensor = settings.sensor;
     w.bodies.sensorCount += r.sensor;
@@ -313,6 +328,11 @@ void World::removeBody(BodyId id) {
     w.bodies.roundCount -= detail::mayBeRound(*r.shape);
     r.layer = 0;
     r.collidesWith = kAllLayers;
+    w.bodies.lockedCount -= r.locked.any();
+    r.locked = LockedAxes();
+    w.bodies.ruledCount -= !r.surfaceVelocity.isZero(0) || !r.oneWay.isZero(0);
+    r.surfaceVelocity = Vector3::Zero();
+    r.oneWay = Vector3::Zero();
     if (r.isPlane) w.bodies.planes.erase(std::find(w.bodies.planes.begin(), w.bodies.planes.end(), index));
     w.setTree(index, Tree::None);
     if (r.sleepingIsland >= 0) {

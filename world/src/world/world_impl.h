@@ -12,8 +12,10 @@
 #include "collision/broadphase.h"
 #include "contacts/contact_manager.h"
 #include "contacts/landing.h"
+#include "contacts/pre_solve.h"
 #include "contacts/sensors.h"
 #include "cyclone/world/world.h"
+#include "dynamics/axis_locks.h"
 #include "dynamics/ccd.h"
 #include "dynamics/integration.h"
 #include "dynamics/islands.h"
@@ -37,9 +39,11 @@ struct WorldState {
     JointSet joints;
     Broadphase broadphase;
     ContactManager contacts;
+    PreSolve preSolve;
     Sensors sensors;
     ConstraintSolver solver;
     Integration integration;
+    AxisLocks axisLocks;
     KinematicBodies kinematicBodies;
     Islands islands;
     ContinuousCollision ccd;

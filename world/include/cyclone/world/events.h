@@ -3,6 +3,7 @@
 /// woke up. Read them with World::events() after World::step().
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "cyclone/core.h"
@@ -31,6 +32,8 @@ struct ContactBegin {
     /// when the contact was found, before the solver acted, m/s: > 0 approaching, < 0
     /// separating. An impact sound can be scaled by it.
     real approachSpeed = 0;
+    /// BodySettings::userData of `a` and of `b`.
+    std::uint64_t userDataA = 0, userDataB = 0;
 };
 
 /// Two bodies that touched at the end of the previous step no longer do: they moved
@@ -41,6 +44,22 @@ struct ContactEnd {
     BodyId a;
     /// The other body of the pair.
     BodyId b;
+    /// BodySettings::userData of `a` and of `b` (as they were when the contact began).
+    std::uint64_t userDataA = 0, userDataB = 0;
+};
+
+/// The push a touching pair's contacts gave in the last step: for damage and impact sounds.
+struct ContactImpulse {
+    /// One body of the pair (the one with the smaller BodyId::index).
+    BodyId a;
+    /// The other body of the pair.
+    BodyId b;
+    /// BodySettings::userData of `a` and of `b`.
+    std::uint64_t userDataA = 0, userDataB = 0;
+    /// The normal impulse of all the pair's contact points over the step (every sub-step),
+    /// N s, >= 0: a box of mass m resting on the ground under g takes m g dt per step; one
+    /// that lands at speed v and stops, about m v in that step.
+    real normalImpulse = 0;
 };
 
 /// A joint broke: the mean force or torque it exerted during the step exceeded its
@@ -60,6 +79,8 @@ struct SensorEvent {
     BodyId sensor;
     /// The body it sees.
     BodyId body;
+    /// BodySettings::userData of the sensor and of the body.
+    std::uint64_t sensorUserData = 0, bodyUserData = 0;
 };
 
 /// The events of one step, as returned by World::events().
@@ -96,6 +117,9 @@ struct WorldEvents {
     std::vector<BodyId> wokeUp;
     /// Joints that broke (and were removed) at the end of the step.
     std::vector<JointBreak> jointsBroken;
+    /// Every pair the step solved (pairs with a simulated body and a contact not disabled,
+    /// ContactListener), with its normal impulse; sorted by a's BodyId::index, then b's.
+    std::vector<ContactImpulse> contactImpulses;
 
     /// Empties every list, keeping their storage.
     void clear() {
@@ -106,6 +130,7 @@ struct WorldEvents {
         fellAsleep.clear();
         wokeUp.clear();
         jointsBroken.clear();
+        contactImpulses.clear();
     }
 };
 

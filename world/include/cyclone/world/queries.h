@@ -49,6 +49,8 @@ struct RayHit {
     Vector3 normal = Vector3::UnitY();
     /// Distance from the ray's origin to `point`, m, in [0, maxDistance].
     real distance = 0;
+    /// The body's BodySettings::userData.
+    std::uint64_t userData = 0;
 };
 
 /// The first hit of a shape cast, as returned by World::shapeCast().
@@ -65,6 +67,8 @@ struct ShapeCastHit {
     /// Unit surface normal of the body hit at `point`, world space, pointing out of it
     /// towards the cast shape.
     Vector3 normal = Vector3::UnitY();
+    /// The body's BodySettings::userData.
+    std::uint64_t userData = 0;
 };
 
 }  // namespace cyclone

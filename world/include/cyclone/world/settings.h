@@ -11,6 +11,7 @@
 
 #include "cyclone/body.h"
 #include "cyclone/core.h"
+#include "cyclone/world/locked_axes.h"
 #include "cyclone/world/shape.h"
 
 namespace cyclone {
@@ -309,17 +310,37 @@ struct BodySettings {
     /// Collision layer, in [0, 31].
     int layer = 0;
     /// The layers this body collides with, bit k for layer k. Two bodies touch only when
-    /// each one's mask holds the other's layer. Every layer by default. A sensor sees the
-    /// bodies whose layer its own mask holds (theirs does not matter).
+    /// each one's mask holds the other's layer. Every layer by default. A sensor sees a
+    /// body by the same rule: each one's mask must hold the other's layer.
     std::uint32_t collidesWith = kAllLayers;
     /// A sensor reports the bodies that overlap it (WorldEvents::sensorBegins and
     /// sensorEnds) but pushes nothing and is pushed by nothing: its pairs never reach the
     /// contact solver. It sees every body but other sensors (static, sleeping and
-    /// kinematic ones included) whose layer its `collidesWith` holds and that no
-    /// World::setPairCollision rule keeps from it. Any shape on a static body; any but a
+    /// kinematic ones included) whose layer its `collidesWith` holds, whose own
+    /// `collidesWith` holds the sensor's layer, and that no World::setPairCollision rule
+    /// keeps from it. Any shape on a static body; any but a
     /// plane or a mesh on a kinematic or dynamic one (a dynamic sensor falls like any
     /// body, through the others). A mesh sensor sees what crosses its triangles.
     bool sensor = false;
+    /// Multiplies the world's gravity for this body (dynamic bodies): any finite number;
+    /// 0 floats, -1 falls up (World::setGravityScale changes it).
+    real gravityScale = 1;
+    /// World axes a dynamic body may not move along or turn about (see LockedAxes); its
+    /// velocity's locked components are dropped when it is added. Ignored for static and
+    /// kinematic bodies.
+    LockedAxes lockedAxes;
+    /// Velocity of the body's surface along its contacts, body space, m/s, finite: a
+    /// conveyor belt's; the body itself moves as it otherwise would. Only its part in each
+    /// contact's plane acts, through friction.
+    Vector3 surfaceVelocity = Vector3::Zero();
+    /// A one-way body (a platform): it collides only with bodies on the side this
+    /// direction (body space, finite, not zero; normalised) points to; a body met from the
+    /// other side, or already overlapping it, passes through until they are apart
+    /// (contacts/pre_solve.h has the rule). Empty: an ordinary body.
+    std::optional<Vector3> oneWay;
+    /// The game's own number for the body (an index, a handle, a pointer's bits): returned
+    /// with its events and query hits, never read by the World.
+    std::uint64_t userData = 0;
 };
 
 /// The motion `settings` asks for: `motion`, or Static when the older `isStatic` is set.

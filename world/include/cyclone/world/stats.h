@@ -62,6 +62,7 @@ struct StepStats {
     int pairsTested = 0;        ///< Pairs sent to the narrowphase (FCL or a test of its own).
     int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
     int manifolds = 0;          ///< Contact manifolds given to the solver.
+    int preSolvedManifolds = 0; ///< Manifolds the pre-solve stage saw (ContactListener, one-way and surface-velocity bodies); 0 without them.
     int contacts = 0;           ///< Contact points given to the solver.
     int jacobiansMade = 0;      ///< Manifolds whose Jacobians were made this step (the others kept theirs: WorldSettings::manifoldReuseTolerance).
     int frictionRows = 0;       ///< Friction constraint rows (per manifold with friction: 2 tangents, plus a twist with 2 or more points).

@@ -44,6 +44,7 @@
 
 #include "cyclone/body.h"
 #include "cyclone/world/character.h"
+#include "cyclone/world/contact_listener.h"
 #include "cyclone/world/debug_draw.h"
 #include "cyclone/world/error.h"
 #include "cyclone/world/events.h"
@@ -176,7 +177,7 @@ public:
     void setCanSleep(BodyId id, bool canSleep);
     /// Puts the body on collision layer `layer` ([0, 31]) and makes it collide with the
     /// layers of `collidesWith` (bit k for layer k); two bodies touch only when each one's
-    /// mask holds the other's layer (a sensor sees the layers its mask holds). Contacts and
+    /// mask holds the other's layer (a sensor and the body it sees too). Contacts and
     /// sensor overlaps the new filter forbids end at once (reported with the next step's
     /// events); the body and what it touched wake.
     void setCollisionFilter(BodyId id, int layer, std::uint32_t collidesWith);
@@ -196,6 +197,22 @@ public:
     /// Replaces the body's material (friction >= 0, restitution in [0, 1]). Wakes
     /// nothing: it acts at the body's next contact.
     void setMaterial(BodyId id, const Material &material);
+
+    /// Sets the factor of the world's gravity that acts on a dynamic body (finite; 0
+    /// floats, -1 falls up). Wakes it and its island. A static or kinematic body is refused.
+    void setGravityScale(BodyId id, real scale);
+    /// The body's gravity scale (BodySettings::gravityScale).
+    real gravityScale(BodyId id) const;
+    /// Locks a dynamic body's motion along and about the given world axes (see
+    /// LockedAxes), from its current pose; the locked components of its velocity are
+    /// dropped at once. Wakes it and its island. A static or kinematic body is refused.
+    void setLockedAxes(BodyId id, const LockedAxes &axes);
+    /// The axes locked on the body (BodySettings::lockedAxes).
+    const LockedAxes &lockedAxes(BodyId id) const;
+    /// Replaces the body's user data (BodySettings::userData). Wakes nothing.
+    void setUserData(BodyId id, std::uint64_t userData);
+    /// The body's user data (BodySettings::userData).
+    std::uint64_t userData(BodyId id) const;
 
     // --- Springs ------------------------------------------------------------------------
 
@@ -284,6 +301,13 @@ public:
     /// events of the last step are cleared. Throws InvalidArgument, changing nothing, on a
     /// damaged state (its checksum fails) or one of another World (other shapes).
     void restoreState(const std::vector<std::uint8_t> &state);
+    /// Sets the listener that sees each contact manifold before it is solved (see
+    /// ContactListener), or removes it (nullptr). The World does not own it; it must
+    /// outlive its use. Without a listener, and without bodies that have a
+    /// BodySettings::oneWay or surfaceVelocity, the step pays nothing for the stage.
+    void setContactListener(ContactListener *listener);
+    /// The listener set by setContactListener (nullptr: none).
+    ContactListener *contactListener() const;
 
     // --- Events -------------------------------------------------------------------------
 
