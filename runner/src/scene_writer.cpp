@@ -2,12 +2,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "summary.h"
+
 namespace cyclone::scene {
 namespace {
 
 using nlohmann::ordered_json;
-
-ordered_json vector3(const Vector3 &v) { return ordered_json::array({v.x(), v.y(), v.z()}); }
 
 // A body's frame (world.framePose) when the scene was loaded and now: what carries a
 // point or a direction given at load to where the body holds it now.
@@ -38,11 +38,11 @@ void writeBodies(ordered_json &root, const Scene &scene, const SceneWorld &built
         const Quaternion q = body.getOrientation();
         // A compound is placed by its frame (as the summary reports it).
         const Vector3 frameOffset = world.framePosition(id) - body.getPosition();
-        entry["position"] = vector3(body.getPosition() + frameOffset);
+        entry["position"] = jsonVector(body.getPosition() + frameOffset);
         entry["orientation"] = ordered_json::array({q.w(), q.x(), q.y(), q.z()});
         if (!world.isStatic(id)) {
-            entry["velocity"] = vector3(body.getVelocity() + body.getRotation().cross(frameOffset));
-            entry["rotation"] = vector3(body.getRotation());
+            entry["velocity"] = jsonVector(body.getVelocity() + body.getRotation().cross(frameOffset));
+            entry["rotation"] = jsonVector(body.getRotation());
         }
         if (world.motion(id) == Motion::Dynamic) entry["awake"] = body.getAwake();
         bodies.push_back(std::move(entry));
@@ -66,13 +66,13 @@ void writeJoints(ordered_json &root, const Scene &scene, const SceneWorld &built
         ordered_json entry = root["joints"][j];
         const JointSettings &s = joint.settings;
         const Carry a = carryOf(scene.bodies[joint.a], world, built.ids[joint.a]);
-        entry["anchor"] = vector3(a.point(s.anchor));
-        if (entry.contains("axis")) entry["axis"] = vector3(a.direction(s.axis));
+        entry["anchor"] = jsonVector(a.point(s.anchor));
+        if (entry.contains("axis")) entry["axis"] = jsonVector(a.direction(s.axis));
         if (s.type == JointType::Distance) {
             const Vector3 anchorB = s.anchorB ? *s.anchorB : s.anchor;
             const Vector3 nowB =
                 joint.b ? carryOf(scene.bodies[*joint.b], world, built.ids[*joint.b]).point(anchorB) : anchorB;
-            if (entry.contains("anchor_b") || joint.b) entry["anchor_b"] = vector3(nowB);
+            if (entry.contains("anchor_b") || joint.b) entry["anchor_b"] = jsonVector(nowB);
             // Their default is the anchors' distance at load, which the joint keeps.
             const real atLoad = (anchorB - s.anchor).norm();
             if (!entry.contains("min_distance")) entry["min_distance"] = s.minDistance ? *s.minDistance : atLoad;

@@ -6,11 +6,7 @@ namespace cyclone::scene {
 
 using nlohmann::ordered_json;
 
-namespace {
-
-ordered_json vector3(const Vector3 &v) { return ordered_json::array({v.x(), v.y(), v.z()}); }
-
-}  // namespace
+ordered_json jsonVector(const Vector3 &v) { return ordered_json::array({v.x(), v.y(), v.z()}); }
 
 int awakeDynamicBodies(const World &world) {
     int awake = 0;
@@ -48,10 +44,10 @@ ordered_json summaryJson(const Scene &scene, const SceneWorld &built, const RunR
         entry["name"] = scene.bodies[i].settings.name;
         // A compound is reported by its frame: its origin's position and velocity.
         const Vector3 frameOffset = world.framePosition(id) - body.getPosition();
-        entry["position"] = vector3(body.getPosition() + frameOffset);
+        entry["position"] = jsonVector(body.getPosition() + frameOffset);
         entry["orientation"] = ordered_json::array({q.w(), q.x(), q.y(), q.z()});
-        entry["velocity"] = vector3(body.getVelocity() + body.getRotation().cross(frameOffset));
-        entry["rotation"] = vector3(body.getRotation());
+        entry["velocity"] = jsonVector(body.getVelocity() + body.getRotation().cross(frameOffset));
+        entry["rotation"] = jsonVector(body.getRotation());
         entry["awake"] = body.getAwake();
         bodies.push_back(std::move(entry));
     }

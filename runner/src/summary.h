@@ -11,6 +11,9 @@
 
 namespace cyclone::scene {
 
+/// A vector as a JSON array [x, y, z], as the summary and saved scenes write it.
+nlohmann::ordered_json jsonVector(const Vector3 &v);
+
 /// Dynamic bodies of the world awake now.
 int awakeDynamicBodies(const World &world);
 
