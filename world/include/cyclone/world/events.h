@@ -32,8 +32,10 @@ struct ContactBegin {
     /// when the contact was found, before the solver acted, m/s: > 0 approaching, < 0
     /// separating. An impact sound can be scaled by it.
     real approachSpeed = 0;
-    /// BodySettings::userData of `a` and of `b`.
-    std::uint64_t userDataA = 0, userDataB = 0;
+    /// BodySettings::userData of `a`.
+    std::uint64_t userDataA = 0;
+    /// BodySettings::userData of `b`.
+    std::uint64_t userDataB = 0;
 };
 
 /// Two bodies that touched at the end of the previous step no longer do: they moved
@@ -44,8 +46,10 @@ struct ContactEnd {
     BodyId a;
     /// The other body of the pair.
     BodyId b;
-    /// BodySettings::userData of `a` and of `b` (as they were when the contact began).
-    std::uint64_t userDataA = 0, userDataB = 0;
+    /// BodySettings::userData of `a` (as it was when the contact began).
+    std::uint64_t userDataA = 0;
+    /// BodySettings::userData of `b` (as it was when the contact began).
+    std::uint64_t userDataB = 0;
 };
 
 /// The push a touching pair's contacts gave in the last step: for damage and impact sounds.
@@ -54,8 +58,10 @@ struct ContactImpulse {
     BodyId a;
     /// The other body of the pair.
     BodyId b;
-    /// BodySettings::userData of `a` and of `b`.
-    std::uint64_t userDataA = 0, userDataB = 0;
+    /// BodySettings::userData of `a`.
+    std::uint64_t userDataA = 0;
+    /// BodySettings::userData of `b`.
+    std::uint64_t userDataB = 0;
     /// The normal impulse of all the pair's contact points over the step (every sub-step),
     /// N s, >= 0: a box of mass m resting on the ground under g takes m g dt per step; one
     /// that lands at speed v and stops, about m v in that step.
@@ -79,8 +85,10 @@ struct SensorEvent {
     BodyId sensor;
     /// The body it sees.
     BodyId body;
-    /// BodySettings::userData of the sensor and of the body.
-    std::uint64_t sensorUserData = 0, bodyUserData = 0;
+    /// BodySettings::userData of the sensor.
+    std::uint64_t sensorUserData = 0;
+    /// BodySettings::userData of the body.
+    std::uint64_t bodyUserData = 0;
 };
 
 /// The events of one step, as returned by World::events().

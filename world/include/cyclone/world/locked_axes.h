@@ -26,6 +26,7 @@ struct LockedAxes {
     bool operator==(const LockedAxes &o) const {
         return x == o.x && y == o.y && z == o.z && rx == o.rx && ry == o.ry && rz == o.rz;
     }
+    /// Whether the two lock different axes.
     bool operator!=(const LockedAxes &o) const { return !(*this == o); }
 };
 
