@@ -21,14 +21,16 @@ struct FieldError {
 
 const FieldError kFieldErrors[] = {
     {"GravityScaleNotANumber", R"("gravity_scale": "up")", "bodies[0] (\"b\").gravity_scale", "must be a number"},
-    {"GravityScaleInfinite", R"("gravity_scale": -1e999)", "bodies[0] (\"b\").gravity_scale", "finite"},
+    // A number out of a double's range is refused while the JSON is read, before the
+    // bodies' names are known: its place is the plain path.
+    {"GravityScaleInfinite", R"("gravity_scale": -1e999)", "bodies[0].gravity_scale", "finite"},
     {"GravityScaleOverflowsGravity", R"("gravity_scale": 1e308)", "bodies[0] (\"b\").gravity_scale", "1e+308"},
     {"LockedAxesNotAList", R"("locked_axes": "z")", "bodies[0] (\"b\").locked_axes", "must be an array"},
     {"LockedAxesUnknownAxis", R"("locked_axes": ["z", "w"])", "bodies[0] (\"b\").locked_axes[1]", "unknown axis \"w\""},
     {"LockedAxesNotAString", R"("locked_axes": [2])", "bodies[0] (\"b\").locked_axes[0]", "must be a string"},
     {"LockedAxesTwice", R"("locked_axes": ["rx", "rx"])", "bodies[0] (\"b\").locked_axes[1]", "given twice"},
     {"SurfaceVelocityShort", R"("surface_velocity": [1, 0])", "bodies[0] (\"b\").surface_velocity", "array of 3 numbers"},
-    {"SurfaceVelocityInfinite", R"("surface_velocity": [1, 1e999, 0])", "bodies[0] (\"b\").surface_velocity[1]", "finite"},
+    {"SurfaceVelocityInfinite", R"("surface_velocity": [1, 1e999, 0])", "bodies[0].surface_velocity[1]", "finite"},
     {"OneWayZero", R"("one_way": [0, 0, 0])", "bodies[0] (\"b\").one_way", "must not be zero"},
     {"OneWayNotAVector", R"("one_way": true)", "bodies[0] (\"b\").one_way", "array of 3 numbers"},
     {"LockedAxesTooMany", R"("locked_axes": ["x", "y", "z", "rx", "ry", "rz", "x"])", "bodies[0] (\"b\").locked_axes", "at most 6"},
