@@ -178,10 +178,7 @@ struct GroundHit {
 
 real fastestAfterHit(const Shape &targetShape, const Quaternion &q, real targetMass, bool asleep, real ballSpeed) {
     World world;
-    BodySettings g;
-    g.motion = Motion::Static;
-    g.shape = Shape::plane(Vector3::UnitY(), 0);
-    world.addBody(g);
+    addStatic(world, Shape::plane(Vector3::UnitY(), 0), Vector3::Zero());
     BodySettings t;
     t.shape = targetShape;
     t.orientation = q;
@@ -351,10 +348,7 @@ WallHit hitWall(int threads) {
     WorldSettings settings;
     settings.threads = threads;
     World world(settings);
-    BodySettings ground;
-    ground.motion = Motion::Static;
-    ground.shape = Shape::plane(Vector3::UnitY(), 0);
-    world.addBody(ground);
+    addStatic(world, Shape::plane(Vector3::UnitY(), 0), Vector3::Zero());
     std::vector<BodyId> bricks;
     for (int course = 0; course < 8; ++course)
         for (int k = 0; k < 10; ++k) {
@@ -405,10 +399,7 @@ TEST(SleepingHits, AHeavyBallKnocksBricksOutOfASleepingWallNoneFasterThan20) {
 // its bottom box by a 5 kg ball at 7 m/s: the bottom box's fastest speed.
 real hitStack(bool asleep) {
     World world;
-    BodySettings ground;
-    ground.motion = Motion::Static;
-    ground.shape = Shape::plane(Vector3::UnitY(), 0);
-    world.addBody(ground);
+    addStatic(world, Shape::plane(Vector3::UnitY(), 0), Vector3::Zero());
     std::vector<BodyId> boxes;
     for (int k = 0; k < 3; ++k) {
         BodySettings box;
