@@ -99,7 +99,7 @@ Impact hit(Target target, bool asleep, real restitution, real m1 = 2, real m2 = 
     b.ccd = ccd;
     const BodyId ballId = world.addBody(b);
     Impact out;
-    const auto total = [&] {
+    const auto total = [&]() -> Vector3 {
         return world.body(ballId).getMass() * world.body(ballId).getVelocity() +
                world.body(targetId).getMass() * world.body(targetId).getVelocity();
     };
