@@ -30,7 +30,7 @@ struct Config {
     CoreScheme core = CoreScheme::None;
     std::string integratorName;  // overrides the scene-file name (reference schemes)
     SpringForce springForce = SpringForce::Automatic;
-    bool speculativeContacts = true;  // WorldSettings::speculativeContacts
+    bool speculativeContacts = true;  // DebugSettings::speculativeContacts
     double dt = 1.0 / 60;
     int iterations = 3;
     int substeps = 4;

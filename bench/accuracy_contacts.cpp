@@ -211,7 +211,7 @@ void addContactScenes(std::vector<Scene> &all, bool quick) {
                    "examples/scenes/drops.json, 3 s: a 0.25 m ball from 5 m and a unit crate from 10 m onto the "
                    "ground, a unit box from 6 m onto a unit box; the deepest each gets into what it lands on "
                    "(exact: 0). newton-euler: the defaults, speculative contacts on; (no speculative contacts): "
-                   "WorldSettings::speculativeContacts = false, contacts only within speculativeDistance "
+                   "DebugSettings::speculativeContacts = false, contacts only within speculativeDistance "
                    "(2 cm) at the start of a step. Cost is the whole scene's",
                    impacts, drops});
 

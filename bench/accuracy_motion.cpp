@@ -26,7 +26,7 @@ void applyConfig(const Config &c, WorldSettings &s) {
     s.integrator = c.integrator;
     s.velocityIterations = c.iterations;
     s.substeps = c.substeps;
-    s.speculativeContacts = c.speculativeContacts;
+    s.debug.speculativeContacts = c.speculativeContacts;
 }
 
 WorldSettings worldSettings(const Config &c, bool gravity) {
@@ -58,7 +58,7 @@ double timed(int steps, const std::function<void()> &step, const std::function<v
 
 BodyId addGround(World &world, double friction) {
     BodySettings g;
-    g.isStatic = true;
+    g.motion = Motion::Static;
     g.shape = Shape::plane(Vector3::UnitY(), 0);
     g.material.friction = friction;
     return world.addBody(g);
@@ -285,7 +285,7 @@ Outcome rollingSphere(const Config &c) {
     const double angle = kPi / 6;
     const Quaternion tilt(Eigen::AngleAxis<real>(angle, Vector3::UnitZ()));
     BodySettings ramp;
-    ramp.isStatic = true;
+    ramp.motion = Motion::Static;
     ramp.shape = Shape::box(Vector3(20, 0.25, 3));
     ramp.orientation = tilt;
     // No rolling resistance (a pair takes the larger of its two): the closed form is that

@@ -185,9 +185,9 @@ private:
 
     void addBody(const BodySettings &settings, const WorldSettings &world) {
         btCollisionShape *shape = shapeFor(settings.shape);
-        const btScalar mass = settings.isStatic ? btScalar(0) : static_cast<btScalar>(settings.mass);
+        const btScalar mass = settings.motion == Motion::Static ? btScalar(0) : static_cast<btScalar>(settings.mass);
         btVector3 inertia(0, 0, 0);
-        if (!settings.isStatic) {
+        if (settings.motion != Motion::Static) {
             if (settings.inertia) {
                 inertia = toBullet(settings.inertia->diagonal());
             } else {
@@ -205,7 +205,7 @@ private:
         info.m_angularSleepingThreshold = threshold;
 
         auto body = std::make_unique<btRigidBody>(info);
-        if (!settings.isStatic) {
+        if (settings.motion != Motion::Static) {
             body->setLinearVelocity(toBullet(settings.velocity));
             body->setAngularVelocity(toBullet(settings.rotation));
             if (settings.ccd) {
@@ -217,7 +217,7 @@ private:
             }
         }
         world_->addRigidBody(body.get());
-        if (!settings.isStatic) {
+        if (settings.motion != Motion::Static) {
             if (!world.sleep || !settings.canSleep) {
                 body->forceActivationState(DISABLE_DEACTIVATION);
             } else if (!settings.awake) {

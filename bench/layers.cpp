@@ -6,7 +6,7 @@
 //
 //   cyclone-layers [--scene pyramid60] [--steps N] [--substeps S] [--iterations I]
 //                  [--every K] [--layers L] [--positions P] [--reuse M] [--shock 0|1]
-//                  [--warm 0|1] [--recovery R] [--slop M] [--soft HZ] [--velocities 0|1]
+//                  [--warm 0|1] [--recovery R] [--slop M] [--velocities 0|1]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,7 +26,6 @@ int run(int argc, char **argv) {
     std::string name = "pyramid60";
     int steps = 600, substeps = 1, iterations = 10, every = 60, shownLayers = 12;
     WorldSettings knobs;
-    double soft = 0;
     bool velocities = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg, value;
@@ -46,19 +45,17 @@ int run(int argc, char **argv) {
         } else if (arg == "--positions") {
             knobs.positionIterations = std::atoi(value.c_str());
         } else if (arg == "--reuse") {
-            knobs.manifoldReuseTolerance = std::atof(value.c_str());
+            knobs.debug.manifoldReuseTolerance = std::atof(value.c_str());
         } else if (arg == "--shock") {
-            knobs.shockPropagation = std::atoi(value.c_str()) != 0;
+            knobs.debug.carrierPass = std::atoi(value.c_str()) != 0;
         } else if (arg == "--warm") {
-            knobs.warmStarting = std::atoi(value.c_str()) != 0;
+            knobs.debug.warmStarting = std::atoi(value.c_str()) != 0;
         } else if (arg == "--recovery") {
             knobs.penetrationRecovery = std::atof(value.c_str());
         } else if (arg == "--slop") {
             knobs.penetrationSlop = std::atof(value.c_str());
         } else if (arg == "--velocities") {
             velocities = std::atoi(value.c_str()) != 0;
-        } else if (arg == "--soft") {
-            soft = std::atof(value.c_str());
         } else {
             std::fprintf(stderr, "cyclone-layers: unknown option %s\n", arg.c_str());
             return 2;
@@ -72,15 +69,11 @@ int run(int argc, char **argv) {
     scene.world.substeps = substeps;
     scene.world.velocityIterations = iterations;
     scene.world.positionIterations = knobs.positionIterations;
-    scene.world.manifoldReuseTolerance = knobs.manifoldReuseTolerance;
-    scene.world.shockPropagation = knobs.shockPropagation;
-    scene.world.warmStarting = knobs.warmStarting;
+    scene.world.debug.manifoldReuseTolerance = knobs.debug.manifoldReuseTolerance;
+    scene.world.debug.carrierPass = knobs.debug.carrierPass;
+    scene.world.debug.warmStarting = knobs.debug.warmStarting;
     scene.world.penetrationRecovery = knobs.penetrationRecovery;
     scene.world.penetrationSlop = knobs.penetrationSlop;
-    if (soft > 0) {
-        scene.world.contactSolver = ContactSolverType::SoftStep;
-        scene.world.contactHertz = soft;
-    }
     World world(scene.world);
     std::vector<BodyId> ids;
     std::vector<int> layerOf;
@@ -88,7 +81,7 @@ int run(int argc, char **argv) {
     int layers = 0;
     for (const BodySettings &body : scene.bodies) {
         const BodyId id = world.addBody(body);
-        if (body.isStatic) continue;
+        if (body.motion == Motion::Static) continue;
         ids.push_back(id);
         // Pyramid boxes are unit cubes whose centres sit at 0.5 + layer.
         const int layer = static_cast<int>(std::lround(body.position.y() - 0.5));

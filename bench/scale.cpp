@@ -52,7 +52,7 @@ Outcome runPyramid(const Options &options, double edge, int run) {
     }
     World world(settings);
     BodySettings ground;
-    ground.isStatic = true;
+    ground.motion = Motion::Static;
     ground.shape = Shape::plane(Vector3::UnitY(), 0);
     world.addBody(ground);
     BodyId top{};

@@ -51,7 +51,7 @@ BodySettings staticBody(std::string name, Shape shape, const Vector3 &position) 
     BodySettings b;
     b.name = std::move(name);
     b.shape = std::move(shape);
-    b.isStatic = true;
+    b.motion = Motion::Static;
     b.position = position;
     return b;
 }

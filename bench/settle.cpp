@@ -105,7 +105,7 @@ int run(int argc, char **argv) {
     std::vector<std::string> scenes;
     std::vector<std::string> files;
     int firstSeed = 1, lastSeed = 10, steps = 600;
-    bool landing = true;  // WorldSettings::landingCorrection, for comparing
+    bool landing = true;  // DebugSettings::landingCorrection, for comparing
     bool worldDefaults = false;  // the benchmark scenes at WorldSettings' sub-steps and passes
     for (int i = 1; i < argc; ++i) {
         if (std::string(argv[i]) == "--defaults") {
@@ -143,7 +143,7 @@ int run(int argc, char **argv) {
         for (int seed = firstSeed; seed <= lastSeed; ++seed) {
             const Scene scene = makeScene(name, static_cast<std::uint64_t>(seed));
             WorldSettings settings = scene.world;
-            settings.landingCorrection = landing;
+            settings.debug.landingCorrection = landing;
             if (worldDefaults) useWorldDefaults(settings);
             World world(settings);
             for (const BodySettings &body : scene.bodies) world.addBody(body);
@@ -158,7 +158,7 @@ int run(int argc, char **argv) {
         const scene::Scene scene = scene::loadScene(text.str(), file);
         scene::SceneWorld built = scene::buildWorld(scene);
         WorldSettings settings = built.world.settings();
-        settings.landingCorrection = landing;
+        settings.debug.landingCorrection = landing;
         built.world.setSettings(settings);
         print(file, settle(built.world, steps, scene.dt), scene.dt);
 #else

@@ -7,8 +7,8 @@
 //                  [--carrier on|off] [--slowest K]
 // --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
 // benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
-// --landing off steps them without the landing correction (WorldSettings::landingCorrection),
-// --carrier off without the carrier pass (WorldSettings::shockPropagation).
+// --landing off steps them without the landing correction (DebugSettings::landingCorrection),
+// --carrier off without the carrier pass (DebugSettings::carrierPass).
 // --slowest K prints, instead of the medians, each stage's mean over the K slowest steps
 // after the first second (by total): the steps that make a benchmark's p95 (the 30
 // slowest of its 600 steps).
@@ -64,8 +64,8 @@ int run(int argc, char **argv) {
     int threads = 1;
     bool worldDefaults = false;
     int substeps = 0, iterations = 0, positions = -1;  // 0 / -1: the scene's own
-    bool landing = true;  // WorldSettings::landingCorrection, for comparing
-    bool carrier = true;  // WorldSettings::shockPropagation, for comparing
+    bool landing = true;  // DebugSettings::landingCorrection, for comparing
+    bool carrier = true;  // DebugSettings::carrierPass, for comparing
     int slowest = 0;      // 0: medians; K: means over the K slowest steps
     for (int i = 1; i < argc; ++i) {
         std::string arg, value;
@@ -126,8 +126,8 @@ int run(int argc, char **argv) {
         if (substeps > 0) scene.world.substeps = substeps;
         if (iterations > 0) scene.world.velocityIterations = iterations;
         if (positions >= 0) scene.world.positionIterations = positions;
-        scene.world.landingCorrection = landing;
-        scene.world.shockPropagation = carrier;
+        scene.world.debug.landingCorrection = landing;
+        scene.world.debug.carrierPass = carrier;
         World world(scene.world);
         for (const BodySettings &body : scene.bodies) world.addBody(body);
         std::vector<StageTimes> times;

@@ -27,7 +27,7 @@ int main() {
         crates[add(world, Shape::box({0.4, 0.4, 0.4}), {4, 0.4 + 0.8 * i, 0}, Motion::Dynamic, 10)] =
             "crate " + std::to_string(i);
     BodySettings zone;                               // a sensor: reports who enters, pushes nothing
-    zone.isStatic = true;
+    zone.motion = Motion::Static;
     zone.sensor = true;
     zone.shape = Shape::box({1, 1, 2});
     zone.position = {10, 1, 0};

@@ -49,7 +49,7 @@ void restOn(bool onBox) {
     ws.sleep = false;
     World world(ws);
     BodySettings support;
-    support.isStatic = true;
+    support.motion = Motion::Static;
     if (onBox) {
         support.shape = Shape::box(Vector3(6, 0.5, 2));
         support.position = Vector3(0, -0.5, 0);
@@ -83,7 +83,7 @@ void incline(double friction) {
     const double theta = 30 * kPi / 180;
     World world;
     BodySettings ramp;
-    ramp.isStatic = true;
+    ramp.motion = Motion::Static;
     ramp.shape = Shape::box(Vector3(10, 0.25, 2));
     ramp.orientation = Quaternion(Eigen::AngleAxis<real>(theta, Vector3::UnitZ()));
     ramp.material.friction = friction;

@@ -20,7 +20,7 @@ int awake(const World &world, const std::vector<BodyId> &ids) {
 int main() {
     World world;
     BodySettings ground;
-    ground.isStatic = true;
+    ground.motion = Motion::Static;
     ground.shape = Shape::plane(Vector3::UnitY(), 0);
     world.addBody(ground);
 

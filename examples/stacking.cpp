@@ -2,8 +2,8 @@
 // Prints, for each, how far the top box moved, the deepest penetration and when
 // everything fell asleep.
 //
-//   stacking [--solver split|soft] [--substeps N] [--velocity-iterations N]
-//            [--position-iterations N] [--slop M] [--recovery F] [--reuse M] [--hertz HZ]
+//   stacking [--substeps N] [--velocity-iterations N]
+//            [--position-iterations N] [--slop M] [--recovery F] [--reuse M]
 //            [--shock on|off]
 //
 // The options change the WorldSettings, to compare solver settings on the same scenes.
@@ -29,7 +29,7 @@ struct Report {
 BodyId addGround(World &world) {
     BodySettings ground;
     ground.name = "ground";
-    ground.isStatic = true;
+    ground.motion = Motion::Static;
     ground.shape = Shape::plane(Vector3::UnitY(), 0);
     return world.addBody(ground);
 }
@@ -75,11 +75,7 @@ bool parse(int argc, char **argv, WorldSettings &settings) {
         const std::string flag = argv[i];
         if (i + 1 >= argc) return false;
         const char *value = argv[++i];
-        if (flag == "--solver") {
-            if (std::strcmp(value, "split") == 0) settings.contactSolver = ContactSolverType::SplitImpulse;
-            else if (std::strcmp(value, "soft") == 0) settings.contactSolver = ContactSolverType::SoftStep;
-            else return false;
-        } else if (flag == "--substeps") {
+        if (flag == "--substeps") {
             settings.substeps = std::atoi(value);
         } else if (flag == "--velocity-iterations") {
             settings.velocityIterations = std::atoi(value);
@@ -88,14 +84,12 @@ bool parse(int argc, char **argv, WorldSettings &settings) {
         } else if (flag == "--slop") {
             settings.penetrationSlop = std::atof(value);
         } else if (flag == "--reuse") {
-            settings.manifoldReuseTolerance = std::atof(value);
+            settings.debug.manifoldReuseTolerance = std::atof(value);
         } else if (flag == "--recovery") {
             settings.penetrationRecovery = std::atof(value);
-        } else if (flag == "--hertz") {
-            settings.contactHertz = std::atof(value);
         } else if (flag == "--shock") {
-            if (std::strcmp(value, "on") == 0) settings.shockPropagation = true;
-            else if (std::strcmp(value, "off") == 0) settings.shockPropagation = false;
+            if (std::strcmp(value, "on") == 0) settings.debug.carrierPass = true;
+            else if (std::strcmp(value, "off") == 0) settings.debug.carrierPass = false;
             else return false;
         } else {
             return false;
@@ -107,15 +101,15 @@ bool parse(int argc, char **argv, WorldSettings &settings) {
 int main(int argc, char **argv) {
     WorldSettings chosen;
     if (!parse(argc, argv, chosen)) {
-        std::fprintf(stderr, "usage: stacking [--solver split|soft] [--substeps N] [--velocity-iterations N] "
-                             "[--position-iterations N] [--slop M] [--recovery F] [--reuse M] [--hertz HZ] [--shock on|off]\n");
+        std::fprintf(stderr, "usage: stacking [--substeps N] [--velocity-iterations N] "
+                             "[--position-iterations N] [--slop M] [--recovery F] [--reuse M] [--shock on|off]\n");
         return 2;
     }
-    std::printf("10 s at 60 Hz, %s solver, %d sub-steps x (%d velocity + %d position iterations), slop %g m, "
+    std::printf("10 s at 60 Hz, %d sub-steps x (%d velocity + %d position iterations), slop %g m, "
                 "carrier pass %s\n",
-                chosen.contactSolver == ContactSolverType::SoftStep ? "soft-step" : "split-impulse", chosen.substeps,
+                chosen.substeps,
                 chosen.velocityIterations, chosen.positionIterations, chosen.penetrationSlop,
-                chosen.shockPropagation ? "on" : "off");
+                chosen.debug.carrierPass ? "on" : "off");
     try {
         run(chosen);
     } catch (const std::exception &e) {

@@ -497,9 +497,9 @@ void RigidBody::setSleepEpsilon(const real newSleepEpsilon) {
     sleepEpsilon = newSleepEpsilon;
 }
 
-void RigidBody::setMovingMotionCap(const real cap) {
+void RigidBody::setMovingSleepAverageCap(const real cap) {
     if (!std::isfinite(cap) || !(cap >= 1 && cap <= 10))
-        refuse("RigidBody::setMovingMotionCap", "cap", "must be finite and in [1, 10], got " + show(cap));
+        refuse("RigidBody::setMovingSleepAverageCap", "cap", "must be finite and in [1, 10], got " + show(cap));
     movingMotionCap = cap;
 }
 

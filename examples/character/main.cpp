@@ -29,7 +29,7 @@ struct Level {
 // x grows along the course; the floor is y = 0.
 Level build(World &world) {
     BodySettings floor;
-    floor.isStatic = true;
+    floor.motion = Motion::Static;
     floor.shape = Shape::plane(Vector3::UnitY(), 0);
     world.addBody(floor);
     for (int k = 1; k <= 4; ++k) block(world, {2 + 0.5 * k - 0.5, 0, -1.5}, {2 + 0.5 * k, 0.3 * k, 1.5});
@@ -40,7 +40,7 @@ Level build(World &world) {
     block(world, {10, 0, -1.5}, {12, 1.5, 1.5});  // the far landing
     // A 20 degree ramp down from x = 12 to the floor.
     BodySettings ramp;
-    ramp.isStatic = true;
+    ramp.motion = Motion::Static;
     const real angle = 0.349;
     ramp.shape = Shape::box({2.2, 0.1, 1.5});
     ramp.orientation = Quaternion(Eigen::AngleAxis<real>(-angle, Vector3::UnitZ()));
@@ -50,7 +50,7 @@ Level build(World &world) {
     level.crate = block(world, {17, 0, -0.3}, {17.6, 0.6, 0.3}, Motion::Dynamic, 15);
     block(world, {24, 0, 0}, {27, 1, 3});  // a block 1 m high: jumped onto
     BodySettings goal;
-    goal.isStatic = true;
+    goal.motion = Motion::Static;
     goal.sensor = true;
     goal.shape = Shape::box({0.5, 1, 1.5});
     goal.position = {26, 2, 1.5};

@@ -37,7 +37,7 @@ int main() {
     World world;
     BodySettings ground;
     ground.name = "ground";
-    ground.isStatic = true;
+    ground.motion = Motion::Static;
     ground.shape = Shape::plane(Vector3::UnitY(), 0);
     const BodyId groundId = world.addBody(ground);
 

@@ -28,7 +28,7 @@ struct Peer {
 
     Peer() {
         BodySettings ground;
-        ground.isStatic = true;
+        ground.motion = Motion::Static;
         ground.shape = Shape::plane(Vector3::UnitY(), 0);
         world.addBody(ground);
         for (int row = 0; row < 5; ++row) {

@@ -18,7 +18,7 @@
 //  - getPointInWorldSpace / getDirectionInWorldSpace convert body -> world;
 //  - the sleep threshold belongs to the body (no mutable global), so two worlds
 //    in one process never interfere;
-//  - the motion average is kept whether or not the body may sleep;
+//  - the sleep average is kept whether or not the body may sleep;
 //  - an implicit gyroscopic step (GyroscopicStep), off by default, so that a spinning
 //    asymmetric body can keep its angular momentum; its calls refuse bad input with
 //    cyclone::InvalidArgument (a std::invalid_argument naming function and field);
@@ -35,7 +35,7 @@
 
 namespace cyclone {
 
-/// Default threshold of the motion average below which a body may sleep
+/// Default threshold of the sleep average below which a body may sleep
 /// (unit: (m/s)^2 + (rad/s)^2). 0.01 is an RMS speed of 0.1 m/s: a body sliding
 /// at 0.5 m/s or spinning at 0.5 rad/s stays awake (cyclone's 0.3 sent it to sleep),
 /// while a body at rest falls asleep about one second after it stops.
@@ -97,7 +97,7 @@ public:
     friend struct detail::StateFields;  ///< Saves and restores the state (World::saveState).
     /// A unit body at rest: mass 1 kg, inertia identity (kg m^2), at the origin,
     /// identity orientation, no damping (1), no constant acceleration, awake, allowed to
-    /// sleep, sleep threshold kDefaultSleepEpsilon, motion average twice that threshold.
+    /// sleep, sleep threshold kDefaultSleepEpsilon, sleep average twice that threshold.
     RigidBody();
 
     // --- Integration and simulation ---------------------------------------------------
@@ -112,7 +112,7 @@ public:
     /// new velocities (the orientation turns by the Cayley rotation of duration times
     /// the angular velocity: q += dt/2 (0, w) q, normalised; or as setRotationStep says,
     /// see RotationStep); clears the accumulators and updates the
-    /// motion average. Puts the body to sleep when the average drops below the sleep
+    /// sleep average. Puts the body to sleep when the average drops below the sleep
     /// threshold and the body may sleep. A sleeping body and `duration == 0` change
     /// nothing. Throws std::invalid_argument on a negative or non-finite duration.
     void integrate(real duration);
@@ -288,26 +288,26 @@ public:
 
     /// True if the body is awake and integrated.
     bool getAwake() const { return isAwake; }
-    /// Wakes the body (motion average set to twice the sleep threshold, so it stays
+    /// Wakes the body (sleep average set to twice the sleep threshold, so it stays
     /// awake about a second) or puts it to sleep (velocity and rotation zeroed).
     void setAwake(const bool awake = true);
     /// True if the body may fall asleep.
     bool getCanSleep() const { return canSleep; }
     /// Allows or forbids sleep; forbidding it wakes the body.
     void setCanSleep(const bool canSleep = true);
-    /// The recency-weighted motion average, (m/s)^2 + (rad/s)^2.
-    real getMotion() const { return motion; }
-    /// Sets the sleep threshold of the motion average ((m/s)^2 + (rad/s)^2, finite, > 0).
+    /// The recency-weighted sleep average, (m/s)^2 + (rad/s)^2.
+    real getSleepAverage() const { return motion; }
+    /// Sets the sleep threshold of the sleep average ((m/s)^2 + (rad/s)^2, finite, > 0).
     void setSleepEpsilon(const real sleepEpsilon);
-    /// The sleep threshold of the motion average.
+    /// The sleep threshold of the sleep average.
     real getSleepEpsilon() const { return sleepEpsilon; }
-    /// Sets the cap of the motion average, as a multiple of the sleep threshold, in a
+    /// Sets the cap of the sleep average, as a multiple of the sleep threshold, in a
     /// step where the body moves (v.v + w.w at or above the threshold); finite, in
     /// [1, 10]. A body that stops then sleeps at most log2(cap) s later. Default 10, the
     /// seed's clamp (the average is capped at 10 times the threshold in every step).
-    void setMovingMotionCap(const real cap);
-    /// The cap of the motion average while the body moves, a multiple of the threshold.
-    real getMovingMotionCap() const { return movingMotionCap; }
+    void setMovingSleepAverageCap(const real cap);
+    /// The cap of the sleep average while the body moves, a multiple of the threshold.
+    real getMovingSleepAverageCap() const { return movingMotionCap; }
 
     // --- Dynamic quantities -------------------------------------------------------------
 
@@ -383,7 +383,7 @@ private:
         real angularDamping = -1;
         real linear = 1;           ///< linearDamping^duration.
         real angular = 1;          ///< angularDamping^duration.
-        real motionBias = 1;       ///< 0.5^duration: weight of the old motion average.
+        real motionBias = 1;       ///< 0.5^duration: weight of the old sleep average.
     };
     mutable StepFactors lastStepFactors;  ///< A cache: not part of the body's state.
 

@@ -35,7 +35,7 @@ std::optional<std::size_t> highestDynamicBody(const Scene &scene, const SceneWor
     std::optional<std::size_t> highest;
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
         const BodySettings &body = scene.bodies[i].settings;
-        if (motionOf(body) != Motion::Dynamic || !built.world.contains(built.ids[i])) continue;
+        if (body.motion != Motion::Dynamic || !built.world.contains(built.ids[i])) continue;
         if (!highest || up.dot(body.position) > up.dot(scene.bodies[*highest].settings.position)) highest = i;
     }
     return highest;

@@ -61,7 +61,7 @@ std::string leavesRange(const Scene &scene, const SceneWorld &built, const std::
     const std::vector<real> springs = springAccelerations(scene, built, present);
     const real gravity = world.settings().gravity.norm();
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-        if (!present[i] || world.isStatic(built.ids[i])) continue;
+        if (!present[i] || world.motion(built.ids[i]) == Motion::Static) continue;
         const RigidBody &body = world.body(built.ids[i]);
         const real reach =
             body.getPosition().norm() + (body.getVelocity().norm() + (gravity + springs[i]) * dt) * dt;
@@ -244,7 +244,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
             const real time = static_cast<real>(step + 1) * options.dt;
             for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
                 const BodyId id = built.ids[i];
-                if (present[i] && !world.isStatic(id)) {
+                if (present[i] && world.motion(id) != Motion::Static) {
                     options.trace->write(step, time, scene.bodies[i].settings.name, world.body(id),
                                          world.framePosition(id) - world.body(id).getPosition());
                 }

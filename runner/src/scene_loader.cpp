@@ -206,7 +206,9 @@ SceneBody readBody(const json &value, const std::string &path) {
     const std::string namePath = memberPath(path, "name");
     settings.name = readString(required(value, path, "name"), namePath);
     if (settings.name.empty()) fail(namePath, "must not be empty");
-    readOptional(value, path, "static", settings.isStatic, readBool);
+    bool isStatic = false;
+    readOptional(value, path, "static", isStatic, readBool);
+    if (isStatic) settings.motion = Motion::Static;
     if (const json *motion = member(value, "motion")) {
         const std::string motionPath = memberPath(path, "motion");
         const std::string name = readString(*motion, motionPath);
@@ -215,11 +217,10 @@ SceneBody readBody(const json &value, const std::string &path) {
         else if (name == "kinematic") settings.motion = Motion::Kinematic;
         else fail(motionPath, "must be \"dynamic\", \"static\" or \"kinematic\", got " + jsonQuoted(name) +
                                   didYouMean(name, {"dynamic", "static", "kinematic"}));
-        if (member(value, "static") && settings.isStatic != (settings.motion == Motion::Static))
-            fail(motionPath, jsonQuoted(name) + " disagrees with \"static\": " + (settings.isStatic ? "true" : "false"));
-        settings.isStatic = false;
+        if (member(value, "static") && isStatic != (settings.motion == Motion::Static))
+            fail(motionPath, jsonQuoted(name) + " disagrees with \"static\": " + (isStatic ? "true" : "false"));
     }
-    const Motion motion = motionOf(settings);
+    const Motion motion = settings.motion;
     const bool immovable = motion != Motion::Dynamic;
     settings.shape = readShape(required(value, path, "shape"), memberPath(path, "shape"), motion == Motion::Static);
     const auto positive = [](const json &v, const std::string &p) { return readNumber(v, p, Range::Positive); };
@@ -518,7 +519,7 @@ SceneEvent readEvent(const json &value, const std::string &path, const Scene &sc
     }
     event.body = readBodyName(value[action->key], targetPath, names);
     const BodySettings &target = scene.bodies[event.body].settings;
-    const Motion targetMotion = motionOf(target);
+    const Motion targetMotion = target.motion;
     if (targetMotion == Motion::Static && event.kind != EventKind::Remove) {
         fail(targetPath, "body " + jsonQuoted(target.name) + " is static; only \"remove\" applies to it");
     }

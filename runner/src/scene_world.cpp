@@ -134,7 +134,6 @@ std::string sceneFieldPath(const std::string &worldField) {
     // The scene file has friction and restitution on the body, not under "material".
     const std::string material = "material.";
     if (field.compare(0, material.size(), material) == 0) field.erase(0, material.size());
-    if (field == "isStatic") return "static";
     std::string out;
     for (char c : field) {
         if (std::isupper(static_cast<unsigned char>(c))) {

@@ -40,7 +40,7 @@ void writeBodies(ordered_json &root, const Scene &scene, const SceneWorld &built
         const Vector3 frameOffset = world.framePosition(id) - body.getPosition();
         entry["position"] = jsonVector(body.getPosition() + frameOffset);
         entry["orientation"] = ordered_json::array({q.w(), q.x(), q.y(), q.z()});
-        if (!world.isStatic(id)) {
+        if (world.motion(id) != Motion::Static) {
             entry["velocity"] = jsonVector(body.getVelocity() + body.getRotation().cross(frameOffset));
             entry["rotation"] = jsonVector(body.getRotation());
         }

@@ -37,7 +37,7 @@ TEST(PileMemory, BoxesAtOnePointStayWithinThePairBudgetsMemory) {
         // The landing correction would push the boxes out of one another within a few
         // steps (they all move fast), leaving fewer overlapping pairs than the budget:
         // what is measured here is a pile that keeps more.
-        settings.landingCorrection = false;
+        settings.debug.landingCorrection = false;
         World world(settings);
         BodySettings ground;
         ground.motion = Motion::Static;

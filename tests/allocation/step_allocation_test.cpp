@@ -25,7 +25,7 @@ Shape hullCube() {
 
 BodyId addGround(World &world) {
     BodySettings s;
-    s.isStatic = true;
+    s.motion = Motion::Static;
     s.shape = Shape::plane(Vector3::UnitY(), 0);
     return world.addBody(s);
 }
@@ -79,12 +79,12 @@ Counted countSteps(World &world, int warmUp, int steps, const std::function<void
 // with the default reuse it refreshes the kept manifolds instead.
 TEST(StepAllocation, RestingPyramidAllocatesNothing) {
     if (!kCountingAllocator) GTEST_SKIP() << "AddressSanitizer replaces the allocator; counted in normal builds";
-    for (const real reuse : {real(0), WorldSettings().manifoldReuseTolerance}) {
+    for (const real reuse : {real(0), WorldSettings().debug.manifoldReuseTolerance}) {
         for (const Shape &cube : {Shape::box(Vector3::Constant(0.5)), hullCube()}) {
             const std::string what = std::string(shapeTypeName(cube.type)) + ", reuse " + std::to_string(reuse);
             WorldSettings settings;
             settings.sleep = false;
-            settings.manifoldReuseTolerance = reuse;
+            settings.debug.manifoldReuseTolerance = reuse;
             World world(settings);
             addGround(world);
             for (int level = 0; level < 5; ++level)
@@ -109,7 +109,7 @@ TEST(StepAllocation, RestingMixedShapesAllocateNothing) {
     World world(settings);
     addGround(world);
     BodySettings table;
-    table.isStatic = true;
+    table.motion = Motion::Static;
     table.shape = Shape::box(Vector3(3, 0.5, 3));
     table.position = Vector3(0, 0.5, 10);
     world.addBody(table);
@@ -209,14 +209,14 @@ TEST(StepAllocation, ConveyorsLedgesLocksAndAListenerAllocateNothing) {
     World world(settings);
     addGround(world);
     BodySettings belt;
-    belt.isStatic = true;
+    belt.motion = Motion::Static;
     belt.shape = Shape::box(Vector3(50, 0.25, 1));
     belt.position = Vector3(0, 0.25, 5);
     belt.surfaceVelocity = Vector3(1, 0, 0);
     world.addBody(belt);
     addBody(world, Shape::box(Vector3(0.3, 0.3, 0.3)), Vector3(0, 0.8, 5));
     BodySettings ledge;
-    ledge.isStatic = true;
+    ledge.motion = Motion::Static;
     ledge.shape = Shape::box(Vector3(1, 0.1, 1));
     ledge.position = Vector3(0, 2, -5);
     ledge.oneWay = Vector3(0, 1, 0);

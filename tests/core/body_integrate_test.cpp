@@ -325,7 +325,7 @@ TEST_P(RigidBodyStepSize, MotionAverageOfABodyAtRest) {
     body.setCanSleep(false);  // the average is kept even when the body may not sleep
     simulate(body);
     // b = 0.5^dt per step: the start value 0.02 becomes 0.02 * 0.5^T = 0.005.
-    EXPECT_NEAR(body.getMotion(), 0.02 * 0.25, 1e-14);
+    EXPECT_NEAR(body.getSleepAverage(), 0.02 * 0.25, 1e-14);
     EXPECT_TRUE(body.getAwake());
 }
 

@@ -1,4 +1,4 @@
-// RigidBody sleep and wake: the motion average, falling asleep, the clamp, what wakes a
+// RigidBody sleep and wake: the sleep average, falling asleep, the clamp, what wakes a
 // body and what does not, and per-body thresholds.
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 namespace cyclone_test {
 namespace {
 
-// A body with sleep threshold `epsilon`, just woken, so its motion average is 2 * epsilon.
+// A body with sleep threshold `epsilon`, just woken, so its sleep average is 2 * epsilon.
 RigidBody wokenBody(real epsilon) {
     RigidBody body;
     body.setSleepEpsilon(epsilon);
@@ -23,12 +23,12 @@ RigidBody wokenBody(real epsilon) {
 
 TEST(RigidBodySleep, MotionAverageIsRecencyWeighted) {
     RigidBody body = wokenBody(1);
-    EXPECT_EQ(body.getMotion(), 2);
+    EXPECT_EQ(body.getSleepAverage(), 2);
     body.setVelocity(1, 0, 0);
     body.setRotation(0, 0, 2);
     body.integrate(2);
     // b = 0.5^2 = 0.25; v.v + w.w = 1 + 4 = 5; 0.25 * 2 + 0.75 * 5 = 4.25.
-    EXPECT_DOUBLE_EQ(body.getMotion(), 4.25);
+    EXPECT_DOUBLE_EQ(body.getSleepAverage(), 4.25);
     EXPECT_TRUE(body.getAwake());
 }
 
@@ -38,7 +38,7 @@ TEST(RigidBodySleep, MotionAverageUsesTheDampedVelocity) {
     body.setVelocity(2, 0, 0);
     body.integrate(1);
     // v = 2 * 0.5 = 1, so v.v = 1; b = 0.5: 0.5 * 2 + 0.5 * 1 = 1.5.
-    EXPECT_DOUBLE_EQ(body.getMotion(), 1.5);
+    EXPECT_DOUBLE_EQ(body.getSleepAverage(), 1.5);
 }
 
 TEST(RigidBodySleep, MotionAverageIsClampedAtTenTimesTheThreshold) {
@@ -46,7 +46,7 @@ TEST(RigidBodySleep, MotionAverageIsClampedAtTenTimesTheThreshold) {
     body.setVelocity(10, 0, 0);
     body.integrate(1);
     // 0.5 * 2 + 0.5 * 100 = 51, clamped to 10 * 1.
-    EXPECT_EQ(body.getMotion(), 10);
+    EXPECT_EQ(body.getSleepAverage(), 10);
     EXPECT_TRUE(body.getAwake());
 }
 
@@ -55,7 +55,7 @@ TEST(RigidBodySleep, DefaultThresholdClamp) {
     body.setVelocity(1, 0, 0);
     body.integrate(1);
     // 0.5 * 0.02 + 0.5 * 1 = 0.51 > 10 * 0.01.
-    EXPECT_DOUBLE_EQ(body.getMotion(), 10 * 0.01);
+    EXPECT_DOUBLE_EQ(body.getSleepAverage(), 10 * 0.01);
 }
 
 TEST(RigidBodySleep, TheClampBoundsHowLongAStoppedBodyStaysAwake) {
@@ -66,22 +66,22 @@ TEST(RigidBodySleep, TheClampBoundsHowLongAStoppedBodyStaysAwake) {
     // At rest the average is 10 * 0.5^t: above 1 until t = log2(10) = 3.32 s.
     for (int i = 0; i < 6; ++i) body.integrate(0.5);  // 3 s: 10 / 8 = 1.25
     EXPECT_TRUE(body.getAwake());
-    EXPECT_NEAR(body.getMotion(), 1.25, 1e-12);
+    EXPECT_NEAR(body.getSleepAverage(), 1.25, 1e-12);
     body.integrate(0.5);  // 3.5 s: 10 / 2^3.5 = 0.88
     EXPECT_FALSE(body.getAwake());
 }
 
 TEST(RigidBodySleep, TheMovingCapBoundsTheAverageOnlyWhileTheBodyMoves) {
     RigidBody body = wokenBody(1);
-    body.setMovingMotionCap(1.5);
-    EXPECT_EQ(body.getMovingMotionCap(), 1.5);
+    body.setMovingSleepAverageCap(1.5);
+    EXPECT_EQ(body.getMovingSleepAverageCap(), 1.5);
     // At rest the woken average of 2 is not capped: 0.5 * 2 + 0.5 * 0 = 1, awake.
     body.integrate(1, false);
-    EXPECT_DOUBLE_EQ(body.getMotion(), 1);
+    EXPECT_DOUBLE_EQ(body.getSleepAverage(), 1);
     body.setAwake(true);
     body.setVelocity(10, 0, 0);
     body.integrate(1);  // 0.5 * 2 + 0.5 * 100 = 51, capped at 1.5 * 1 while moving
-    EXPECT_EQ(body.getMotion(), 1.5);
+    EXPECT_EQ(body.getSleepAverage(), 1.5);
     body.setVelocity(0, 0, 0);
     // At rest 1.5 * 0.5^t falls below 1 at t = log2(1.5) = 0.585 s.
     body.integrate(0.5);  // 1.5 / 2^0.5 = 1.06
@@ -94,24 +94,24 @@ TEST(RigidBodySleep, ASlowBodyIsNotCappedBelowItsOwnMotion) {
     // Moving at v.v = 2 eps with a cap of 1.2 eps the average stays at the cap, above the
     // threshold: a body moving at a steady speed above the threshold never sleeps.
     RigidBody body = wokenBody(0.01);
-    body.setMovingMotionCap(1.2);
+    body.setMovingSleepAverageCap(1.2);
     body.setVelocity(std::sqrt(0.02), 0, 0);
     for (int i = 0; i < 600; ++i) body.integrate(1.0 / 60);
     EXPECT_TRUE(body.getAwake());
-    EXPECT_NEAR(body.getMotion(), 0.012, 1e-15);
+    EXPECT_NEAR(body.getSleepAverage(), 0.012, 1e-15);
 }
 
 TEST(RigidBodySleep, SetMovingMotionCapRefusesValuesOutsideOneToTen) {
     RigidBody body;
     for (real bad : {real(0.5), real(10.5), real(NAN), real(INFINITY)}) {
-        EXPECT_THROW(body.setMovingMotionCap(bad), std::invalid_argument) << bad;
-        EXPECT_EQ(body.getMovingMotionCap(), 10);
+        EXPECT_THROW(body.setMovingSleepAverageCap(bad), std::invalid_argument) << bad;
+        EXPECT_EQ(body.getMovingSleepAverageCap(), 10);
     }
     try {
-        body.setMovingMotionCap(-1);
+        body.setMovingSleepAverageCap(-1);
         FAIL();
     } catch (const std::invalid_argument &e) {
-        EXPECT_NE(std::string(e.what()).find("setMovingMotionCap"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("setMovingSleepAverageCap"), std::string::npos);
         EXPECT_NE(std::string(e.what()).find("-1"), std::string::npos);
     }
 }
@@ -176,7 +176,7 @@ TEST(RigidBodySleep, IntegrateWithoutPermissionNeverSleeps) {
     for (int i = 0; i < 100; ++i) body.integrate(0.1, false);
     // 10 s at rest: 0.02 * 0.5^10, far below the threshold, and still awake.
     EXPECT_TRUE(body.getAwake());
-    EXPECT_NEAR(body.getMotion(), 0.02 / 1024, 1e-15);
+    EXPECT_NEAR(body.getSleepAverage(), 0.02 / 1024, 1e-15);
     body.integrate(0.1);
     EXPECT_FALSE(body.getAwake());
 }
@@ -187,7 +187,7 @@ TEST(RigidBodySleep, ABodyThatMayNotSleepStaysAwake) {
     EXPECT_FALSE(body.getCanSleep());
     for (int i = 0; i < 100; ++i) body.integrate(0.1);
     EXPECT_TRUE(body.getAwake());
-    EXPECT_LT(body.getMotion(), body.getSleepEpsilon());
+    EXPECT_LT(body.getSleepAverage(), body.getSleepEpsilon());
 }
 
 // --- setAwake ----------------------------------------------------------------------------
@@ -199,13 +199,13 @@ TEST(RigidBodySleep, SetAwakeTrueSetsMotionToTwiceTheThreshold) {
     EXPECT_FALSE(body.getAwake());
     body.setAwake(true);
     EXPECT_TRUE(body.getAwake());
-    EXPECT_EQ(body.getMotion(), 1);
+    EXPECT_EQ(body.getSleepAverage(), 1);
     // Also on an awake body, and through the default argument.
     body.setVelocity(10, 0, 0);
     body.integrate(1);  // clamped at 5
     body.setAwake();
     EXPECT_TRUE(body.getAwake());
-    EXPECT_EQ(body.getMotion(), 1);
+    EXPECT_EQ(body.getSleepAverage(), 1);
 }
 
 TEST(RigidBodySleep, SetAwakeFalseZeroesVelocityAndRotation) {
@@ -239,7 +239,7 @@ protected:
     // Awake as after setAwake(true): motion 2 * 0.5.
     void expectWoken() const {
         EXPECT_TRUE(body.getAwake());
-        EXPECT_EQ(body.getMotion(), 1);
+        EXPECT_EQ(body.getSleepAverage(), 1);
     }
     RigidBody body;
 };
@@ -317,13 +317,13 @@ TEST(RigidBodySleepThreshold, TwoBodiesDoNotInterfere) {
     //   fine: 0.25 * 0.02 + 0.75 * 0.25 = 0.1925 > 0.1: clamped at 0.1, awake.
     EXPECT_FALSE(coarse.getAwake());
     EXPECT_TRUE(fine.getAwake());
-    EXPECT_DOUBLE_EQ(fine.getMotion(), 0.1);
+    EXPECT_DOUBLE_EQ(fine.getSleepAverage(), 0.1);
     EXPECT_EQ(coarse.getSleepEpsilon(), 1);
     EXPECT_EQ(fine.getSleepEpsilon(), cyclone::kDefaultSleepEpsilon);
     // A body made afterwards still has the default.
     const RigidBody later;
     EXPECT_EQ(later.getSleepEpsilon(), cyclone::kDefaultSleepEpsilon);
-    EXPECT_DOUBLE_EQ(later.getMotion(), 2 * cyclone::kDefaultSleepEpsilon);
+    EXPECT_DOUBLE_EQ(later.getSleepAverage(), 2 * cyclone::kDefaultSleepEpsilon);
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ TEST(RigidBodyDefaults, AwakeMaySleepAndMotionTwiceTheThreshold) {
     EXPECT_TRUE(body.getCanSleep());
     EXPECT_EQ(body.getSleepEpsilon(), cyclone::kDefaultSleepEpsilon);
     EXPECT_EQ(cyclone::kDefaultSleepEpsilon, 0.01);
-    EXPECT_DOUBLE_EQ(body.getMotion(), 2 * 0.01);
+    EXPECT_DOUBLE_EQ(body.getSleepAverage(), 2 * 0.01);
 }
 
 TEST(RigidBodyDefaults, DefaultBodiesAreIdentical) {

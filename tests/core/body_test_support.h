@@ -129,7 +129,7 @@ public:
 
         add("getAwake", body.getAwake());
         add("getCanSleep", body.getCanSleep());
-        add("getMotion", body.getMotion());
+        add("getSleepAverage", body.getSleepAverage());
         add("getSleepEpsilon", body.getSleepEpsilon());
 
         body.getLastFrameAcceleration(&v);

@@ -72,8 +72,8 @@ TEST(RagdollStairs, HoldsTogetherStaysOutOfTheStairsAndComesToRestOnThem) {
     Vector3 startCentre = Vector3::Zero();
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
         const BodySettings &s = scene.bodies[i].settings;
-        if (s.isStatic && s.shape.type == ShapeType::Box) stairs.push_back({s.position, s.shape.halfExtents});
-        if (s.isStatic) continue;
+        if (s.motion == Motion::Static && s.shape.type == ShapeType::Box) stairs.push_back({s.position, s.shape.halfExtents});
+        if (s.motion == Motion::Static) continue;
         ASSERT_EQ(s.shape.type, ShapeType::Capsule) << s.name;
         capsules.push_back({built.ids[i], s.shape.radius, s.shape.length / 2});
         mass += s.mass;
@@ -131,7 +131,7 @@ TEST(RagdollStairs, HoldsTogetherStaysOutOfTheStairsAndComesToRestOnThem) {
     deepestInStairs(&nearest);
     Vector3 endCentre = Vector3::Zero();
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-        if (!scene.bodies[i].settings.isStatic)
+        if (scene.bodies[i].settings.motion != Motion::Static)
             endCentre += scene.bodies[i].settings.mass * world.body(built.ids[i]).getPosition();
     }
     endCentre /= mass;
@@ -180,7 +180,7 @@ TEST(RagdollStairs, ThrownApartItStaysFiniteAndItsJointsHold) {
         Scene scene = loadScene(text, "ragdoll-stairs");
         int limb = 0;
         for (SceneBody &b : scene.bodies) {
-            if (b.settings.isStatic) continue;
+            if (b.settings.motion == Motion::Static) continue;
             for (int c = 0; c < 3; ++c) b.settings.velocity[c] = 60 * std::sin(1.7 * limb + 2.3 * c + 0.9 * pattern);
             ++limb;
         }

@@ -46,7 +46,6 @@ TEST(SceneFieldPath, WorldFieldsReadAsTheSceneFileSpellsThem) {
     EXPECT_EQ(sceneFieldPath("velocityIterations"), "velocity_iterations");
     EXPECT_EQ(sceneFieldPath("material.friction"), "friction");
     EXPECT_EQ(sceneFieldPath("material.rollingFriction"), "rolling_friction");
-    EXPECT_EQ(sceneFieldPath("isStatic"), "static");
     EXPECT_EQ(sceneFieldPath("aPoint"), "a_point");
     EXPECT_EQ(sceneFieldPath("shape.vertices[3][1]"), "shape.vertices[3][1]");
     EXPECT_EQ(sceneFieldPath(""), "");

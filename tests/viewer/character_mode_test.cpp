@@ -9,7 +9,7 @@ namespace {
 World floorWorld() {
     World world;
     BodySettings floor;
-    floor.isStatic = true;
+    floor.motion = Motion::Static;
     floor.shape = Shape::plane(Vector3::UnitY(), 0);
     world.addBody(floor);
     return world;

@@ -26,12 +26,12 @@ struct DeterminismScene {
 
     DeterminismScene() {
         BodySettings floor;
-        floor.isStatic = true;
+        floor.motion = Motion::Static;
         floor.shape = Shape::mesh({Vector3(-20, 0, -20), Vector3(20, 0, -20), Vector3(20, 0, 20), Vector3(-20, 0, 20)},
                                   {{0, 2, 1}, {0, 3, 2}});
         ids.push_back(world.addBody(floor));
         BodySettings wall;
-        wall.isStatic = true;
+        wall.motion = Motion::Static;
         wall.shape = Shape::box(Vector3(0.25, 1, 4));
         wall.position = Vector3(4, 1, 0);
         ids.push_back(world.addBody(wall));

@@ -45,7 +45,7 @@ TEST(Events, ContactBeginsOnTheStepThatCanCloseTheGap) {
 }
 
 // A box landing flat and resting: one begin, then nothing while it rests and sleeps
-// (its motion average, high from the fall, takes some 3.5 s to halve down to the
+// (its sleep average, high from the fall, takes some 3.5 s to halve down to the
 // threshold).
 TEST(Events, RestingContactReportsOneBeginAndNoFlicker) {
     WorldFixture f;

@@ -22,13 +22,13 @@ inline Shape pileRock() {
 /// plane. Returns the dynamic bodies' ids in the order added.
 inline std::vector<BodyId> addMixedPile(World &world, int columns, int layers) {
     BodySettings ground;
-    ground.isStatic = true;
+    ground.motion = Motion::Static;
     ground.shape = Shape::plane(Vector3::UnitY(), 0);
     world.addBody(ground);
     const real inner = columns / 2.0;
     for (int side = 0; side < 4; ++side) {
         BodySettings wall;
-        wall.isStatic = true;
+        wall.motion = Motion::Static;
         const bool alongX = side < 2;
         const real sign = side % 2 == 0 ? -1 : 1;
         wall.shape = Shape::box(alongX ? Vector3(0.25, 2, inner + 0.5) : Vector3(inner, 2, 0.25));

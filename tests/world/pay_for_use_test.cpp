@@ -46,11 +46,11 @@ TEST(PayForUse, FrictionlessStackHasNoFrictionRows) {
 }
 
 // The solve stage's parts (StageTimes::solveParts) show what a solver setting costs: no
-// carrier pass time with shock propagation off, neither support nor position time
+// carrier pass time with the carrier pass off, neither carrier nor position time
 // without contacts, and the parts never add up to more than the stage.
 TEST(PayForUse, SolvePartsAreZeroForWhatDidNotRun) {
     WorldSettings settings = noSleep();
-    settings.shockPropagation = false;
+    settings.debug.carrierPass = false;
     WorldFixture f(settings);
     f.ground(0.6);
     for (int level = 0; level < 3; ++level) f.box(Vector3(0, 0.5 + level, 0), Vector3(0.5, 0.5, 0.5));

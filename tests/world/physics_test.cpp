@@ -226,7 +226,7 @@ TEST(Physics, BoxRestsOnPlanesWithLongNormalsOrMovedBodies) {
           std::tuple{Shape::plane(Vector3::UnitY(), 0), Vector3(0, 2, 0), 2.0}}) {
         WorldFixture f;
         BodySettings plane;
-        plane.isStatic = true;
+        plane.motion = Motion::Static;
         plane.shape = shape;
         plane.position = position;
         f.world.addBody(plane);

@@ -95,7 +95,7 @@ double sum(const std::vector<double> &values) {
 // A heavy box between light ones: 1, 100, 1 kg and 1, 1000, 1 kg unit boxes. Plain
 // Gauss-Seidel converges ever slower as a heavy body rests on a light one (measured
 // before the carrier pass: 1:100:1 sank 13.6 mm, 1:1000:1 pushed the light box out);
-// the carrier pass (shock propagation, WorldSettings::shockPropagation) holds both
+// the carrier pass (DebugSettings::carrierPass) holds both
 // within the bounds of a unit-mass stack.
 TEST(Stability, MassRatiosStacked) {
     for (double ratio : {100.0, 1000.0}) {
@@ -134,7 +134,7 @@ TEST(Stability, PyramidTenKilometresAway) {
     for (const Vector3 &base : {Vector3(0, 0, 0), Vector3(1e4, 0, -1e4)}) {
         WorldFixture f(noSleep());
         BodySettings ground;
-        ground.isStatic = true;
+        ground.motion = Motion::Static;
         ground.shape = Shape::box(Vector3(10, 0.5, 10));
         ground.position = base + Vector3(0, -0.5, 0);
         f.world.addBody(ground);

@@ -10,7 +10,7 @@ BodySettings withData(Shape shape, const Vector3 &position, std::uint64_t userDa
     s.shape = std::move(shape);
     s.position = position;
     s.userData = userData;
-    s.isStatic = isStatic;
+    s.motion = isStatic ? Motion::Static : Motion::Dynamic;
     return s;
 }
 

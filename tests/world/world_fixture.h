@@ -37,7 +37,7 @@ inline bool sameBits(const RigidBody &x, const RigidBody &y) {
 /// Adds a static body of `shape` at `position` on collision layer `layer`.
 inline BodyId addStatic(World &world, const Shape &shape, const Vector3 &position, int layer = 0) {
     BodySettings s;
-    s.isStatic = true;
+    s.motion = Motion::Static;
     s.shape = shape;
     s.position = position;
     s.layer = layer;
@@ -52,7 +52,7 @@ struct WorldFixture {
     BodyId ground(real friction = 0.6) {
         BodySettings s;
         s.name = "ground";
-        s.isStatic = true;
+        s.motion = Motion::Static;
         s.shape = Shape::plane(Vector3::UnitY(), 0);
         s.material.friction = friction;
         return world.addBody(s);
@@ -79,7 +79,7 @@ struct WorldFixture {
     BodyId staticBox(const Vector3 &position, const Vector3 &half, const Quaternion &q = Quaternion::Identity(),
                      real friction = 0.6) {
         BodySettings s;
-        s.isStatic = true;
+        s.motion = Motion::Static;
         s.shape = Shape::box(half);
         s.position = position;
         s.orientation = q;

@@ -315,7 +315,7 @@ Bounds sceneBounds(const World &world) {
         if (!world.body(id).getPosition().allFinite()) continue;
         const Bounds bounds = bodyBounds(world, id);
         all.add(bounds);
-        if (!world.isStatic(id)) moving.add(bounds);
+        if (world.motion(id) != Motion::Static) moving.add(bounds);
     }
     return moving.empty() ? all : moving;
 }

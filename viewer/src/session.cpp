@@ -174,7 +174,7 @@ void Session::shootBall(const Vector3 &origin, const Vector3 &direction, const B
 
 BodyState Session::state(BodyId id) const {
     if (world().isSensor(id)) return BodyState::Sensor;
-    if (world().isStatic(id)) return BodyState::Static;
+    if (world().motion(id) == Motion::Static) return BodyState::Static;
     const RigidBody &body = world().body(id);
     if (!scene::hasFiniteState(body)) return BodyState::NonFinite;
     if (world().motion(id) == Motion::Kinematic) return BodyState::Kinematic;

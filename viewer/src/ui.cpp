@@ -159,7 +159,7 @@ void Overlay::drawControls(Session &session, RunControls &controls, ViewOptions 
         changed |= ImGui::SliderInt("sub-steps", &settings.substeps, 1, 16);
         changed |= ImGui::Checkbox("sleep", &settings.sleep);
         ImGui::SameLine();
-        changed |= ImGui::Checkbox("warm start", &settings.warmStarting);
+        changed |= ImGui::Checkbox("warm start", &settings.debug.warmStarting);
         if (changed) session.setSettings(settings);
     }
 

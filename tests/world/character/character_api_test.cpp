@@ -115,7 +115,7 @@ TEST(CharacterApi, ASensorReportsItEnteringAZone) {
     CharacterLevel level;
     level.floor();
     BodySettings zone;
-    zone.isStatic = true;
+    zone.motion = Motion::Static;
     zone.sensor = true;
     zone.shape = Shape::box({1, 1, 1});
     zone.position = {4, 1, 0};

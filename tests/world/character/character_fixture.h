@@ -24,7 +24,7 @@ struct CharacterLevel {
     /// A static plane y = 0 with this friction.
     BodyId floor(real friction = 0.6) {
         BodySettings s;
-        s.isStatic = true;
+        s.motion = Motion::Static;
         s.shape = Shape::plane(Vector3::UnitY(), 0);
         s.material.friction = friction;
         return world.addBody(s);
@@ -46,7 +46,7 @@ struct CharacterLevel {
     /// its top surface `length` m long (the box reaches 0.5 m below the surface).
     BodyId ramp(real footX, real angle, real length) {
         BodySettings s;
-        s.isStatic = true;
+        s.motion = Motion::Static;
         s.shape = Shape::box({length / 2, 0.25, 2});
         s.orientation = Quaternion(Eigen::AngleAxis<real>(angle, Vector3::UnitZ()));
         const Vector3 along(std::cos(angle), std::sin(angle), 0), normal(-std::sin(angle), std::cos(angle), 0);

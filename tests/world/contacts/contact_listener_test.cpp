@@ -28,7 +28,7 @@ Listener<Change> listen(Change change) {
 
 BodySettings ledge(const Vector3 &position) {
     BodySettings s;
-    s.isStatic = true;
+    s.motion = Motion::Static;
     s.shape = Shape::box(Vector3(2, 0.1, 2));
     s.position = position;
     s.oneWay = Vector3(0, 1, 0);
@@ -139,7 +139,7 @@ TEST(ContactListener, OutOfRangeValuesAreRefused) {
 TEST(SurfaceVelocity, ACrateOnAConveyorReachesTheBeltsSpeed) {
     WorldFixture f(noSleep());
     BodySettings belt;
-    belt.isStatic = true;
+    belt.motion = Motion::Static;
     belt.shape = Shape::box(Vector3(20, 0.5, 1));
     belt.position = Vector3(0, -0.5, 0);
     belt.surfaceVelocity = Vector3(2, 0, 0);
@@ -161,7 +161,7 @@ TEST(SurfaceVelocity, ACrateOnAConveyorReachesTheBeltsSpeed) {
 TEST(SurfaceVelocity, IsInBodySpace) {
     WorldFixture f(noSleep());
     BodySettings belt;
-    belt.isStatic = true;
+    belt.motion = Motion::Static;
     belt.shape = Shape::box(Vector3(20, 0.5, 1));
     belt.position = Vector3(0, -0.5, 0);
     belt.orientation = Quaternion(0, 0, 1, 0);  // 180 degrees about y

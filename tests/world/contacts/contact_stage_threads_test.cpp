@@ -28,7 +28,7 @@ struct ContactStageScene {
         settings.threads = threads;
         world = std::make_unique<World>(settings);
         BodySettings ground;
-        ground.isStatic = true;
+        ground.motion = Motion::Static;
         ground.shape = Shape::plane(Vector3::UnitY(), 0);
         world->addBody(ground);
         const Shape dumbbell = Shape::compound({{Shape::box(Vector3(0.3, 0.15, 0.15)), Vector3::Zero()},
@@ -48,7 +48,7 @@ struct ContactStageScene {
         }
         for (int i = 0; i < 6; ++i) {
             BodySettings post;
-            post.isStatic = true;
+            post.motion = Motion::Static;
             post.shape = Shape::box(Vector3(0.2, 0.5, 0.2));
             post.position = Vector3(-4 + 1.5 * i, 0.5, -6);
             world->addBody(post);
@@ -153,7 +153,7 @@ TEST(ContactStageThreads, SharedTimeCountsOnlyWorkHandedOutInShares) {
     box.position = Vector3(0, 10, 0);
     lone.addBody(box);
     BodySettings ground;
-    ground.isStatic = true;
+    ground.motion = Motion::Static;
     ground.shape = Shape::plane(Vector3::UnitY(), 0);
     for (int i = 0; i < 10; ++i) {
         lone.step(kDt);

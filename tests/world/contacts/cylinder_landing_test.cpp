@@ -44,7 +44,7 @@ real depthIntoLyingCylinder(const World &world, BodyId id, real length) {
 
 BodyId lyingCylinder(WorldFixture &f) {
     BodySettings s;
-    s.isStatic = true;
+    s.motion = Motion::Static;
     s.shape = Shape::cylinder(kCylinderRadius, 2);
     s.orientation = Quaternion(Eigen::AngleAxis<real>(kPi / 2, Vector3::UnitY()));
     return f.world.addBody(s);

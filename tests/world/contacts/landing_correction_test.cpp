@@ -26,9 +26,9 @@ constexpr real kTarget = 0.5 * kTolerance;
 
 WorldSettings withoutSpeculative(bool landing) {
     WorldSettings s = noSleep();
-    s.speculativeContacts = false;
+    s.debug.speculativeContacts = false;
     s.speculativeDistance = 0.001;
-    s.landingCorrection = landing;
+    s.debug.landingCorrection = landing;
     return s;
 }
 
@@ -38,7 +38,7 @@ real overlap(const World &world, BodyId lower, BodyId upper) {
     return (world.body(lower).getPosition().y() + 0.5) - (world.body(upper).getPosition().y() - 0.5);
 }
 
-TEST(LandingCorrection, OnByDefault) { EXPECT_TRUE(WorldSettings().landingCorrection); }
+TEST(LandingCorrection, OnByDefault) { EXPECT_TRUE(WorldSettings().debug.landingCorrection); }
 
 // No gravity, a box at 14 m/s towards a static box, its bottom 1 cm above the static
 // box's top: the step moves it 233 mm, 223 mm into the static box, with no contact. The
@@ -134,7 +134,7 @@ TEST(LandingCorrection, PairSunkWhileRestingIsPushedOutOnlyBeyondOnePointSixTole
         SCOPED_TRACE(placed);
         for (const bool landing : {true, false}) {
             WorldSettings settings = noSleep();
-            settings.landingCorrection = landing;
+            settings.debug.landingCorrection = landing;
             settings.penetrationRecovery = 0.01;
             WorldFixture f(settings);
             f.ground();
@@ -205,7 +205,7 @@ TEST(LandingCorrection, BallPassingCloseByIsNotMoved) {
     WorldSettings onSettings = noSleep();
     onSettings.gravity = Vector3::Zero();
     WorldSettings offSettings = onSettings;
-    offSettings.landingCorrection = false;
+    offSettings.debug.landingCorrection = false;
     WorldFixture on(onSettings), off(offSettings);
     BodyId ids[2][3];
     WorldFixture *worlds[2] = {&on, &off};
@@ -301,7 +301,7 @@ TEST(LandingCorrection, JointGroupHeldByTheWorldIsNotMoved) {
 TEST(LandingCorrection, RestingStackIsUntouchedToTheBit) {
     WorldFixture on(noSleep());
     WorldSettings offSettings = noSleep();
-    offSettings.landingCorrection = false;
+    offSettings.debug.landingCorrection = false;
     WorldFixture off(offSettings);
     BodyId ids[2][4];
     WorldFixture *worlds[2] = {&on, &off};

@@ -1,4 +1,4 @@
-// Manifold reuse (WorldSettings::manifoldReuseTolerance): a pair whose relative pose has
+// Manifold reuse (DebugSettings::manifoldReuseTolerance): a pair whose relative pose has
 // hardly changed since its last narrowphase keeps its manifold, refreshed from its
 // anchors; a pair that moves is tested again; a reused stack stays where it rests.
 #include <cmath>
@@ -11,7 +11,7 @@ namespace {
 WorldSettings reuseAt(real tolerance) {
     WorldSettings s;
     s.sleep = false;
-    s.manifoldReuseTolerance = tolerance;
+    s.debug.manifoldReuseTolerance = tolerance;
     return s;
 }
 

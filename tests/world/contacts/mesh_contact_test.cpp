@@ -52,7 +52,7 @@ Shape gridFloor(bool up, MeshSides sides = MeshSides::Both) {
 
 BodyId addStaticBody(WorldFixture &f, const Shape &shape, real friction = 0.6) {
     BodySettings s;
-    s.isStatic = true;
+    s.motion = Motion::Static;
     s.shape = shape;
     s.material.friction = friction;
     return f.world.addBody(s);

@@ -2,7 +2,7 @@
 // capsule lying on a box and a pile of three capsule logs stay where they were put and
 // sleep as soon as a body at rest does.
 //
-// The bound: a body added at rest starts with a motion average of twice the sleep
+// The bound: a body added at rest starts with a sleep average of twice the sleep
 // threshold, which halves every second while v.v + w.w stays ~0 (Sleep.
 // BodyAtRestSleepsAfterAboutOneSecond), so it crosses the threshold at t = 1 s. Contacts
 // that rock or jitter keep v.v + w.w up and the average with it: then the body is still

@@ -98,7 +98,7 @@ TEST(Scale, APyramidOfTenMetreBoxesHolds) {
     EXPECT_LE(d.deepest, WorldSettings().penetrationSlop + kG * h * h);
 }
 
-// A 5 cm box resting on the ground (woken at rest: motion average twice its threshold,
+// A 5 cm box resting on the ground (woken at rest: sleep average twice its threshold,
 // halving each second) sleeps after about a second, as a unit box does.
 TEST(Scale, AFiveCentimetreBoxAtRestSleeps) {
     WorldFixture f;

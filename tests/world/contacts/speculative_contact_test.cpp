@@ -118,7 +118,7 @@ TEST(SpeculativeContact, BallPassingCloseByIsNotSlowed) {
 real depthAfterOneStep(bool speculative) {
     WorldSettings settings = noSleep();
     settings.gravity = Vector3::Zero();
-    settings.speculativeContacts = speculative;
+    settings.debug.speculativeContacts = speculative;
     WorldFixture f(settings);
     f.ground();
     const real radius = 0.25;
@@ -133,7 +133,7 @@ real depthAfterOneStep(bool speculative) {
     return radius - f.world.body(ball).getPosition().y();
 }
 
-TEST(SpeculativeContact, OnByDefault) { EXPECT_TRUE(WorldSettings().speculativeContacts); }
+TEST(SpeculativeContact, OnByDefault) { EXPECT_TRUE(WorldSettings().debug.speculativeContacts); }
 
 TEST(SpeculativeContact, SwitchedOffALandingBodySinksItsStepsFall) {
     EXPECT_LE(depthAfterOneStep(true), kDeepestAllowed);

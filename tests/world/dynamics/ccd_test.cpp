@@ -57,7 +57,7 @@ struct Shot {
 
 BodySettings staticBody(const Shape &shape) {
     BodySettings s;
-    s.isStatic = true;
+    s.motion = Motion::Static;
     s.shape = shape;
     return s;
 }
@@ -117,7 +117,7 @@ TEST(ContinuousCollision, WithoutItSpeculativeContactsStopAFastBody) {
 TEST(ContinuousCollision, NoShapeTunnelsThroughAnyObstacle) {
     for (const auto &[wallName, wall] : walls()) {
         BodySettings w;
-        w.isStatic = true;
+        w.motion = Motion::Static;
         w.shape = wall;
         // Capsules and cylinders lie along z: turn them across the path (along y).
         const bool rod = wall.type == ShapeType::Capsule || wall.type == ShapeType::Cylinder;
@@ -160,7 +160,7 @@ TEST(ContinuousCollision, RandomShotsNeverTunnel) {
             for (int i = 0; i < 20; ++i, ++shots) {
                 WorldFixture f(flying());
                 BodySettings w;
-                w.isStatic = true;
+                w.motion = Motion::Static;
                 w.shape = wall;
                 w.orientation = Quaternion(Eigen::AngleAxis<real>(
                     0.3 * uniform(), Vector3(uniform(), uniform(), uniform()).normalized()));

@@ -4,7 +4,7 @@
 namespace cyclone::test {
 namespace {
 
-// A body at rest is woken with a motion average of 2 eps, which halves every second
+// A body at rest is woken with a sleep average of 2 eps, which halves every second
 // (b = 0.5^t) while v.v + w.w stays ~0: it crosses eps at t = 1 s.
 TEST(Sleep, BodyAtRestSleepsAfterAboutOneSecond) {
     WorldFixture f;
@@ -25,7 +25,7 @@ TEST(Sleep, RestingOnStaticBoxDoesNotKeepAwake) {
     EXPECT_FALSE(f.awake(box));
 }
 
-// Thrown up at 10 m/s the ball stops at the apex (t = 1.02 s); the motion average, which
+// Thrown up at 10 m/s the ball stops at the apex (t = 1.02 s); the sleep average, which
 // remembers the last second or so of speed, stays far above the threshold there.
 TEST(Sleep, DoesNotSleepAtTopOfVerticalThrow) {
     WorldFixture f;

@@ -1,4 +1,4 @@
-// Resting steps (WorldSettings::restingSubsteps, dynamics/step_plan.h): a step in which
+// Resting steps (DebugSettings::restingSubsteps, dynamics/step_plan.h): a step in which
 // every awake body touches something, on contacts solved last step of which at least one
 // carried a normal impulse, and moves less than 1 mm takes restingSubsteps sub-steps with
 // restingIterations velocity passes in all (at most a full step's); any other step takes
@@ -116,7 +116,7 @@ TEST(RestingStep, OneMovingBodyAnywhereKeepsEverySubstep) {
 TEST(RestingStep, ZeroOrAllSubstepsTurnsItOff) {
     for (const int resting : {0, 4}) {
         WorldSettings s = noSleep();
-        s.restingSubsteps = resting;
+        s.debug.restingSubsteps = resting;
         WorldFixture f(s);
         f.ground();
         f.box(Vector3(0, 0.5, 0));
@@ -136,8 +136,8 @@ TEST(RestingStep, TwoRestingSubstepsShareThePassesRoundedUp) {
     // The default 8 passes over 2 sub-steps: 4 each. 7 passes: 4 each too, 8 in all.
     for (const int passes : {kRestingPasses, 7}) {
         WorldSettings s = noSleep();
-        s.restingSubsteps = 2;
-        s.restingIterations = passes;
+        s.debug.restingSubsteps = 2;
+        s.debug.restingIterations = passes;
         WorldFixture f(s);
         restABox(f);
         EXPECT_EQ(f.world.stats().substeps, 2) << "restingIterations " << passes;
@@ -147,7 +147,7 @@ TEST(RestingStep, TwoRestingSubstepsShareThePassesRoundedUp) {
 
 TEST(RestingStep, NeverTakesMorePassesThanAFullStep) {
     WorldSettings s = noSleep();
-    s.restingIterations = 50;
+    s.debug.restingIterations = 50;
     WorldFixture f(s);
     restABox(f);
     EXPECT_EQ(f.world.stats().substeps, 1);
@@ -190,7 +190,7 @@ TEST(RestingStep, LongStepsKeepEverySubstep) {
 std::vector<BodyId> restingPyramid(World &world) {
     std::vector<BodyId> ids;
     BodySettings floor;
-    floor.isStatic = true;
+    floor.motion = Motion::Static;
     floor.shape = Shape::plane(Vector3::UnitY(), 0);
     ids.push_back(world.addBody(floor));
     constexpr int kBase = 16;
@@ -230,7 +230,7 @@ TEST(RestingStep, OneAndTwoThreadsGiveBitIdenticalRestingSteps) {
 TEST(RestingStep, ACountBeyondTheSubstepsIsRefused) {
     for (const int resting : {-1, 5}) {
         WorldSettings s;
-        s.restingSubsteps = resting;
+        s.debug.restingSubsteps = resting;
         try {
             World world(s);
             FAIL() << "accepted restingSubsteps " << resting;
@@ -245,7 +245,7 @@ TEST(RestingStep, APassCountOutsideItsRangeIsRefusedAndTheSettingsKept) {
     WorldFixture f(noSleep());
     for (const int passes : {0, -1, 10001}) {
         WorldSettings s = noSleep();
-        s.restingIterations = passes;
+        s.debug.restingIterations = passes;
         try {
             f.world.setSettings(s);
             FAIL() << "accepted restingIterations " << passes;
@@ -254,7 +254,7 @@ TEST(RestingStep, APassCountOutsideItsRangeIsRefusedAndTheSettingsKept) {
             EXPECT_NE(std::string(e.what()).find("World::setSettings"), std::string::npos) << e.what();
             EXPECT_NE(std::string(e.what()).find(std::to_string(passes)), std::string::npos) << e.what();
         }
-        EXPECT_EQ(f.world.settings().restingIterations, kRestingPasses);
+        EXPECT_EQ(f.world.settings().debug.restingIterations, kRestingPasses);
     }
 }
 

@@ -331,7 +331,7 @@ TEST(JointApi, BadInputIsRefusedAndNothingChanges) {
     World world(noSleep());
     const BodyId a = addBox(world, Vector3(0, 1, 0), Vector3(0.5, 0.5, 0.5), 1);
     BodySettings ground;
-    ground.isStatic = true;
+    ground.motion = Motion::Static;
     ground.shape = Shape::box(Vector3(1, 0.1, 1));
     const BodyId g = world.addBody(ground);
     const auto refused = [&](JointSettings j, const std::string &field) {

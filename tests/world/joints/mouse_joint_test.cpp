@@ -149,7 +149,7 @@ TEST(MouseJoint, BadInputIsRefusedAndNothingChanges) {
     const BodyId ball = addSphere(world, Vector3(0, 1, 0), 1);
     const BodyId other = addSphere(world, Vector3(0, 3, 0), 1);
     BodySettings ground;
-    ground.isStatic = true;
+    ground.motion = Motion::Static;
     ground.shape = Shape::box(Vector3(1, 0.1, 1));
     const BodyId g = world.addBody(ground);
     const auto refused = [&](JointSettings j, const std::string &field) {

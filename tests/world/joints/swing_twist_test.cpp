@@ -53,7 +53,7 @@ BodyId addRod(World &world, const Vector3 &centre, const Vector3 &half, real mas
 
 BodyId addAnchor(World &world, const Vector3 &at) {
     BodySettings s;
-    s.isStatic = true;
+    s.motion = Motion::Static;
     s.shape = Shape::box(Vector3(0.1, 0.1, 0.1));
     s.position = at;
     s.collidesWith = 0;

@@ -51,7 +51,7 @@ int linesOf(const Shape &shape, const DebugDrawOptions &options = shapesOnly()) 
     World world;
     BodySettings s;
     s.shape = shape;
-    s.isStatic = shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh;
+    s.motion = shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh ? Motion::Static : Motion::Dynamic;
     world.addBody(s);
     Recorder r;
     world.debugDraw(r, options);

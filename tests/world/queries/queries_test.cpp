@@ -18,7 +18,7 @@ BodyId add(World &world, const Shape &shape, const Vector3 &position, const Quat
     s.shape = shape;
     s.position = position;
     s.orientation = q;
-    s.isStatic = isStatic;
+    s.motion = isStatic ? Motion::Static : Motion::Dynamic;
     return world.addBody(s);
 }
 
@@ -245,7 +245,7 @@ TEST(RayCast, EveryBodyOfALargeWorld) {
             BodySettings s;
             s.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
             s.position = Vector3(3 * i, 0, 3 * j);
-            s.isStatic = j % 3 == 0;
+            s.motion = j % 3 == 0 ? Motion::Static : Motion::Dynamic;
             s.awake = j % 3 == 1;
             ids.push_back(world.addBody(s));
         }

@@ -27,7 +27,7 @@ struct RollbackScene {
     explicit RollbackScene(int threads) : world(settingsWith(threads)) {
         ids = addMixedPile(world, 4, 2);
         BodySettings beam;
-        beam.isStatic = true;
+        beam.motion = Motion::Static;
         beam.shape = Shape::box(Vector3(0.5, 0.1, 0.1));
         beam.position = Vector3(0, 5, 4);
         const BodyId top = world.addBody(beam);

@@ -1,4 +1,4 @@
-// The carrier pass (WorldSettings::shockPropagation): the last pass of each sub-step
+// The carrier pass (DebugSettings::carrierPass): the last pass of each sub-step
 // solves each body against the bodies carrying it as immovable. It must change nothing
 // where no body carries another: momentum between bodies side by side or without gravity
 // is conserved to rounding, as by the plain passes.

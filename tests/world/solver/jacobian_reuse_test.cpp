@@ -14,7 +14,7 @@ namespace {
 TEST(JacobianReuse, RestingStackMakesThemOnce) {
     for (const real tolerance : {0.0005, 0.0}) {
         WorldSettings settings = noSleep();
-        settings.manifoldReuseTolerance = tolerance;
+        settings.debug.manifoldReuseTolerance = tolerance;
         WorldFixture f(settings);
         f.ground();
         f.box(Vector3(0, 0.5, 0));

@@ -1,6 +1,6 @@
 // The penetration pass (world/src/penetration_pass.cpp): each point's target pseudo-velocity
 // from its depth beyond what the manifold may keep, the rows solved one after another on
-// the pseudo-velocities four manifolds at a time, and with shock propagation only the
+// the pseudo-velocities four manifolds at a time, and with the carrier pass only the
 // carried body moved.
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@ struct PenetrationScene {
 
     // A cube at rest on body `carrier` (cube_contact.h), its points `depth0` and `depth1`
     // deep: their anchors are (0, depth, 0) on A and 0 on B, and the manifold's frame takes
-    // both along y from the same place. A moving carrier carries it (support).
+    // both along y from the same place. A moving carrier carries it.
     void addCube(int carrier, real depth0, real depth1) {
         SolverManifold m = addCubeOn(carrier, Vector3::Zero(), bodies);
         const real depths[2] = {depth0, depth1};
@@ -48,10 +48,10 @@ struct PenetrationScene {
         for (int k : members) groups[0].manifold[groups[0].size++] = k;
     }
     // One penetration pass, the first of a sub-step. Returns whether a point had a target.
-    bool pass(bool support) {
+    bool pass(bool carried) {
         detail::loadBatches(bodies, manifolds, groups, false, wide, &pseudo);
         const detail::PseudoTargets targets{frames.data(), kSlop, kRate};
-        return detail::solvePenetrationBatches(bodies, wide, pseudo, groups, support, &targets);
+        return detail::solvePenetrationBatches(bodies, wide, pseudo, groups, carried, &targets);
     }
     Vector3 pv(int body) const { return detail::toVector3(bodies[body].pv); }
     Vector3 pw(int body) const { return detail::toVector3(bodies[body].pw); }
@@ -111,7 +111,7 @@ TEST(PseudoPass, ATiltWithinTheSlopIsCorrected) {
     EXPECT_NEAR(s.pw(1).z(), 0.0144, 1e-12);
 }
 
-// A cube carried by another cube, depths as in the first test. With shock propagation
+// A cube carried by another cube, depths as in the first test. With the carrier pass
 // the carrier stays where it is and the carried cube moves as it did on the immovable
 // world: the same numbers. Without, both move: the carrier down.
 TEST(PseudoPass, WithShockPropagationOnlyTheCarriedBodyMoves) {

@@ -20,7 +20,7 @@ struct BallOnGround {
     BodyId ball;
     explicit BallOnGround(Resistance groundR, Resistance ballR, const WorldSettings &s = noSleep()) : f(s) {
         BodySettings g;
-        g.isStatic = true;
+        g.motion = Motion::Static;
         g.shape = Shape::plane(Vector3::UnitY(), 0);
         g.material.rollingFriction = groundR.rolling;
         g.material.spinningFriction = groundR.spinning;

@@ -137,7 +137,7 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
         BodyRecord &r = bodies[index];
         if (!r.object) return false;
         const bool falls = counted && fallsFreely(r, pairs);
-        const real reach = settings.speculativeContacts ? stepReach(r, dt, falls ? fall : Vector3(Vector3::Zero())) : 0;
+        const real reach = settings.debug.speculativeContacts ? stepReach(r, dt, falls ? fall : Vector3(Vector3::Zero())) : 0;
         return r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0);
     };
     forFlaggedBodies(world, flags_, place,
@@ -388,7 +388,7 @@ bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
     const BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
     PairState &pair = pairs[p];
-    if (!pair.touching() || settings.manifoldReuseTolerance <= 0) return false;
+    if (!pair.touching() || settings.debug.manifoldReuseTolerance <= 0) return false;
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
     const Matrix4 poseA = a.body.getTransform();
@@ -398,7 +398,7 @@ bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
     const real shift = (relative.position - tested.position).norm();
     const Quaternion turn = relative.orientation * tested.orientation.conjugate();
     const real radius = std::max(a.boundingRadius, b.boundingRadius);
-    if (!movedLess(shift, turn, radius, settings.manifoldReuseTolerance)) return false;
+    if (!movedLess(shift, turn, radius, settings.debug.manifoldReuseTolerance)) return false;
     for (ManifoldState &m : pair.manifolds) refreshFromAnchors(m, poseA, poseB);
     return true;
 }
@@ -416,7 +416,7 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
     // The fall counts against a body that does not fall: two dynamic bodies fall together.
     Vector3 fall = a.immovable != b.immovable ? stepFall(settings, dt) : Vector3(Vector3::Zero());
     if (fall.squaredNorm() > 0 && !fallsFreelyNow(a.immovable ? b : a, bodies, pairs, world.stepCount)) fall.setZero();
-    const real reach = settings.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
+    const real reach = settings.debug.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;
     const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, memo);

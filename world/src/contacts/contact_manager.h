@@ -63,8 +63,6 @@ public:
     void removePair(BodyStore &bodies, std::uint32_t pair);
     /// Removes every pair of body `index`.
     void removePairsOf(BodyStore &bodies, std::uint32_t index);
-    /// A number for a new set of anchors (ManifoldState::anchorsId), never given before.
-    std::uint64_t newAnchorsId() { return ++anchorsIssued_; }
     // End normals: what the landing correction's FCL tests found (collide's memos). It
     // tests its pairs at the poses the next step's narrowphase starts from, which then
     // builds the manifolds of the pairs whose bodies stayed there without FCL's test and

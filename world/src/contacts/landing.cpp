@@ -149,12 +149,44 @@ void LandingCorrection::translate(BodyStore &bodies, std::uint32_t index, const 
 }
 
 void LandingCorrection::correct(WorldState &world) {
-    if (!world.settings.landingCorrection) return;
+    if (!world.settings.debug.landingCorrection) return;
+    markFastBodies(world);
+    world.contacts.clearEndNormals();
+    if (activeBodies_.empty()) return;
+    group_.clear();
+    if (!world.joints.empty()) buildJointGroups(world);
+
+    points_.clear();
+    for (int round = 1; round <= kRounds; ++round) {
+        const int last = round - 1;
+        listRoundPairs(world, last);
+        if (pairs_.empty()) break;
+        const auto retested = [&](const Point &x) { return movedIn(x.a, last) || movedIn(x.b, last); };
+        points_.erase(std::remove_if(points_.begin(), points_.end(), retested), points_.end());
+        world.stats.landingPairs += static_cast<int>(pairs_.size());
+        const std::size_t before = points_.size();
+        const bool deep = detect(world);
+        // The first round acts only where some point is deeper than its tolerance; a later
+        // one wherever its fresh points lie deeper than their targets.
+        if (round == 1 ? !deep : points_.size() == before) break;
+        orderPoints();
+        world.stats.landingPushes += push(world, round);
+    }
+
+    for (std::uint32_t index : activeBodies_) movedRound_[index] = -1, sunk_[index] = 0;
+    activeBodies_.clear();
+}
+
+bool LandingCorrection::movedIn(std::uint32_t index, int round) const {
+    return index < movedRound_.size() && movedRound_[index] == round;
+}
+
+// The fast bodies: those that moved (their collision object still holds the step's start)
+// more than half their own tolerance, and the bodies of deep resting pairs. They count as
+// moved in round 0 (activeBodies_, movedRound_, sunk_).
+void LandingCorrection::markFastBodies(WorldState &world) {
     BodyStore &bodies = world.bodies;
     const real slop = world.settings.penetrationSlop;
-    // The fast bodies: those that moved (their collision object still holds the step's
-    // start) more than half their own tolerance, and the bodies of deep resting pairs.
-    // They count as moved in round 0.
     activeBodies_.clear();
     if (movedRound_.size() < bodies.size()) {
         movedRound_.resize(bodies.size(), -1);
@@ -189,7 +221,7 @@ void LandingCorrection::correct(WorldState &world) {
     // None can be when no contact point of the step is deeper than that at the least
     // tolerance (StepStats::maxPenetration: the deepest point the step solved), as in a
     // resting stack: the pairs' points are then not read again.
-    const bool anyDeep = world.stats.maxPenetration > kRestingFactor * toleranceFor(0, slop);
+    const bool anyDeep = world.context.deepest > kRestingFactor * toleranceFor(0, slop);
     if (anyDeep) world.workers.forFlagged(touching.size(), flags_, deepPair, [&](std::size_t k) {
         const PairState &pair = world.contacts.pairs[touching[k]];
         for (const std::uint32_t index : {pair.a, pair.b}) {
@@ -200,79 +232,62 @@ void LandingCorrection::correct(WorldState &world) {
             }
         }
     });
-    world.contacts.clearEndNormals();
-    if (activeBodies_.empty()) return;
-    group_.clear();
-    if (!world.joints.empty()) buildJointGroups(world);
+}
 
-    points_.clear();
-    const auto movedIn = [&](std::uint32_t index, int round) {
-        return index < movedRound_.size() && movedRound_[index] == round;
-    };
+// The step's pairs with a body that moved in round `last` (or, in the first round, moved
+// fast in the step), into pairs_: they are tested afresh and their old points go. They
+// are taken in the step's order (ContactManager::stepPairs): from a walk over that list
+// when many bodies moved, else from those bodies' own pairs (a pair of two such bodies
+// once), sorted. Pairs the pre-solve stage disabled are left out.
+void LandingCorrection::listRoundPairs(WorldState &world, int last) {
+    const BodyStore &bodies = world.bodies;
     const ContactManager &contacts = world.contacts;
-    for (int round = 1; round <= kRounds; ++round) {
-        // The step's pairs with a body that moved in the round before (or, in the first,
-        // moved fast in the step) are tested afresh: their old points go. They are taken
-        // in the step's order (ContactManager::stepPairs): from a walk over that list
-        // when many bodies moved, else from those bodies' own pairs (a pair of two such
-        // bodies once), sorted.
-        const int last = round - 1;
-        pairs_.clear();
-        const std::size_t movers = static_cast<std::size_t>(std::count_if(
-            activeBodies_.begin(), activeBodies_.end(), [&](std::uint32_t i) { return movedRound_[i] == last; }));
-        if (movers * kWalkShare >= bodies.simulated.size()) {
-            // Most bodies moved (a landing pile's first round): the step's list is walked
-            // on the threads, in order, its pairs' states asked for ahead.
-            const std::vector<std::uint32_t> &step = contacts.stepPairs();
-            const auto picked = [&](std::size_t k) {
-                contacts.pairs.prefetchAhead(step, k, step.size());
-                const PairState &pair = contacts.pairs[step[k]];
-                return (movedIn(pair.a, last) || movedIn(pair.b, last)) &&
-                       (movable(bodies, pair.a) || movable(bodies, pair.b));
-            };
-            world.workers.forFlagged(step.size(), flags_, picked, [&](std::size_t k) { pairs_.push_back(step[k]); });
-        } else {
-            for (const std::uint32_t index : activeBodies_) {
-                if (movedRound_[index] != last) continue;
-                for (const std::uint32_t p : bodies[index].pairs) {
-                    if (!contacts.inStep(p)) continue;
-                    const PairState &pair = contacts.pairs[p];
-                    const std::uint32_t other = pair.a == index ? pair.b : pair.a;
-                    if (movedIn(other, last) && other < index) continue;  // listed from `other`
-                    if (movable(bodies, pair.a) || movable(bodies, pair.b)) pairs_.push_back(p);
-                }
-            }
-            std::sort(pairs_.begin(), pairs_.end(),
-                      [&](std::uint32_t x, std::uint32_t y) { return contacts.stepIndex(x) < contacts.stepIndex(y); });
-        }
-        if (preSolve.anyDisabled())
-            pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [&](std::uint32_t p) { return preSolve.disabled(p); }),
-                         pairs_.end());
-        if (pairs_.empty()) break;
-        const auto retested = [&](const Point &x) { return movedIn(x.a, last) || movedIn(x.b, last); };
-        points_.erase(std::remove_if(points_.begin(), points_.end(), retested), points_.end());
-        world.stats.landingPairs += static_cast<int>(pairs_.size());
-        const std::size_t before = points_.size();
-        const bool deep = detect(world);
-        // The first round acts only where some point is deeper than its tolerance; a later
-        // one wherever its fresh points lie deeper than their targets.
-        if (round == 1 ? !deep : points_.size() == before) break;
-        // Lowest first: a push up out of what is below is not undone by the one below it.
-        // Small keys are sorted and the points then put in their order: moving whole
-        // points about in the sort cost more.
-        sortKeys_.clear();
-        for (std::size_t i = 0; i < points_.size(); ++i)
-            sortKeys_.push_back({points_[i].height, points_[i].order, static_cast<std::uint32_t>(i)});
-        const auto lower = [](const SortKey &x, const SortKey &y) {
-            return x.height < y.height || (x.height == y.height && x.order < y.order);
+    const PreSolve &preSolve = world.preSolve;
+    pairs_.clear();
+    const std::size_t movers = static_cast<std::size_t>(std::count_if(
+        activeBodies_.begin(), activeBodies_.end(), [&](std::uint32_t i) { return movedRound_[i] == last; }));
+    if (movers * kWalkShare >= bodies.simulated.size()) {
+        // Most bodies moved (a landing pile's first round): the step's list is walked
+        // on the threads, in order, its pairs' states asked for ahead.
+        const std::vector<std::uint32_t> &step = contacts.stepPairs();
+        const auto picked = [&](std::size_t k) {
+            contacts.pairs.prefetchAhead(step, k, step.size());
+            const PairState &pair = contacts.pairs[step[k]];
+            return (movedIn(pair.a, last) || movedIn(pair.b, last)) &&
+                   (movable(bodies, pair.a) || movable(bodies, pair.b));
         };
-        std::sort(sortKeys_.begin(), sortKeys_.end(), lower);
-        placeInOrder();
-        world.stats.landingPushes += push(world, round);
+        world.workers.forFlagged(step.size(), flags_, picked, [&](std::size_t k) { pairs_.push_back(step[k]); });
+    } else {
+        for (const std::uint32_t index : activeBodies_) {
+            if (movedRound_[index] != last) continue;
+            for (const std::uint32_t p : bodies[index].pairs) {
+                if (!contacts.inStep(p)) continue;
+                const PairState &pair = contacts.pairs[p];
+                const std::uint32_t other = pair.a == index ? pair.b : pair.a;
+                if (movedIn(other, last) && other < index) continue;  // listed from `other`
+                if (movable(bodies, pair.a) || movable(bodies, pair.b)) pairs_.push_back(p);
+            }
+        }
+        std::sort(pairs_.begin(), pairs_.end(),
+                  [&](std::uint32_t x, std::uint32_t y) { return contacts.stepIndex(x) < contacts.stepIndex(y); });
     }
+    if (preSolve.anyDisabled())
+        pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [&](std::uint32_t p) { return preSolve.disabled(p); }),
+                     pairs_.end());
+}
 
-    for (std::uint32_t index : activeBodies_) movedRound_[index] = -1, sunk_[index] = 0;
-    activeBodies_.clear();
+// Lowest first: a push up out of what is below is not undone by the one below it. Small
+// keys are sorted and the points then put in their order: moving whole points about in
+// the sort cost more.
+void LandingCorrection::orderPoints() {
+    sortKeys_.clear();
+    for (std::size_t i = 0; i < points_.size(); ++i)
+        sortKeys_.push_back({points_[i].height, points_[i].order, static_cast<std::uint32_t>(i)});
+    const auto lower = [](const SortKey &x, const SortKey &y) {
+        return x.height < y.height || (x.height == y.height && x.order < y.order);
+    };
+    std::sort(sortKeys_.begin(), sortKeys_.end(), lower);
+    placeInOrder();
 }
 
 // Each cycle of the permutation is followed once, a point held aside at its start; a key

@@ -68,6 +68,15 @@ private:
         std::uint32_t order = 0;             ///< Place in the pair walk: breaks ties in height.
     };
 
+    /// Marks the bodies round 0 moves: those that moved fast this step and those of the
+    /// pairs the step began deep in.
+    void markFastBodies(WorldState &world);
+    /// Lists in pairs_ the pairs a round tests: those with a body moved in round `last`.
+    void listRoundPairs(WorldState &world, int last);
+    /// Puts points_ lowest first (ties in the pair walk's order).
+    void orderPoints();
+    /// Whether body `index` moved in `round`.
+    bool movedIn(std::uint32_t index, int round) const;
     /// Tests the pairs in pairs_ at the bodies' poses now and appends their manifolds'
     /// points; returns whether one of them is deeper than its pair's tolerance.
     bool detect(WorldState &world);

@@ -31,7 +31,7 @@ struct ManifoldState {
     Vector3 frictionImpulse = Vector3::Zero();  ///< Last step's patch friction impulse, world, N s.
     real twistImpulse = 0;  ///< Last step's twist friction impulse about the normal, N m s.
     /// Which set of anchors its points have: a number no other set in the world had
-    /// (ContactManager::newAnchorsId), so that equal numbers mean the same anchors.
+    /// (ContactManager::countAnchors hands them out), so that equal numbers mean the same anchors.
     std::uint64_t anchorsId = 0;
     std::uint32_t solverSlot = 0;  ///< Its solver slot in step solverStep (ConstraintSolver::assignSlots).
     std::uint64_t solverStep = ~std::uint64_t(0);  ///< The last step it was solved in (~0: never).

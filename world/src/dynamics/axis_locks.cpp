@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "solver/contact_solver.h"
-#include "world/world_impl.h"
+#include "world/body_store.h"
 
 namespace cyclone::detail {
 namespace {
@@ -46,18 +46,18 @@ void lockSolverBody(const LockedAxes &locks, SolverBody &body) {
     body.invInertia = free.asDiagonal() * body.invInertia * free.asDiagonal();
 }
 
-void AxisLocks::beginStep(WorldState &world) {
+void AxisLocks::beginStep(const BodyStore &bodies) {
     starts_.clear();
-    if (world.bodies.lockedCount == 0) return;
-    for (std::uint32_t index : world.bodies.simulated) {
-        const BodyRecord &r = world.bodies[index];
+    if (bodies.lockedCount == 0) return;
+    for (std::uint32_t index : bodies.simulated) {
+        const BodyRecord &r = bodies[index];
         if (r.locked.any()) starts_.push_back({index, r.body.getPosition(), r.body.getOrientation()});
     }
 }
 
-void AxisLocks::hold(WorldState &world) const {
+void AxisLocks::hold(BodyStore &bodies) const {
     for (const Start &start : starts_) {
-        BodyRecord &r = world.bodies[start.body];
+        BodyRecord &r = bodies[start.body];
         if (r.isolated) continue;
         const LockedAxes &locks = r.locked;
         r.body.setVelocity(freeLinear(locks, r.body.getVelocity()));

@@ -23,7 +23,7 @@
 
 namespace cyclone::detail {
 
-struct WorldState;
+struct BodyStore;
 struct SolverBody;
 
 /// `v` without its components along the locked translation axes.
@@ -41,9 +41,9 @@ void lockSolverBody(const LockedAxes &locks, SolverBody &body);
 class AxisLocks {
 public:
     /// Records where each simulated body with locked axes begins the step.
-    void beginStep(WorldState &world);
+    void beginStep(const BodyStore &bodies);
     /// Puts each of them back on its locked axes (velocity and pose).
-    void hold(WorldState &world) const;
+    void hold(BodyStore &bodies) const;
 
 private:
     struct Start {

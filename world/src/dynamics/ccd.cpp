@@ -28,91 +28,107 @@ namespace cyclone::detail {
 
 void ContinuousCollision::sweep(WorldState &world) {
     BodyStore &bodies = world.bodies;
-    const PairCache &pairs = world.contacts.pairs;
     // How deep a stopped body is left in what it hits: the slop, which the solver leaves
     // alone, and at least 0.1 mm.
     const real depth = std::max(world.settings.penetrationSlop, real(0.0001));
     for (std::uint32_t index : bodies.simulated) {
         BodyRecord &r = bodies[index];
         if (!r.core || r.isolated || !r.object) continue;
-        const SweptShape self = sweptShape(*r.shape);
         const Matrix4 start = r.object->getTransform();
         const Matrix4 end = r.body.getTransform();
+        const SweptShape self = sweptShape(*r.shape);
         const real travel = detail::travel(start, end, self.boundingRadius);
         if (!(travel > self.innerRadius)) continue;
         ++world.stats.ccdSweeps;
-
-        // The earliest fraction of the motion at which the body must stop, and the body
-        // whose core stopped it (-1: none).
-        real stop = 1;
-        long coreStop = -1;
-        const auto touching = [&](std::uint32_t other) {
-            const long p = pairs.find(index, other);
-            return p >= 0 && pairs[p].lastSeen == world.stepCount && pairs[p].touching();
-        };
-        const SweptShape core = sweptCore(*r.core);
-
-        fcl::AABBd swept(start.translation(), end.translation());
-        swept.expand(fcl::Vector3d::Constant(self.boundingRadius + kBroadphaseMargin));
-        candidates_.clear();
-        world.broadphase.overlapping(swept, candidates_);
-        const bool filtering = bodies.filtering();
-        for (std::uint32_t other : candidates_) {
-            if (other == index || (filtering && bodies.classify(index, other) != PairKind::Contact)) continue;
-            const BodyRecord &o = bodies[other];
-            const SweptShape target = sweptShape(*o.shape);
-            const Matrix4 &otherStart = o.object->getTransform();
-            const Matrix4 otherEnd = o.body.getTransform();
-            real t;
-            if (!touching(other)) {
-                const Impact impact = timeOfImpact(self, start, end, target, otherStart, otherEnd, t);
-                if (impact == Impact::Hit) stop = std::min(stop, t + (kSweepTolerance + depth) / travel);
-                if (impact != Impact::Overlapping) continue;
-            }
-            if (timeOfImpact(core, start, end, target, otherStart, otherEnd, t) == Impact::Hit &&
-                t < stop) {
-                stop = t;
-                coreStop = other;
-            }
-        }
-
-        // Planes: the time at which the shape's lowest point along the normal is `depth`
-        // below the surface, with the pose interpolated (exact for a translating body). A
-        // half-space has no far side to tunnel to: a touching plane is the solver's.
-        for (std::uint32_t plane : bodies.planes) {
-            if (touching(plane) || (filtering && bodies.classify(index, plane) != PairKind::Contact)) continue;
-            const CollisionShape &p = *bodies[plane].shape;
-            const Vector3 &n = p.planeNormal();
-            const real above0 = n.dot(r.shape->supportPoint(start, -n, 0)) - p.planeOffset();
-            const real above1 = n.dot(r.shape->supportPoint(end, -n, 0)) - p.planeOffset();
-            const real t = (above0 + depth) / (above0 - above1);
-            if (above0 > 0 && above1 < -depth && t < stop) {
-                stop = t;
-                coreStop = -1;
-            }
-        }
-
-        if (!(stop < 1)) continue;
-        Matrix4 pose = interpolate(start, end, stop);
-        // A core stop: the solver let this body's centre head into what it already
-        // touched (a spinning body whose contact point moves away while its centre does
-        // not). Its core is put half its radius from the obstacle, so that the next sweep
-        // starts apart, and its centre's speed towards the obstacle is taken away, which
-        // only removes energy: were it kept, the sweep would hold the body here step
-        // after step.
-        real gap;
-        Vector3 n;
-        if (coreStop >= 0 &&
-            separation(core, pose, sweptShape(*bodies[coreStop].shape),
-                               bodies[coreStop].body.getTransform(), gap, n)) {
-            pose.translation() -= std::max(real(0), 0.5 * core.boundingRadius - gap) * n;
-            const real approach = r.body.getVelocity().dot(n);
-            if (approach > 0) r.body.setVelocity(r.body.getVelocity() - approach * n);
-        }
-        r.body.setPosition(pose.translation());
-        r.body.setOrientation(Quaternion(pose.linear()));
+        const Stop at = earliestStop(world, index, start, end, travel, depth);
+        if (!(at.fraction < 1)) continue;
+        stopAt(bodies, index, start, end, at);
         ++world.stats.ccdHits;
     }
+}
+
+// The earliest fraction of body `index`'s motion from `start` to `end` at which it must
+// stop, against the bodies its swept box meets and the planes, and the body whose core
+// stopped it (-1: none).
+ContinuousCollision::Stop ContinuousCollision::earliestStop(WorldState &world, std::uint32_t index,
+                                                            const Matrix4 &start, const Matrix4 &end, real travel,
+                                                            real depth) {
+    const BodyStore &bodies = world.bodies;
+    const PairCache &pairs = world.contacts.pairs;
+    const BodyRecord &r = bodies[index];
+    const SweptShape self = sweptShape(*r.shape);
+    real stop = 1;
+    long coreStop = -1;
+    const auto touching = [&](std::uint32_t other) {
+        const long p = pairs.find(index, other);
+        return p >= 0 && pairs[p].lastSeen == world.stepCount && pairs[p].touching();
+    };
+    const SweptShape core = sweptCore(*r.core);
+
+    fcl::AABBd swept(start.translation(), end.translation());
+    swept.expand(fcl::Vector3d::Constant(self.boundingRadius + kBroadphaseMargin));
+    candidates_.clear();
+    world.broadphase.overlapping(swept, candidates_);
+    const bool filtering = bodies.filtering();
+    for (std::uint32_t other : candidates_) {
+        if (other == index || (filtering && bodies.classify(index, other) != PairKind::Contact)) continue;
+        const BodyRecord &o = bodies[other];
+        const SweptShape target = sweptShape(*o.shape);
+        const Matrix4 &otherStart = o.object->getTransform();
+        const Matrix4 otherEnd = o.body.getTransform();
+        real t;
+        if (!touching(other)) {
+            const Impact impact = timeOfImpact(self, start, end, target, otherStart, otherEnd, t);
+            if (impact == Impact::Hit) stop = std::min(stop, t + (kSweepTolerance + depth) / travel);
+            if (impact != Impact::Overlapping) continue;
+        }
+        if (timeOfImpact(core, start, end, target, otherStart, otherEnd, t) == Impact::Hit &&
+            t < stop) {
+            stop = t;
+            coreStop = other;
+        }
+    }
+
+    // Planes: the time at which the shape's lowest point along the normal is `depth`
+    // below the surface, with the pose interpolated (exact for a translating body). A
+    // half-space has no far side to tunnel to: a touching plane is the solver's.
+    for (std::uint32_t plane : bodies.planes) {
+        if (touching(plane) || (filtering && bodies.classify(index, plane) != PairKind::Contact)) continue;
+        const CollisionShape &p = *bodies[plane].shape;
+        const Vector3 &n = p.planeNormal();
+        const real above0 = n.dot(r.shape->supportPoint(start, -n, 0)) - p.planeOffset();
+        const real above1 = n.dot(r.shape->supportPoint(end, -n, 0)) - p.planeOffset();
+        const real t = (above0 + depth) / (above0 - above1);
+        if (above0 > 0 && above1 < -depth && t < stop) {
+            stop = t;
+            coreStop = -1;
+        }
+    }
+    return {stop, coreStop};
+}
+
+// Puts body `index` where its motion stops. A core stop: the solver let this body's centre
+// head into what it already touched (a spinning body whose contact point moves away while
+// its centre does not). Its core is put half its radius from the obstacle, so that the
+// next sweep starts apart, and its centre's speed towards the obstacle is taken away,
+// which only removes energy: were it kept, the sweep would hold the body here step after
+// step.
+void ContinuousCollision::stopAt(BodyStore &bodies, std::uint32_t index, const Matrix4 &start, const Matrix4 &end,
+                                 const Stop &at) {
+    BodyRecord &r = bodies[index];
+    const SweptShape core = sweptCore(*r.core);
+    Matrix4 pose = interpolate(start, end, at.fraction);
+    real gap;
+    Vector3 n;
+    if (at.core >= 0 &&
+        separation(core, pose, sweptShape(*bodies[at.core].shape),
+                           bodies[at.core].body.getTransform(), gap, n)) {
+        pose.translation() -= std::max(real(0), 0.5 * core.boundingRadius - gap) * n;
+        const real approach = r.body.getVelocity().dot(n);
+        if (approach > 0) r.body.setVelocity(r.body.getVelocity() - approach * n);
+    }
+    r.body.setPosition(pose.translation());
+    r.body.setOrientation(Quaternion(pose.linear()));
 }
 
 }  // namespace cyclone::detail

@@ -9,6 +9,7 @@
 namespace cyclone::detail {
 
 struct WorldState;
+struct BodyStore;
 
 class ContinuousCollision {
 public:
@@ -17,6 +18,17 @@ public:
     void sweep(WorldState &world);
 
 private:
+    /// Where a body's motion stops: a fraction of it (1: nowhere), and the body whose core
+    /// stopped it (-1: none, or a plane or a shape's surface did).
+    struct Stop {
+        real fraction = 1;
+        long core = -1;
+    };
+    Stop earliestStop(WorldState &world, std::uint32_t index, const Matrix4 &start, const Matrix4 &end, real travel,
+                      real depth);
+    static void stopAt(BodyStore &bodies, std::uint32_t index, const Matrix4 &start, const Matrix4 &end,
+                       const Stop &at);
+
     std::vector<std::uint32_t> candidates_;  ///< Bodies near a sweep.
 };
 

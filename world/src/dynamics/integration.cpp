@@ -37,7 +37,7 @@ void Integration::beginStep(WorldState &world, real dt) {
         // A spring joins its bodies: one awake end wakes the other, which joins this step.
         if (!a.simulated) world.wake(s.settings.a.index);
         if (b && !b->simulated) world.wake(s.settings.b->index);
-        ++world.stats.springs;
+        ++world.context.activeSprings;
     }
 }
 
@@ -91,7 +91,7 @@ void Integration::addSubstepForces(WorldState &world, real h, bool firstSubstep)
             r.body.addTorque(savedTorques_[k]);
         }
     }
-    if (world.stats.springs == 0) return;
+    if (world.context.activeSprings == 0) return;
     // The explicit forces first: the implicit ones are solved with them in place.
     const int implicitCount = world.springs.chooseForces(bodies, world.settings, h);
     world.springs.addExplicitForces(bodies);

@@ -64,7 +64,7 @@ void Islands::updateSleep(WorldState &world) {
         for (int k = start; k < end && still; ++k) {
             const BodyRecord &r = bodies[members_[k]];
             still = !r.isolated && r.body.getAwake() && r.body.getCanSleep() &&
-                    r.body.getMotion() < r.body.getSleepEpsilon();
+                    r.body.getSleepAverage() < r.body.getSleepEpsilon();
         }
         if (still) world.sleepIsland(members_.data() + start, end - start);
     }

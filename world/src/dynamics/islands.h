@@ -20,7 +20,7 @@ public:
 
     /// The islands stage: joins the simulated bodies by the step's contacts and springs.
     void build(WorldState &world);
-    /// Puts to sleep every island whose bodies are all still (RigidBody's motion average
+    /// Puts to sleep every island whose bodies are all still (RigidBody's sleep average
     /// below its sleep epsilon).
     void updateSleep(WorldState &world);
     /// The bodies of this step's island `island` (BodyRecord::island).

@@ -40,13 +40,11 @@ StepPlan plan(int substeps, int iterations, const WorldSettings &settings) {
 StepPlan planStep(const WorldState &world, real dt) {
     const WorldSettings &settings = world.settings;
     const StepPlan full = plan(settings.substeps, settings.velocityIterations, settings);
-    const int resting = settings.restingSubsteps;
+    const int resting = settings.debug.restingSubsteps;
     if (resting <= 0 || resting >= settings.substeps) return full;
-    // Only split impulse: the soft step's springs are tuned per sub-step. Joints and
-    // springs are stiff where sub-steps are short; a moving kinematic body moves what it
-    // touches.
-    if (settings.contactSolver != ContactSolverType::SplitImpulse) return full;
-    if (world.stats.joints > 0 || world.stats.springs > 0 || !world.bodies.moving.empty()) return full;
+    // Joints and springs are stiff where sub-steps are short; a moving kinematic body
+    // moves what it touches.
+    if (world.context.activeJoints > 0 || world.context.activeSprings > 0 || !world.bodies.moving.empty()) return full;
     // A long step lets gravity carry a resting body through its contacts' reach within one
     // sub-step (|g| h^2 beyond speculativeDistance): its sub-steps stay.
     const real h = dt / resting;
@@ -62,7 +60,7 @@ StepPlan planStep(const WorldState &world, real dt) {
     }
     // restingIterations passes per step, at most a full step's, shared by the sub-steps
     // (rounded up).
-    const int passes = std::min(settings.restingIterations, settings.velocityIterations * settings.substeps);
+    const int passes = std::min(settings.debug.restingIterations, settings.velocityIterations * settings.substeps);
     return plan(resting, (passes + resting - 1) / resting, settings);
 }
 

@@ -389,7 +389,7 @@ void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &
             // once violated, the position pass pushes it back (no bias: no energy).
             if (!r.soft && r.bound == RowBound::Lower) r.bias = std::max(r.error, real(0)) / h;
             if (!r.soft && r.bound == RowBound::Upper) r.bias = std::min(r.error, real(0)) / h;
-            if (!positions && settings.warmStarting) r.impulse = j.impulse[r.slot];
+            if (!positions && settings.debug.warmStarting) r.impulse = j.impulse[r.slot];
             if (positions || r.bound == RowBound::Equality) equality_.push_back(static_cast<int>(k));
             else if (r.bound != RowBound::Pull) bounded_.push_back(static_cast<int>(k));
             else if (r.slot == 0) pulls_.push_back({static_cast<int>(k), Matrix3::Zero()});

@@ -114,12 +114,12 @@ void JointSet::beginStep(WorldState &world) {
         // A joint joins its bodies: one awake end wakes the other.
         if (!a.simulated && !a.immovable) world.wake(j.settings.a.index);
         if (b && !b->simulated && !b->immovable) world.wake(j.settings.b->index);
-        ++world.stats.joints;
+        ++world.context.activeJoints;
     }
 }
 
 void JointSet::prepare(WorldState &world, const std::vector<SolverBody> &solverBodies, real h) {
-    if (world.stats.joints == 0) {
+    if (world.context.activeJoints == 0) {
         rows_.clear();
         return;
     }
@@ -399,7 +399,7 @@ void JointSet::applyMoves(BodyStore &bodies, real scale) const {
 // lowers the sum of squares to first order, so a short enough part of it does too; the
 // largest error alone has no such guarantee.)
 void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody> &solverBodies, int iterations) {
-    if (world.stats.joints == 0) return;
+    if (world.context.activeJoints == 0) return;
     BodyStore &bodies = world.bodies;
     const int projections = iterations > 0 ? std::max(iterations, kMaxProjections) : 0;
     if (projections == 0) {
@@ -458,7 +458,7 @@ void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody>
 }
 
 void JointSet::finishStep(WorldState &world, real dt) {
-    if (world.stats.joints == 0) return;
+    if (world.context.activeJoints == 0) return;
     const real time = stepTime_ > 0 ? stepTime_ : dt;
     broken_.clear();
     for (std::uint32_t index = 0; index < records.size(); ++index) {

@@ -392,7 +392,7 @@ void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) 
     std::uint64_t fingerprint = shapesFingerprint(w.shapes, w.shapes.size());
     io(a, fingerprint);
     a.count(w.shapes.size());
-    io(a, w.stepCount, w.plan);
+    io(a, w.stepCount, w.context.plan);
 
     BodyStore &bodies = w.bodies;
     a.count(bodies.size());
@@ -463,7 +463,7 @@ void StateFields::restore(WorldState &w, const std::uint8_t *data, std::size_t s
     const std::size_t shapes = a.count(0, 0);
     if (shapes > w.shapes.size() || shapesFingerprint(w.shapes, shapes) != fingerprint)
         throw UnreadableState{"is from another World: its bodies were added with other shapes"};
-    io(a, w.stepCount, w.plan);
+    io(a, w.stepCount, w.context.plan);
 
     // The trees hold the objects of the bodies about to be replaced: emptied first.
     Broadphase &b = w.broadphase;

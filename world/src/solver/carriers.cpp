@@ -6,6 +6,10 @@
 namespace cyclone::detail {
 namespace {
 
+constexpr real kRestingCosine = 0.5;     // a normal within 60 degrees of up
+constexpr real kStandingCosine = 0.866;  // a normal within 30 degrees of up
+constexpr int kUnreached = std::numeric_limits<int>::max();
+
 // The carrier pass's runs: each carried body's manifolds with its carriers, bodies by
 // level (bottom up; all level 0 without `level`), then by their first such manifold in
 // `order`, each body's manifolds in `order`; and the manifolds without a carrier, in
@@ -63,27 +67,11 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
     levelStart.erase(std::unique(levelStart.begin(), levelStart.end()), levelStart.end());
 }
 
-}  // namespace
-
-void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::vector<SolverManifold> &manifolds,
-                   const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs) {
-    // Entry 0 (static or asleep) and the moving kinematic bodies are immovable anyway.
-    const auto immovable = [&](int body) { return body == 0 || body >= firstKinematic; };
-    for (SolverManifold &m : manifolds) {
-        m.carrier = Carrier::None;
-        if (immovable(m.a)) m.carrier = Carrier::A;
-        if (immovable(m.b)) m.carrier = Carrier::B;
-    }
-    if (up.isZero(0) || manifolds.empty()) {
-        buildRuns(manifolds, order, nullptr, bodyCount, scratch, runs);
-        return;
-    }
-    const Vector3 u = up.normalized();
-    constexpr real kRestingCosine = 0.5;     // normal within 60 degrees of up
-    constexpr real kStandingCosine = 0.866;  // normal within 30 degrees of up
-
-    // Adjacency of the contact graph (counting sort by body), each entry marked when the
-    // neighbour stands on the body (the normal within 30 degrees of up, the neighbour above).
+// Adjacency of the contact graph (counting sort by body), each entry marked when the
+// neighbour stands on the body (the normal within 30 degrees of up `u`, the neighbour above):
+// scratch.start, adjacent, carries.
+void linkContacts(int bodyCount, const Vector3 &u, const std::vector<SolverManifold> &manifolds,
+                  CarrierScratch &scratch) {
     std::vector<int> &start = scratch.start;
     std::vector<int> &adjacent = scratch.adjacent;
     std::vector<char> &carries = scratch.carries;
@@ -104,7 +92,14 @@ void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::v
         carries[cursor[m.b]] = rise <= -kStandingCosine;
         adjacent[cursor[m.b]++] = m.a;
     }
+}
 
+// Each body's level in scratch.level (scratch.start, adjacent and carries as linkContacts
+// left them): entry 0 and the moving kinematic bodies, from firstKinematic on, are level 0.
+void levelBodies(int bodyCount, int firstKinematic, CarrierScratch &scratch) {
+    const std::vector<int> &start = scratch.start;
+    const std::vector<int> &adjacent = scratch.adjacent;
+    const std::vector<char> &carries = scratch.carries;
     // Levels, breadth first from the immovable bodies. First only up the contacts a body
     // stands on, so that a body's level counts the bodies under it (a box of a column
     // that touches a wall is not carried by the wall). A body on a steeper face would
@@ -114,7 +109,6 @@ void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::v
     // get their levels in a second search over every contact, each from its lowest
     // neighbour, so that every touching body has a level (the carrier pass's runs are
     // ordered by it). docs/solver.md, "The carrier pass".
-    constexpr int kUnreached = std::numeric_limits<int>::max();
     std::vector<int> &level = scratch.level;
     level.assign(bodyCount, kUnreached);
     std::vector<int> &queue = scratch.queue;
@@ -148,7 +142,27 @@ void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::v
             later.push_back(neighbour);
         }
     }
+}
 
+}  // namespace
+
+void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::vector<SolverManifold> &manifolds,
+                   const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs) {
+    // Entry 0 (static or asleep) and the moving kinematic bodies are immovable anyway.
+    const auto immovable = [&](int body) { return body == 0 || body >= firstKinematic; };
+    for (SolverManifold &m : manifolds) {
+        m.carrier = Carrier::None;
+        if (immovable(m.a)) m.carrier = Carrier::A;
+        if (immovable(m.b)) m.carrier = Carrier::B;
+    }
+    if (up.isZero(0) || manifolds.empty()) {
+        buildRuns(manifolds, order, nullptr, bodyCount, scratch, runs);
+        return;
+    }
+    const Vector3 u = up.normalized();
+    linkContacts(bodyCount, u, manifolds, scratch);
+    levelBodies(bodyCount, firstKinematic, scratch);
+    const std::vector<int> &level = scratch.level;
     for (SolverManifold &m : manifolds) {
         if (immovable(m.a) || immovable(m.b)) continue;
         const int la = level[m.a];

@@ -1,4 +1,4 @@
-// Who carries whom in a resting stack, for the solver's carrier pass (shock propagation).
+// Who carries whom in a resting stack, for the solver's carrier pass.
 #pragma once
 
 #include <vector>

@@ -107,7 +107,7 @@ void ConstraintSolver::build(WorldState &world) {
     world.stats.manifolds += static_cast<int>(keys_.size());
     for (const ChunkCount &count : chunkCounts_) {
         world.stats.contacts += count.contacts;
-        world.stats.maxPenetration = std::max(world.stats.maxPenetration, count.deepest);
+        world.context.deepest = std::max(world.context.deepest, count.deepest);
     }
     roundDepths_.clear();
     if (bodies.roundCount == 0) return;
@@ -173,11 +173,10 @@ void ConstraintSolver::addSolverManifold(WorldState &world, std::uint32_t keyInd
     const Vector3 surface = preSolved ? world.preSolve.override(keyIndex).surfaceVelocity : Vector3::Zero();
     sm.frictionRow[0].target = -surface.dot(sm.tangent[0]);
     sm.frictionRow[1].target = -surface.dot(sm.tangent[1]);
-    sm.touchesStatic = false;
     sm.carrier = Carrier::None;
     sm.count = m.count;
-    const bool warm = world.settings.warmStarting;
-    const real scale = world.plan.warmScale;  // stored per default sub-step (step_plan.h)
+    const bool warm = world.settings.debug.warmStarting;
+    const real scale = world.context.plan.warmScale;  // stored per default sub-step (step_plan.h)
     sm.frictionRow[0].impulse = warm ? m.frictionImpulse.dot(sm.tangent[0]) * scale : 0;
     sm.frictionRow[1].impulse = warm ? m.frictionImpulse.dot(sm.tangent[1]) * scale : 0;
     sm.twist.impulse = warm ? m.twistImpulse * scale : 0;
@@ -201,7 +200,7 @@ void ConstraintSolver::addSolverManifold(WorldState &world, std::uint32_t keyInd
 // bodies in the same roles, neither moved more than the manifold-reuse tolerance since.
 bool ConstraintSolver::jacobiansHold(const WorldState &world, const JacobianStamp &stamp, const PairState &pair,
                                      const ManifoldState &m) const {
-    const real tolerance = world.settings.manifoldReuseTolerance;
+    const real tolerance = world.settings.debug.manifoldReuseTolerance;
     return tolerance > 0 && m.anchorsId != 0 && stamp.anchorsId == m.anchorsId &&
            stillStamped(stamp.body[0], world.bodies[pair.a], tolerance) &&
            stillStamped(stamp.body[1], world.bodies[pair.b], tolerance);
@@ -246,8 +245,17 @@ void ConstraintSolver::assignSlots(WorldState &world) {
 }
 
 void ConstraintSolver::prepare(WorldState &world, real h) {
+    prepareBodies(world, h);
+    if (manifolds_.empty()) return;  // nothing below is read without contacts
+    orderManifolds(world);
+    prepareManifolds(world, h);
+    prepareResistanceAndShares(world);
+}
+
+// The solver bodies: each simulated body's velocities, inverse mass and inertia at the
+// step's start; moving kinematic bodies as immovable entries that keep their velocity.
+void ConstraintSolver::prepareBodies(WorldState &world, real h) {
     const BodyStore &bodies = world.bodies;
-    const WorldSettings &settings = world.settings;
     const std::size_t n = bodies.simulated.size();
     bodies_.resize(n + 1 + bodies.moving.size());
     bodies_[0] = SolverBody();
@@ -280,29 +288,16 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
         setLanes(sb.w, body.getRotation());
         positions_[n + 1 + k] = body.getPosition();
     }
-    if (settings.contactSolver == ContactSolverType::SoftStep) {
-        // A contact spring faster than a quarter of the sub-step rate is not resolved.
-        soft_.dynamicSoftness = makeSoftness(std::min(settings.contactHertz, 0.25 / h),
-                                                    settings.contactDampingRatio, h);
-        soft_.staticSoftness = makeSoftness(std::min(2 * settings.contactHertz, 0.25 / h),
-                                                   settings.contactDampingRatio, h);
-        soft_.slop = settings.penetrationSlop;
-        soft_.maxPushVelocity = settings.maxPushVelocity;
-        // Each dynamic body's manifolds share its push-out speed (solveSoft).
-        std::vector<int> &shares = soft_.pushShares;
-        shares.assign(bodies_.size(), 0);
-        for (const SolverManifold &m : manifolds_) {
-            ++shares[m.a];
-            ++shares[m.b];
-        }
-        shares[0] = 1;
-        for (std::size_t k = n + 1; k < shares.size(); ++k) shares[k] = 1;
-    }
-    if (manifolds_.empty()) return;  // nothing below is read without contacts
-    // The split reads the manifolds' bodies, the support their normals, and writes only
-    // `support`: the two run at once.
-    const bool support = settings.shockPropagation && settings.contactSolver == ContactSolverType::SplitImpulse;
-    world.workers.forEachTask(support ? 2 : 1, [&](int task) {
+}
+
+// The velocity passes' partition between threads and the carrier pass's order.
+void ConstraintSolver::orderManifolds(WorldState &world) {
+    const WorldSettings &settings = world.settings;
+    const std::size_t n = world.bodies.simulated.size();
+    // The split reads the manifolds' bodies, the carriers their normals, and writes only
+    // the carriers: the two run at once.
+    const bool carriers = settings.debug.carrierPass;
+    world.workers.forEachTask(carriers ? 2 : 1, [&](int task) {
         if (task == 0) {
             partitionManifolds(manifolds_, heights_, solveOrder_, positions_, world.workers.parallel(),
                                           partitionScratch_, partition_);
@@ -311,24 +306,29 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
                                   solveOrder_, carrierScratch_, carrierRuns_);
         }
     });
-    if (support) {
+    if (carriers) {
         const bool shared = world.workers.parallel() && partition_.split;
         buildCarrierThreads(carrierRuns_, manifolds_, shared ? &partitionScratch_.side : nullptr,
                                   static_cast<int>(bodies_.size()), carrierThreads_);
     }
+}
+
+void ConstraintSolver::prepareManifolds(WorldState &world, real h) {
+    const BodyStore &bodies = world.bodies;
+    const WorldSettings &settings = world.settings;
+    const bool carriers = settings.debug.carrierPass;
     // Jacobians and effective masses are made once per step, at the step's poses, unless
     // the slot's still hold (jacobian_stamp.h).
-    const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
     // The counters are summed chunk by chunk, then in the chunks' order.
     chunkCounts_.resize(Workers::chunksOf(manifolds_.size()));
     world.workers.forEachChunk(manifolds_.size(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkCount &count = chunkCounts_[chunk];
         count = ChunkCount();
         for (std::size_t s = begin; s < end; ++s) {
-            prepareManifold(bodies, s, h, h * world.plan.substeps, split, settings.restitutionThreshold);
+            prepareManifold(bodies, s, h, h * world.context.plan.substeps, settings.restitutionThreshold);
             JacobianStamp &stamp = stamps_[s];
             const SolverManifold &m = manifolds_[s];
-            if (support && stamp.carrier != m.carrier) {
+            if (carriers && stamp.carrier != m.carrier) {
                 prepareCarriedMasses(bodies_, manifolds_[s]);
                 stamp.carrier = m.carrier;
             }
@@ -344,6 +344,13 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
         world.stats.frictionRows += count.frictionRows;
         world.stats.restitutionContacts += count.restitution;
     }
+}
+
+// The rolling and spinning resistance rows, in solve order, and how two threads share
+// them and the manifolds without a carrier.
+void ConstraintSolver::prepareResistanceAndShares(WorldState &world) {
+    const BodyStore &bodies = world.bodies;
+    const bool carriers = world.settings.debug.carrierPass;
     for (const int s : solveOrder_) {
         const Material &ma = bodies[slotBodies_[s].a].material;
         const Material &mb = bodies[slotBodies_[s].b].material;
@@ -361,21 +368,19 @@ void ConstraintSolver::prepare(WorldState &world, real h) {
     buildOrderedShares(
         resistance_.size(), [&](std::size_t k) { return resistance_[k].a; },
         [&](std::size_t k) { return resistance_[k].b; }, side, bodyCount, resistanceShares_);
-    if (!support) return;
+    if (!carriers) return;
     const std::vector<int> &uncarried = carrierRuns_.uncarried;
     buildOrderedShares(
         uncarried.size(), [&](std::size_t k) { return manifolds_[uncarried[k]].a; },
         [&](std::size_t k) { return manifolds_[uncarried[k]].b; }, side, bodyCount, uncarriedShares_);
 }
 
-void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split,
+void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt,
                                        real restitutionThreshold) {
     SolverManifold &m = manifolds_[s];
     const SlotBodies records = slotBodies_[s];
     const RigidBody &a = bodies[records.a].body;
     const RigidBody &b = bodies[records.b].body;
-    m.touchesStatic = m.a == 0 || m.b == 0 || m.a > static_cast<int>(bodies.simulated.size()) ||
-                      m.b > static_cast<int>(bodies.simulated.size());
     const SolverBody &sa = bodies_[m.a];
     const SolverBody &sb = bodies_[m.b];
     if (!stamps_[s].kept) {
@@ -402,7 +407,7 @@ void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, r
         p.maxNormalImpulse = 0;
         // The normal velocity when the step began, measured only for restitution.
         p.approachSpeed = m.restitution == 0 ? 0 : normalVelocity(sa, sb, m, p);
-        if (split) p.velocityBias = velocityBias(m, p, h, inverseH, restitutionThreshold, true);
+        p.velocityBias = velocityBias(m, p, h, inverseH, restitutionThreshold, true);
     }
 }
 

@@ -1,7 +1,7 @@
 // The contact solver as the step uses it: it builds the step's constraints from the
 // touching pairs' manifolds (constraint_builder.cpp) and solves them, sub-step by
 // sub-step (solve.cpp). The passes themselves live beside it: velocity_pass,
-// carrier_pass, penetration_pass and contact_solver (the scalar rows and SoftStep).
+// carrier_pass, penetration_pass and contact_solver (the scalar rows).
 #pragma once
 
 #include <cstdint>
@@ -60,8 +60,6 @@ public:
     /// Pushes bodies out of penetration beyond the slop without adding energy, then
     /// projects the joined bodies' positions onto their joints.
     void recoverPenetration(WorldState &world, real h);
-    /// SoftStep's restitution pass, once per step.
-    void applyRestitution(WorldState &world);
     /// Hands the accumulated impulses back to the pairs' manifolds for warm starting, and
     /// reports each solved pair's normal impulse of the step (WorldEvents::contactImpulses).
     void storeImpulses(WorldState &world);
@@ -70,12 +68,21 @@ private:
     // Building (constraint_builder.cpp).
     void addSolverManifold(WorldState &world, std::uint32_t keyIndex, std::size_t slot);
     void assignSlots(WorldState &world);
-    void prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt, bool split,
+    // Preparing (constraint_builder.cpp), in order.
+    void prepareBodies(WorldState &world, real h);
+    void orderManifolds(WorldState &world);
+    void prepareManifolds(WorldState &world, real h);
+    void prepareResistanceAndShares(WorldState &world);
+    void prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt,
                          real restitutionThreshold);
     bool jacobiansHold(const WorldState &world, const JacobianStamp &stamp, const PairState &pair,
                        const ManifoldState &m) const;
-    // Solving (solve.cpp).
-    void warmStart(WorldState &world);
+    // Solving (solve.cpp). One sub-step's stages, in order:
+    void predictVelocities(WorldState &world, real h, bool firstSubstep);
+    void refreshTargets(WorldState &world, real h);
+    void solvePasses(WorldState &world, real h, bool firstSubstep);
+    void giveVelocities(WorldState &world, bool firstSubstep);
+    // The passes.
     void loadVelocityPasses(WorldState &world, bool firstSubstep);
     void solveVelocityPass(WorldState &world, bool reverse);
     void storeVelocityPasses(WorldState &world);
@@ -129,7 +136,6 @@ private:
     bool orderedShares_ = false;
     OrderedShares resistanceShares_;  ///< Entries: resistance_.
     OrderedShares uncarriedShares_;   ///< Entries: carrierRuns_.uncarried.
-    SoftStepSettings soft_;
     std::vector<Vector3> predictedV_;  ///< Velocity each simulated body reaches without contacts.
     std::vector<Vector3> predictedW_;
     std::vector<real> linearFactor_;   ///< damping^h of each simulated body.

@@ -383,23 +383,6 @@ void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3
     std::copy(m.frictionInverse, m.frictionInverse + 6, m.carriedFrictionInverse);
 }
 
-CYCLONE_SIMD_CLONES
-void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
-               const std::vector<int> &order) {
-    for (int index : order) {
-        const SolverManifold &m = manifolds[index];
-        PairVelocities vel(bodies[m.a], bodies[m.b]);
-        for (int k = 0; k < m.count; ++k) {
-            const SolverRow &row = m.points[m.order[k]].normal;
-            vel.apply(m.direction[0], row, row.impulse);
-        }
-        vel.apply(m.direction[1], m.frictionRow[0], m.frictionRow[0].impulse);
-        vel.apply(m.direction[2], m.frictionRow[1], m.frictionRow[1].impulse);
-        vel.applyTurning(m.twist, m.twist.impulse);
-        vel.store(bodies, m);
-    }
-}
-
 void prepareCarriedMasses(const std::vector<SolverBody> &bodies, SolverManifold &m) {
     // Against a static or sleeping body the pair's mass is already the carried body's.
     if (m.carrier == Carrier::None || m.a == 0 || m.b == 0) return;
@@ -429,77 +412,6 @@ void solveUncarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold>
         SolverManifold &m = manifolds[index];
         if (m.carrier != Carrier::None) continue;
         solveUncarriedManifold(bodies, m, reverse);
-    }
-}
-
-Softness makeSoftness(real hertz, real zeta, real h) {
-    if (hertz <= 0) return Softness{0, 1, 0};
-    const real omega = 2 * 3.14159265358979323846 * hertz;
-    const real a1 = 2 * zeta + h * omega;
-    const real a2 = h * omega * a1;
-    const real a3 = 1 / (1 + a2);
-    return Softness{omega / a1, a2 * a3, a3};
-}
-
-CYCLONE_SIMD_CLONES
-void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
-               real h, bool useBias, const SoftStepSettings &settings) {
-    const real inverseH = 1 / h;
-    for (int index : order) {
-        SolverManifold &m = manifolds[index];
-        PairVelocities vel(bodies[m.a], bodies[m.b]);
-        const Softness &soft = m.touchesStatic ? settings.staticSoftness : settings.dynamicSoftness;
-        // Without the share, a body overlapping many others (a dense spawn) gets each
-        // one's push at once and leaves the pile far faster than maxPushVelocity.
-        const real pushLimit =
-            settings.maxPushVelocity / std::max(settings.pushShares[m.a], settings.pushShares[m.b]);
-        withCount(m.count, [&](auto count) __attribute__((always_inline)) {
-            ManifoldSweep<count()> normals(vel, m);
-            for (int k = 0; k < count(); ++k) {
-                const int i = m.order[k];
-                SolverPoint &p = m.points[i];
-                const real separation = -p.depth;
-                real bias = 0;
-                real massScale = 1;
-                real impulseScale = 0;
-                if (separation > 0) {
-                    bias = separation * inverseH;  // speculative: close the gap, no more
-                } else if (useBias) {
-                    bias = std::max(soft.biasRate * std::min(separation + settings.slop, real(0)), -pushLimit);
-                    massScale = soft.massScale;
-                    impulseScale = soft.impulseScale;
-                }
-                const real old = p.normal.impulse;
-                const real delta = -p.normal.mass * massScale * (normals.vn[i] + bias) - impulseScale * old;
-                normals.setNormal(i, std::max(old + delta, real(0)), p.normal.impulse);
-                p.maxNormalImpulse = std::max(p.maxNormalImpulse, p.normal.impulse);
-            }
-            normals.finish();
-            // Friction after the normal rows, on the velocities they left.
-            ManifoldSweep<count()> rub(vel, m);
-            rub.friction();
-            rub.finish();
-        });
-        vel.store(bodies, m);
-    }
-}
-
-void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                      const std::vector<int> &order, real threshold) {
-    for (int index : order) {
-        SolverManifold &m = manifolds[index];
-        if (m.restitution == 0) continue;
-        PairVelocities vel(bodies[m.a], bodies[m.b]);
-        for (int k = 0; k < m.count; ++k) {
-            SolverPoint &p = m.points[m.order[k]];
-            if (p.approachSpeed > -threshold || p.maxNormalImpulse == 0) continue;
-            const real vn = vel.along(m.direction[0], p.normal);
-            const real old = p.normal.impulse;
-            const real updated = std::max(old - p.normal.mass * (vn + m.restitution * p.approachSpeed), real(0));
-            p.normal.impulse = updated;
-            vel.apply(m.direction[0], p.normal, updated - old);
-        }
-        vel.store(bodies, m);
     }
 }
 

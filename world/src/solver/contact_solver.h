@@ -155,12 +155,11 @@ struct alignas(64) SolverManifold {
     /// the centre's lever arm couples a tangent with the twist. Without a twist row it is
     /// the tangents' 2 x 2 inverse (entries 2, 4, 5 zero).
     real frictionInverse[6] = {};
-    real carriedFrictionInverse[6] = {};  ///< The same with the supporting body immovable.
+    real carriedFrictionInverse[6] = {};  ///< The same with the carrying body immovable.
     RowCouplings couplings{};           ///< Through both bodies.
     RowCouplings carriedCouplings{};  ///< Through the carried body alone (carrier pass).
     real friction = 0;
     real restitution = 0;
-    bool touchesStatic = false;  ///< One side is immovable (stiffer softness).
     /// Which body carries the other (the carrier pass treats it as immovable). A static
     /// or sleeping side always does. See assignCarriers().
     Carrier carrier = Carrier::None;
@@ -213,43 +212,6 @@ struct CarrierRuns {
     std::vector<int> uncarried;
 };
 
-struct SolverSettings {
-    real penetrationSlop = 0.005;
-    real penetrationRecovery = 0.2;
-    real restitutionThreshold = 1.0;
-};
-
-/// Soft contact coefficients for a sub-step (a damped spring of the given frequency
-/// expressed as an implicit-Euler velocity bias and impulse scaling).
-struct Softness {
-    real biasRate = 0;      ///< 1/s: velocity bias per metre of penetration.
-    real massScale = 1;     ///< Scales the effective mass.
-    real impulseScale = 0;  ///< Fraction of the accumulated impulse relaxed away.
-};
-
-/// Softness of a spring of `hertz` and damping ratio `zeta` stepped with `h` seconds.
-Softness makeSoftness(real hertz, real zeta, real h);
-
-struct SoftStepSettings {
-    Softness dynamicSoftness;  ///< For contacts between two dynamic bodies.
-    Softness staticSoftness;   ///< For contacts with an immovable body.
-    real slop = 0;             ///< Penetration left alone, m.
-    real maxPushVelocity = 3;  ///< Fastest penetration recovery, m/s.
-    /// Per solver body, how many manifolds share its push-out (1 for immovable bodies):
-    /// a contact pushes its bodies apart at most maxPushVelocity over the larger share.
-    std::vector<int> pushShares;
-};
-
-/// One pass of the soft-step solver over the manifolds listed in `order`. With `useBias`
-/// penetration pushes bodies apart softly; without it (relax) the contacts are rigid and
-/// bias velocity is removed.
-void solveSoft(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
-               real h, bool useBias, const SoftStepSettings &settings);
-/// Applies restitution to points that approached faster than `threshold` and carried
-/// load this step (manifolds listed in `order`).
-void applyRestitution(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
-                      const std::vector<int> &order, real threshold);
-
 /// Tangents of a normal: deterministic, so that the same normal gives the same basis
 /// every step and warm-started friction stays meaningful.
 void tangentBasis(const Vector3 &normal, Vector3 &t1, Vector3 &t2);
@@ -281,17 +243,14 @@ void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3
                          const Vector3 &positionB, SolverManifold &m, const LeverTurns &turns = LeverTurns());
 
 /// Fills the manifold's couplings from its rows (after prepareRows and
-/// prepareFrictionRows), and its supported couplings with the same.
+/// prepareFrictionRows), and its carried couplings with the same.
 void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &m);
 
-/// Fills carriedMass and the supported couplings of a manifold that has a supporting
+/// Fills carriedMass and the carried couplings of a manifold that has a carrying
 /// side (after assignCarriers).
 void prepareCarriedMasses(const std::vector<SolverBody> &bodies, SolverManifold &m);
 
-/// Applies the accumulated impulses (warm start) of the manifolds listed in `order`.
-void warmStart(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
-               const std::vector<int> &order);
-/// The carrier pass (shock propagation), run after the velocity passes: first one plain
+/// The carrier pass, run after the velocity passes: first one plain
 /// pass over the manifolds where neither side carries the other, in `order`
 /// (solveUncarried), then,
 /// level by level bottom up (CarrierRuns::levelStart), each carried body against its

@@ -9,7 +9,7 @@
 // the same anchors (ManifoldState::anchorsId: new contacts found by the narrowphase are new
 // anchors, and a number belongs to one manifold, so to one pair of bodies), its bodies in
 // the same roles (movable or not in the solver), and neither body moved more than
-// WorldSettings::manifoldReuseTolerance (translation plus rotation times its bounding
+// DebugSettings::manifoldReuseTolerance (translation plus rotation times its bounding
 // radius) since they were made: the error is then of the order of what manifold reuse
 // accepts. Manifolds keep their slots from step to step (ConstraintSolver::assignSlots) for
 // this.

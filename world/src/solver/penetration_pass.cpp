@@ -85,9 +85,9 @@ CYCLONE_INLINE bool setTargets(const SolverGroup &group, const PseudoTargets &ta
 // The normal rows' effective masses, and their couplings (as ManifoldBatch::
 // normalCoupling), through the bodies the carrier pass moves: the carried one where a
 // lane has a carrier, else both. Worked out from the rows (SolverRow::carriedMass and
-// RowCouplings of the supported side give the same but for rounding): the sweep's chain
+// RowCouplings of the carried side give the same but for rounding): the sweep's chain
 // does not wait on them, and loading them cost more.
-CYCLONE_INLINE void supportedRows(const ManifoldBatch &m, const PenetrationBatch &p, Lanes mass[kMaxManifoldPoints],
+CYCLONE_INLINE void carriedRows(const ManifoldBatch &m, const PenetrationBatch &p, Lanes mass[kMaxManifoldPoints],
                                   Lanes coupling[kMaxManifoldPoints][kMaxManifoldPoints]) {
     const Lanes invMasses = m.invMassA * p.moveA + m.invMassB * p.moveB;
     const Lanes zero{};
@@ -112,7 +112,7 @@ CYCLONE_INLINE void supportedRows(const ManifoldBatch &m, const PenetrationBatch
 // target; a point with neither a target nor an impulse is left alone. As WideSweep
 // (velocity_pass.cpp) does for the velocities: the normal velocities are read at the start
 // and tracked through the couplings, and the impulses reach the bodies at the end.
-template <bool kSupport>
+template <bool kCarried>
 CYCLONE_INLINE void solveGroup(std::vector<SolverBody> &bodies, const ManifoldBatch &m, PenetrationBatch &p) {
     WideVelocities<true> vel(bodies, m);
     const WideVector dv = {vel.vb.x - vel.va.x, vel.vb.y - vel.va.y, vel.vb.z - vel.va.z};
@@ -124,12 +124,12 @@ CYCLONE_INLINE void solveGroup(std::vector<SolverBody> &bodies, const ManifoldBa
                 (row.rBxd.y * vel.wb.y - row.rAxd.y * vel.wa.y) + (row.rBxd.z * vel.wb.z - row.rAxd.z * vel.wa.z);
     }
     const Lanes zero{};
-    Lanes carriedMass[kMaxManifoldPoints], supportedCoupling[kMaxManifoldPoints][kMaxManifoldPoints];
-    if (kSupport) supportedRows(m, p, carriedMass, supportedCoupling);
+    Lanes carriedMass[kMaxManifoldPoints], carriedCoupling[kMaxManifoldPoints][kMaxManifoldPoints];
+    if (kCarried) carriedRows(m, p, carriedMass, carriedCoupling);
     Lanes change[kMaxManifoldPoints];
     for (int i = 0; i < kMaxManifoldPoints; ++i) {
-        const Lanes &mass = kSupport ? carriedMass[i] : m.points[i].mass;
-        const Lanes *coupling = kSupport ? supportedCoupling[i] : m.normalCoupling[i];
+        const Lanes &mass = kCarried ? carriedMass[i] : m.points[i].mass;
+        const Lanes *coupling = kCarried ? carriedCoupling[i] : m.normalCoupling[i];
         const LaneMask active = (p.target[i] > zero) | (p.impulse[i] != zero);
         const Lanes candidate = p.impulse[i] - mass * (vn[i] - p.target[i]);
         Lanes pushed;
@@ -153,7 +153,7 @@ CYCLONE_INLINE void solveGroup(std::vector<SolverBody> &bodies, const ManifoldBa
     multiply(m.invInertiaA, leverA, angularA);
     multiply(m.invInertiaB, leverB, angularB);
     Lanes invMassA = m.invMassA, invMassB = m.invMassB;
-    if (kSupport) {
+    if (kCarried) {
         // A side that does not move gets nothing.
         invMassA *= p.moveA;
         invMassB *= p.moveB;
@@ -206,14 +206,14 @@ void loadPseudo(const SolverManifold *const m[kWideLanes], PenetrationBatch &out
 
 CYCLONE_SIMD_CLONES
 bool solvePenetrationBatches(std::vector<SolverBody> &bodies, const std::vector<ManifoldBatch> &wide,
-                     std::vector<PenetrationBatch> &pseudo, const std::vector<SolverGroup> &groups, bool support,
+                     std::vector<PenetrationBatch> &pseudo, const std::vector<SolverGroup> &groups, bool carried,
                      const PseudoTargets *targets) {
     bool anyTarget = false;
     for (std::size_t g = 0; g < wide.size(); ++g) {
         PenetrationBatch &p = pseudo[g];
         if (targets ? !setTargets(groups[g], *targets, p) : !pushes(p)) continue;
         anyTarget = true;
-        if (support) solveGroup<true>(bodies, wide[g], p);
+        if (carried) solveGroup<true>(bodies, wide[g], p);
         else solveGroup<false>(bodies, wide[g], p);
     }
     return anyTarget;

@@ -38,8 +38,8 @@ struct PenetrationBatch {
     WideVector localA[kMaxManifoldPoints];  ///< Anchors on A, A's body space, in solve order, m.
     WideVector localB[kMaxManifoldPoints];  ///< Anchors on B, B's body space, m.
     Lanes count{};                          ///< Points of each lane's manifold.
-    /// The pass with shock propagation (the last of a sub-step): where a lane has a
-    /// carrier (SolverManifold::carrier, Carrier::None without shock propagation), only the
+    /// The pass with the carrier pass (the last of a sub-step): where a lane has a
+    /// carrier (SolverManifold::carrier, Carrier::None without the carrier pass), only the
     /// carried body moves. 1 where that side moves, else 0.
     Lanes moveA{}, moveB{};
     Lanes target[kMaxManifoldPoints]{};   ///< Pseudo normal velocity aimed at, m/s.
@@ -52,13 +52,13 @@ struct PenetrationBatch {
 void loadPseudo(const SolverManifold *const m[kWideLanes], PenetrationBatch &out);
 
 /// One penetration pass over a part's wide manifolds, in order (pseudo[g] goes with
-/// wide[g]). With `support` (shock propagation), lanes with a carrier move only the
+/// wide[g]). With `carried` (the carrier pass), lanes with a carrier move only the
 /// carried body. With `targets` (the sub-step's first pass), each group's targets are
 /// set first from its depths at `targets->frames` (`groups` name each lane's manifold)
 /// and its impulses cleared; a group with no target anywhere is then left alone, as its
 /// pass would change nothing. Returns whether any point had a target.
 bool solvePenetrationBatches(std::vector<SolverBody> &bodies, const std::vector<ManifoldBatch> &wide,
-                     std::vector<PenetrationBatch> &pseudo, const std::vector<SolverGroup> &groups, bool support,
+                     std::vector<PenetrationBatch> &pseudo, const std::vector<SolverGroup> &groups, bool carried,
                      const PseudoTargets *targets);
 
 }  // namespace cyclone::detail

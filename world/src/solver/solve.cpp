@@ -1,8 +1,7 @@
 // Solving the step's constraints, sub-step by sub-step: velocities predicted without
 // contacts, corrected by the velocity passes and the carrier pass and handed to the
 // bodies through addVelocity / addRotation; then, after integration, penetration
-// recovered without adding energy: pseudo-velocities (SplitImpulse) or a rigid relax
-// pass (SoftStep).
+// recovered without adding energy by pseudo-velocities (split impulse).
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -33,17 +32,20 @@ bool changeVelocities(WorldState &world, std::uint32_t index, const Vector3 &dv,
     return true;
 }
 
-// The same, isolating the body when the change is not finite (on the stepping thread).
-void changeOrIsolate(WorldState &world, std::uint32_t index, const Vector3 &dv, const Vector3 &dw) {
-    if (!changeVelocities(world, index, dv, dw)) world.isolate(index);
-}
-
 }  // namespace
 
+// One sub-step: the velocities each body reaches without contacts, the contacts' targets at
+// the sub-step's poses, the passes, and the change they made handed to the bodies.
 void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubstep) {
+    predictVelocities(world, h, firstSubstep);
+    if (!firstSubstep) refreshTargets(world, h);
+    solvePasses(world, h, firstSubstep);
+    giveVelocities(world, firstSubstep);
+}
+
+void ConstraintSolver::predictVelocities(WorldState &world, real h, bool firstSubstep) {
     BodyStore &bodies = world.bodies;
     const WorldSettings &settings = world.settings;
-    StepStats &stats = world.stats;
     // Predicted velocities: (v + a h) damping^h, with the sub-step's forces.
     //
     // The gyroscopic step is applied to the body here rather than inside integrate(h): it
@@ -70,7 +72,7 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
             return;
         }
         if (gyroscopic && firstSubstep && !r.body.hasIsotropicInertia()) {
-            r.body.applyGyroscopicStep(GyroscopicStep::Midpoint, h * world.plan.substeps);
+            r.body.applyGyroscopicStep(GyroscopicStep::Midpoint, h * world.context.plan.substeps);
             gyroscopicBodies.fetch_add(1, std::memory_order_relaxed);
         }
         const Vector3 a = r.body.getAcceleration() + r.body.getAccumulatedForce() * sb.invMass;
@@ -93,53 +95,58 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
             sb = SolverBody();
         }
     });
-    stats.gyroscopicBodies += gyroscopicBodies.load(std::memory_order_relaxed);
+    world.stats.gyroscopicBodies += gyroscopicBodies.load(std::memory_order_relaxed);
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
         if (overflowed_[k]) world.isolate(bodies.simulated[k]);
+}
 
-    // Current separations from the anchors (positions move only between sub-steps), and
-    // the targets they give. In the first sub-step the bodies are where the narrowphase
-    // found them, and its depths (addSolverManifold) are current: along the normal it last
-    // found, which differs from a kept manifold's (jacobian_stamp.h) by less than the reuse
-    // tolerance's turn; prepareManifold set their targets.
-    const bool split = settings.contactSolver == ContactSolverType::SplitImpulse;
-    if (!firstSubstep) {
-        const real inverseH = 1 / h;
-        world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
-            SolverManifold &m = manifolds_[s];
-            DepthFrame frame = depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body, m.normal);
-            if (!roundDepths_.empty()) frame.offset += roundDepths_.change(s, frame);
-            for (int i = 0; i < m.count; ++i) {
-                SolverPoint &p = m.points[i];
-                p.depth = frame.of(p);
-                if (split) p.velocityBias = velocityBias(m, p, h, inverseH, settings.restitutionThreshold, false);
-            }
-        });
-    }
+// Current separations from the anchors (positions move only between sub-steps), and the
+// targets they give. In the first sub-step the bodies are where the narrowphase found
+// them, and its depths (addSolverManifold) are current: along the normal it last found,
+// which differs from a kept manifold's (jacobian_stamp.h) by less than the reuse
+// tolerance's turn; prepareManifold set their targets.
+void ConstraintSolver::refreshTargets(WorldState &world, real h) {
+    const BodyStore &bodies = world.bodies;
+    const real threshold = world.settings.restitutionThreshold;
+    const real inverseH = 1 / h;
+    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
+        SolverManifold &m = manifolds_[s];
+        DepthFrame frame = depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body, m.normal);
+        if (!roundDepths_.empty()) frame.offset += roundDepths_.change(s, frame);
+        for (int i = 0; i < m.count; ++i) {
+            SolverPoint &p = m.points[i];
+            p.depth = frame.of(p);
+            p.velocityBias = velocityBias(m, p, h, inverseH, threshold, false);
+        }
+    });
+}
 
+// The velocity passes, the resistance rows and the joints, then the carrier pass; each
+// slot's normal impulses are added to its step's total.
+void ConstraintSolver::solvePasses(WorldState &world, real h, bool firstSubstep) {
+    const WorldSettings &settings = world.settings;
+    StepStats &stats = world.stats;
     // Joints: rows made at the sub-step's poses, warm-started, and solved in the same
     // passes as the contacts, after them (joints/joint_set.h).
-    const bool joints = world.stats.joints > 0;
+    const bool joints = world.context.activeJoints > 0;
     if (joints) {
         world.joints.prepare(world, bodies_, h);
         world.joints.warmStart(bodies_);
     }
     if (!manifolds_.empty()) {
-        if (split) loadVelocityPasses(world, firstSubstep);
-        else if (settings.warmStarting) warmStart(world);
+        loadVelocityPasses(world, firstSubstep);
         beginResistance(manifolds_, resistance_);
-        const int passes = world.plan.velocityIterations;
+        const int passes = world.context.plan.velocityIterations;
         for (int it = 0; it < passes; ++it) {
-            if (split) solveVelocityPass(world, (it & 1) != 0);
-            else solveSoft(bodies_, manifolds_, solveOrder_, h, true, soft_);
+            solveVelocityPass(world, (it & 1) != 0);
             solveResistancePass(world);
             if (joints) world.joints.solveVelocities(bodies_);
         }
-        if (split) storeVelocityPasses(world);
+        storeVelocityPasses(world);
         stats.velocityIterations += passes;
         // The carrier pass comes after the velocity passes, never instead of one: alone,
         // it would let no body push the bodies carrying it.
-        if (split && settings.shockPropagation) {
+        if (settings.debug.carrierPass) {
             const StageTimer timed(stats.ms.solveParts.carrier);
             // A run sweeps its points in one direction: the other one next step, so that
             // no point of a face takes the larger share step after step (carrier_pass.h).
@@ -148,7 +155,7 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
             if (joints) world.joints.solveVelocities(bodies_);
         }
     } else if (joints) {
-        for (int it = 0; it < world.plan.velocityIterations; ++it) world.joints.solveVelocities(bodies_);
+        for (int it = 0; it < world.context.plan.velocityIterations; ++it) world.joints.solveVelocities(bodies_);
     }
     if (joints) world.joints.storeImpulses();
     // What the sub-step's contacts gave: each point's accumulated impulse, warm start included.
@@ -156,7 +163,10 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         const SolverManifold &m = manifolds_[s];
         for (int i = 0; i < m.count; ++i) stepImpulse_[s] += m.points[i].normal.impulse;
     }
+}
 
+void ConstraintSolver::giveVelocities(WorldState &world, bool firstSubstep) {
+    BodyStore &bodies = world.bodies;
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.
     //
@@ -168,7 +178,7 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
     // the code").
     //
     // Each body on its own, in chunks shared between the threads, as above.
-    const bool conserving = settings.integrator == Integrator::MomentumConserving;
+    const bool conserving = world.settings.integrator == Integrator::MomentumConserving;
     overflowed_.assign(bodies.simulated.size(), 0);
     world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
@@ -190,15 +200,6 @@ void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubs
         if (overflowed_[k]) world.isolate(bodies.simulated[k]);
 }
 
-// The warm start (without split impulse: loadVelocityPasses makes it) and each velocity
-// pass: the two halves of the partition_ at once, then the seam.
-void ConstraintSolver::warmStart(WorldState &world) {
-    world.workers.forEachTask(partition_.split ? 2 : 1, [&](int half) {
-        detail::warmStart(bodies_, manifolds_, partition_.order[half]);
-    });
-    detail::warmStart(bodies_, manifolds_, partition_.order[SolverPartition::kSeam]);
-}
-
 // The velocity passes work on a copy of the rows they solve (velocity_pass.h), taken at the
 // warm start, which each group makes as it is copied, and handed back, with the
 // accumulated impulses, after the last pass. The rows are the step's: later sub-steps copy
@@ -206,7 +207,7 @@ void ConstraintSolver::warmStart(WorldState &world) {
 // unsplit step must not find the seam's rows of an earlier split one. The seam comes
 // last, as in a pass: its warm start moves bodies of both halves.
 void ConstraintSolver::loadVelocityPasses(WorldState &world, bool firstSubstep) {
-    const bool warm = world.settings.warmStarting;
+    const bool warm = world.settings.debug.warmStarting;
     const bool recovers = world.settings.positionIterations > 0;
     const auto load = [&](int part) {
         if (firstSubstep)
@@ -265,7 +266,7 @@ void ConstraintSolver::solveResistancePass(WorldState &world) {
 
 void ConstraintSolver::recoverPenetration(WorldState &world, real h) {
     recoverContactPenetration(world, h);
-    if (world.stats.joints > 0) world.joints.correctPositions(world, bodies_, world.settings.positionIterations);
+    if (world.context.activeJoints > 0) world.joints.correctPositions(world, bodies_, world.settings.positionIterations);
 }
 
 void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
@@ -274,25 +275,6 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
     StepStats &stats = world.stats;
     if (settings.positionIterations == 0 || manifolds_.empty()) return;
     const StageTimer timed(stats.ms.solveParts.position);
-    if (settings.contactSolver == ContactSolverType::SoftStep) {
-        // Relax: rigid passes without bias remove the velocity the soft_ push added.
-        for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
-            const RigidBody &body = bodies[bodies.simulated[k]].body;
-            setLanes(bodies_[k + 1].v, body.getVelocity());
-            setLanes(bodies_[k + 1].w, body.getRotation());
-        }
-        for (int it = 0; it < settings.positionIterations; ++it)
-            solveSoft(bodies_, manifolds_, solveOrder_, h, false, soft_);
-        for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
-            BodyRecord &r = bodies[bodies.simulated[k]];
-            if (r.isolated) continue;
-            changeOrIsolate(world, bodies.simulated[k], toVector3(bodies_[k + 1].v) - r.body.getVelocity(),
-                             toVector3(bodies_[k + 1].w) - r.body.getRotation());
-        }
-        stats.positionIterations += settings.positionIterations;
-        return;
-    }
-
     // Split impulse: pseudo-velocities push penetration beyond the slop out by a fraction
     // per sub-step; they move positions only and are forgotten, so they add no energy.
     // The passes run on the velocity passes' groups and rows (penetration_pass.h); the first
@@ -304,15 +286,15 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
         if (!roundDepths_.empty()) depthFrames_[s].offset += roundDepths_.change(s, depthFrames_[s]);
     });
     const PseudoTargets targets{depthFrames_.data(), settings.penetrationSlop,
-                                        world.plan.recovery / h};
+                                        world.context.plan.recovery / h};
     const int seam = SolverPartition::kSeam;
     const int last = settings.positionIterations - 1;
     for (int it = 0; it <= last; ++it) {
-        const bool support = it == last && settings.shockPropagation;
+        const bool carried = it == last && settings.debug.carrierPass;
         const PseudoTargets *set = it == 0 ? &targets : nullptr;
         const auto pass = [&](int part) {
             return solvePenetrationBatches(bodies_, batches_[part], penetration_[part], partition_.groups[part],
-                                           support, set);
+                                           carried, set);
         };
         bool pushed[3] = {};
         world.workers.forEachTask(partition_.split ? 2 : 1, [&](int half) { pushed[half] = pass(half); });
@@ -344,26 +326,8 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
         if (overflowed_[k]) world.isolate(bodies.simulated[k]);
 }
 
-void ConstraintSolver::applyRestitution(WorldState &world) {
-    BodyStore &bodies = world.bodies;
-    const WorldSettings &settings = world.settings;
-    if (settings.contactSolver != ContactSolverType::SoftStep || world.stats.restitutionContacts == 0) return;
-    for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
-        const RigidBody &body = bodies[bodies.simulated[k]].body;
-        setLanes(bodies_[k + 1].v, body.getVelocity());
-        setLanes(bodies_[k + 1].w, body.getRotation());
-    }
-    detail::applyRestitution(bodies_, manifolds_, solveOrder_, settings.restitutionThreshold);
-    for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
-        BodyRecord &r = bodies[bodies.simulated[k]];
-        if (r.isolated) continue;
-        changeOrIsolate(world, bodies.simulated[k], toVector3(bodies_[k + 1].v) - r.body.getVelocity(),
-                         toVector3(bodies_[k + 1].w) - r.body.getRotation());
-    }
-}
-
 void ConstraintSolver::storeImpulses(WorldState &world) {
-    const real scale = 1 / world.plan.warmScale;  // stored per default sub-step (step_plan.h)
+    const real scale = 1 / world.context.plan.warmScale;  // stored per default sub-step (step_plan.h)
     world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
         const SolverManifold &m = manifolds_[s];
         PairState &pair = world.contacts.pairs[sources_[s].pair];

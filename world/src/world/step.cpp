@@ -9,6 +9,8 @@ namespace cyclone::detail {
 
 void WorldState::step(real dt, const World &queries) {
     stats = StepStats();
+    context = StepContext();
+    context.dt = dt;
     ++stepCount;
     events.openStep();
     StageTimes &ms = stats.ms;
@@ -19,7 +21,7 @@ void WorldState::step(real dt, const World &queries) {
     {
         const StageTimer t(ms.forces);
         integration.beginStep(*this, dt);
-        axisLocks.beginStep(*this);
+        axisLocks.beginStep(bodies);
         kinematicBodies.beginStep(*this);
         joints.beginStep(*this);
     }
@@ -30,8 +32,8 @@ void WorldState::step(real dt, const World &queries) {
     KinematicBodies::number(bodies);
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
     if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(*this); }
-    plan = planStep(*this, dt);
-    stats.substeps = plan.substeps;
+    context.plan = planStep(*this, dt);
+    const StepPlan &plan = context.plan;
     { const StageTimer t(ms.manifolds); solver.build(*this); }
     { const StageTimer t(ms.islands); islands.build(*this); }
 
@@ -57,21 +59,24 @@ void WorldState::step(real dt, const World &queries) {
             kinematicBodies.integrate(*this, h);
         }
         { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position
-        { const StageTimer t(ms.integrate); axisLocks.hold(*this); }
+        { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
     }
     {
         const StageTimer t(ms.solve);
-        solver.applyRestitution(*this);
         solver.storeImpulses(*this);
         joints.finishStep(*this, dt);
     }
     { const StageTimer t(ms.ccd); ccd.sweep(*this); }
     { const StageTimer t(ms.landing); landing.correct(*this); }
-    { const StageTimer t(ms.integrate); axisLocks.hold(*this); }
+    { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
     { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
     if (!characters.empty()) { const StageTimer t(ms.characters); characters.update(*this, queries, dt); }
     events.closeStep();
 
+    stats.substeps = plan.substeps;
+    stats.joints = context.activeJoints;
+    stats.springs = context.activeSprings;
+    stats.maxPenetration = context.deepest;
     stats.integratedBodies = static_cast<int>(bodies.simulated.size());
     stats.movingKinematicBodies = static_cast<int>(bodies.moving.size());
     stats.bodies = static_cast<int>(bodies.order.size());

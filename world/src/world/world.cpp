@@ -48,11 +48,11 @@ void validateSettings(const char *function, const WorldSettings &s) {
         refuse(function, "positionIterations", "must be in [0, 10000], got " + std::to_string(s.positionIterations));
     if (s.substeps < 1 || s.substeps > 1000)
         refuse(function, "substeps", "must be in [1, 1000], got " + std::to_string(s.substeps));
-    if (s.restingSubsteps < 0 || s.restingSubsteps > s.substeps)
+    if (s.debug.restingSubsteps < 0 || s.debug.restingSubsteps > s.substeps)
         refuse(function, "restingSubsteps",
-               "must be in [0, substeps = " + std::to_string(s.substeps) + "], got " + std::to_string(s.restingSubsteps));
-    if (s.restingIterations < 1 || s.restingIterations > 10000)
-        refuse(function, "restingIterations", "must be in [1, 10000], got " + std::to_string(s.restingIterations));
+               "must be in [0, substeps = " + std::to_string(s.substeps) + "], got " + std::to_string(s.debug.restingSubsteps));
+    if (s.debug.restingIterations < 1 || s.debug.restingIterations > 10000)
+        refuse(function, "restingIterations", "must be in [1, 10000], got " + std::to_string(s.debug.restingIterations));
     requirePositive(function, "sleepEpsilon", s.sleepEpsilon);
     if (!(s.sleepDelay >= 0 && s.sleepDelay <= kMaxSleepDelay))
         refuse(function, "sleepDelay", "must be in [0, log2(10) = 3.32], got " + show(s.sleepDelay));
@@ -60,14 +60,9 @@ void validateSettings(const char *function, const WorldSettings &s) {
     if (!(s.penetrationRecovery > 0 && s.penetrationRecovery <= 1))
         refuse(function, "penetrationRecovery", "must be in (0, 1], got " + show(s.penetrationRecovery));
     requireNonNegative(function, "restitutionThreshold", s.restitutionThreshold);
-    requireNonNegative(function, "contactHertz", s.contactHertz);
-    requireNonNegative(function, "contactDampingRatio", s.contactDampingRatio);
-    requirePositive(function, "maxPushVelocity", s.maxPushVelocity);
     requireNonNegative(function, "speculativeDistance", s.speculativeDistance);
-    requireNonNegative(function, "manifoldReuseTolerance", s.manifoldReuseTolerance);
-    const int integrator = static_cast<int>(s.integrator), solver = static_cast<int>(s.contactSolver);
-    if (solver < 0 || solver > static_cast<int>(ContactSolverType::SplitImpulse))
-        refuse(function, "contactSolver", "is not a ContactSolverType, got " + std::to_string(solver));
+    requireNonNegative(function, "manifoldReuseTolerance", s.debug.manifoldReuseTolerance);
+    const int integrator = static_cast<int>(s.integrator);
     if (s.maxPairs < 1) refuse(function, "maxPairs", "must be >= 1, got " + std::to_string(s.maxPairs));
     if (s.threads < 1 || s.threads > 64)
         refuse(function, "threads", "must be in [1, 64], got " + std::to_string(s.threads));
@@ -114,11 +109,11 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
 
     RigidBody body;
     body.setSleepEpsilon(sleepEpsilonFor(world.sleepEpsilon, shape.boundingRadius()));
-    body.setAwake(true);  // the motion average starts at twice this body's threshold
-    body.setMovingMotionCap(movingMotionCap(world.sleepDelay));
+    body.setAwake(true);  // the sleep average starts at twice this body's threshold
+    body.setMovingSleepAverageCap(movingMotionCap(world.sleepDelay));
     body.setPosition(s.position);
     body.setOrientation(s.orientation);
-    const Motion motion = motionOf(s);
+    const Motion motion = s.motion;
     if (motion != Motion::Dynamic) {
         // Infinite mass, no damping: a kinematic body keeps the velocities it is given.
         body.setInverseMass(0);
@@ -176,7 +171,7 @@ void World::setSettings(const WorldSettings &settings) {
     for (std::uint32_t index : impl_->bodies.order) {
         detail::BodyRecord &r = impl_->bodies[index];
         r.body.setSleepEpsilon(sleepEpsilonFor(settings.sleepEpsilon, r.boundingRadius));
-        r.body.setMovingMotionCap(movingMotionCap(settings.sleepDelay));
+        r.body.setMovingSleepAverageCap(movingMotionCap(settings.sleepDelay));
         if (r.immovable) continue;
         r.body.setAcceleration(settings.gravity * r.gravityScale);
         r.body.setRotationStep(rotationStep(settings));
@@ -191,9 +186,7 @@ BodyId World::addBody(const BodySettings &settings) {
     Impl &w = *impl_;
     if (!settings.name.empty() && w.bodies.names.count(settings.name))
         detail::refuse(function, "name", "must be unique, \"" + settings.name + "\" is already taken");
-    if (settings.isStatic && settings.motion == Motion::Kinematic)
-        detail::refuse(function, "isStatic", "is true while motion is Kinematic; set one of them");
-    const Motion motion = motionOf(settings);
+    const Motion motion = settings.motion;
     const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh;
     if (staticOnly && motion != Motion::Static)
         detail::refuse(function, "shape.type",
@@ -379,10 +372,6 @@ std::optional<BodyId> World::findBody(const std::string &name) const {
 const RigidBody &World::body(BodyId id) const { return impl_->bodies.record(id, "World::body").body; }
 const std::string &World::name(BodyId id) const { return impl_->bodies.record(id, "World::name").name; }
 const Shape &World::shape(BodyId id) const { return impl_->bodies.record(id, "World::shape").shape->shape(); }
-bool World::isStatic(BodyId id) const {
-    const detail::BodyRecord &r = impl_->bodies.record(id, "World::isStatic");
-    return r.immovable && !r.kinematic;
-}
 Motion World::motion(BodyId id) const {
     const detail::BodyRecord &r = impl_->bodies.record(id, "World::motion");
     return r.kinematic ? Motion::Kinematic : r.immovable ? Motion::Static : Motion::Dynamic;

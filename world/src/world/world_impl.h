@@ -26,6 +26,7 @@
 #include "solver/constraint_solver.h"
 #include "world/body_store.h"
 #include "world/event_log.h"
+#include "world/step_context.h"
 #include "world/workers.h"
 
 namespace cyclone {
@@ -53,7 +54,7 @@ struct WorldState {
     Workers workers;
     StepStats stats;
     std::uint64_t stepCount = 0;
-    StepPlan plan;  ///< This step's sub-steps and velocity passes (dynamics/step_plan.h).
+    StepContext context;  ///< What this step's stages share (world/step_context.h).
     /// Every shape a body was added with, in the order of the calls (kept after the body is
     /// removed): a saved state names its bodies' shapes by place in it (snapshot/world_state_io.cpp).
     std::vector<std::shared_ptr<const CollisionShape>> shapes;

@@ -54,35 +54,18 @@ enum class Integrator {
     MomentumConserving,
 };
 
-/// How contacts are solved.
-enum class ContactSolverType {
-    /// Sub-stepped soft contacts with a relaxation pass (the "soft step" of Box2D v3):
-    /// per sub-step, velocityIterations biased passes then positionIterations rigid ones.
-    SoftStep,
-    /// Sequential impulses with split-impulse (pseudo-velocity) penetration recovery:
-    /// per sub-step, velocityIterations velocity passes then positionIterations pseudo ones.
-    SplitImpulse,
-};
-
-/// Settings of a World. Every field has a documented default; World validates them.
-struct WorldSettings {
-    /// Constant acceleration given to every dynamic body, m/s^2.
-    Vector3 gravity = Vector3(0, -9.81, 0);
-    /// Contact solver velocity iterations per sub-step, >= 1.
-    int velocityIterations = 3;
-    /// Penetration-recovery iterations per sub-step (pseudo-velocity passes for
-    /// SplitImpulse, relax passes for SoftStep), >= 0.
-    int positionIterations = 1;
-    /// Sub-steps per step, >= 1: each repeats solve and integrate with dt / substeps.
-    int substeps = 4;
+/// The solver's algorithm switches and tuning, there to compare algorithms in benchmarks
+/// and tests. Leave alone: the defaults are what the tests and benchmarks measure, and
+/// turning one off makes stacks, landings or sleep worse (docs/solver.md says by how much).
+struct DebugSettings {
     /// Sub-steps of a step in which every awake body rests (touches something, each of its
     /// contacts was solved last step and one at least carried a normal impulse, and it
-    /// moves less than 1 mm in the step), in [0, substeps]: that step takes
+    /// moves less than 1 mm in the step), in [0, WorldSettings::substeps]: that step takes
     /// restingIterations velocity passes in all, restingIterations / restingSubsteps per
     /// sub-step (rounded up), and costs a carrier pass, a penetration pass and an
-    /// integration per sub-step less. Only for SplitImpulse, without joints, springs or
+    /// integration per sub-step less. Only without joints, springs or
     /// moving kinematic bodies, and while |gravity| (dt / restingSubsteps)^2 <=
-    /// speculativeDistance. 0 or substeps: every step takes `substeps`.
+    /// speculativeDistance. 0 or substeps: every step takes WorldSettings::substeps.
     int restingSubsteps = 1;
     /// Velocity passes of a resting step in all (see restingSubsteps), in [1, 10000]; a
     /// resting step takes at most the passes of a full step, velocityIterations * substeps.
@@ -90,53 +73,7 @@ struct WorldSettings {
     /// up, so it needs fewer passes than a step in which something lands (docs/solver.md,
     /// "Resting steps").
     int restingIterations = 8;
-    /// Whether bodies may fall asleep.
-    bool sleep = true;
-    /// Threshold of the motion average (v.v + w.w) below which an island may sleep,
-    /// (m/s)^2 + (rad/s)^2, > 0. A body of bounding radius R under 0.25 m gets this times
-    /// (R / 0.25 m)^2, so that it must move as many of its sizes per second to stay awake.
-    real sleepEpsilon = kDefaultSleepEpsilon;
-    /// Longest time a body stays awake after it stops moving (its v.v + w.w drops below
-    /// sleepEpsilon), s, in [0, log2(10) = 3.32]: while it moves, its motion average is
-    /// capped at 2^sleepDelay x sleepEpsilon (RigidBody::setMovingMotionCap; 3.32 is the
-    /// seed's clamp). A body woken at rest still stays awake about a second.
-    real sleepDelay = 0.4;
-    /// Integration scheme.
-    Integrator integrator = Integrator::NewtonEuler;
-    /// Springs of SpringForce::Automatic whose omega h exceeds this get the backward-Euler
-    /// force (as with NewtonEulerImplicit) instead of the explicit one; dimensionless,
-    /// > 0 (infinity keeps every spring explicit). omega^2 is a bound on the largest
-    /// k / mass the spring's bodies feel along their springs (k times the inverse mass at
-    /// the attachment point along the spring, twice that when the other end moves too,
-    /// summed over a body's springs), h = dt / substeps. An explicit spring is stable
-    /// while omega h < 2 but overshoots its starting stretch by 1 / sqrt(1 - (omega h / 2)^2):
-    /// at 0.8, by at most 9%, while springs below it keep their energy.
-    real explicitSpringLimit = 0.8;
-    /// Contact solver.
-    ContactSolverType contactSolver = ContactSolverType::SplitImpulse;
-    /// Stiffness of soft contacts as a spring frequency, Hz, >= 0 (capped at a quarter
-    /// of the sub-step rate; 0 means rigid).
-    real contactHertz = 30;
-    /// Damping ratio of soft contacts, >= 0.
-    real contactDampingRatio = 10;
-    /// Fastest speed at which penetration is pushed out, m/s, > 0.
-    real maxPushVelocity = 3;
-    /// Penetration the solver leaves alone so that resting contacts persist, m, >= 0.
-    /// Shapes apart by up to this also count as touching (box-box, the sphere pairs and
-    /// a plane against a solid shape), so that shapes placed to touch, which rounding
-    /// often leaves a hair apart, are in contact from the first step.
-    real penetrationSlop = 0.0002;
-    /// Fraction of the penetration beyond the slop removed per step, in (0, 1].
-    real penetrationRecovery = 0.1;
-    /// Approach speed below which restitution is ignored, m/s, >= 0.
-    real restitutionThreshold = 1.0;
-    /// Contact points up to this far apart are kept, so a tilting face keeps its
-    /// support without a contact appearing suddenly, m, >= 0. Bodies that move also get
-    /// speculative contacts with what they can reach within the step at their speeds
-    /// (whatever this distance), so that a landing body stops at the surface in the step
-    /// of the impact (meshes too, triangle by triangle).
-    real speculativeDistance = 0.02;
-    /// Speculative contacts from the bodies' speeds (above): on, a pair that can meet
+    /// Speculative contacts from the bodies' speeds (WorldSettings::speculativeDistance): on, a pair that can meet
     /// within the step gets a contact that lets it close the gap and no more; off, only
     /// shapes that overlap or lie within speculativeDistance get contacts, so a landing
     /// body sinks up to v dt into the surface before the contact acts (for comparison;
@@ -164,15 +101,64 @@ struct WorldSettings {
     real manifoldReuseTolerance = 0.0005;
     /// Whether impulses of the last step seed the solver (warm starting).
     bool warmStarting = true;
-    /// The carrier pass (SplitImpulse solver): after the velocity passes of each
-    /// sub-step, one more pass solves each body against the bodies that carry it as
-    /// immovable ones, with a few sweeps per contact, keeping the impulses of the velocity
-    /// passes; the last penetration pass does the same. Carriers are static and sleeping
-    /// bodies and, by shock propagation, a body lower in the contact graph (counted from
-    /// static or sleeping bodies) that the other rests on within 60 degrees of gravity.
+    /// The carrier pass: after the velocity passes of each sub-step, one more pass solves
+    /// each body against the bodies that carry it as immovable ones, with a few sweeps per
+    /// contact, keeping the impulses of the velocity passes; the last penetration pass does
+    /// the same. Carriers are static and sleeping bodies and a body lower in the contact
+    /// graph (counted from static or sleeping bodies) that the other rests on within 60
+    /// degrees of gravity.
     /// Stacks then hold at any mass ratio and do not lean; off, every pass is plain
     /// Gauss-Seidel.
-    bool shockPropagation = true;
+    bool carrierPass = true;
+};
+
+/// Settings of a World. Every field has a documented default; World validates them.
+struct WorldSettings {
+    /// Constant acceleration given to every dynamic body, m/s^2.
+    Vector3 gravity = Vector3(0, -9.81, 0);
+    /// Contact solver velocity iterations per sub-step, >= 1.
+    int velocityIterations = 3;
+    /// Penetration-recovery passes per sub-step (pseudo-velocity passes), >= 0.
+    int positionIterations = 1;
+    /// Sub-steps per step, >= 1: each repeats solve and integrate with dt / substeps.
+    int substeps = 4;
+    /// Whether bodies may fall asleep.
+    bool sleep = true;
+    /// Threshold of the sleep average (v.v + w.w) below which an island may sleep,
+    /// (m/s)^2 + (rad/s)^2, > 0. A body of bounding radius R under 0.25 m gets this times
+    /// (R / 0.25 m)^2, so that it must move as many of its sizes per second to stay awake.
+    real sleepEpsilon = kDefaultSleepEpsilon;
+    /// Longest time a body stays awake after it stops moving (its v.v + w.w drops below
+    /// sleepEpsilon), s, in [0, log2(10) = 3.32]: while it moves, its sleep average is
+    /// capped at 2^sleepDelay x sleepEpsilon (RigidBody::setMovingSleepAverageCap; 3.32 is the
+    /// seed's clamp). A body woken at rest still stays awake about a second.
+    real sleepDelay = 0.4;
+    /// Integration scheme.
+    Integrator integrator = Integrator::NewtonEuler;
+    /// Springs of SpringForce::Automatic whose omega h exceeds this get the backward-Euler
+    /// force (as with NewtonEulerImplicit) instead of the explicit one; dimensionless,
+    /// > 0 (infinity keeps every spring explicit). omega^2 is a bound on the largest
+    /// k / mass the spring's bodies feel along their springs (k times the inverse mass at
+    /// the attachment point along the spring, twice that when the other end moves too,
+    /// summed over a body's springs), h = dt / substeps. An explicit spring is stable
+    /// while omega h < 2 but overshoots its starting stretch by 1 / sqrt(1 - (omega h / 2)^2):
+    /// at 0.8, by at most 9%, while springs below it keep their energy.
+    real explicitSpringLimit = 0.8;
+    /// Penetration the solver leaves alone so that resting contacts persist, m, >= 0.
+    /// Shapes apart by up to this also count as touching (box-box, the sphere pairs and
+    /// a plane against a solid shape), so that shapes placed to touch, which rounding
+    /// often leaves a hair apart, are in contact from the first step.
+    real penetrationSlop = 0.0002;
+    /// Fraction of the penetration beyond the slop removed per step, in (0, 1].
+    real penetrationRecovery = 0.1;
+    /// Approach speed below which restitution is ignored, m/s, >= 0.
+    real restitutionThreshold = 1.0;
+    /// Contact points up to this far apart are kept, so a tilting face keeps its
+    /// support without a contact appearing suddenly, m, >= 0. Bodies that move also get
+    /// speculative contacts with what they can reach within the step at their speeds
+    /// (whatever this distance), so that a landing body stops at the surface in the step
+    /// of the impact (meshes too, triangle by triangle).
+    real speculativeDistance = 0.02;
     /// Most pairs of overlapping broadphase boxes a step keeps, in [1, 2^31 - 1]; beyond
     /// it the step drops the rest and says so (StepStats::errors, PairBudgetExceeded).
     /// Each pair kept while touching costs about 4.9 KB, up to 9.4 KB in a pile at one
@@ -184,6 +170,8 @@ struct WorldSettings {
     /// solver shares its work among them; the results are the same whatever the count
     /// (docs/solver.md, "Threads"). 1 starts no thread.
     int threads = 1;
+    /// Algorithm switches and tuning: leave alone (see DebugSettings).
+    DebugSettings debug;
 };
 
 /// A collision mask holding every layer.
@@ -272,9 +260,6 @@ struct BodySettings {
     /// How the body moves. Kinematic bodies ignore `mass`, `inertia`, the damping and
     /// `canSleep`, and start with `velocity` and `rotation`.
     Motion motion = Motion::Dynamic;
-    /// The older spelling of `motion = Motion::Static`: true with `motion` left Dynamic
-    /// means Static; true with `motion = Motion::Kinematic` is refused as contradictory.
-    bool isStatic = false;
     /// Mass of a dynamic body, kg, in [kMinMass, kMaxMass] = [1e-100, 1e100].
     real mass = 1;
     /// Body-space inertia tensor (about the centre of mass, in the shape frame's axes),
@@ -342,11 +327,6 @@ struct BodySettings {
     /// with its events and query hits, never read by the World.
     std::uint64_t userData = 0;
 };
-
-/// The motion `settings` asks for: `motion`, or Static when the older `isStatic` is set.
-inline Motion motionOf(const BodySettings &settings) {
-    return settings.isStatic ? Motion::Static : settings.motion;
-}
 
 /// Handle of a body in a World. Stale handles (of removed bodies) are refused. A
 /// default-constructed BodyId names no body.

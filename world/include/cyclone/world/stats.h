@@ -12,7 +12,7 @@ namespace cyclone {
 struct SolveTimes {
     double setup = 0;     ///< Jacobians, effective masses, the passes' order (once per step).
     double velocity = 0;  ///< Predicted velocities, warm start and the velocity passes.
-    double carrier = 0;   ///< The carrier pass: shock propagation (WorldSettings::shockPropagation; 0 when off or without contacts).
+    double carrier = 0;   ///< The carrier pass (DebugSettings::carrierPass; 0 when off or without contacts).
     double position = 0;  ///< Penetration recovery (positionIterations; 0 when 0 or without contacts).
 };
 
@@ -28,7 +28,7 @@ struct StageTimes {
     double solve = 0;        ///< Velocity and position iterations (parts in solveParts).
     double integrate = 0;    ///< RigidBody::integrate and position correction.
     double ccd = 0;          ///< Continuous collision of fast bodies with BodySettings::ccd.
-    double landing = 0;      ///< The landing correction (WorldSettings::landingCorrection).
+    double landing = 0;      ///< The landing correction (DebugSettings::landingCorrection).
     double sleep = 0;        ///< Island sleep decisions.
     double characters = 0;   ///< Moving the characters, and the bodies that run into them (0 without characters).
     double total = 0;        ///< The whole step.
@@ -64,22 +64,22 @@ struct StepStats {
     int manifolds = 0;          ///< Contact manifolds given to the solver.
     int preSolvedManifolds = 0; ///< Manifolds the pre-solve stage saw (ContactListener, one-way and surface-velocity bodies); 0 without them.
     int contacts = 0;           ///< Contact points given to the solver.
-    int jacobiansMade = 0;      ///< Manifolds whose Jacobians were made this step (the others kept theirs: WorldSettings::manifoldReuseTolerance).
+    int jacobiansMade = 0;      ///< Manifolds whose Jacobians were made this step (the others kept theirs: DebugSettings::manifoldReuseTolerance).
     int frictionRows = 0;       ///< Friction constraint rows (per manifold with friction: 2 tangents, plus a twist with 2 or more points).
     int resistanceRows = 0;     ///< Rolling and spinning resistance rows (2 rolling per point or line contact, 1 spinning per point contact, where the pair's lengths are > 0).
     int restitutionContacts = 0;///< Points that bounce this step.
     int islands = 0;            ///< Islands of awake dynamic bodies.
-    int substeps = 0;           ///< Sub-steps taken: WorldSettings::substeps, or restingSubsteps in a step where every awake body rests.
+    int substeps = 0;           ///< Sub-steps taken: WorldSettings::substeps, or DebugSettings::restingSubsteps in a step where every awake body rests.
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
     int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
-    int carrierSweeps = 0;      ///< Sweeps the carrier pass gave bodies resting on others, one body's sweep each (summed over sub-steps; 0 without shock propagation).
+    int carrierSweeps = 0;      ///< Sweeps the carrier pass gave bodies resting on others, one body's sweep each (summed over sub-steps; 0 without the carrier pass).
     int springs = 0;            ///< Springs evaluated (once per step, whatever the sub-steps).
     int joints = 0;             ///< Joints solved this step (at least one end simulated).
     int jointRows = 0;          ///< Joint rows solved (summed over sub-steps).
     int gyroscopicBodies = 0;   ///< Bodies given the implicit gyroscopic step (anisotropic inertia only).
     int ccdSweeps = 0;          ///< ccd bodies that moved far enough this step to be swept.
     int ccdHits = 0;            ///< ccd bodies moved back to their time of impact.
-    int landingPairs = 0;       ///< Pairs tested again at the step's end by the landing correction (WorldSettings::landingCorrection).
+    int landingPairs = 0;       ///< Pairs tested again at the step's end by the landing correction (DebugSettings::landingCorrection).
     int landingPushes = 0;      ///< Contact points the landing correction pushed apart (deeper than its tolerance at the step's end).
     int isolatedBodies = 0;     ///< Bodies isolated because their state became non-finite (or beyond 1e12 m).
     real maxPenetration = 0;    ///< Deepest contact of the step, m.

@@ -81,7 +81,7 @@ public:
     /// Adds a body and returns its handle; throws InvalidArgument (nothing added) on a bad
     /// shape, mass, inertia or number, a plane or mesh on a dynamic or kinematic body
     /// (sensor or not),
-    /// `isStatic` with Motion::Kinematic, a shape any point of which (a compound's child
+    /// a shape any point of which (a compound's child
     /// too) would lie beyond 1e12 m of the origin, or a duplicate non-empty name. A kinematic body
     /// added with a velocity or rotation moves from the first step. A dynamic body added awake (the default) is simulated from the
     /// next step; one added with `awake = false` sleeps until something wakes it.
@@ -120,8 +120,6 @@ public:
     Matrix4 framePose(BodyId id) const;
     /// The centre of mass in the body's shape frame, m: zero except for a compound.
     Vector3 localCentreOfMass(BodyId id) const;
-    /// Whether the body is static (Motion::Static).
-    bool isStatic(BodyId id) const;
     /// How the body moves.
     Motion motion(BodyId id) const;
     /// The body's material.
