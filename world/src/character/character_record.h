@@ -27,6 +27,8 @@ struct CharacterRecord {
     Matrix4 groundStart = Matrix4::Identity();  ///< The ground body's pose when the step began.
 };
 
+/// A character's capsule: along local z, its cylinder the height less the two caps.
+inline Shape characterCapsule(const CharacterSettings &s) { return Shape::capsule(s.radius, s.height - 2 * s.radius); }
 /// Up for the characters: against gravity, +y when there is none.
 Vector3 characterUp(const Vector3 &gravity);
 /// The turn that stands a capsule (along local z) along `up`.

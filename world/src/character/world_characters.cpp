@@ -77,7 +77,7 @@ CharacterId World::addCharacter(const CharacterSettings &settings) {
     const Vector3 up = detail::characterUp(w.settings.gravity);
     detail::CharacterRecord c;
     c.settings = settings;
-    c.capsule = Shape::capsule(settings.radius, settings.height - 2 * settings.radius);
+    c.capsule = detail::characterCapsule(settings);
     c.feet = settings.position;
     c.groundNormal = up;
     BodySettings body;

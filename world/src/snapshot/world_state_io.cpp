@@ -19,6 +19,7 @@
 #include <initializer_list>
 #include <unordered_map>
 
+#include "character/character_record.h"
 #include "collision/time_of_impact.h"
 #include "cyclone/detail/validation.h"
 #include "snapshot/state_archive.h"
@@ -193,6 +194,21 @@ struct StateFields {
     template <class A>
     static void islands(A &a, Islands &i) {
         io(a, i.sleeping, i.freeSleeping, i.start_, i.members_);
+    }
+
+    // A character's capsule is made from its settings, as addCharacter makes it.
+    template <class A>
+    static void characters(A &a, Characters &c) {
+        const std::size_t n = a.count(c.records.size(), 2);
+        if constexpr (A::kReading) c.records.resize(n);
+        for (CharacterRecord &r : c.records) {
+            io(a, r.alive, r.generation);
+            if (!r.alive) continue;
+            io(a, r.settings, r.body, r.feet, r.desired, r.flight, r.push, r.velocity);
+            io(a, r.onGround, r.groundBody, r.groundNormal, r.groundPoint, r.groundStart);
+            if constexpr (A::kReading) r.capsule = characterCapsule(r.settings);
+        }
+        io(a, c.free);
     }
 
     template <class A>
@@ -419,6 +435,7 @@ void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) 
     islands(a, w.islands);
     joints(a, w.joints);
     io(a, w.springs.records, w.springs.free);
+    characters(a, w.characters);
     solver(a, w.solver);
     events(a, w.events.pending);
 }
@@ -498,6 +515,7 @@ void StateFields::restore(WorldState &w, const std::uint8_t *data, std::size_t s
     islands(a, w.islands);
     joints(a, w.joints);
     io(a, w.springs.records, w.springs.free);
+    characters(a, w.characters);
     solver(a, w.solver);
     events(a, w.events.pending);
     w.events.events.clear();
