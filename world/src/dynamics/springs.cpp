@@ -1,5 +1,5 @@
 // Spring forces, at the start of every sub-step of h seconds: explicit (the seed's) or
-// backward Euler, per spring (chooseSpringForces).
+// backward Euler, per spring (SpringSet::chooseForces).
 //
 // Design note. An explicit spring force makes each sub-step a symplectic Euler step of
 // the oscillator: stable only while omega h < 2, and beyond that the energy grows every

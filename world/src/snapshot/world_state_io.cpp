@@ -12,9 +12,9 @@
 // that lists the candidate pairs, and so the solve order, follows the trees' shapes, and
 // FCL's incremental balancing compares node addresses, so the internal nodes are
 // restored in the same order of addresses (their rank is saved). Each struct's fields are
-// listed once, in a fields() function read and written through io() (state_archive.h):
-// a field added to a struct is one line there. Scratch that a step rewrites before it
-// reads it is not saved. Sizes and timings: docs/rollback.md.
+// listed once, in a function of StateFields that reads or writes them through io()
+// (state_archive.h): a field added to a struct is one line there. Scratch that a step
+// rewrites before it reads it is not saved. Sizes and timings: docs/rollback.md.
 #include <algorithm>
 #include <initializer_list>
 #include <unordered_map>
@@ -430,7 +430,7 @@ struct StateFields {
 };
 
 void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) {
-    // Saving reads only; the fields() functions take what they list by reference.
+    // Saving reads only; StateFields' functions take what they list by reference.
     WorldState &w = const_cast<WorldState &>(state);
     StateWriter a(out);
     std::uint64_t fingerprint = shapesFingerprint(w.shapes, w.shapes.size());
