@@ -101,7 +101,7 @@ TEST(RigidBodySleep, ASlowBodyIsNotCappedBelowItsOwnMotion) {
     EXPECT_NEAR(body.getSleepAverage(), 0.012, 1e-15);
 }
 
-TEST(RigidBodySleep, SetMovingMotionCapRefusesValuesOutsideOneToTen) {
+TEST(RigidBodySleep, SetMovingSleepAverageCapRefusesValuesOutsideOneToTen) {
     RigidBody body;
     for (real bad : {real(0.5), real(10.5), real(NAN), real(INFINITY)}) {
         EXPECT_THROW(body.setMovingSleepAverageCap(bad), std::invalid_argument) << bad;

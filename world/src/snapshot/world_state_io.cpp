@@ -359,7 +359,7 @@ struct StateFields {
     }
 
     /// What a state holds after the broadphase: contacts, sensors, islands, joints,
-    /// springs, the solver's kept data and the events recorded between steps.
+    /// springs, characters, the solver's kept data and the events recorded between steps.
     template <class A>
     static void managers(A &a, WorldState &w) {
         contacts(a, w.contacts, w.bodies);
