@@ -49,7 +49,7 @@ TEST(SceneLoader, DefaultsAreTheContracts) {
     const BodyId id = built.ids[0];
     const RigidBody &body = built.world.body(id);
     EXPECT_EQ(built.world.name(id), "b");
-    EXPECT_FALSE((built.world.motion(id) == Motion::Static));
+    EXPECT_NE(built.world.motion(id), Motion::Static);
     EXPECT_DOUBLE_EQ(body.getMass(), 1.0);
     expectVector(body.getPosition(), 0, 0, 0);
     EXPECT_TRUE(body.getOrientation().isApprox(Quaternion::Identity()));
@@ -155,7 +155,7 @@ TEST(SceneLoader, EveryBodyFieldLandsInTheWorld) {
     const BodyId id = built.ids[0];
     const RigidBody &body = world.body(id);
     EXPECT_EQ(world.name(id), "moving");
-    EXPECT_FALSE((world.motion(id) == Motion::Static));
+    EXPECT_NE(world.motion(id), Motion::Static);
     EXPECT_DOUBLE_EQ(body.getMass(), 2.5);
     Matrix3 inertia;
     inertia << 2, 0.1, 0, 0.1, 3, 0, 0, 0, 4;
@@ -182,7 +182,7 @@ TEST(SceneLoader, EveryBodyFieldLandsInTheWorld) {
 TEST(SceneLoader, StaticBodyHasInfiniteMass) {
     const Scene scene = loadScene(oneBody(std::string(kBox) + R"(, "static": true, "position": [0, -1, 0])"), "x");
     SceneWorld built = buildWorld(scene);
-    EXPECT_TRUE((built.world.motion(built.ids[0]) == Motion::Static));
+    EXPECT_EQ(built.world.motion(built.ids[0]), Motion::Static);
     EXPECT_FALSE(built.world.body(built.ids[0]).hasFiniteMass());
     expectVector(built.world.body(built.ids[0]).getPosition(), 0, -1, 0);
 }
@@ -235,12 +235,12 @@ TEST(SceneLoader, EveryShapeLandsInTheWorld) {
     EXPECT_EQ(shape(5).type, ShapeType::Plane);
     EXPECT_DOUBLE_EQ(shape(5).normal.normalized().y(), 1.0);
     EXPECT_DOUBLE_EQ(shape(5).offset, -3.0);
-    EXPECT_TRUE((world.motion(built.ids[5]) == Motion::Static));
+    EXPECT_EQ(world.motion(built.ids[5]), Motion::Static);
     EXPECT_EQ(shape(6).type, ShapeType::Mesh);
     ASSERT_EQ(shape(6).vertices.size(), 4u);
     ASSERT_EQ(shape(6).triangles.size(), 2u);
     EXPECT_EQ(shape(6).triangles[1], (std::array<int, 3>{1, 2, 3}));
-    EXPECT_TRUE((world.motion(built.ids[6]) == Motion::Static));
+    EXPECT_EQ(world.motion(built.ids[6]), Motion::Static);
 
     // A sphere's default inertia comes from the shape: 2/5 m r^2.
     EXPECT_NEAR(world.body(built.ids[1]).getInertiaTensor()(0, 0), 0.4 * 0.49, 1e-12);
