@@ -309,6 +309,33 @@ void LandingCorrection::placeInOrder() {
     }
 }
 
+// The points of the manifolds out[first..] of `pair`, held by anchors on both bodies at
+// the poses they were found at, into `found`; whether one is deeper than `tolerance`.
+bool LandingCorrection::appendPoints(const std::vector<Manifold> &out, std::size_t first, const PairState &pair,
+                                     const Matrix4 &poseA, const Matrix4 &poseB, real tolerance, const Vector3 &up,
+                                     std::vector<Point> &found) {
+    bool deep = false;
+    const Matrix3 toA = poseA.linear().transpose();
+    const Matrix3 toB = poseB.linear().transpose();
+    for (std::size_t f = first; f < out.size(); ++f) {
+        const Manifold &m = out[f];
+        for (int i = 0; i < m.count; ++i) {
+            const ContactPoint &c = m.points[static_cast<std::size_t>(i)];
+            deep = deep || c.depth > tolerance;
+            Point point;
+            point.a = pair.a;
+            point.b = pair.b;
+            point.localA = toA * (c.pointA - poseA.translation());
+            point.localB = toB * (c.pointB - poseB.translation());
+            point.localNormal = toA * m.normal;
+            point.target = 0.5 * tolerance;
+            point.height = up.dot(0.5 * (c.pointA + c.pointB));
+            found.push_back(point);
+        }
+    }
+    return deep;
+}
+
 bool LandingCorrection::detect(WorldState &world) {
     const BodyStore &bodies = world.bodies;
     const PairCache &pairs = world.contacts.pairs;
@@ -349,24 +376,7 @@ bool LandingCorrection::detect(WorldState &world) {
             collide(*a.shape, poseA, *b.shape, poseB, narrowphase, out, &memo);
             if (memo.a) memos.push_back({static_cast<std::uint32_t>(k), memo.touching, memo.normal});
             const real tolerance = pairTolerance(a, b, slop);
-            const Matrix3 toA = poseA.linear().transpose();
-            const Matrix3 toB = poseB.linear().transpose();
-            for (std::size_t f = first; f < out.size(); ++f) {
-                const Manifold &m = out[f];
-                for (int i = 0; i < m.count; ++i) {
-                    const ContactPoint &c = m.points[static_cast<std::size_t>(i)];
-                    deep = deep || c.depth > tolerance;
-                    Point point;
-                    point.a = pair.a;
-                    point.b = pair.b;
-                    point.localA = toA * (c.pointA - poseA.translation());
-                    point.localB = toB * (c.pointB - poseB.translation());
-                    point.localNormal = toA * m.normal;
-                    point.target = 0.5 * tolerance;
-                    point.height = up.dot(0.5 * (c.pointA + c.pointB));
-                    found.push_back(point);
-                }
-            }
+            deep = appendPoints(out, first, pair, poseA, poseB, tolerance, up, found) || deep;
         }
         chunkDeep_[chunk] = deep ? 1 : 0;
     });

@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "collision/narrowphase.h"
+#include "contacts/pair_cache.h"
 #include "world/body_store.h"
 
 namespace cyclone::detail {
@@ -77,6 +78,9 @@ private:
     void orderPoints();
     /// Whether body `index` moved in `round`.
     bool movedIn(std::uint32_t index, int round) const;
+    static bool appendPoints(const std::vector<Manifold> &out, std::size_t first, const PairState &pair,
+                             const Matrix4 &poseA, const Matrix4 &poseB, real tolerance, const Vector3 &up,
+                             std::vector<Point> &found);
     /// Tests the pairs in pairs_ at the bodies' poses now and appends their manifolds'
     /// points; returns whether one of them is deeper than its pair's tolerance.
     bool detect(WorldState &world);
