@@ -194,7 +194,8 @@ BodyId World::addBody(const BodySettings &settings) {
     if (settings.isStatic && settings.motion == Motion::Kinematic)
         detail::refuse(function, "isStatic", "is true while motion is Kinematic; set one of them");
     const Motion motion = motionOf(settings);
-    const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh;
+    const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh ||
+                            settings.shape.type == ShapeType::Heightfield;
     if (staticOnly && motion != Motion::Static)
         detail::refuse(function, "shape.type",
                        std::string("\"") + shapeTypeName(settings.shape.type) + "\" is for static bodies only");
