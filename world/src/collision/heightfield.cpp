@@ -83,44 +83,69 @@ void validateHeightfield(const Shape &shape) {
             refuseHeightfield("shape.heights[" + std::to_string(k) + "]", "must be finite, got " + heightText(shape.heights[k]));
 }
 
+namespace {
+
+// The unit normals of the two triangles of each cell of row i: 2 j + k for cell (i, j).
+void rowNormals(const HeightfieldGrid &grid, int i, std::vector<Vector3> &out) {
+    out.resize(2 * static_cast<std::size_t>(grid.cellColumns()));
+    for (int j = 0; j < grid.cellColumns(); ++j) {
+        const Vector3 a = grid.sample(i, j), b = grid.sample(i + 1, j), c = grid.sample(i + 1, j + 1),
+                      d = grid.sample(i, j + 1);
+        out[2 * static_cast<std::size_t>(j)] = (b - a).cross(c - a).normalized();
+        out[2 * static_cast<std::size_t>(j) + 1] = (c - a).cross(d - a).normalized();
+    }
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> heightfieldActiveFeatures(const HeightfieldGrid &grid) {
     const int cellRows = grid.rows - 1;
     const int cellColumns = grid.cellColumns();
-    const auto normal = [&](int i, int j, int k) { return grid.normal(2 * (i * cellColumns + j) + k); };
     std::vector<std::uint8_t> features(static_cast<std::size_t>(grid.triangleCount()), 0);
     std::vector<char> vertexActive(static_cast<std::size_t>(grid.rows) * grid.columns, 0);
+    // Rows i - 1, i and i + 1 of triangle normals, each computed once.
+    std::vector<Vector3> above, here, below;
+    rowNormals(grid, 0, here);
     for (int i = 0; i < cellRows; ++i) {
+        if (i + 1 < cellRows) rowNormals(grid, i + 1, below);
         for (int j = 0; j < cellColumns; ++j) {
-            const int t = 2 * (i * cellColumns + j);
-            const Vector3 lower = normal(i, j, 0);
-            const Vector3 upper = normal(i, j, 1);
-            // Edge k of each triangle, and the triangle across it (none at the border).
+            const auto at = [](const std::vector<Vector3> &row, int cell, int k) {
+                return row[2 * static_cast<std::size_t>(cell) + static_cast<std::size_t>(k)];
+            };
+            const Vector3 &lower = at(here, j, 0);
+            const Vector3 &upper = at(here, j, 1);
+            // Edge e of each triangle, and the triangle across it (none at the border).
             const bool diagonal = !flatEdge(lower, upper);
             const bool active[2][3] = {
-                {j == 0 || !flatEdge(lower, normal(i, j - 1, 1)), i + 1 == cellRows || !flatEdge(lower, normal(i + 1, j, 1)),
+                {j == 0 || !flatEdge(lower, at(here, j - 1, 1)), i + 1 == cellRows || !flatEdge(lower, at(below, j, 1)),
                  diagonal},
-                {diagonal, j + 1 == cellColumns || !flatEdge(upper, normal(i, j + 1, 0)),
-                 i == 0 || !flatEdge(upper, normal(i - 1, j, 0))}};
-            for (int k = 0; k < 2; ++k) {
-                Vector3 corners[3];
-                int ids[3];
-                grid.triangle(t + k, corners, ids);
+                {diagonal, j + 1 == cellColumns || !flatEdge(upper, at(here, j + 1, 0)),
+                 i == 0 || !flatEdge(upper, at(above, j, 0))}};
+            // Sample numbers of each triangle's corners (heightfield.h).
+            const int s = i * grid.columns + j;
+            const int ids[2][3] = {{s, s + grid.columns, s + grid.columns + 1}, {s, s + grid.columns + 1, s + 1}};
+            const auto t = static_cast<std::size_t>(2 * (i * cellColumns + j));
+            for (int k = 0; k < 2; ++k)
                 for (int e = 0; e < 3; ++e) {
                     if (!active[k][e]) continue;
-                    features[static_cast<std::size_t>(t + k)] |= activeEdgeBit(e);
-                    vertexActive[static_cast<std::size_t>(ids[e])] = 1;
-                    vertexActive[static_cast<std::size_t>(ids[(e + 1) % 3])] = 1;
+                    features[t + static_cast<std::size_t>(k)] |= activeEdgeBit(e);
+                    vertexActive[static_cast<std::size_t>(ids[k][e])] = 1;
+                    vertexActive[static_cast<std::size_t>(ids[k][(e + 1) % 3])] = 1;
                 }
-            }
         }
+        std::swap(above, here);
+        std::swap(here, below);
     }
-    for (int t = 0; t < grid.triangleCount(); ++t) {
-        Vector3 corners[3];
-        int ids[3];
-        grid.triangle(t, corners, ids);
-        for (int k = 0; k < 3; ++k)
-            if (vertexActive[static_cast<std::size_t>(ids[k])]) features[static_cast<std::size_t>(t)] |= activeVertexBit(k);
-    }
+    for (int i = 0; i < cellRows; ++i)
+        for (int j = 0; j < cellColumns; ++j) {
+            const int s = i * grid.columns + j;
+            const int ids[2][3] = {{s, s + grid.columns, s + grid.columns + 1}, {s, s + grid.columns + 1, s + 1}};
+            const auto t = static_cast<std::size_t>(2 * (i * cellColumns + j));
+            for (int k = 0; k < 2; ++k)
+                for (int v = 0; v < 3; ++v)
+                    if (vertexActive[static_cast<std::size_t>(ids[k][v])])
+                        features[t + static_cast<std::size_t>(k)] |= activeVertexBit(v);
+        }
     return features;
 }
 
