@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <memory>
 #include <new>
 #include <sstream>
@@ -160,6 +161,70 @@ bool sameFile(const std::string &a, const std::string &b) {
     return realA == realB;
 }
 
+// The output files a run asked for, written whole at its end; none opened: not asked.
+struct Outputs {
+    std::unique_ptr<AtomicFile> summary;
+    std::unique_ptr<AtomicFile> trace;
+    std::unique_ptr<AtomicFile> state;
+    std::unique_ptr<AtomicFile> scene;
+    std::unique_ptr<TraceWriter> traceRows;  ///< Writes into `trace`.
+};
+
+// Opens the outputs `invocation` names; throws std::exception when one cannot be.
+Outputs openOutputs(const Invocation &invocation) {
+    Outputs outputs;
+    if (!invocation.summary.empty()) outputs.summary = std::make_unique<AtomicFile>(invocation.summary);
+    if (!invocation.saveState.empty()) outputs.state = std::make_unique<AtomicFile>(invocation.saveState);
+    if (!invocation.saveScene.empty()) outputs.scene = std::make_unique<AtomicFile>(invocation.saveScene);
+    if (!invocation.trace.empty()) {
+        outputs.trace = std::make_unique<AtomicFile>(invocation.trace);
+        outputs.traceRows = std::make_unique<TraceWriter>(outputs.trace->stream());
+    }
+    return outputs;
+}
+
+// Writes the summary, the saved state and the saved scene after a run of `result` from
+// `firstStep`, then renames every output into place; throws std::exception on a failure.
+void writeOutputs(Outputs &outputs, const std::string &text, const Scene &scene, const SceneWorld &built,
+                  const RunResult &result, std::int64_t firstStep) {
+    if (outputs.summary) outputs.summary->stream() << summaryText(summaryJson(scene, built, result));
+    if (outputs.state) {
+        const std::vector<std::uint8_t> state = savedRunBytes(text, firstStep + result.steps, built.world);
+        outputs.state->stream().write(reinterpret_cast<const char *>(state.data()), static_cast<std::streamsize>(state.size()));
+    }
+    if (outputs.scene) outputs.scene->stream() << sceneAsItIs(text, scene, built, firstStep + result.steps);
+    // All closed whole before any is renamed: a failed write leaves none.
+    const std::initializer_list<AtomicFile *> files = {outputs.summary.get(), outputs.trace.get(), outputs.state.get(),
+                                                       outputs.scene.get()};
+    for (AtomicFile *f : files)
+        if (f) f->close();
+    for (AtomicFile *f : files)
+        if (f) f->commit();
+}
+
+// Tells how the run went: the report or the result line on `out`, the warnings and a
+// non-finite end on `err`; returns the exit status.
+int tellResult(const Invocation &invocation, const Scene &scene, const SceneWorld &built, const RunResult &result,
+               std::ostream &out, std::ostream &err) {
+    const std::string &file = invocation.scene;
+    if (invocation.command == Invocation::Command::Report) {
+        writeReport(out, file, scene, built, result);
+    } else if (!invocation.quiet) {
+        out << resultLine(scene, built, result) << "\n";
+    }
+    if (result.firstPairBudgetStep) {
+        err << oneLine(file) << ": step " << *result.firstPairBudgetStep << ": warning: more bodies overlapped than "
+            << built.world.settings().maxPairs << " pairs; the excess pairs were dropped (in "
+            << result.pairBudgetSteps << " of " << result.steps << " steps), so some bodies passed through others\n";
+    }
+    if (result.nonFinite) {
+        err << oneLine(file) << ": " << oneLine(result.nonFiniteWhat) << "; run stopped"
+            << (invocation.summary.empty() ? "" : ", summary has \"non_finite\": true") << "\n";
+        return kExitNonFinite;
+    }
+    return kExitOk;
+}
+
 int runLoaded(const std::string &text, const Invocation &invocation, std::ostream &out, std::ostream &err,
               bool progress) {
     const std::string &file = invocation.scene;
@@ -186,25 +251,13 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
             return refuse(err, invocation.loadState, "state", error.what());
         }
     }
-
-    std::unique_ptr<AtomicFile> summaryFile;
-    std::unique_ptr<AtomicFile> traceFile;
-    std::unique_ptr<AtomicFile> stateFile;
-    std::unique_ptr<AtomicFile> sceneFile;
-    std::unique_ptr<TraceWriter> trace;
+    Outputs outputs;
     try {
-        if (!invocation.summary.empty()) summaryFile = std::make_unique<AtomicFile>(invocation.summary);
-        if (!invocation.saveState.empty()) stateFile = std::make_unique<AtomicFile>(invocation.saveState);
-        if (!invocation.saveScene.empty()) sceneFile = std::make_unique<AtomicFile>(invocation.saveScene);
-        if (!invocation.trace.empty()) {
-            traceFile = std::make_unique<AtomicFile>(invocation.trace);
-            trace = std::make_unique<TraceWriter>(traceFile->stream());
-        }
+        outputs = openOutputs(invocation);
     } catch (const std::exception &error) {
         err << "cyclone-world: " << oneLine(error.what()) << "\n";
         return kExitRefused;
     }
-
     // Told once the scene is sure to run, so that a refusal stays one line.
     loaded->writeWarnings(err, file);
 
@@ -213,13 +266,12 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
     options.firstStep = firstStep;
     options.dt = scene.dt;
     options.traceEvery = invocation.every;
-    options.trace = trace.get();
+    options.trace = outputs.traceRows.get();
     std::unique_ptr<Progress> meter;
     if (progress && !invocation.quiet) {
         meter = std::make_unique<Progress>(err);
         options.progress = [&meter](std::int64_t done, std::int64_t total) { (*meter)(done, total); };
     }
-
     RunResult result;
     try {
         result = runScene(scene, *built, options);
@@ -231,40 +283,72 @@ int runLoaded(const std::string &text, const Invocation &invocation, std::ostrea
         return refuse(err, file, "run", error.what());
     }
     meter.reset();
-
     try {
-        if (summaryFile) summaryFile->stream() << summaryText(summaryJson(scene, *built, result));
-        if (stateFile) {
-            const std::vector<std::uint8_t> state = savedRunBytes(text, firstStep + result.steps, built->world);
-            stateFile->stream().write(reinterpret_cast<const char *>(state.data()), static_cast<std::streamsize>(state.size()));
-        }
-        if (sceneFile) sceneFile->stream() << sceneAsItIs(text, scene, *built, firstStep + result.steps);
-        // All closed whole before any is renamed: a failed write leaves none.
-        for (AtomicFile *f : {summaryFile.get(), traceFile.get(), stateFile.get(), sceneFile.get()})
-            if (f) f->close();
-        for (AtomicFile *f : {summaryFile.get(), traceFile.get(), stateFile.get(), sceneFile.get()})
-            if (f) f->commit();
+        writeOutputs(outputs, text, scene, *built, result, firstStep);
     } catch (const std::exception &error) {
         err << "cyclone-world: " << oneLine(error.what()) << "\n";
         return kExitRefused;
     }
+    return tellResult(invocation, scene, *built, result, out, err);
+}
 
-    if (invocation.command == Invocation::Command::Report) {
-        writeReport(out, file, scene, *built, result);
-    } else if (!invocation.quiet) {
-        out << resultLine(scene, *built, result) << "\n";
+// The command that `name` (the first argument) names.
+Invocation::Command commandNamed(const std::string &name) {
+    if (name == "help" || name == "--help" || name == "-h") return Invocation::Command::Help;
+    if (name == "--version") return Invocation::Command::Version;
+    if (name == "run") return Invocation::Command::Run;
+    if (name == "report") return Invocation::Command::Report;
+    usage("unknown command '" + name + "'; commands: run, report, help");
+}
+
+// Whether option `flag`, given without "=VALUE", takes the next argument as its value.
+bool takesValue(const std::string &flag) {
+    return flag == "--steps" || flag == "--dt" || flag == "--summary" || flag == "--trace" || flag == "--every" ||
+           flag == "--save-state" || flag == "--load-state" || flag == "--save-scene";
+}
+
+// The options with a value that were given already (those naming a file are told by it).
+struct SeenOptions {
+    bool steps = false;
+    bool dt = false;
+    bool every = false;
+};
+
+// Sets option `flag` of `invocation` to `value`; refuses (UsageError) an unknown option,
+// a bad value, or an option given twice.
+void setOption(Invocation &invocation, const std::string &flag, const std::string &value, SeenOptions &seen) {
+    const auto once = [&](bool &given) {
+        if (given) usage(flag + " given twice");
+        given = true;
+    };
+    bool seenSummary = !invocation.summary.empty(), seenTrace = !invocation.trace.empty();
+    bool seenSave = !invocation.saveState.empty(), seenLoad = !invocation.loadState.empty();
+    bool seenScene = !invocation.saveScene.empty();
+    if (flag == "--steps") {
+        once(seen.steps);
+        invocation.steps = parseCount(flag, value, 0, kMaxSteps);
+    } else if (flag == "--dt") {
+        once(seen.dt);
+        invocation.dt = parseStep(flag, value);
+    } else if (flag == "--every") {
+        once(seen.every);
+        invocation.every = parseCount(flag, value, 1, kMaxEvery);
+    } else if (flag == "--summary" || flag == "--trace") {
+        once(flag == "--summary" ? seenSummary : seenTrace);
+        if (value.empty()) usage(flag + " needs a file name");
+        (flag == "--summary" ? invocation.summary : invocation.trace) = value;
+    } else if (flag == "--save-scene") {
+        once(seenScene);
+        if (value.empty()) usage(flag + " needs a file name");
+        invocation.saveScene = value;
+    } else if (flag == "--save-state" || flag == "--load-state") {
+        const bool save = flag == "--save-state";
+        once(save ? seenSave : seenLoad);
+        if (value.empty()) usage(flag + " needs a file name");
+        (save ? invocation.saveState : invocation.loadState) = value;
+    } else {
+        usage("unknown option '" + flag + "'");
     }
-    if (result.firstPairBudgetStep) {
-        err << oneLine(file) << ": step " << *result.firstPairBudgetStep << ": warning: more bodies overlapped than "
-            << built->world.settings().maxPairs << " pairs; the excess pairs were dropped (in "
-            << result.pairBudgetSteps << " of " << result.steps << " steps), so some bodies passed through others\n";
-    }
-    if (result.nonFinite) {
-        err << oneLine(file) << ": " << oneLine(result.nonFiniteWhat) << "; run stopped"
-            << (summaryFile ? ", summary has \"non_finite\": true" : "") << "\n";
-        return kExitNonFinite;
-    }
-    return kExitOk;
 }
 
 }  // namespace
@@ -273,23 +357,10 @@ Invocation parseCommandLine(const std::vector<std::string> &args) {
     Invocation invocation;
     if (args.empty()) usage("missing command: run, report or help");
     const std::string &command = args[0];
-    if (command == "help" || command == "--help" || command == "-h") {
-        invocation.command = Invocation::Command::Help;
+    invocation.command = commandNamed(command);
+    if (invocation.command == Invocation::Command::Help || invocation.command == Invocation::Command::Version)
         return invocation;
-    }
-    if (command == "--version") {
-        invocation.command = Invocation::Command::Version;
-        return invocation;
-    }
-    if (command == "run") {
-        invocation.command = Invocation::Command::Run;
-    } else if (command == "report") {
-        invocation.command = Invocation::Command::Report;
-    } else {
-        usage("unknown command '" + command + "'; commands: run, report, help");
-    }
-
-    bool haveSteps = false, haveDt = false, haveEvery = false;
+    SeenOptions seen;
     for (std::size_t i = 1; i < args.size(); ++i) {
         std::string arg = args[i];
         if (arg == "--help" || arg == "-h") {
@@ -302,12 +373,8 @@ Invocation parseCommandLine(const std::vector<std::string> &args) {
             invocation.scene = arg;
             continue;
         }
-        if (arg == "--quiet") {
-            invocation.quiet = true;
-            continue;
-        }
-        if (arg == "--strict") {
-            invocation.strict = true;
+        if (arg == "--quiet" || arg == "--strict") {
+            (arg == "--quiet" ? invocation.quiet : invocation.strict) = true;
             continue;
         }
         std::string value;
@@ -315,43 +382,11 @@ Invocation parseCommandLine(const std::vector<std::string> &args) {
         if (equals != std::string::npos) {
             value = arg.substr(equals + 1);
             arg.resize(equals);
-        } else if (arg == "--steps" || arg == "--dt" || arg == "--summary" || arg == "--trace" || arg == "--every" ||
-                   arg == "--save-state" || arg == "--load-state" || arg == "--save-scene") {
+        } else if (takesValue(arg)) {
             if (i + 1 >= args.size()) usage(arg + " needs a value");
             value = args[++i];
         }
-        const auto once = [&](bool &seen) {
-            if (seen) usage(arg + " given twice");
-            seen = true;
-        };
-        bool seenSummary = !invocation.summary.empty(), seenTrace = !invocation.trace.empty();
-        bool seenSave = !invocation.saveState.empty(), seenLoad = !invocation.loadState.empty();
-        bool seenScene = !invocation.saveScene.empty();
-        if (arg == "--steps") {
-            once(haveSteps);
-            invocation.steps = parseCount(arg, value, 0, kMaxSteps);
-        } else if (arg == "--dt") {
-            once(haveDt);
-            invocation.dt = parseStep(arg, value);
-        } else if (arg == "--every") {
-            once(haveEvery);
-            invocation.every = parseCount(arg, value, 1, kMaxEvery);
-        } else if (arg == "--summary" || arg == "--trace") {
-            once(arg == "--summary" ? seenSummary : seenTrace);
-            if (value.empty()) usage(arg + " needs a file name");
-            (arg == "--summary" ? invocation.summary : invocation.trace) = value;
-        } else if (arg == "--save-scene") {
-            once(seenScene);
-            if (value.empty()) usage(arg + " needs a file name");
-            invocation.saveScene = value;
-        } else if (arg == "--save-state" || arg == "--load-state") {
-            const bool save = arg == "--save-state";
-            once(save ? seenSave : seenLoad);
-            if (value.empty()) usage(arg + " needs a file name");
-            (save ? invocation.saveState : invocation.loadState) = value;
-        } else {
-            usage("unknown option '" + arg + "'");
-        }
+        setOption(invocation, arg, value, seen);
     }
     if (invocation.scene.empty()) usage(command + " needs a scene file: cyclone-world " + command + " SCENE.json");
     if (!invocation.summary.empty() && invocation.summary == invocation.trace) {

@@ -73,6 +73,149 @@ std::string leavesRange(const Scene &scene, const SceneWorld &built, const std::
     return "";
 }
 
+// The scene's events in the order they apply: by step, then as written.
+std::vector<std::size_t> eventOrder(const std::vector<SceneEvent> &events) {
+    std::vector<std::size_t> order(events.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t x, std::size_t y) { return events[x].step < events[y].step; });
+    return order;
+}
+
+// Scene index by BodyId, for sensor events (whose ids may be stale: a removed body's).
+class SceneIndex {
+public:
+    explicit SceneIndex(const std::vector<BodyId> &ids) {
+        for (std::size_t i = 0; i < ids.size(); ++i) index_.emplace(key(ids[i]), i);
+    }
+    std::size_t of(BodyId id) const { return index_.at(key(id)); }
+
+private:
+    static std::uint64_t key(BodyId id) { return std::uint64_t(id.generation) << 32 | id.index; }
+    std::unordered_map<std::uint64_t, std::size_t> index_;
+};
+
+// Appends the sensor events the World reported for `step`: the ends, then the begins.
+void recordSensorEvents(const WorldEvents &events, const SceneIndex &index, std::int64_t step,
+                        std::vector<SensorEventRecord> &out) {
+    for (const SensorEvent &e : events.sensorEnds) out.push_back({step, index.of(e.sensor), index.of(e.body), false});
+    for (const SensorEvent &e : events.sensorBegins) out.push_back({step, index.of(e.sensor), index.of(e.body), true});
+}
+
+// Applies one body event of `step`; the World's refusal becomes a SceneError at the event.
+void applyBodyEvent(const SceneEvent &event, std::int64_t step, SceneWorld &built) {
+    try {
+        applyEvent(built.world, built.ids[event.body], event);
+    } catch (const InvalidArgument &error) {
+        const std::string field = sceneFieldPath(error.field());
+        throw SceneError(field.empty() ? event.path : event.path + "." + field,
+                         error.problem() + " (at step " + std::to_string(step) + ")");
+    } catch (const std::exception &error) {
+        throw SceneError(memberPath(event.path, eventKindName(event.kind)),
+                         std::string(error.what()) + " (at step " + std::to_string(step) + ")");
+    }
+}
+
+// Applies the events of `step` in `order` from `next` on (skipping earlier steps': a
+// resumed run's), advancing `next` and marking removed bodies in `present`. Returns the
+// events' paths, for a failure of the step.
+std::string applyEventsOf(std::int64_t step, const Scene &scene, const std::vector<std::size_t> &order,
+                          std::size_t &next, SceneWorld &built, std::vector<bool> &present) {
+    std::string paths;
+    for (; next < order.size() && scene.events[order[next]].step <= step; ++next) {
+        const SceneEvent &event = scene.events[order[next]];
+        if (event.step < step) continue;
+        if (event.kind == EventKind::RemoveJoint) {
+            // A joint that broke, or went with one of its bodies, is already gone.
+            const JointId joint = built.joints[event.joint];
+            if (built.world.contains(joint)) built.world.removeJoint(joint);
+        } else {
+            applyBodyEvent(event, step, built);
+            if (event.kind == EventKind::Remove) present[event.body] = false;
+        }
+        paths += (paths.empty() ? "" : ", ") + event.path;
+    }
+    return paths;
+}
+
+// Takes one step, its time added to `times`; returns why the World could not, or "".
+std::string timedStep(World &world, real dt, StepTimeStats &times) {
+    const auto stepStart = Clock::now();
+    std::string failure;
+    try {
+        world.step(dt);
+    } catch (const std::exception &error) {
+        failure = error.what();
+    }
+    times.add(secondsSince(stepStart) * 1000.0);
+    return failure;
+}
+
+// Marks the run non-finite at the first body with a non-finite quantity after `step`, or
+// when the World isolated bodies for one; returns whether any dynamic body is awake (as
+// far as the bodies were read).
+bool checkBodies(const Scene &scene, const SceneWorld &built, const std::vector<bool> &present, std::int64_t step,
+                 RunResult &result) {
+    const World &world = built.world;
+    bool anyAwake = false;
+    for (std::size_t i = 0; i < scene.bodies.size() && !result.nonFinite; ++i) {
+        if (!present[i]) continue;
+        const BodyId id = built.ids[i];
+        const RigidBody &body = world.body(id);
+        if (const char *quantity = nonFiniteQuantity(body)) {
+            result.nonFinite = true;
+            result.nonFiniteWhat = "body " + jsonQuoted(scene.bodies[i].settings.name) + " has a non-finite " +
+                                   quantity + " after step " + std::to_string(step);
+        }
+        if (world.motion(id) == Motion::Dynamic && body.getAwake()) anyAwake = true;
+    }
+    if (!result.nonFinite && world.stats().isolatedBodies > 0) {
+        result.nonFinite = true;
+        result.nonFiniteWhat = "the world found a non-finite state (" + std::to_string(world.stats().isolatedBodies) +
+                               " of its bodies) in step " + std::to_string(step);
+    }
+    return anyAwake;
+}
+
+// Records which scene joints broke in `step` and every present joint's error after it.
+void recordJoints(const SceneWorld &built, std::int64_t step, RunResult &result) {
+    const World &world = built.world;
+    for (const JointBreak &broken : world.events().jointsBroken) {
+        const auto it = std::find(built.joints.begin(), built.joints.end(), broken.joint);
+        if (it != built.joints.end()) result.jointBrokenAt[static_cast<std::size_t>(it - built.joints.begin())] = step;
+    }
+    for (std::size_t j = 0; j < built.joints.size(); ++j) {
+        if (!world.contains(built.joints[j])) continue;
+        const real error = world.jointState(built.joints[j]).error;
+        result.jointError[j] = error;
+        result.jointMaxError[j] = std::max(result.jointMaxError[j], error);
+    }
+}
+
+// Writes the trace rows of `step`: every present body that is not static.
+void writeTraceRows(const Scene &scene, const SceneWorld &built, const std::vector<bool> &present, std::int64_t step,
+                    real dt, TraceWriter &trace) {
+    const World &world = built.world;
+    const real time = static_cast<real>(step + 1) * dt;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        const BodyId id = built.ids[i];
+        if (present[i] && !world.isStatic(id)) {
+            trace.write(step, time, scene.bodies[i].settings.name, world.body(id),
+                        world.framePosition(id) - world.body(id).getPosition());
+        }
+    }
+}
+
+// The summary reports the energy as a number; one too large for a double is a state the
+// run cannot report, so it is told as non-finite rather than written as null.
+void checkEnergy(const World &world, RunResult &result) {
+    if (result.nonFinite || std::isfinite(world.kineticEnergy())) return;
+    result.nonFinite = true;
+    result.nonFiniteWhat = "the kinetic energy exceeds the largest double (1.8e308 J) " +
+                           (result.steps ? "after step " + std::to_string(result.firstStep + result.steps - 1)
+                                         : std::string("at load"));
+}
+
 }  // namespace
 
 void StepTimeStats::add(double ms) {
@@ -127,11 +270,7 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
     World &world = built.world;
     RunResult result;
     result.dt = options.dt;
-
-    std::vector<std::size_t> eventOrder(scene.events.size());
-    std::iota(eventOrder.begin(), eventOrder.end(), std::size_t{0});
-    std::stable_sort(eventOrder.begin(), eventOrder.end(),
-                     [&](std::size_t x, std::size_t y) { return scene.events[x].step < scene.events[y].step; });
+    const std::vector<std::size_t> order = eventOrder(scene.events);
     std::size_t nextEvent = 0;
     // A resumed run's World lacks the bodies removed before the save.
     std::vector<bool> present(scene.bodies.size(), true);
@@ -139,88 +278,27 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
     const std::int64_t first = options.firstStep;
     const std::int64_t end = first + options.steps;
     result.firstStep = first;
-    // Scene index by BodyId, for sensor events (whose ids may be stale: a removed body's).
-    std::unordered_map<std::uint64_t, std::size_t> sceneIndex;
-    const auto key = [](BodyId id) { return std::uint64_t(id.generation) << 32 | id.index; };
-    for (std::size_t i = 0; i < built.ids.size(); ++i) sceneIndex.emplace(key(built.ids[i]), i);
-    const auto recordSensorEvents = [&](std::int64_t step) {
-        const WorldEvents &events = world.events();
-        for (const SensorEvent &e : events.sensorEnds)
-            result.sensorEvents.push_back({step, sceneIndex.at(key(e.sensor)), sceneIndex.at(key(e.body)), false});
-        for (const SensorEvent &e : events.sensorBegins)
-            result.sensorEvents.push_back({step, sceneIndex.at(key(e.sensor)), sceneIndex.at(key(e.body)), true});
-    };
-
+    const SceneIndex sceneIndex(built.ids);
     result.jointError.assign(scene.joints.size(), 0);
     result.jointMaxError.assign(scene.joints.size(), 0);
     result.jointBrokenAt.assign(scene.joints.size(), std::nullopt);
     const auto runStart = Clock::now();
     for (std::int64_t step = first; step < end; ++step) {
-        std::string eventsOfStep;  // for a failure of the step: what this step was given
-        for (; nextEvent < eventOrder.size() && scene.events[eventOrder[nextEvent]].step <= step; ++nextEvent) {
-            const SceneEvent &event = scene.events[eventOrder[nextEvent]];
-            if (event.step < step) continue;
-            if (event.kind == EventKind::RemoveJoint) {
-                // A joint that broke, or went with one of its bodies, is already gone.
-                const JointId joint = built.joints[event.joint];
-                if (world.contains(joint)) world.removeJoint(joint);
-                eventsOfStep += (eventsOfStep.empty() ? "" : ", ") + event.path;
-                continue;
-            }
-            try {
-                applyEvent(world, built.ids[event.body], event);
-            } catch (const InvalidArgument &error) {
-                const std::string field = sceneFieldPath(error.field());
-                throw SceneError(field.empty() ? event.path : event.path + "." + field,
-                                 error.problem() + " (at step " + std::to_string(step) + ")");
-            } catch (const std::exception &error) {
-                throw SceneError(memberPath(event.path, eventKindName(event.kind)),
-                                 std::string(error.what()) + " (at step " + std::to_string(step) + ")");
-            }
-            if (event.kind == EventKind::Remove) present[event.body] = false;
-            eventsOfStep += (eventsOfStep.empty() ? "" : ", ") + event.path;
-        }
-
+        const std::string eventsOfStep = applyEventsOf(step, scene, order, nextEvent, built, present);
         if (std::string what = leavesRange(scene, built, present, options.dt, step); !what.empty()) {
             result.nonFinite = true;
             result.nonFiniteWhat = what;
             break;
         }
-
-        const auto stepStart = Clock::now();
-        std::string stepFailure;
-        try {
-            world.step(options.dt);
-        } catch (const std::exception &error) {
-            stepFailure = error.what();
-        }
-        result.stepTimes.add(secondsSince(stepStart) * 1000.0);
+        const std::string stepFailure = timedStep(world, options.dt, result.stepTimes);
         result.steps = step + 1 - first;
         result.maxPenetrationOfRun = std::max(result.maxPenetrationOfRun, world.stats().maxPenetration);
-        if (stepFailure.empty()) recordSensorEvents(step);
+        if (stepFailure.empty()) recordSensorEvents(world.events(), sceneIndex, step, result.sensorEvents);
         if (world.stats().errors & StepError::PairBudgetExceeded) {
             if (!result.firstPairBudgetStep) result.firstPairBudgetStep = step;
             ++result.pairBudgetSteps;
         }
-
-        bool anyAwake = false;
-        for (std::size_t i = 0; i < scene.bodies.size() && !result.nonFinite; ++i) {
-            if (!present[i]) continue;
-            const BodyId id = built.ids[i];
-            const RigidBody &body = world.body(id);
-            if (const char *quantity = nonFiniteQuantity(body)) {
-                result.nonFinite = true;
-                result.nonFiniteWhat = "body " + jsonQuoted(scene.bodies[i].settings.name) + " has a non-finite " +
-                                       quantity + " after step " + std::to_string(step);
-            }
-            if (world.motion(id) == Motion::Dynamic && body.getAwake()) anyAwake = true;
-        }
-        if (!result.nonFinite && world.stats().isolatedBodies > 0) {
-            result.nonFinite = true;
-            result.nonFiniteWhat = "the world found a non-finite state (" +
-                                   std::to_string(world.stats().isolatedBodies) + " of its bodies) in step " +
-                                   std::to_string(step);
-        }
+        const bool anyAwake = checkBodies(scene, built, present, step, result);
         if (!stepFailure.empty() && !result.nonFinite) {
             throw SceneError("step " + std::to_string(step),
                              "the world could not take this step" +
@@ -228,40 +306,15 @@ RunResult runScene(const Scene &scene, SceneWorld &built, const RunOptions &opti
                                  stepFailure);
         }
         if (!anyAwake && !result.nonFinite && !result.firstAllAsleepStep) result.firstAllAsleepStep = step;
-        for (const JointBreak &broken : world.events().jointsBroken) {
-            const auto it = std::find(built.joints.begin(), built.joints.end(), broken.joint);
-            if (it != built.joints.end()) result.jointBrokenAt[static_cast<std::size_t>(it - built.joints.begin())] = step;
-        }
-        for (std::size_t j = 0; j < built.joints.size(); ++j) {
-            if (!world.contains(built.joints[j])) continue;
-            const real error = world.jointState(built.joints[j]).error;
-            result.jointError[j] = error;
-            result.jointMaxError[j] = std::max(result.jointMaxError[j], error);
-        }
-
+        recordJoints(built, step, result);
         const bool last = step + 1 == end || result.nonFinite;
-        if (options.trace && ((step + 1) % options.traceEvery == 0 || last)) {
-            const real time = static_cast<real>(step + 1) * options.dt;
-            for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-                const BodyId id = built.ids[i];
-                if (present[i] && !world.isStatic(id)) {
-                    options.trace->write(step, time, scene.bodies[i].settings.name, world.body(id),
-                                         world.framePosition(id) - world.body(id).getPosition());
-                }
-            }
-        }
+        if (options.trace && ((step + 1) % options.traceEvery == 0 || last))
+            writeTraceRows(scene, built, present, step, options.dt, *options.trace);
         if (options.progress) options.progress(step + 1 - first, options.steps);
         if (result.nonFinite) break;
     }
     result.wallSeconds = secondsSince(runStart);
-    // The summary reports the energy as a number; one too large for a double is a state
-    // the run cannot report, so it is told as non-finite rather than written as null.
-    if (!result.nonFinite && !std::isfinite(world.kineticEnergy())) {
-        result.nonFinite = true;
-        result.nonFiniteWhat = "the kinetic energy exceeds the largest double (1.8e308 J) " +
-                               (result.steps ? "after step " + std::to_string(result.firstStep + result.steps - 1)
-                                             : std::string("at load"));
-    }
+    checkEnergy(world, result);
     return result;
 }
 

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "cyclone/detail/byte_fields.h"
 #include "scene.h"
 
 namespace cyclone::scene {
@@ -24,27 +25,15 @@ std::uint64_t sceneHash(const std::string &text) {
     return hashBytes(reinterpret_cast<const std::uint8_t *>(text.data()), text.size());
 }
 
-template <class T>
-void put(std::vector<std::uint8_t> &out, std::size_t at, T value) {
-    std::memcpy(out.data() + at, &value, sizeof value);
-}
-
-template <class T>
-T take(const std::vector<std::uint8_t> &in, std::size_t at) {
-    T value;
-    std::memcpy(&value, in.data() + at, sizeof value);
-    return value;
-}
-
 }  // namespace
 
 std::vector<std::uint8_t> savedRunBytes(const std::string &sceneText, std::int64_t stepsDone, const World &world) {
     const std::vector<std::uint8_t> state = world.saveState();
     std::vector<std::uint8_t> out(kHeaderSize + state.size());
     std::memcpy(out.data(), kTag, sizeof kTag);
-    put(out, 8, sceneHash(sceneText));
-    put(out, 16, stepsDone);
-    put(out, 24, hashBytes(out.data(), 24));
+    detail::put(out, 8, sceneHash(sceneText));
+    detail::put(out, 16, stepsDone);
+    detail::put(out, 24, hashBytes(out.data(), 24));
     if (!state.empty()) std::memcpy(out.data() + kHeaderSize, state.data(), state.size());
     return out;
 }
@@ -52,11 +41,11 @@ std::vector<std::uint8_t> savedRunBytes(const std::string &sceneText, std::int64
 std::int64_t resumeSavedRun(const std::vector<std::uint8_t> &bytes, const std::string &sceneText, World &world) {
     if (bytes.size() < kHeaderSize || std::memcmp(bytes.data(), kTag, sizeof kTag) != 0)
         throw SavedRunError("is not a state saved by cyclone-world --save-state");
-    if (take<std::uint64_t>(bytes, 24) != hashBytes(bytes.data(), 24))
+    if (detail::take<std::uint64_t>(bytes, 24) != hashBytes(bytes.data(), 24))
         throw SavedRunError("is damaged: its header's checksum fails");
-    if (take<std::uint64_t>(bytes, 8) != sceneHash(sceneText))
+    if (detail::take<std::uint64_t>(bytes, 8) != sceneHash(sceneText))
         throw SavedRunError("was saved from another scene (the scene file's text differs)");
-    const auto steps = take<std::int64_t>(bytes, 16);
+    const auto steps = detail::take<std::int64_t>(bytes, 16);
     if (steps < 0 || steps > kMaxSteps) throw SavedRunError("is damaged: it says " + std::to_string(steps) + " steps");
     try {
         world.restoreState(std::vector<std::uint8_t>(bytes.begin() + kHeaderSize, bytes.end()));

@@ -48,6 +48,8 @@ bool spansVolume(const std::vector<Vector3> &points) {
     return height > 1e-9;
 }
 
+Shape readShape(const json &value, const std::string &path, bool isStatic);
+
 // A "heightfield" shape's fields (scene-format.md, shapes): rows and columns of samples,
 // their spacing [dx, dz] and rows x columns heights, row by row.
 Shape readHeightfield(const json &value, const std::string &path) {
@@ -74,6 +76,63 @@ Shape readHeightfield(const json &value, const std::string &path) {
     for (std::size_t k = 0; k < heights.size(); ++k)
         shape.heights.push_back(readNumber(heights[k], elementPath(heightsPath, k), Range::Length));
     return shape;
+}
+
+// A mesh's "triangles" at `path`: each 3 different indices of its `vertexCount` vertices.
+std::vector<std::array<int, 3>> readTriangles(const json &value, const std::string &path, std::size_t vertexCount) {
+    const std::string trianglesPath = memberPath(path, "triangles");
+    const json &triangles = required(value, path, "triangles");
+    expectArray(triangles, trianglesPath, kMaxShapePoints);
+    if (triangles.empty()) fail(trianglesPath, "needs at least 1 triangle");
+    const auto last = static_cast<std::int64_t>(vertexCount) - 1;
+    std::vector<std::array<int, 3>> read;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        const std::string trianglePath = elementPath(trianglesPath, t);
+        const json &triangle = triangles[t];
+        if (!triangle.is_array() || triangle.size() != 3) {
+            fail(trianglePath, "must be 3 vertex indices [i, j, k], got " + describe(triangle));
+        }
+        std::array<int, 3> indices{};
+        for (int k = 0; k < 3; ++k) {
+            indices[k] = static_cast<int>(readInteger(triangle[k], elementPath(trianglePath, k), 0, last));
+        }
+        if (indices[0] == indices[1] || indices[1] == indices[2] || indices[0] == indices[2]) {
+            fail(trianglePath, "must name 3 different vertices");
+        }
+        read.push_back(indices);
+    }
+    return read;
+}
+
+// A compound's "children" at `path`: each a convex shape with its pose in the body.
+std::vector<CompoundChild> readChildren(const json &value, const std::string &path) {
+    const std::string childrenPath = memberPath(path, "children");
+    const json &children = required(value, path, "children");
+    expectArray(children, childrenPath, kMaxShapePoints);
+    if (children.empty()) fail(childrenPath, "needs at least 1 child");
+    std::vector<CompoundChild> read;
+    for (std::size_t i = 0; i < children.size(); ++i) {
+        const std::string childPath = elementPath(childrenPath, i);
+        const json &child = children[i];
+        expectObject(child, childPath);
+        CompoundChild part;
+        const std::string shapePath = memberPath(childPath, "shape");
+        const json &childShape = required(child, childPath, "shape");
+        expectObject(childShape, shapePath);
+        const json *childType = member(childShape, "type");
+        if (childType && childType->is_string()) {
+            const std::string &name = childType->get_ref<const std::string &>();
+            if (name == "plane" || name == "mesh" || name == "compound" || name == "heightfield")
+                fail(memberPath(shapePath, "type"), "a compound's child must be convex (box, sphere, capsule, "
+                                                    "cylinder or convex), got " + jsonQuoted(name));
+        }
+        part.shape = readShape(childShape, shapePath, false);
+        readOptional(child, childPath, "position", part.position,
+                     [](const json &v, const std::string &p) { return readVector3(v, p, Range::Length); });
+        readOptional(child, childPath, "orientation", part.orientation, readOrientation);
+        read.push_back(std::move(part));
+    }
+    return read;
 }
 
 Shape readShape(const json &value, const std::string &path, bool isStatic) {
@@ -112,57 +171,14 @@ Shape readShape(const json &value, const std::string &path, bool isStatic) {
         } else {
             shape.type = ShapeType::Mesh;
             shape.vertices = readPoints(required(value, path, "vertices"), memberPath(path, "vertices"), 3);
-            const std::string trianglesPath = memberPath(path, "triangles");
-            const json &triangles = required(value, path, "triangles");
-            expectArray(triangles, trianglesPath, kMaxShapePoints);
-            if (triangles.empty()) fail(trianglesPath, "needs at least 1 triangle");
-            const auto last = static_cast<std::int64_t>(shape.vertices.size()) - 1;
-            for (std::size_t t = 0; t < triangles.size(); ++t) {
-                const std::string trianglePath = elementPath(trianglesPath, t);
-                const json &triangle = triangles[t];
-                if (!triangle.is_array() || triangle.size() != 3) {
-                    fail(trianglePath, "must be 3 vertex indices [i, j, k], got " + describe(triangle));
-                }
-                std::array<int, 3> indices{};
-                for (int k = 0; k < 3; ++k) {
-                    indices[k] = static_cast<int>(readInteger(triangle[k], elementPath(trianglePath, k), 0, last));
-                }
-                if (indices[0] == indices[1] || indices[1] == indices[2] || indices[0] == indices[2]) {
-                    fail(trianglePath, "must name 3 different vertices");
-                }
-                shape.triangles.push_back(indices);
-            }
+            shape.triangles = readTriangles(value, path, shape.vertices.size());
         }
     } else if (type == "heightfield") {
         if (!isStatic) fail(typePath, "a heightfield is for static bodies only; add \"static\": true");
         shape = readHeightfield(value, path);
     } else if (type == "compound") {
         shape.type = ShapeType::Compound;
-        const std::string childrenPath = memberPath(path, "children");
-        const json &children = required(value, path, "children");
-        expectArray(children, childrenPath, kMaxShapePoints);
-        if (children.empty()) fail(childrenPath, "needs at least 1 child");
-        for (std::size_t i = 0; i < children.size(); ++i) {
-            const std::string childPath = elementPath(childrenPath, i);
-            const json &child = children[i];
-            expectObject(child, childPath);
-            CompoundChild part;
-            const std::string shapePath = memberPath(childPath, "shape");
-            const json &childShape = required(child, childPath, "shape");
-            expectObject(childShape, shapePath);
-            const json *childType = member(childShape, "type");
-            if (childType && childType->is_string()) {
-                const std::string &name = childType->get_ref<const std::string &>();
-                if (name == "plane" || name == "mesh" || name == "compound" || name == "heightfield")
-                    fail(memberPath(shapePath, "type"), "a compound's child must be convex (box, sphere, capsule, "
-                                                        "cylinder or convex), got " + jsonQuoted(name));
-            }
-            part.shape = readShape(childShape, shapePath, false);
-            readOptional(child, childPath, "position", part.position,
-                         [](const json &v, const std::string &p) { return readVector3(v, p, Range::Length); });
-            readOptional(child, childPath, "orientation", part.orientation, readOrientation);
-            shape.children.push_back(std::move(part));
-        }
+        shape.children = readChildren(value, path);
     } else {
         fail(typePath, "unknown shape type " + jsonQuoted(type) +
                            " (known: box, sphere, capsule, cylinder, convex, plane, mesh, heightfield, compound)" +

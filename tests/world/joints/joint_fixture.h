@@ -2,11 +2,46 @@
 #pragma once
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "world_fixture.h"
 
 namespace cyclone::test {
+
+/// A box of half extents `half`, m, and `mass`, kg, centred at `position`; it collides
+/// with the layers in `collidesWith` (none by default).
+inline BodyId addBox(World &world, const Vector3 &position, const Vector3 &half, real mass,
+                     std::uint32_t collidesWith = 0) {
+    BodySettings s;
+    s.shape = Shape::box(half);
+    s.position = position;
+    s.mass = mass;
+    s.collidesWith = collidesWith;
+    return world.addBody(s);
+}
+
+/// The settings of a joint of `type` on body `a` at `anchor` about `axis` (to the world
+/// unless the caller sets b); the caller adds limits, a motor or a servo.
+inline JointSettings jointSettings(JointType type, BodyId a, const Vector3 &anchor, const Vector3 &axis) {
+    JointSettings j;
+    j.type = type;
+    j.a = a;
+    j.anchor = anchor;
+    j.axis = axis;
+    return j;
+}
+
+/// Expects World::addJoint to refuse `j`, naming `field`.
+inline void expectJointRefused(World &world, const JointSettings &j, const std::string &field) {
+    try {
+        world.addJoint(j);
+        ADD_FAILURE() << "accepted, expected a refusal of " << field;
+    } catch (const InvalidArgument &error) {
+        EXPECT_EQ(error.function(), "World::addJoint");
+        EXPECT_EQ(error.field(), field) << error.what();
+    }
+}
 
 /// A chain of `links` boxes `linkLength` long (1 kg each) joined end to end by ball
 /// joints, its first link hung from the world point `top`; with `ballMass` > 0 a sphere of

@@ -18,17 +18,8 @@ struct Door {
     JointId hinge;
 
     explicit Door(const JointServo &servo) {
-        BodySettings s;
-        s.shape = Shape::box(Vector3(0.5, 1, 0.05));
-        s.mass = 10;
-        s.position = Vector3(0.5, 1, 0);
-        s.collidesWith = 0;
-        door = world.addBody(s);
-        JointSettings j;
-        j.type = JointType::Hinge;
-        j.a = door;
-        j.anchor = Vector3(0, 1, 0);
-        j.axis = Vector3::UnitY();
+        door = addBox(world, Vector3(0.5, 1, 0), Vector3(0.5, 1, 0.05), 10);
+        JointSettings j = jointSettings(JointType::Hinge, door, Vector3(0, 1, 0), Vector3::UnitY());
         j.servo = servo;
         hinge = world.addJoint(j);
     }
@@ -80,17 +71,8 @@ TEST(Servo, TorqueLimitedServoAcceleratesAtTauOverI) {
 // 0.5 - 0.062124 m.
 TEST(Servo, VerticalSliderSagsAsASpringOfItsFrequencyAndFollowsItsTarget) {
     World world(noSleep());
-    BodySettings s;
-    s.shape = Shape::box(Vector3(0.2, 0.2, 0.2));
-    s.mass = 5;
-    s.position = Vector3(0, 2, 0);
-    s.collidesWith = 0;
-    const BodyId box = world.addBody(s);
-    JointSettings j;
-    j.type = JointType::Slider;
-    j.a = box;
-    j.anchor = Vector3(0, 2, 0);
-    j.axis = Vector3::UnitY();
+    const BodyId box = addBox(world, Vector3(0, 2, 0), Vector3(0.2, 0.2, 0.2), 5);
+    JointSettings j = jointSettings(JointType::Slider, box, Vector3(0, 2, 0), Vector3::UnitY());
     j.servo = servo(0, 2, 1, 1e4);
     const JointId slider = world.addJoint(j);
     const real sag = kG / std::pow(4 * kPi, 2);
@@ -111,17 +93,8 @@ TEST(Servo, VerticalSliderSagsAsASpringOfItsFrequencyAndFollowsItsTarget) {
 // point is the spring's, so after 5 s the angle is -theta within 1e-5 rad.
 TEST(SoftLimit, ArmSagsPastItsLimitAsASpringOfItsFrequency) {
     World world(noSleep());
-    BodySettings s;
-    s.shape = Shape::box(Vector3(0.5, 0.05, 0.05));
-    s.mass = 2;
-    s.position = Vector3(0.5, 2, 0);
-    s.collidesWith = 0;
-    const BodyId arm = world.addBody(s);
-    JointSettings j;
-    j.type = JointType::Hinge;
-    j.a = arm;
-    j.anchor = Vector3(0, 2, 0);
-    j.axis = Vector3::UnitZ();
+    const BodyId arm = addBox(world, Vector3(0.5, 2, 0), Vector3(0.5, 0.05, 0.05), 2);
+    JointSettings j = jointSettings(JointType::Hinge, arm, Vector3(0, 2, 0), Vector3::UnitZ());
     j.limits = JointLimits{0, 0};
     j.limitSpring = JointSpring{2, 1};
     const JointId hinge = world.addJoint(j);
@@ -134,15 +107,7 @@ TEST(SoftLimit, ArmSagsPastItsLimitAsASpringOfItsFrequency) {
 
 TEST(Servo, BadServosAreRefusedAndNothingChanges) {
     Door d(servo(1, 1, 1, 10));
-    const auto refused = [&](const JointSettings &j, const std::string &field) {
-        try {
-            d.world.addJoint(j);
-            ADD_FAILURE() << "accepted, expected a refusal of " << field;
-        } catch (const InvalidArgument &error) {
-            EXPECT_EQ(error.function(), "World::addJoint");
-            EXPECT_EQ(error.field(), field) << error.what();
-        }
-    };
+    const auto refused = [&](const JointSettings &j, const std::string &field) { expectJointRefused(d.world, j, field); };
     const JointSettings base = d.world.jointSettings(d.hinge);
     JointSettings j = base;
     j.motor = JointMotor{2, 10};  // a servo and a speed motor

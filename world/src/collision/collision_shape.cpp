@@ -219,6 +219,135 @@ void compileMesh(const Shape &shape, std::vector<Vector3> &vertices, std::vector
     geometry = model;
 }
 
+// A box's face most aligned with `direction`, counter-clockwise seen from outside.
+void boxFeature(const Vector3 &h, const Matrix3 &rotation, const Vector3 &origin, const Vector3 &direction,
+                SupportFeature &out) {
+    const Vector3 local = rotation.transpose() * direction;
+    int axis = 0;
+    local.cwiseAbs().maxCoeff(&axis);
+    const int j = (axis + 1) % 3;
+    const int k = (axis + 2) % 3;
+    const real sign = local[axis] >= 0 ? 1 : -1;
+    // Counter-clockwise about +e_axis is (-,-) (+,-) (+,+) (-,+) in (e_j, e_k);
+    // about -e_axis the same loop runs backwards.
+    static constexpr real corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int n = 0; n < 4; ++n) {
+        const real *corner = corners[sign > 0 ? n : 3 - n];
+        Vector3 p;
+        p[axis] = sign * h[axis];
+        p[j] = corner[0] * h[j];
+        p[k] = corner[1] * h[k];
+        out.points[n] = rotation * p + origin;
+    }
+    out.count = 4;
+}
+
+// A capsule's side (a segment) when `direction` is near perpendicular to its axis, else
+// the support point of the nearer end.
+void capsuleFeature(real radius, real length, const Matrix3 &rotation, const Vector3 &origin,
+                    const Vector3 &direction, SupportFeature &out) {
+    const Vector3 axis = rotation.col(2);
+    const real along = axis.dot(direction);
+    const Vector3 half = axis * (length / 2);
+    const Vector3 offset = radius * direction;
+    if (length > 0 && std::abs(along) < kSideSine) {
+        // Each end sphere's own support point: exact for either end.
+        out.points[0] = origin - half + offset;
+        out.points[1] = origin + half + offset;
+        out.count = 2;
+    } else {
+        out.points[0] = origin + (along >= 0 ? half : Vector3(-half)) + offset;
+        out.count = 1;
+    }
+}
+
+// A cylinder's cap (a polygon with the deepest rim point when tilted) when `direction` is
+// near its axis, its side (a segment) when near perpendicular, else the deepest rim point.
+void cylinderFeature(real radius, real length, const Matrix3 &rotation, const Vector3 &origin,
+                     const Vector3 &direction, SupportFeature &out) {
+    const Vector3 axis = rotation.col(2);
+    const real along = axis.dot(direction);
+    const real sign = along >= 0 ? 1 : -1;
+    const Vector3 perpendicular = direction - along * axis;
+    const real tilt = perpendicular.norm();
+    const Vector3 capCentre = origin + axis * (sign * length / 2);
+    const real r = radius;
+    if (std::abs(along) >= kCapCosine) {
+        const Vector3 u = rotation.col(0);
+        const Vector3 v = rotation.col(1);
+        const real step = 2 * kPi / kCapVertices;
+        real rimAngle = -1;
+        if (tilt > kRimPointSine) {
+            rimAngle = std::atan2(perpendicular.dot(v), perpendicular.dot(u));
+            if (rimAngle < 0) rimAngle += 2 * kPi;
+        }
+        static const CapCircle circle;
+        int n = 0;
+        for (int i = 0; i < kCapVertices; ++i) {
+            const real angle = i * step;
+            out.points[n++] = capCentre + r * (circle.cosine[i] * u + circle.sine[i] * v);
+            if (rimAngle > angle + 1e-6 && rimAngle < angle + step - 1e-6)
+                out.points[n++] = capCentre + r * (perpendicular / tilt);
+        }
+        out.count = n;
+        // The loop runs counter-clockwise about +axis; the bottom cap faces -axis.
+        if (sign < 0) std::reverse(out.points, out.points + n);
+    } else if (std::abs(along) < kSideSine) {
+        const Vector3 offset = r * (perpendicular / tilt);
+        const Vector3 half = axis * (length / 2);
+        out.points[0] = origin - half + offset;
+        out.points[1] = origin + half + offset;
+        out.count = 2;
+    } else {
+        out.points[0] = capCentre + r * (perpendicular / tilt);
+        out.count = 1;
+    }
+}
+
+// A convex hull's face (of `faces`, outward `normals`, corners in `vertices`) most
+// aligned with `direction`.
+void hullFeature(const std::vector<Vector3> &normals, const std::vector<std::vector<int>> &faces,
+                 const std::vector<Vector3> &vertices, const Matrix3 &rotation, const Vector3 &origin,
+                 const Vector3 &direction, SupportFeature &out) {
+    const Vector3 local = rotation.transpose() * direction;
+    size_t best = 0;
+    real bestDot = -2;
+    for (size_t f = 0; f < normals.size(); ++f) {
+        const real d = normals[f].dot(local);
+        if (d > bestDot) bestDot = d, best = f;
+    }
+    const std::vector<int> &face = faces[best];
+    const int size = static_cast<int>(face.size());
+    // A face with more corners than a feature holds keeps an evenly spaced subset,
+    // which is still a convex loop in the same order.
+    const int n = std::min(size, SupportFeature::kMaxPoints);
+    for (int i = 0; i < n; ++i) out.points[i] = rotation * vertices[face[i * size / n]] + origin;
+    out.count = n;
+}
+
+// A plane's feature: a large square about the point nearest the body's origin.
+void planeFeature(const Vector3 &localNormal, real offset, const Matrix3 &rotation, const Vector3 &origin,
+                  SupportFeature &out) {
+    const Vector3 normal = rotation * localNormal;
+    const Vector3 centre = origin + offset * normal;
+    const Vector3 u = normal.unitOrthogonal() * kPlaneFeatureHalfSize;
+    const Vector3 v = normal.cross(u);
+    out.points[0] = centre - u - v;
+    out.points[1] = centre + u - v;
+    out.points[2] = centre + u + v;
+    out.points[3] = centre - u + v;
+    out.count = 4;
+}
+
+// A mesh's triangle `t` with its `normal` (in the body's frame): in its order when the
+// normal is along `direction`, else reversed.
+void triangleFeature(const std::vector<int> &t, const Vector3 &normal, const std::vector<Vector3> &vertices,
+                     const Matrix3 &rotation, const Vector3 &origin, const Vector3 &direction, SupportFeature &out) {
+    const bool facing = (rotation * normal).dot(direction) >= 0;
+    for (int i = 0; i < 3; ++i) out.points[i] = rotation * vertices[t[facing ? i : 2 - i]] + origin;
+    out.count = 3;
+}
+
 }  // namespace
 
 // Mass properties at one density: child k holds the fraction V_k / V of the mass at its
@@ -390,123 +519,30 @@ void CollisionShape::supportingFeature(const Matrix4 &pose, const Vector3 &direc
     const Vector3 origin = pose.translation();
     out.count = 0;
     switch (shape_.type) {
-        case ShapeType::Box: {
-            const Vector3 local = rotation.transpose() * direction;
-            int axis = 0;
-            local.cwiseAbs().maxCoeff(&axis);
-            const int j = (axis + 1) % 3;
-            const int k = (axis + 2) % 3;
-            const real sign = local[axis] >= 0 ? 1 : -1;
-            // Counter-clockwise about +e_axis is (-,-) (+,-) (+,+) (-,+) in (e_j, e_k);
-            // about -e_axis the same loop runs backwards.
-            static constexpr real corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-            const Vector3 &h = shape_.halfExtents;
-            for (int n = 0; n < 4; ++n) {
-                const real *corner = corners[sign > 0 ? n : 3 - n];
-                Vector3 p;
-                p[axis] = sign * h[axis];
-                p[j] = corner[0] * h[j];
-                p[k] = corner[1] * h[k];
-                out.points[n] = rotation * p + origin;
-            }
-            out.count = 4;
-            break;
-        }
+        case ShapeType::Box: boxFeature(shape_.halfExtents, rotation, origin, direction, out); break;
         case ShapeType::Sphere:
             out.points[0] = origin + shape_.radius * direction;
             out.count = 1;
             break;
-        case ShapeType::Capsule: {
-            const Vector3 axis = rotation.col(2);
-            const real along = axis.dot(direction);
-            const Vector3 half = axis * (shape_.length / 2);
-            const Vector3 offset = shape_.radius * direction;
-            if (shape_.length > 0 && std::abs(along) < kSideSine) {
-                // Each end sphere's own support point: exact for either end.
-                out.points[0] = origin - half + offset;
-                out.points[1] = origin + half + offset;
-                out.count = 2;
-            } else {
-                out.points[0] = origin + (along >= 0 ? half : Vector3(-half)) + offset;
-                out.count = 1;
-            }
+        case ShapeType::Capsule:
+            capsuleFeature(shape_.radius, shape_.length, rotation, origin, direction, out);
             break;
-        }
-        case ShapeType::Cylinder: {
-            const Vector3 axis = rotation.col(2);
-            const real along = axis.dot(direction);
-            const real sign = along >= 0 ? 1 : -1;
-            const Vector3 perpendicular = direction - along * axis;
-            const real tilt = perpendicular.norm();
-            const Vector3 capCentre = origin + axis * (sign * shape_.length / 2);
-            const real r = shape_.radius;
-            if (std::abs(along) >= kCapCosine) {
-                const Vector3 u = rotation.col(0);
-                const Vector3 v = rotation.col(1);
-                const real step = 2 * kPi / kCapVertices;
-                real rimAngle = -1;
-                if (tilt > kRimPointSine) {
-                    rimAngle = std::atan2(perpendicular.dot(v), perpendicular.dot(u));
-                    if (rimAngle < 0) rimAngle += 2 * kPi;
-                }
-                static const CapCircle circle;
-                int n = 0;
-                for (int i = 0; i < kCapVertices; ++i) {
-                    const real angle = i * step;
-                    out.points[n++] = capCentre + r * (circle.cosine[i] * u + circle.sine[i] * v);
-                    if (rimAngle > angle + 1e-6 && rimAngle < angle + step - 1e-6)
-                        out.points[n++] = capCentre + r * (perpendicular / tilt);
-                }
-                out.count = n;
-                // The loop runs counter-clockwise about +axis; the bottom cap faces -axis.
-                if (sign < 0) std::reverse(out.points, out.points + n);
-            } else if (std::abs(along) < kSideSine) {
-                const Vector3 offset = r * (perpendicular / tilt);
-                const Vector3 half = axis * (shape_.length / 2);
-                out.points[0] = origin - half + offset;
-                out.points[1] = origin + half + offset;
-                out.count = 2;
-            } else {
-                out.points[0] = capCentre + r * (perpendicular / tilt);
-                out.count = 1;
-            }
+        case ShapeType::Cylinder:
+            cylinderFeature(shape_.radius, shape_.length, rotation, origin, direction, out);
             break;
-        }
-        case ShapeType::Convex: {
-            const Vector3 local = rotation.transpose() * direction;
-            size_t best = 0;
-            real bestDot = -2;
-            for (size_t f = 0; f < faceNormals_.size(); ++f) {
-                const real d = faceNormals_[f].dot(local);
-                if (d > bestDot) bestDot = d, best = f;
-            }
-            const std::vector<int> &face = faces_[best];
-            const int size = static_cast<int>(face.size());
-            // A face with more corners than a feature holds keeps an evenly spaced subset,
-            // which is still a convex loop in the same order.
-            const int n = std::min(size, SupportFeature::kMaxPoints);
-            for (int i = 0; i < n; ++i) out.points[i] = rotation * vertices_[face[i * size / n]] + origin;
-            out.count = n;
+        case ShapeType::Convex:
+            hullFeature(faceNormals_, faces_, vertices_, rotation, origin, direction, out);
             break;
-        }
-        case ShapeType::Plane: {
-            const Vector3 normal = rotation * planeNormal_;
-            const Vector3 centre = origin + planeOffset_ * normal;
-            const Vector3 u = normal.unitOrthogonal() * kPlaneFeatureHalfSize;
-            const Vector3 v = normal.cross(u);
-            out.points[0] = centre - u - v;
-            out.points[1] = centre + u - v;
-            out.points[2] = centre + u + v;
-            out.points[3] = centre - u + v;
-            out.count = 4;
-            break;
-        }
+        case ShapeType::Plane: planeFeature(planeNormal_, planeOffset_, rotation, origin, out); break;
         case ShapeType::Compound: {
             const std::size_t k = furthestPart(pose, direction);
             parts_[k].shape->supportingFeature(pose * parts_[k].pose, direction, -1, out);
             break;
         }
         case ShapeType::Mesh:
+            if (triangle < 0 || triangle >= static_cast<int>(faces_.size())) break;
+            triangleFeature(faces_[triangle], faceNormals_[triangle], vertices_, rotation, origin, direction, out);
+            break;
         case ShapeType::Heightfield: {
             if (triangle < 0 || triangle >= triangleCount()) break;
             Vector3 corners[3];

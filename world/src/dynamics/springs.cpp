@@ -1,5 +1,5 @@
 // Spring forces, at the start of every sub-step of h seconds: explicit (the seed's) or
-// backward Euler, per spring (chooseSpringForces).
+// backward Euler, per spring (SpringSet::chooseForces).
 //
 // Design note. An explicit spring force makes each sub-step a symplectic Euler step of
 // the oscillator: stable only while omega h < 2, and beyond that the energy grows every
@@ -60,6 +60,65 @@ Vector3 freePointVelocity(const RigidBody &body, const Vector3 &r, real h) {
 real inverseMassAlong(const RigidBody &body, const Vector3 &r, const Vector3 &d) {
     const Vector3 arm = r.cross(d);
     return body.getInverseMass() + arm.dot(body.getInverseInertiaTensorWorld() * arm);
+}
+
+// The part of an implicit spring's sub-step that stays fixed through the passes: its
+// ends' motion, the attachment points, the spring's force there and its 3x3 system.
+// False when the spring pushes nothing: neither end moves, an end is isolated, or it has
+// no direction to push along.
+bool implicitSystem(const SpringSettings &spring, const BodyStore &bodies, real h, ImplicitSpring &is) {
+    const BodyRecord &a = bodies[spring.a.index];
+    const BodyRecord *b = spring.b ? &bodies[spring.b->index] : nullptr;
+    const bool bSimulated = b && b->simulated;
+    if ((!a.simulated && !bSimulated) || a.isolated || (b && b->isolated)) return false;
+    is.aMoves = a.simulated;
+    is.bMoves = bSimulated;
+    is.pa = a.body.getPointInWorldSpace(spring.aPoint);
+    is.pb = b ? b->body.getPointInWorldSpace(spring.bPoint) : spring.bPoint;
+    // An end that does not move this step (static, or woken during it) is at rest.
+    Matrix3 inverseMass = Matrix3::Zero();
+    if (is.aMoves) inverseMass += pointInverseMass(a.body, is.pa - a.body.getPosition());
+    if (is.bMoves) inverseMass += pointInverseMass(b->body, is.pb - b->body.getPosition());
+
+    const Vector3 delta = is.pa - is.pb;
+    const real length = delta.norm();
+    const real k = spring.stiffness;
+    Matrix3 stiffness;
+    Matrix3 damping = Matrix3::Zero();
+    if (length > 1e-12) {
+        const Vector3 d = delta / length;
+        const Matrix3 along = d * d.transpose();
+        is.force0 = -k * (length - spring.restLength) * d;
+        // Across the spring the stiffness is k (1 - L/l); a compressed spring's is
+        // negative (it buckles) and is left explicit.
+        const real across = std::max(real(0), 1 - spring.restLength / length);
+        stiffness = k * along + k * across * (Matrix3::Identity() - along);
+        damping = spring.damping * along;
+    } else if (spring.restLength == 0) {
+        // A zero-length spring at zero length: no direction, but k x is linear.
+        is.force0 = -k * delta;
+        stiffness = k * Matrix3::Identity();
+    } else {
+        return false;
+    }
+    is.response = h * stiffness + damping;
+    is.system.compute(Matrix3::Identity() + h * is.response * inverseMass);
+    return true;
+}
+
+// The velocity of a's attachment point relative to b's after h seconds of the forces
+// accumulated so far (each moving end's; an end at rest contributes none).
+Vector3 freeRelativeVelocity(const BodyStore &bodies, const SpringSettings &spring, const ImplicitSpring &is, real h) {
+    Vector3 u = Vector3::Zero();
+    if (is.aMoves) {
+        const RigidBody &a = bodies[spring.a.index].body;
+        u += freePointVelocity(a, is.pa - a.getPosition(), h);
+    }
+    if (is.bMoves) {
+        const RigidBody &b = bodies[spring.b->index].body;
+        u -= freePointVelocity(b, is.pb - b.getPosition(), h);
+    }
+    return u;
 }
 
 }  // namespace
@@ -133,56 +192,14 @@ void SpringSet::addExplicitForces(BodyStore &bodies) {
 }
 
 void SpringSet::addImplicitForces(BodyStore &bodies, real h) {
-    // What stays fixed through the passes of this sub-step: the attachment points, the
-    // spring's force there and the 3x3 system of each active spring.
     solving.clear();
     for (std::uint32_t index = 0; index < records.size(); ++index) {
         SpringRecord &s = records[index];
         if (!s.alive || !s.implicit) continue;
-        const SpringSettings &spring = s.settings;
-        BodyRecord &a = bodies[spring.a.index];
-        BodyRecord *b = spring.b ? &bodies[spring.b->index] : nullptr;
-        const bool bSimulated = b && b->simulated;
-        if ((!a.simulated && !bSimulated) || a.isolated || (b && b->isolated)) {
-            s.implicitForce.setZero();
-            continue;
-        }
         ImplicitSpring is;
         is.spring = index;
-        is.aMoves = a.simulated;
-        is.bMoves = bSimulated;
-        is.pa = a.body.getPointInWorldSpace(spring.aPoint);
-        is.pb = b ? b->body.getPointInWorldSpace(spring.bPoint) : spring.bPoint;
-        // An end that does not move this step (static, or woken during it) is at rest.
-        Matrix3 inverseMass = Matrix3::Zero();
-        if (is.aMoves) inverseMass += pointInverseMass(a.body, is.pa - a.body.getPosition());
-        if (is.bMoves) inverseMass += pointInverseMass(b->body, is.pb - b->body.getPosition());
-
-        const Vector3 delta = is.pa - is.pb;
-        const real length = delta.norm();
-        const real k = spring.stiffness;
-        Matrix3 stiffness;
-        Matrix3 damping = Matrix3::Zero();
-        if (length > 1e-12) {
-            const Vector3 d = delta / length;
-            const Matrix3 along = d * d.transpose();
-            is.force0 = -k * (length - spring.restLength) * d;
-            // Across the spring the stiffness is k (1 - L/l); a compressed spring's is
-            // negative (it buckles) and is left explicit.
-            const real across = std::max(real(0), 1 - spring.restLength / length);
-            stiffness = k * along + k * across * (Matrix3::Identity() - along);
-            damping = spring.damping * along;
-        } else if (spring.restLength == 0) {
-            // A zero-length spring at zero length: no direction, but k x is linear.
-            is.force0 = -k * delta;
-            stiffness = k * Matrix3::Identity();
-        } else {
-            s.implicitForce.setZero();
-            continue;  // no direction to push along
-        }
-        is.response = h * stiffness + damping;
-        is.system.compute(Matrix3::Identity() + h * is.response * inverseMass);
-        solving.push_back(is);
+        if (implicitSystem(s.settings, bodies, h, is)) solving.push_back(is);
+        else s.implicitForce.setZero();
     }
     if (solving.empty()) return;
 
@@ -199,16 +216,7 @@ void SpringSet::addImplicitForces(BodyStore &bodies, real h) {
         for (const ImplicitSpring &is : solving) {
             SpringRecord &s = records[is.spring];
             apply(is, -s.implicitForce);
-            const SpringSettings &spring = s.settings;
-            Vector3 u = Vector3::Zero();
-            if (is.aMoves) {
-                const RigidBody &a = bodies[spring.a.index].body;
-                u += freePointVelocity(a, is.pa - a.getPosition(), h);
-            }
-            if (is.bMoves) {
-                const RigidBody &b = bodies[spring.b->index].body;
-                u -= freePointVelocity(b, is.pb - b.getPosition(), h);
-            }
+            const Vector3 u = freeRelativeVelocity(bodies, s.settings, is, h);
             const Vector3 force = is.system.solve(is.force0 - is.response * u);
             s.implicitForce = force.allFinite() ? force : Vector3::Zero();
             apply(is, s.implicitForce);

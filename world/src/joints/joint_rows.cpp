@@ -198,6 +198,193 @@ bool swingRow(const JointFrame &f, const JointRecord &j, Vector3 *jacobian, real
     return true;
 }
 
+// The three rows that hold the anchors together (slots 0 to 2).
+void pointRows(RowMaker &make) {
+    for (int k = 0; k < 3; ++k) make.linear(k, Vector3::Unit(k));
+}
+
+// The three rows that hold a's orientation relative to b (slots `slot` to `slot` + 2).
+void rotationLockRows(RowMaker &make, const JointFrame &f, const JointRecord &j, int slot) {
+    const Vector3 e = rotationError(f, j);
+    for (int k = 0; k < 3; ++k) make.angular(slot + k, Vector3::Unit(k), e[k]);
+}
+
+// A ball joint: the point, its swing cone (slot 3), its twist limits (4, 5) and its
+// friction about the world axes (6 to 8).
+void ballRows(RowMaker &make, const JointFrame &f, const JointRecord &j, real h, bool positions) {
+    const JointSettings &s = j.settings;
+    pointRows(make);
+    Vector3 swing;
+    real swingError = 0;
+    if (s.swingLimit && swingRow(f, j, &swing, &swingError) && (!positions || (swingError > 0 && !s.limitSpring))) {
+        JointRow &r = make.angular(3, Vector3::Zero(), swingError);
+        r.angA = -swing;
+        r.angB = swing;
+        r.bound = RowBound::Upper;
+        springOf(r, s.limitSpring);
+    }
+    const Vector3 na = f.qa * j.axisA;
+    const real sum = 1 + na.dot(f.axis);
+    if (s.twistLimit && sum > 1e-6) {
+        // The twist's rate is (w_a - w_b).(n_a + n_b) / (1 + n_a.n_b) (docs/joints.md).
+        const Vector3 about = (na + f.axis) / sum;
+        const real twist = hingeAngle(f, j);
+        const auto row = [&](int slot) -> JointRow & { return make.angular(slot, about, twist); };
+        addLimits(*s.twistLimit, s.limitSpring, 4, positions, row, twist);
+    }
+    if (s.friction > 0 && !positions)
+        for (int k = 0; k < 3; ++k) {
+            // A rotation row about world axis k (its value is not used).
+            const auto about = [&make, k](int slot) -> JointRow & { return make.angular(slot, Vector3::Unit(k), 0); };
+            addMotor(JointMotor{0, s.friction}, 6 + k, about, h);
+        }
+}
+
+// A hinge: the point, the axis (slots 3, 4), its limits (5, 6), its motor or servo (7)
+// and its friction (8).
+void hingeRows(RowMaker &make, const JointFrame &f, const JointRecord &j, real h, bool positions) {
+    const JointSettings &s = j.settings;
+    pointRows(make);
+    Vector3 t1, t2;
+    perpendiculars(f.axis, &t1, &t2);
+    const Vector3 axisA = f.qa * j.axisA;
+    const Vector3 tilt = f.axis.cross(axisA);
+    make.angular(3, t1, tilt.dot(t1));
+    make.angular(4, t2, tilt.dot(t2));
+    const real angle = hingeAngle(f, j);
+    const auto about = [&](int slot) -> JointRow & { return make.angular(slot, f.axis, angle); };
+    if (s.limits) addLimits(*s.limits, s.limitSpring, 5, positions, about, angle);
+    if (s.motor && !positions) addMotor(*s.motor, 7, about, h);
+    if (s.servo && !positions) addServo(*s.servo, 7, about, h, angle, 2 * M_PI);
+    if (s.friction > 0 && !positions) addMotor(JointMotor{0, s.friction}, 8, about, h);
+}
+
+// A slider: the anchors across the axis (slots 0, 1), the orientation (2 to 4), its
+// limits (5, 6) and its motor or servo (7).
+void sliderRows(RowMaker &make, const JointFrame &f, const JointRecord &j, real h, bool positions) {
+    const JointSettings &s = j.settings;
+    Vector3 t1, t2;
+    perpendiculars(f.axis, &t1, &t2);
+    make.linear(0, t1);
+    make.linear(1, t2);
+    rotationLockRows(make, f, j, 2);
+    const real offset = (f.pa - f.pb).dot(f.axis);
+    const auto along = [&](int slot) -> JointRow & { return make.linear(slot, f.axis); };
+    if (s.limits) addLimits(*s.limits, s.limitSpring, 5, positions, along, offset);
+    if (s.motor && !positions) addMotor(*s.motor, 7, along, h);
+    if (s.servo && !positions) addServo(*s.servo, 7, along, h, offset, 0);
+}
+
+// A distance joint: one equality row when rigid at a single length, else its lower (slot
+// 0) and upper (1) limits; a soft one (a spring) has no rows in the position pass.
+void distanceRows(RowMaker &make, const JointFrame &f, const JointRecord &j, bool positions) {
+    const Vector3 gap = f.pa - f.pb;
+    const real d = gap.norm();
+    // Without a direction the anchors coincide: a rope's lower limit of 0 is met.
+    const Vector3 n = d > 1e-9 ? Vector3(gap / d) : Vector3::UnitY();
+    const bool rigid = j.settings.stiffness == 0;
+    if (rigid && j.minDistance == j.maxDistance) {
+        if (d > 1e-9) make.linear(0, n).error = d - j.maxDistance;
+        return;
+    }
+    const real lower = d - j.minDistance;
+    const real upper = d - j.maxDistance;
+    const bool lowerRow = j.minDistance > 0 && d > 1e-9 && (rigid ? !positions || lower < 0 : lower < 0);
+    const bool upperRow = d > 1e-9 && (rigid ? !positions || upper > 0 : upper > 0);
+    if (lowerRow && !(positions && !rigid)) {
+        JointRow &r = make.linear(0, n);
+        r.bound = RowBound::Lower;
+        r.error = lower;
+        r.soft = !rigid;
+    }
+    if (upperRow && !(positions && !rigid)) {
+        JointRow &r = make.linear(1, n);
+        r.bound = RowBound::Upper;
+        r.error = upper;
+        r.soft = !rigid;
+    }
+}
+
+// A mouse joint: three pull rows (slots 0 to 2), a spring only: none in the position pass.
+void mouseRows(RowMaker &make, const JointSettings &s, real h, bool positions) {
+    if (positions) return;
+    const real maxImpulse = s.pull.value_or(JointPull()).maxForce * h;
+    for (int k = 0; k < 3; ++k) {
+        JointRow &r = make.linear(k, Vector3::Unit(k));
+        r.bound = RowBound::Pull;
+        r.soft = true;
+        r.maxImpulse = maxImpulse;
+    }
+}
+
+// The rows of joint `j` by its type, Jacobians and values only.
+void typeRows(RowMaker &make, const JointFrame &f, const JointRecord &j, real h, bool positions) {
+    switch (j.settings.type) {
+        case JointType::Ball: ballRows(make, f, j, h, positions); break;
+        case JointType::Fixed:
+            pointRows(make);
+            rotationLockRows(make, f, j, 3);
+            break;
+        case JointType::Hinge: hingeRows(make, f, j, h, positions); break;
+        case JointType::Slider: sliderRows(make, f, j, h, positions); break;
+        case JointType::Distance: distanceRows(make, f, j, positions); break;
+        case JointType::Mouse: mouseRows(make, j.settings, h, positions); break;
+    }
+}
+
+// A joint's solver slots for a and b (0: not moving); false when neither is a simulated
+// body, or either is isolated: then the joint has nothing to solve.
+bool solvedPair(const BodyStore &bodies, const JointRecord &j, int *a, int *b) {
+    const auto solverIndex = [](const BodyRecord &r) { return r.simulated || r.moving ? r.solverIndex : 0; };
+    const BodyRecord &ra = bodies[j.settings.a.index];
+    const BodyRecord *rb = j.settings.b ? &bodies[j.settings.b->index] : nullptr;
+    if (ra.isolated || (rb && rb->isolated)) return false;
+    *a = solverIndex(ra);
+    *b = rb ? solverIndex(*rb) : 0;
+    // Only simulated bodies move: a joint between two others has nothing to solve.
+    return (*a >= 1 && ra.simulated) || (rb && *b >= 1 && rb->simulated);
+}
+
+// The spring of a joint's soft rows.
+struct SoftRows {
+    real stiffness;
+    real damping;
+};
+
+// A joint's softness; a mouse joint's follows from its pull's frequency and a's mass.
+SoftRows softRowsOf(const JointSettings &s, const SolverBody &sa) {
+    SoftRows soft{s.stiffness, s.damping};
+    if (s.type == JointType::Mouse && sa.invMass > 0) {
+        const JointPull pull = s.pull.value_or(JointPull());
+        const real mass = 1 / sa.invMass;
+        const real omega = 2 * M_PI * pull.frequency;
+        soft.stiffness = mass * omega * omega;
+        soft.damping = 2 * mass * pull.dampingRatio * omega;
+    }
+    return soft;
+}
+
+// Completes row `r` over a sub-step `h`: M^-1 J^T, its effective mass, its softness and bias.
+void completeRow(JointRow &r, const SolverBody &sa, const SolverBody &sb, const SoftRows &spring, real h) {
+    r.mLinA = sa.invMass * r.linA;
+    r.mAngA = sa.invInertia * r.angA;
+    r.mLinB = sb.invMass * r.linB;
+    r.mAngB = sb.invInertia * r.angB;
+    const real k0 = r.linA.dot(r.mLinA) + r.angA.dot(r.mAngA) + r.linB.dot(r.mLinB) + r.angB.dot(r.mAngB);
+    if (r.soft) {
+        // Catto's soft constraint: the spring and damper over a sub-step, implicitly.
+        const real hk = h * spring.stiffness;
+        const real denominator = h * (spring.damping + hk);
+        r.gamma = denominator > 0 ? 1 / denominator : 0;
+        r.bias = r.error * hk * r.gamma;
+    }
+    r.mass = k0 + r.gamma > 0 ? 1 / (k0 + r.gamma) : 0;
+    // A rigid limit may close what is left of its range within the sub-step, no more;
+    // once violated, the position pass pushes it back (no bias: no energy).
+    if (!r.soft && r.bound == RowBound::Lower) r.bias = std::max(r.error, real(0)) / h;
+    if (!r.soft && r.bound == RowBound::Upper) r.bias = std::min(r.error, real(0)) / h;
+}
+
 }  // namespace
 
 void JointSet::measure(const BodyStore &bodies, const JointRecord &j, real *error, real *position) const {
@@ -228,168 +415,26 @@ void JointSet::measure(const BodyStore &bodies, const JointRecord &j, real *erro
 void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &solverBodies, real h,
                         bool positions) {
     const BodyStore &bodies = world.bodies;
-    const auto solverIndex = [](const BodyRecord &r) { return r.simulated || r.moving ? r.solverIndex : 0; };
-    const WorldSettings &settings = world.settings;
+    const bool warmStart = !positions && world.settings.warmStarting;
     rows_.clear();
     equality_.clear();
     bounded_.clear();
     pulls_.clear();
     for (std::uint32_t index = 0; index < records.size(); ++index) {
         const JointRecord &j = records[index];
-        if (!j.alive) continue;
-        const BodyRecord &ra = bodies[j.settings.a.index];
-        const BodyRecord *rb = j.settings.b ? &bodies[j.settings.b->index] : nullptr;
-        if (ra.isolated || (rb && rb->isolated)) continue;
-        const int a = solverIndex(ra);
-        const int b = rb ? solverIndex(*rb) : 0;
-        // Only simulated bodies move: a joint between two others has nothing to solve.
-        if (!(a >= 1 && ra.simulated) && !(rb && b >= 1 && rb->simulated)) continue;
+        int a = 0, b = 0;
+        if (!j.alive || !solvedPair(bodies, j, &a, &b)) continue;
         const JointFrame f = frameOf(bodies, j);
         RowMaker make(rows_, f, a, b, index);
         const std::size_t first = rows_.size();
-        const JointSettings &s = j.settings;
-        const auto point = [&]() {
-            for (int k = 0; k < 3; ++k) make.linear(k, Vector3::Unit(k));
-        };
-        const auto lockRotation = [&](int slot) {
-            const Vector3 e = rotationError(f, j);
-            for (int k = 0; k < 3; ++k) make.angular(slot + k, Vector3::Unit(k), e[k]);
-        };
-        // A rotation row about world axis k, for friction (its value is not used).
-        const auto unitRow = [&](int k) {
-            return [&make, k](int slot) -> JointRow & { return make.angular(slot, Vector3::Unit(k), 0); };
-        };
-        switch (s.type) {
-            case JointType::Ball: {
-                point();
-                Vector3 swing;
-                real swingError = 0;
-                if (s.swingLimit && swingRow(f, j, &swing, &swingError) && (!positions || (swingError > 0 && !s.limitSpring))) {
-                    JointRow &r = make.angular(3, Vector3::Zero(), swingError);
-                    r.angA = -swing;
-                    r.angB = swing;
-                    r.bound = RowBound::Upper;
-                    springOf(r, s.limitSpring);
-                }
-                const Vector3 na = f.qa * j.axisA;
-                const real sum = 1 + na.dot(f.axis);
-                if (s.twistLimit && sum > 1e-6) {
-                    // The twist's rate is (w_a - w_b).(n_a + n_b) / (1 + n_a.n_b) (docs/joints.md).
-                    const Vector3 about = (na + f.axis) / sum;
-                    const real twist = hingeAngle(f, j);
-                    const auto row = [&](int slot) -> JointRow & { return make.angular(slot, about, twist); };
-                    addLimits(*s.twistLimit, s.limitSpring, 4, positions, row, twist);
-                }
-                if (s.friction > 0 && !positions)
-                    for (int k = 0; k < 3; ++k) addMotor(JointMotor{0, s.friction}, 6 + k, unitRow(k), h);
-                break;
-            }
-            case JointType::Fixed:
-                point();
-                lockRotation(3);
-                break;
-            case JointType::Hinge: {
-                point();
-                Vector3 t1, t2;
-                perpendiculars(f.axis, &t1, &t2);
-                const Vector3 axisA = f.qa * j.axisA;
-                const Vector3 tilt = f.axis.cross(axisA);
-                make.angular(3, t1, tilt.dot(t1));
-                make.angular(4, t2, tilt.dot(t2));
-                const real angle = hingeAngle(f, j);
-                const auto about = [&](int slot) -> JointRow & { return make.angular(slot, f.axis, angle); };
-                if (s.limits) addLimits(*s.limits, s.limitSpring, 5, positions, about, angle);
-                if (s.motor && !positions) addMotor(*s.motor, 7, about, h);
-                if (s.servo && !positions) addServo(*s.servo, 7, about, h, angle, 2 * M_PI);
-                if (s.friction > 0 && !positions) addMotor(JointMotor{0, s.friction}, 8, about, h);
-                break;
-            }
-            case JointType::Slider: {
-                Vector3 t1, t2;
-                perpendiculars(f.axis, &t1, &t2);
-                make.linear(0, t1);
-                make.linear(1, t2);
-                lockRotation(2);
-                const real offset = (f.pa - f.pb).dot(f.axis);
-                const auto along = [&](int slot) -> JointRow & { return make.linear(slot, f.axis); };
-                if (s.limits) addLimits(*s.limits, s.limitSpring, 5, positions, along, offset);
-                if (s.motor && !positions) addMotor(*s.motor, 7, along, h);
-                if (s.servo && !positions) addServo(*s.servo, 7, along, h, offset, 0);
-                break;
-            }
-            case JointType::Distance: {
-                const Vector3 gap = f.pa - f.pb;
-                const real d = gap.norm();
-                // Without a direction the anchors coincide: a rope's lower limit of 0 is met.
-                const Vector3 n = d > 1e-9 ? Vector3(gap / d) : Vector3::UnitY();
-                const bool rigid = s.stiffness == 0;
-                if (rigid && j.minDistance == j.maxDistance) {
-                    if (d > 1e-9) make.linear(0, n).error = d - j.maxDistance;
-                    break;
-                }
-                const real lower = d - j.minDistance;
-                const real upper = d - j.maxDistance;
-                const bool lowerRow = j.minDistance > 0 && d > 1e-9 && (rigid ? !positions || lower < 0 : lower < 0);
-                const bool upperRow = d > 1e-9 && (rigid ? !positions || upper > 0 : upper > 0);
-                if (lowerRow && !(positions && !rigid)) {
-                    JointRow &r = make.linear(0, n);
-                    r.bound = RowBound::Lower;
-                    r.error = lower;
-                    r.soft = !rigid;
-                }
-                if (upperRow && !(positions && !rigid)) {
-                    JointRow &r = make.linear(1, n);
-                    r.bound = RowBound::Upper;
-                    r.error = upper;
-                    r.soft = !rigid;
-                }
-                break;
-            }
-            case JointType::Mouse: {
-                // A spring only: nothing to project.
-                if (positions) break;
-                const real maxImpulse = s.pull.value_or(JointPull()).maxForce * h;
-                for (int k = 0; k < 3; ++k) {
-                    JointRow &r = make.linear(k, Vector3::Unit(k));
-                    r.bound = RowBound::Pull;
-                    r.soft = true;
-                    r.maxImpulse = maxImpulse;
-                }
-                break;
-            }
-        }
-        // Effective masses, softness, M^-1 J^T.
+        typeRows(make, f, j, h, positions);
         const SolverBody &sa = solverBodies[a];
         const SolverBody &sb = solverBodies[b];
-        real stiffness = s.stiffness;
-        real damping = s.damping;
-        if (s.type == JointType::Mouse && sa.invMass > 0) {
-            const JointPull pull = s.pull.value_or(JointPull());
-            const real mass = 1 / sa.invMass;
-            const real omega = 2 * M_PI * pull.frequency;
-            stiffness = mass * omega * omega;
-            damping = 2 * mass * pull.dampingRatio * omega;
-        }
+        const SoftRows spring = softRowsOf(j.settings, sa);
         for (std::size_t k = first; k < rows_.size(); ++k) {
             JointRow &r = rows_[k];
-            r.mLinA = sa.invMass * r.linA;
-            r.mAngA = sa.invInertia * r.angA;
-            r.mLinB = sb.invMass * r.linB;
-            r.mAngB = sb.invInertia * r.angB;
-            const real k0 = r.linA.dot(r.mLinA) + r.angA.dot(r.mAngA) + r.linB.dot(r.mLinB) + r.angB.dot(r.mAngB);
-            if (r.soft) {
-                // Catto's soft constraint: the spring and damper over a sub-step, implicitly.
-                const real hk = h * stiffness;
-                const real denominator = h * (damping + hk);
-                r.gamma = denominator > 0 ? 1 / denominator : 0;
-                r.bias = r.error * hk * r.gamma;
-            }
-            r.mass = k0 + r.gamma > 0 ? 1 / (k0 + r.gamma) : 0;
-            // A rigid limit may close what is left of its range within the sub-step, no more;
-            // once violated, the position pass pushes it back (no bias: no energy).
-            if (!r.soft && r.bound == RowBound::Lower) r.bias = std::max(r.error, real(0)) / h;
-            if (!r.soft && r.bound == RowBound::Upper) r.bias = std::min(r.error, real(0)) / h;
-            if (!positions && settings.warmStarting) r.impulse = j.impulse[r.slot];
+            completeRow(r, sa, sb, spring, h);
+            if (warmStart) r.impulse = j.impulse[r.slot];
             if (positions || r.bound == RowBound::Equality) equality_.push_back(static_cast<int>(k));
             else if (r.bound != RowBound::Pull) bounded_.push_back(static_cast<int>(k));
             else if (r.slot == 0) pulls_.push_back({static_cast<int>(k), Matrix3::Zero()});

@@ -12,14 +12,15 @@
 // that lists the candidate pairs, and so the solve order, follows the trees' shapes, and
 // FCL's incremental balancing compares node addresses, so the internal nodes are
 // restored in the same order of addresses (their rank is saved). Each struct's fields are
-// listed once, in a fields() function read and written through io() (state_archive.h):
-// a field added to a struct is one line there. Scratch that a step rewrites before it
-// reads it is not saved. Sizes and timings: docs/rollback.md.
+// listed once, in a function of StateFields that reads or writes them through io()
+// (state_archive.h): a field added to a struct is one line there. Scratch that a step
+// rewrites before it reads it is not saved. Sizes and timings: docs/rollback.md.
 #include <algorithm>
 #include <initializer_list>
 #include <unordered_map>
 
 #include "collision/time_of_impact.h"
+#include "cyclone/detail/byte_fields.h"
 #include "cyclone/detail/validation.h"
 #include "snapshot/state_archive.h"
 #include "world/world_impl.h"
@@ -41,6 +42,106 @@ struct HierarchyAccess : Hierarchy {
     static unsigned int &path(Hierarchy &tree) { return tree.*(&HierarchyAccess::opath); }
     static TreeNode *&spare(Hierarchy &tree) { return tree.*(&HierarchyAccess::free_node); }
 };
+
+// A broadphase tree's node as saveTree writes it: a leaf's body index, or an internal
+// node's rank among the tree's internal nodes by address.
+struct SavedNode {
+    bool leaf;
+    fcl::AABBd box;
+    std::uint32_t id;
+};
+
+// The saved nodes of a tree, depth first; `objects` receives the leaves' collision
+// objects in that order.
+std::vector<SavedNode> readNodes(StateReader &a, const BodyStore &bodies, std::vector<fcl::CollisionObjectd *> &objects) {
+    std::vector<SavedNode> nodes(a.count(0, 1 + sizeof(fcl::AABBd) + 4));
+    for (SavedNode &s : nodes) {
+        std::uint8_t leaf = 0;
+        io(a, leaf, s.box, s.id);
+        s.leaf = leaf != 0;
+        if (!s.leaf) continue;
+        if (s.id >= bodies.size() || !bodies[s.id].object) throw UnreadableState{"a tree names a body without a box"};
+        objects.push_back(bodies[s.id].object.get());
+    }
+    return nodes;
+}
+
+// The nodes FCL made when the objects were registered: leaves by body, internal ones for
+// reuse.
+struct MadeNodes {
+    std::unordered_map<std::uint32_t, TreeNode *> leaves;
+    std::vector<TreeNode *> pool;
+};
+
+MadeNodes madeNodes(const Hierarchy &tree) {
+    MadeNodes made;
+    std::vector<TreeNode *> stack{tree.getRoot()};
+    while (!stack.empty()) {
+        TreeNode *node = stack.back();
+        stack.pop_back();
+        if (node->isLeaf()) {
+            made.leaves[bodyIndexOf(static_cast<fcl::CollisionObjectd *>(node->data))] = node;
+            continue;
+        }
+        made.pool.push_back(node);
+        stack.push_back(node->children[0]);
+        stack.push_back(node->children[1]);
+    }
+    return made;
+}
+
+// Gives `tree` its spare node (none when `spareRank` is all ones) among the internal
+// nodes of `pool`, which it sorts by address; returns the spare node, or nullptr.
+const TreeNode *placeSpare(Hierarchy &tree, std::vector<TreeNode *> &pool, std::uint32_t spareRank) {
+    const bool spare = spareRank != ~std::uint32_t(0);
+    TreeNode *&spareNode = HierarchyAccess::spare(tree);
+    if (spare && !spareNode) spareNode = new TreeNode();
+    if (spare) pool.push_back(spareNode);
+    std::sort(pool.begin(), pool.end(), std::less<TreeNode *>());
+    if (spare) {
+        if (spareRank >= pool.size()) throw UnreadableState{"a tree's spare node is out of range"};
+        spareNode = pool[spareRank];
+    } else {
+        delete spareNode;
+        spareNode = nullptr;
+    }
+    return spareNode;
+}
+
+// Links the `made` nodes depth first, as `nodes` were written (each internal node by its
+// rank in the sorted pool, never the `spare` one); returns the root.
+TreeNode *linkNodes(const std::vector<SavedNode> &nodes, const MadeNodes &made, const TreeNode *spare) {
+    std::vector<std::pair<TreeNode *, int>> open;  // internal nodes still missing a child
+    TreeNode *root = nullptr;
+    for (const SavedNode &s : nodes) {
+        TreeNode *node;
+        if (s.leaf) {
+            node = made.leaves.at(s.id);
+        } else {
+            if (s.id >= made.pool.size() || (spare && made.pool[s.id] == spare))
+                throw UnreadableState{"a tree's node rank is out of range"};
+            node = made.pool[s.id];
+        }
+        node->bv = s.box;
+        if (open.empty()) {
+            if (root) throw UnreadableState{"a tree has two roots"};
+            root = node;
+            node->parent = nullptr;
+        } else {
+            std::pair<TreeNode *, int> &parent = open.back();
+            parent.first->children[parent.second] = node;
+            node->parent = parent.first;
+            if (++parent.second == 2) open.pop_back();
+        }
+        if (!s.leaf) {
+            node->children[0] = nullptr;
+            node->children[1] = nullptr;
+            open.push_back({node, 0});
+        }
+    }
+    if (!open.empty()) throw UnreadableState{"a tree is cut short"};
+    return root;
+}
 
 // A fingerprint of a shape: what tells two different shapes apart without copying them.
 std::uint64_t shapeFingerprint(const CollisionShape &shape) {
@@ -241,6 +342,19 @@ struct StateFields {
         io(a, e.contactBegins, e.contactEnds, e.sensorBegins, e.sensorEnds, e.fellAsleep, e.wokeUp, e.jointsBroken);
     }
 
+    /// What a state holds after the broadphase: contacts, sensors, islands, joints,
+    /// springs, the solver's kept data and the events recorded between steps.
+    template <class A>
+    static void managers(A &a, WorldState &w) {
+        contacts(a, w.contacts, w.bodies);
+        sensors(a, w.sensors);
+        islands(a, w.islands);
+        joints(a, w.joints);
+        io(a, w.springs.records, w.springs.free);
+        solver(a, w.solver);
+        events(a, w.events.pending);
+    }
+
     // --- The broadphase's trees ---------------------------------------------------------
 
     static Hierarchy &hierarchy(fcl::DynamicAABBTreeCollisionManagerd &manager) {
@@ -293,90 +407,20 @@ struct StateFields {
         Hierarchy &tree = hierarchy(manager);
         unsigned int path = 0;
         io(a, path);
-        struct Saved {
-            bool leaf;
-            fcl::AABBd box;
-            std::uint32_t id;
-        };
-        std::vector<Saved> nodes(a.count(0, 1 + sizeof(fcl::AABBd) + 4));
         std::vector<fcl::CollisionObjectd *> objects;
-        std::size_t internalCount = 0;
-        for (Saved &s : nodes) {
-            std::uint8_t leaf = 0;
-            io(a, leaf, s.box, s.id);
-            s.leaf = leaf != 0;
-            if (!s.leaf) {
-                ++internalCount;
-                continue;
-            }
-            if (s.id >= bodies.size() || !bodies[s.id].object) throw UnreadableState{"a tree names a body without a box"};
-            objects.push_back(bodies[s.id].object.get());
-        }
+        const std::vector<SavedNode> nodes = readNodes(a, bodies, objects);
         std::uint32_t spareRank = 0;
         io(a, spareRank);
         if (objects.empty()) {
             HierarchyAccess::path(tree) = path;
             return;
         }
+        const std::size_t internalCount = nodes.size() - objects.size();
         if (internalCount + 1 != objects.size()) throw UnreadableState{"a tree's node counts disagree"};
         manager.registerObjects(objects);
-        // The nodes FCL made: leaves by body, internal ones for reuse.
-        std::unordered_map<std::uint32_t, TreeNode *> leaves;
-        std::vector<TreeNode *> pool;
-        std::vector<TreeNode *> stack{tree.getRoot()};
-        while (!stack.empty()) {
-            TreeNode *node = stack.back();
-            stack.pop_back();
-            if (node->isLeaf()) {
-                leaves[bodyIndexOf(static_cast<fcl::CollisionObjectd *>(node->data))] = node;
-                continue;
-            }
-            pool.push_back(node);
-            stack.push_back(node->children[0]);
-            stack.push_back(node->children[1]);
-        }
-        const bool spare = spareRank != ~std::uint32_t(0);
-        TreeNode *&spareNode = HierarchyAccess::spare(tree);
-        if (spare && !spareNode) spareNode = new TreeNode();
-        if (spare) pool.push_back(spareNode);
-        std::sort(pool.begin(), pool.end(), std::less<TreeNode *>());
-        if (spare) {
-            if (spareRank >= pool.size()) throw UnreadableState{"a tree's spare node is out of range"};
-            spareNode = pool[spareRank];
-        } else {
-            delete spareNode;
-            spareNode = nullptr;
-        }
-        // Links the nodes depth first, as they were written.
-        std::vector<std::pair<TreeNode *, int>> open;  // internal nodes still missing a child
-        TreeNode *root = nullptr;
-        for (const Saved &s : nodes) {
-            TreeNode *node;
-            if (s.leaf) {
-                node = leaves.at(s.id);
-            } else {
-                if (s.id >= pool.size() || (spare && pool[s.id] == spareNode)) throw UnreadableState{"a tree's node rank is out of range"};
-                node = pool[s.id];
-            }
-            node->bv = s.box;
-            if (open.empty()) {
-                if (root) throw UnreadableState{"a tree has two roots"};
-                root = node;
-                node->parent = nullptr;
-            } else {
-                std::pair<TreeNode *, int> &parent = open.back();
-                parent.first->children[parent.second] = node;
-                node->parent = parent.first;
-                if (++parent.second == 2) open.pop_back();
-            }
-            if (!s.leaf) {
-                node->children[0] = nullptr;
-                node->children[1] = nullptr;
-                open.push_back({node, 0});
-            }
-        }
-        if (!open.empty()) throw UnreadableState{"a tree is cut short"};
-        tree.getRoot() = root;
+        MadeNodes made = madeNodes(tree);
+        const TreeNode *spare = placeSpare(tree, made.pool, spareRank);
+        tree.getRoot() = linkNodes(nodes, made, spare);
         HierarchyAccess::path(tree) = path;
     }
 
@@ -386,7 +430,7 @@ struct StateFields {
 };
 
 void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) {
-    // Saving reads only; the fields() functions take what they list by reference.
+    // Saving reads only; StateFields' functions take what they list by reference.
     WorldState &w = const_cast<WorldState &>(state);
     StateWriter a(out);
     std::uint64_t fingerprint = shapesFingerprint(w.shapes, w.shapes.size());
@@ -414,13 +458,7 @@ void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) 
     }
     io(a, b.changes_);
 
-    contacts(a, w.contacts, bodies);
-    sensors(a, w.sensors);
-    islands(a, w.islands);
-    joints(a, w.joints);
-    io(a, w.springs.records, w.springs.free);
-    solver(a, w.solver);
-    events(a, w.events.pending);
+    managers(a, w);
 }
 
 void StateFields::restoreBody(StateReader &a, WorldState &w, std::uint32_t index) {
@@ -493,13 +531,7 @@ void StateFields::restore(WorldState &w, const std::uint8_t *data, std::size_t s
     io(a, b.changes_);
     b.changed_ = true;  // the next walk lists the pairs of the restored trees
 
-    contacts(a, w.contacts, bodies);
-    sensors(a, w.sensors);
-    islands(a, w.islands);
-    joints(a, w.joints);
-    io(a, w.springs.records, w.springs.free);
-    solver(a, w.solver);
-    events(a, w.events.pending);
+    managers(a, w);
     w.events.events.clear();
     w.events.sink = &w.events.pending;
     if (!a.done()) throw UnreadableState{"has bytes past its end"};
@@ -508,30 +540,15 @@ void StateFields::restore(WorldState &w, const std::uint8_t *data, std::size_t s
 }  // namespace cyclone::detail
 
 namespace cyclone {
-namespace {
-
-template <class T>
-void put(std::vector<std::uint8_t> &out, std::size_t at, T value) {
-    std::memcpy(out.data() + at, &value, sizeof value);
-}
-
-template <class T>
-T take(const std::vector<std::uint8_t> &in, std::size_t at) {
-    T value;
-    std::memcpy(&value, in.data() + at, sizeof value);
-    return value;
-}
-
-}  // namespace
 
 std::vector<std::uint8_t> World::saveState() const {
     std::vector<std::uint8_t> out(detail::kHeaderSize);
     detail::StateFields::save(*impl_, out);
     const std::uint64_t length = out.size() - detail::kHeaderSize;
-    put(out, 0, detail::kStateTag);
-    put(out, 4, detail::kStateVersion);
-    put(out, 8, length);
-    put(out, 16, detail::stateChecksum(out.data() + detail::kHeaderSize, length));
+    detail::put(out, 0, detail::kStateTag);
+    detail::put(out, 4, detail::kStateVersion);
+    detail::put(out, 8, length);
+    detail::put(out, 16, detail::stateChecksum(out.data() + detail::kHeaderSize, length));
     return out;
 }
 
@@ -539,18 +556,18 @@ void World::restoreState(const std::vector<std::uint8_t> &state) {
     static const char *function = "World::restoreState";
     if (state.size() < detail::kHeaderSize)
         detail::refuse(function, "state", "is " + std::to_string(state.size()) + " bytes, too short for a saved state");
-    if (take<std::uint32_t>(state, 0) != detail::kStateTag)
+    if (detail::take<std::uint32_t>(state, 0) != detail::kStateTag)
         detail::refuse(function, "state", "is not a saved World state (its tag differs)");
-    const auto version = take<std::uint32_t>(state, 4);
+    const auto version = detail::take<std::uint32_t>(state, 4);
     if (version != detail::kStateVersion)
         detail::refuse(function, "state", "has format version " + std::to_string(version) + ", this World reads " +
                                               std::to_string(detail::kStateVersion));
-    const auto length = take<std::uint64_t>(state, 8);
+    const auto length = detail::take<std::uint64_t>(state, 8);
     if (length != state.size() - detail::kHeaderSize)
         detail::refuse(function, "state", "is damaged: its length says " + std::to_string(length) + " bytes, it has " +
                                               std::to_string(state.size() - detail::kHeaderSize));
     const std::uint8_t *payload = state.data() + detail::kHeaderSize;
-    if (take<std::uint64_t>(state, 16) != detail::stateChecksum(payload, length))
+    if (detail::take<std::uint64_t>(state, 16) != detail::stateChecksum(payload, length))
         detail::refuse(function, "state", "is damaged: its checksum fails");
     try {
         detail::StateFields::restore(*impl_, payload, length);

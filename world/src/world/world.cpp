@@ -151,6 +151,130 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
     return body;
 }
 
+// How a body of `settings` moves; refuses (nothing changed) a taken name, a static body
+// set kinematic, or a plane or mesh that is not static.
+Motion checkedMotion(const char *function, const BodySettings &settings,
+                     const std::unordered_map<std::string, std::uint32_t> &names) {
+    if (!settings.name.empty() && names.count(settings.name))
+        detail::refuse(function, "name", "must be unique, \"" + settings.name + "\" is already taken");
+    if (settings.isStatic && settings.motion == Motion::Kinematic)
+        detail::refuse(function, "isStatic", "is true while motion is Kinematic; set one of them");
+    const Motion motion = motionOf(settings);
+    const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh ||
+                            settings.shape.type == ShapeType::Heightfield;
+    if (staticOnly && motion != Motion::Static)
+        detail::refuse(function, "shape.type",
+                       std::string("\"") + shapeTypeName(settings.shape.type) + "\" is for static bodies only");
+    return motion;
+}
+
+// The compiled `shape`; refuses (nothing changed) one that is not valid or reaches beyond
+// 1e12 m from its origin.
+std::shared_ptr<const detail::CollisionShape> checkedShape(const char *function, const Shape &shape) {
+    std::shared_ptr<const detail::CollisionShape> compiled;
+    try {
+        compiled = detail::compileShape(shape);
+    } catch (const InvalidArgument &e) {
+        throw InvalidArgument(function, e.field(), e.problem());
+    }
+    if (!(compiled->boundingRadius() <= detail::kMaxCoordinate))
+        detail::refuse(function, "shape", "must fit within 1e12 m of its origin, got a shape reaching " +
+                                              detail::show(compiled->boundingRadius()) + " m from it");
+    return compiled;
+}
+
+// Refuses (nothing changed) a layer outside [0, 31], a non-finite surface velocity or a
+// one-way direction that is not finite and non-zero.
+void checkFilterAndRules(const char *function, const BodySettings &settings) {
+    if (settings.layer < 0 || settings.layer > 31)
+        detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
+    detail::requireFinite(function, "surfaceVelocity", settings.surfaceVelocity);
+    if (settings.oneWay && (!settings.oneWay->allFinite() || settings.oneWay->isZero(0)))
+        detail::refuse(function, "oneWay", "must be finite and not zero, got " + detail::show(*settings.oneWay));
+}
+
+// A free slot of `bodies` (a new one when none is free).
+std::uint32_t takeSlot(detail::BodyStore &bodies) {
+    if (bodies.free.empty()) {
+        bodies.records.emplace_back();
+        return static_cast<std::uint32_t>(bodies.size() - 1);
+    }
+    const std::uint32_t index = bodies.free.back();
+    bodies.free.pop_back();
+    return index;
+}
+
+// Fills the record `r` of a new body of `settings` moving as `motion`, out of every tree.
+void fillRecord(detail::BodyRecord &r, const BodySettings &settings, Motion motion, const RigidBody &body,
+                const std::shared_ptr<const detail::CollisionShape> &shape) {
+    r.body = body;
+    r.shape = shape;
+    r.name = settings.name;
+    r.material = settings.material;
+    r.alive = true;
+    r.immovable = motion != Motion::Dynamic;
+    r.kinematic = motion == Motion::Kinematic;
+    r.moving = false;
+    r.isPlane = settings.shape.type == ShapeType::Plane;
+    r.ccd = settings.ccd && motion == Motion::Dynamic && !settings.sensor;
+    r.core = r.ccd ? detail::makeCore(detail::sweptShape(*shape)) : nullptr;
+    r.isolated = false;
+    r.simulated = false;
+    r.tree = Tree::None;
+    r.sleepingIsland = -1;
+    r.island = -1;
+    r.solverIndex = 0;
+    r.awakeSlot = -1;
+    r.boundingRadius = shape->boundingRadius();
+    r.layer = settings.layer;
+    r.collidesWith = settings.collidesWith;
+    r.gravityScale = motion == Motion::Dynamic ? settings.gravityScale : 1;
+    r.locked = motion == Motion::Dynamic ? settings.lockedAxes : LockedAxes();
+    r.surfaceVelocity = settings.surfaceVelocity;
+    r.userData = settings.userData;
+    r.oneWay = settings.oneWay ? Vector3(settings.oneWay->normalized()) : Vector3(Vector3::Zero());
+    r.sensor = settings.sensor;
+}
+
+// Counts the new body `index` in the store's tallies, its order and its names.
+void countBody(detail::BodyStore &bodies, std::uint32_t index) {
+    detail::BodyRecord &r = bodies[index];
+    r.rank = bodies.nextRank++;
+    bodies.lockedCount += r.locked.any();
+    bodies.ruledCount += !r.surfaceVelocity.isZero(0) || !r.oneWay.isZero(0);
+    if (r.layer != 0 || r.collidesWith != kAllLayers) ++bodies.filteredCount;
+    bodies.sensorCount += r.sensor;
+    bodies.roundCount += detail::mayBeRound(*r.shape);
+    bodies.order.push_back(index);
+    if (!r.name.empty()) bodies.names.emplace(r.name, index);
+}
+
+// Puts the new body `index` where collision detection finds it: the planes, or the
+// broadphase tree of its motion (awake, asleep in an island of its own, or static).
+void enterCollision(detail::WorldState &w, std::uint32_t index) {
+    detail::BodyRecord &r = w.bodies[index];
+    if (r.isPlane) {
+        w.bodies.planes.push_back(index);
+        r.object.reset();
+        return;
+    }
+    r.object = std::make_unique<detail::BodyObject>(r.shape->geometry(), r.body.getTransform());
+    r.object->setUserData(reinterpret_cast<void *>(static_cast<std::uintptr_t>(index)));
+    r.object->place(r.body.getTransform(), detail::kBroadphaseMargin);
+    if (r.kinematic) {
+        w.bodies.kinematic.push_back(index);
+        w.setTree(index, Tree::Static);  // until its first step in motion (KinematicBodies)
+    } else if (r.immovable) {
+        w.setTree(index, Tree::Static);
+    } else if (r.body.getAwake()) {
+        w.setTree(index, Tree::Awake);
+        w.bodies.updateAwakeList(index);
+    } else {
+        const std::uint32_t self = index;
+        w.sleepIsland(&self, 1, false);
+    }
+}
+
 }  // namespace
 
 // --- Construction ---------------------------------------------------------------------
@@ -189,103 +313,22 @@ void World::setSettings(const WorldSettings &settings) {
 BodyId World::addBody(const BodySettings &settings) {
     static const char *function = "World::addBody";
     Impl &w = *impl_;
-    if (!settings.name.empty() && w.bodies.names.count(settings.name))
-        detail::refuse(function, "name", "must be unique, \"" + settings.name + "\" is already taken");
-    if (settings.isStatic && settings.motion == Motion::Kinematic)
-        detail::refuse(function, "isStatic", "is true while motion is Kinematic; set one of them");
-    const Motion motion = motionOf(settings);
-    const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh ||
-                            settings.shape.type == ShapeType::Heightfield;
-    if (staticOnly && motion != Motion::Static)
-        detail::refuse(function, "shape.type",
-                       std::string("\"") + shapeTypeName(settings.shape.type) + "\" is for static bodies only");
-    std::shared_ptr<const detail::CollisionShape> shape;
-    try {
-        shape = detail::compileShape(settings.shape);
-    } catch (const InvalidArgument &e) {
-        throw InvalidArgument(function, e.field(), e.problem());
-    }
-    if (!(shape->boundingRadius() <= detail::kMaxCoordinate))
-        detail::refuse(function, "shape", "must fit within 1e12 m of its origin, got a shape reaching " +
-                                              detail::show(shape->boundingRadius()) + " m from it");
-    if (settings.layer < 0 || settings.layer > 31)
-        detail::refuse(function, "layer", "must be in [0, 31], got " + std::to_string(settings.layer));
-    detail::requireFinite(function, "surfaceVelocity", settings.surfaceVelocity);
-    if (settings.oneWay && (!settings.oneWay->allFinite() || settings.oneWay->isZero(0)))
-        detail::refuse(function, "oneWay", "must be finite and not zero, got " + detail::show(*settings.oneWay));
+    const Motion motion = checkedMotion(function, settings, w.bodies.names);
+    const std::shared_ptr<const detail::CollisionShape> shape = checkedShape(function, settings.shape);
+    checkFilterAndRules(function, settings);
     RigidBody body = makeBody(function, settings, *shape, w.settings);
     if (shape->isCompound()) body.setPosition(body.getPosition() + detail::frameToCentre(body, *shape));
     if (settings.shape.type != ShapeType::Plane)
         detail::requireReach(function, "position", body.getPosition(), shape->boundingRadius());
 
     // Nothing below throws on user input: the world changes only from here on.
-    std::uint32_t index;
-    if (!w.bodies.free.empty()) {
-        index = w.bodies.free.back();
-        w.bodies.free.pop_back();
-    } else {
-        index = static_cast<std::uint32_t>(w.bodies.size());
-        w.bodies.records.emplace_back();
-    }
+    const std::uint32_t index = takeSlot(w.bodies);
     detail::BodyRecord &r = w.bodies[index];
-    r.body = body;
-    r.shape = shape;
+    fillRecord(r, settings, motion, body, shape);
     r.shapeIndex = static_cast<std::uint32_t>(w.shapes.size());
     w.shapes.push_back(shape);
-    r.name = settings.name;
-    r.material = settings.material;
-    r.alive = true;
-    r.immovable = motion != Motion::Dynamic;
-    r.kinematic = motion == Motion::Kinematic;
-    r.moving = false;
-    r.isPlane = settings.shape.type == ShapeType::Plane;
-    r.ccd = settings.ccd && motion == Motion::Dynamic && !settings.sensor;
-    r.core = r.ccd ? detail::makeCore(detail::sweptShape(*shape)) : nullptr;
-    r.isolated = false;
-    r.simulated = false;
-    r.tree = Tree::None;
-    r.sleepingIsland = -1;
-    r.island = -1;
-    r.solverIndex = 0;
-    r.awakeSlot = -1;
-    r.rank = w.bodies.nextRank++;
-    r.boundingRadius = shape->boundingRadius();
-    r.layer = settings.layer;
-    r.collidesWith = settings.collidesWith;
-    r.gravityScale = motion == Motion::Dynamic ? settings.gravityScale : 1;
-    r.locked = motion == Motion::Dynamic ? settings.lockedAxes : LockedAxes();
-    w.bodies.lockedCount += r.locked.any();
-    r.surfaceVelocity = settings.surfaceVelocity;
-    r.userData = settings.userData;
-    r.oneWay = settings.oneWay ? Vector3(settings.oneWay->normalized()) : Vector3(Vector3::Zero());
-    w.bodies.ruledCount += !r.surfaceVelocity.isZero(0) || !r.oneWay.isZero(0);
-    if (r.layer != 0 || r.collidesWith != kAllLayers) ++w.bodies.filteredCount;
-    r.sensor = settings.sensor;
-    w.bodies.sensorCount += r.sensor;
-    w.bodies.roundCount += detail::mayBeRound(*shape);
-    w.bodies.order.push_back(index);
-    if (!r.name.empty()) w.bodies.names.emplace(r.name, index);
-
-    if (r.isPlane) {
-        w.bodies.planes.push_back(index);
-        r.object.reset();
-    } else {
-        r.object = std::make_unique<detail::BodyObject>(shape->geometry(), r.body.getTransform());
-        r.object->setUserData(reinterpret_cast<void *>(static_cast<std::uintptr_t>(index)));
-        r.object->place(r.body.getTransform(), detail::kBroadphaseMargin);
-        if (r.kinematic) {
-            w.bodies.kinematic.push_back(index);
-            w.setTree(index, Tree::Static);  // until its first step in motion (KinematicBodies)
-        } else if (r.immovable) {
-            w.setTree(index, Tree::Static);
-        } else if (r.body.getAwake()) {
-            w.setTree(index, Tree::Awake);
-            w.bodies.updateAwakeList(index);
-        } else {
-            const std::uint32_t self = index;
-            w.sleepIsland(&self, 1, false);
-        }
-    }
+    countBody(w.bodies, index);
+    enterCollision(w, index);
     w.sensors.added(w, index);
     return w.bodies.idOf(index);
 }

@@ -79,20 +79,9 @@ void validateBallLimits(const char *function, const JointSettings &s, const std:
     }
 }
 
-// Everything addJoint refuses, before anything changes; returns the axis normalised.
-Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
-    static const char *function = "World::addJoint";
-    if (s.type != JointType::Ball && s.type != JointType::Hinge && s.type != JointType::Fixed &&
-        s.type != JointType::Slider && s.type != JointType::Distance && s.type != JointType::Mouse)
-        detail::refuse(function, "type", "is not a JointType, got " + std::to_string(static_cast<int>(s.type)));
-    const std::string type = typeName(s.type);
-    const detail::BodyRecord &a = w.bodies.record(s.a, function);
-    const detail::BodyRecord *b = s.b ? &w.bodies.record(*s.b, function) : nullptr;
-    if (s.b && *s.b == s.a) detail::refuse(function, "b", "must differ from a");
-    if (a.immovable && (!b || b->immovable))
-        detail::refuse(function, "a", "one of the joined bodies must be dynamic (a static or kinematic body cannot move)");
-    detail::requirePlace(function, "anchor", s.anchor);
-    const bool axial = s.type == JointType::Hinge || s.type == JointType::Slider;
+// A mouse joint's or a distance joint's second anchor, a mouse joint's one dynamic body,
+// and its pull; other types have neither anchorB nor pull. `a` is the record of body a.
+void validatePull(const char *function, const JointSettings &s, const std::string &type, const detail::BodyRecord &a) {
     const bool distance = s.type == JointType::Distance;
     const bool mouse = s.type == JointType::Mouse;
     if (s.anchorB) {
@@ -115,15 +104,22 @@ Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
         if (!(p.maxForce > 0))
             detail::refuse(function, "pull.maxForce", "must be > 0 (infinity: no limit), got " + detail::show(p.maxForce));
     }
-    const bool limitedBall = s.type == JointType::Ball && (s.swingLimit || s.twistLimit);
-    Vector3 axis = s.axis;
-    if (axial || limitedBall) {
-        detail::requireFinite(function, "axis", s.axis);
-        const real length = s.axis.norm();
-        if (!(length > 1e-12) || !std::isfinite(length))
-            detail::refuse(function, "axis", "must not be zero, got " + detail::show(s.axis));
-        axis = s.axis / length;
-    }
+}
+
+// The joint's axis normalised, when it has one (`used`: a hinge's, a slider's, a limited
+// ball joint's); else as given.
+Vector3 checkedAxis(const char *function, const Vector3 &axis, bool used) {
+    if (!used) return axis;
+    detail::requireFinite(function, "axis", axis);
+    const real length = axis.norm();
+    if (!(length > 1e-12) || !std::isfinite(length))
+        detail::refuse(function, "axis", "must not be zero, got " + detail::show(axis));
+    return axis / length;
+}
+
+// A hinge's or a slider's limits, motor and servo (one of the two); other types have none.
+void validateAxialDrive(const char *function, const JointSettings &s, const std::string &type) {
+    const bool axial = s.type == JointType::Hinge || s.type == JointType::Slider;
     if (s.limits) {
         if (!axial) detail::refuse(function, "limits", "only hinge and slider joints have limits (" + type + " joint)");
         const JointLimits &l = *s.limits;
@@ -147,7 +143,12 @@ Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
         if (s.motor) detail::refuse(function, "servo", "a joint has a motor (a speed) or a servo (a target), not both");
         validateServo(function, s.type, *s.servo);
     }
-    validateBallLimits(function, s, type, axis);
+}
+
+// Friction (ball joints and hinges) and the spring of soft limits (joints with limits).
+void validateFrictionAndLimitSpring(const char *function, const JointSettings &s, const std::string &type) {
+    const bool axial = s.type == JointType::Hinge || s.type == JointType::Slider;
+    const bool limitedBall = s.type == JointType::Ball && (s.swingLimit || s.twistLimit);
     if (s.friction != 0) {
         if (s.type != JointType::Ball && s.type != JointType::Hinge)
             detail::refuse(function, "friction", "only ball joints and hinges have it (" + type + " joint)");
@@ -159,22 +160,49 @@ Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
         if (!s.limits && !limitedBall) detail::refuse(function, "limitSpring", "the joint has no limits to make soft");
         validateSpring(function, "limitSpring", s.limitSpring->frequency, s.limitSpring->dampingRatio);
     }
+}
+
+// A distance joint's range and spring; other types have neither.
+void validateDistance(const char *function, const JointSettings &s, const std::string &type) {
+    const bool distance = s.type == JointType::Distance;
     if ((s.minDistance || s.maxDistance || s.stiffness != 0 || s.damping != 0) && !distance) {
         const char *field = s.minDistance ? "minDistance" : s.maxDistance ? "maxDistance" : s.stiffness != 0 ? "stiffness" : "damping";
         detail::refuse(function, field, std::string("only distance joints have it (") + type + " joint)");
     }
-    if (distance) {
-        const real at = (s.anchor - s.anchorB.value_or(s.anchor)).norm();
-        if (s.minDistance) detail::requireNonNegative(function, "minDistance", *s.minDistance);
-        if (s.maxDistance) detail::requireNonNegative(function, "maxDistance", *s.maxDistance);
-        const real lo = s.minDistance.value_or(at);
-        const real hi = s.maxDistance.value_or(at);
-        if (!(lo <= hi))
-            detail::refuse(function, "maxDistance", "must be >= minDistance, got min " + detail::show(lo) + ", max " +
-                                                        detail::show(hi));
-        detail::requireNonNegative(function, "stiffness", s.stiffness);
-        detail::requireNonNegative(function, "damping", s.damping);
-    }
+    if (!distance) return;
+    const real at = (s.anchor - s.anchorB.value_or(s.anchor)).norm();
+    if (s.minDistance) detail::requireNonNegative(function, "minDistance", *s.minDistance);
+    if (s.maxDistance) detail::requireNonNegative(function, "maxDistance", *s.maxDistance);
+    const real lo = s.minDistance.value_or(at);
+    const real hi = s.maxDistance.value_or(at);
+    if (!(lo <= hi))
+        detail::refuse(function, "maxDistance", "must be >= minDistance, got min " + detail::show(lo) + ", max " +
+                                                    detail::show(hi));
+    detail::requireNonNegative(function, "stiffness", s.stiffness);
+    detail::requireNonNegative(function, "damping", s.damping);
+}
+
+// Everything addJoint refuses, before anything changes; returns the axis normalised.
+Vector3 validate(const detail::WorldState &w, const JointSettings &s) {
+    static const char *function = "World::addJoint";
+    if (s.type != JointType::Ball && s.type != JointType::Hinge && s.type != JointType::Fixed &&
+        s.type != JointType::Slider && s.type != JointType::Distance && s.type != JointType::Mouse)
+        detail::refuse(function, "type", "is not a JointType, got " + std::to_string(static_cast<int>(s.type)));
+    const std::string type = typeName(s.type);
+    const detail::BodyRecord &a = w.bodies.record(s.a, function);
+    const detail::BodyRecord *b = s.b ? &w.bodies.record(*s.b, function) : nullptr;
+    if (s.b && *s.b == s.a) detail::refuse(function, "b", "must differ from a");
+    if (a.immovable && (!b || b->immovable))
+        detail::refuse(function, "a", "one of the joined bodies must be dynamic (a static or kinematic body cannot move)");
+    detail::requirePlace(function, "anchor", s.anchor);
+    validatePull(function, s, type, a);
+    const bool axial = s.type == JointType::Hinge || s.type == JointType::Slider;
+    const bool limitedBall = s.type == JointType::Ball && (s.swingLimit || s.twistLimit);
+    const Vector3 axis = checkedAxis(function, s.axis, axial || limitedBall);
+    validateAxialDrive(function, s, type);
+    validateBallLimits(function, s, type, axis);
+    validateFrictionAndLimitSpring(function, s, type);
+    validateDistance(function, s, type);
     requireThreshold(function, "breakForce", s.breakForce);
     requireThreshold(function, "breakTorque", s.breakTorque);
     return axis;
