@@ -147,6 +147,33 @@ TEST(Heightfield, BoxRestingOnAFieldSleeps) {
     EXPECT_NEAR(f.position(box).y(), 0.5, 0.001);
 }
 
+TEST(Heightfield, HullAndCompoundComeToRestOnTheSurface) {
+    // Dropped from 0.2 m above their rest onto the flat field at y = 0, each settles with
+    // its lowest face on the surface: the hull, a cube of half size 0.3 given by its
+    // corners, at y = 0.3; the compound, two boxes of half size 0.2 side by side along x
+    // (children at x = -0.2 and 0.2, the frame between them), at y = 0.2.
+    WorldFixture f;
+    flatField(f.world);
+    std::vector<Vector3> corners;
+    for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? 0.3 : -0.3, i & 2 ? 0.3 : -0.3, i & 4 ? 0.3 : -0.3);
+    CompoundChild left, right;
+    left.shape = right.shape = Shape::box(Vector3(0.2, 0.2, 0.2));
+    left.position = Vector3(-0.2, 0, 0);
+    right.position = Vector3(0.2, 0, 0);
+    BodySettings hull, compound;
+    hull.shape = Shape::convex(corners);
+    hull.position = Vector3(-2.3, 0.5, 1.4);
+    hull.mass = 1;
+    compound.shape = Shape::compound({left, right});
+    compound.position = Vector3(2.6, 0.4, -1.7);
+    compound.mass = 1;
+    const BodyId h = f.world.addBody(hull);
+    const BodyId c = f.world.addBody(compound);
+    f.simulate(2.0);
+    EXPECT_NEAR(f.position(h).y(), 0.3, 0.001);
+    EXPECT_NEAR(f.world.framePosition(c).y(), 0.2, 0.001);
+}
+
 TEST(Heightfield, RayHitsTheAnalyticPoint) {
     // Heights, rows i (z) by columns j (x), spacing 1, placed at (5, 1, -3):
     //   0 1 0
