@@ -82,7 +82,8 @@ std::vector<double> shapeKey(const Shape &shape) {
         for (const Vector3 &v : shape.vertices) key.insert(key.end(), v.data(), v.data() + 3);
         for (const auto &t : shape.triangles) key.insert(key.end(), t.begin(), t.end());
         break;
-    case ShapeType::Compound: break;  // refused by shapeFor
+    case ShapeType::Compound:
+    case ShapeType::Heightfield: break;  // refused by shapeFor
     }
     return key;
 }
@@ -177,6 +178,7 @@ private:
             break;
         }
         case ShapeType::Compound: throw std::invalid_argument("the Bullet engine is not given compound shapes");
+        case ShapeType::Heightfield: throw std::invalid_argument("the Bullet engine is not given heightfields");
         }
         shapeIndex_.emplace(std::move(key), shapes_.size());
         shapes_.push_back(std::move(made));

@@ -50,6 +50,34 @@ bool spansVolume(const std::vector<Vector3> &points) {
 
 Shape readShape(const json &value, const std::string &path, bool isStatic);
 
+// A "heightfield" shape's fields (scene-format.md, shapes): rows and columns of samples,
+// their spacing [dx, dz] and rows x columns heights, row by row.
+Shape readHeightfield(const json &value, const std::string &path) {
+    Shape shape;
+    shape.type = ShapeType::Heightfield;
+    const auto count = [&](const char *name) {
+        return static_cast<int>(readInteger(required(value, path, name), memberPath(path, name), 2, 1 << 15));
+    };
+    shape.rows = count("rows");
+    shape.columns = count("columns");
+    const std::string spacingPath = memberPath(path, "spacing");
+    const json &spacing = required(value, path, "spacing");
+    if (!spacing.is_array() || spacing.size() != 2) fail(spacingPath, "must be [dx, dz], got " + describe(spacing));
+    for (std::size_t k = 0; k < 2; ++k)
+        shape.spacing[k] = readNumber(spacing[k], elementPath(spacingPath, k), Range::PositiveLength);
+    const std::string heightsPath = memberPath(path, "heights");
+    const json &heights = required(value, path, "heights");
+    const auto expected = static_cast<std::size_t>(shape.rows) * static_cast<std::size_t>(shape.columns);
+    expectArray(heights, heightsPath, expected);
+    if (heights.size() != expected)
+        fail(heightsPath, "must hold rows x columns = " + std::to_string(expected) + " numbers, got " +
+                              std::to_string(heights.size()));
+    shape.heights.reserve(expected);
+    for (std::size_t k = 0; k < heights.size(); ++k)
+        shape.heights.push_back(readNumber(heights[k], elementPath(heightsPath, k), Range::Length));
+    return shape;
+}
+
 // A mesh's "triangles" at `path`: each 3 different indices of its `vertexCount` vertices.
 std::vector<std::array<int, 3>> readTriangles(const json &value, const std::string &path, std::size_t vertexCount) {
     const std::string trianglesPath = memberPath(path, "triangles");
@@ -94,7 +122,7 @@ std::vector<CompoundChild> readChildren(const json &value, const std::string &pa
         const json *childType = member(childShape, "type");
         if (childType && childType->is_string()) {
             const std::string &name = childType->get_ref<const std::string &>();
-            if (name == "plane" || name == "mesh" || name == "compound")
+            if (name == "plane" || name == "mesh" || name == "compound" || name == "heightfield")
                 fail(memberPath(shapePath, "type"), "a compound's child must be convex (box, sphere, capsule, "
                                                     "cylinder or convex), got " + jsonQuoted(name));
         }
@@ -145,13 +173,17 @@ Shape readShape(const json &value, const std::string &path, bool isStatic) {
             shape.vertices = readPoints(required(value, path, "vertices"), memberPath(path, "vertices"), 3);
             shape.triangles = readTriangles(value, path, shape.vertices.size());
         }
+    } else if (type == "heightfield") {
+        if (!isStatic) fail(typePath, "a heightfield is for static bodies only; add \"static\": true");
+        shape = readHeightfield(value, path);
     } else if (type == "compound") {
         shape.type = ShapeType::Compound;
         shape.children = readChildren(value, path);
     } else {
         fail(typePath, "unknown shape type " + jsonQuoted(type) +
-                           " (known: box, sphere, capsule, cylinder, convex, plane, mesh, compound)" +
-                           didYouMean(type, {"box", "sphere", "capsule", "cylinder", "convex", "plane", "mesh", "compound"}));
+                           " (known: box, sphere, capsule, cylinder, convex, plane, mesh, heightfield, compound)" +
+                           didYouMean(type, {"box", "sphere", "capsule", "cylinder", "convex", "plane", "mesh",
+                                             "heightfield", "compound"}));
     }
     return shape;
 }

@@ -65,7 +65,7 @@ TEST(ErrorHints, AMisspeltEventTypeIsNamedWithTheTypeMeant) {
 TEST(ErrorHints, AMisspeltShapeOrJointTypeIsNamedWithTheTypeMeant) {
     EXPECT_EQ(refusal(R"({"bodies": [{"name": "ball", "shape": {"type": "spehre", "radius": 1}}]})"),
               "bodies[0] (\"ball\").shape.type: unknown shape type \"spehre\" (known: box, sphere, capsule, "
-              "cylinder, convex, plane, mesh, compound); did you mean \"sphere\"?\n");
+              "cylinder, convex, plane, mesh, heightfield, compound); did you mean \"sphere\"?\n");
     EXPECT_EQ(refusal(std::string(R"({"bodies": [)") + kCrate +
                       R"(], "joints": [{"name": "lid", "type": "hinje", "a": "crate", "b": null, "anchor": [0, 1, 0]}]})"),
               "joints[0] (\"lid\").type: unknown joint type \"hinje\" (known: \"ball\", \"hinge\", \"fixed\", "
@@ -73,7 +73,7 @@ TEST(ErrorHints, AMisspeltShapeOrJointTypeIsNamedWithTheTypeMeant) {
     // "torus" is near nothing: no guess.
     EXPECT_EQ(refusal(R"({"bodies": [{"name": "ring", "shape": {"type": "torus"}}]})"),
               "bodies[0] (\"ring\").shape.type: unknown shape type \"torus\" (known: box, sphere, capsule, cylinder, "
-              "convex, plane, mesh, compound)\n");
+              "convex, plane, mesh, heightfield, compound)\n");
 }
 
 // The issue's case: the 31st body of a file, bodies[30], is named by its name.

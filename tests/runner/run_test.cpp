@@ -47,7 +47,7 @@ const char *const kShippedScenes[] = {"tower",   "pyramid-20", "pyramid-10", "re
                                       "sleep-wake", "springs", "mixed-shapes", "pendulum", "chain-20",
                                       "chain-20-heavy", "chain-20-heavy-swing", "door", "crane",
                                       "trigger-zone", "drops", "ragdoll-stairs", "servo", "platformer",
-                                      "conveyor"};
+                                      "conveyor", "terrain"};
 
 TEST(Run, EveryShippedSceneRunsAsItIs) {
     for (const char *name : kShippedScenes) {

@@ -212,6 +212,35 @@ TriangleMesh planeMesh(const Shape &shape) {
     return mesh;
 }
 
+// The field's samples, each with the normal of the central differences of its
+// neighbours' heights, and each cell's two triangles as the collision shape splits it.
+TriangleMesh heightfieldMesh(const Shape &shape) {
+    TriangleMesh mesh;
+    const int rows = shape.rows, columns = shape.columns;
+    const real dx = shape.spacing[0], dz = shape.spacing[1];
+    const auto h = [&](int i, int j) {
+        i = std::clamp(i, 0, rows - 1);
+        j = std::clamp(j, 0, columns - 1);
+        return shape.heights[static_cast<std::size_t>(i) * columns + j];
+    };
+    for (int i = 0; i < rows; ++i) {
+        for (int j = 0; j < columns; ++j) {
+            // The surface y = h(x, z) has normal (-dh/dx, 1, -dh/dz).
+            const real slopeX = (h(i, j + 1) - h(i, j - 1)) / (dx * (std::min(j + 1, columns - 1) - std::max(j - 1, 0)));
+            const real slopeZ = (h(i + 1, j) - h(i - 1, j)) / (dz * (std::min(i + 1, rows - 1) - std::max(i - 1, 0)));
+            addVertex(mesh, toFloat(Vector3(j * dx, h(i, j), i * dz)), toFloat(Vector3(-slopeX, 1, -slopeZ).normalized()));
+        }
+    }
+    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * columns + j); };
+    for (int i = 0; i + 1 < rows; ++i) {
+        for (int j = 0; j + 1 < columns; ++j) {
+            addTriangle(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            addTriangle(mesh, at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    }
+    return mesh;
+}
+
 }  // namespace
 
 TriangleMesh shapeMesh(const Shape &shape, const Vector3 &origin) {
@@ -252,6 +281,7 @@ TriangleMesh shapeMesh(const Shape &shape, const Vector3 &origin) {
     case ShapeType::Convex: return hullMesh(shape.vertices);
     case ShapeType::Mesh: return triangleMesh(shape);
     case ShapeType::Plane: return planeMesh(shape);
+    case ShapeType::Heightfield: return heightfieldMesh(shape);
     }
     return mesh;
 }
@@ -279,6 +309,14 @@ Bounds bodyBounds(const World &world, BodyId id) {
     case ShapeType::Mesh:
         for (const Vector3 &p : shape.vertices) bounds.add(centre + rotation * toFloat(p));
         break;
+    case ShapeType::Heightfield: {
+        const auto [low, high] = std::minmax_element(shape.heights.begin(), shape.heights.end());
+        const real width = (shape.columns - 1) * shape.spacing[0], depth = (shape.rows - 1) * shape.spacing[1];
+        for (const real x : {real(0), width})
+            for (const real y : {*low, *high})
+                for (const real z : {real(0), depth}) bounds.add(centre + rotation * toFloat(Vector3(x, y, z)));
+        break;
+    }
     case ShapeType::Compound: {
         // Each child's bounds grown to its bounding sphere, about the body's centre.
         const Vector3 origin = world.localCentreOfMass(id);

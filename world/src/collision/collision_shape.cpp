@@ -15,6 +15,7 @@
 
 #include "collision/broadphase.h"
 #include "collision/convex_hull.h"
+#include "collision/heightfield.h"
 #include "collision/mesh_features.h"
 #include "cyclone/world/error.h"
 #include "cyclone/world/settings.h"
@@ -134,6 +135,10 @@ real solidBoundingRadius(const CollisionShape &c) {
             real r = 0;
             for (const Vector3 &v : c.vertices()) r = std::max(r, v.norm());
             return r;
+        }
+        case ShapeType::Heightfield: {
+            const fcl::AABBd &box = c.geometry()->aabb_local;
+            return Vector3(box.max_.x(), std::max(std::abs(box.min_.y()), std::abs(box.max_.y())), box.max_.z()).norm();
         }
         case ShapeType::Plane:
         case ShapeType::Compound: break;
@@ -359,7 +364,8 @@ void compileCompound(const Shape &shape, CollisionShape &c) {
         const CompoundChild &child = shape.children[k];
         const std::string field = index("shape.children", k);
         const ShapeType type = child.shape.type;
-        if (type == ShapeType::Plane || type == ShapeType::Mesh || type == ShapeType::Compound)
+        if (type == ShapeType::Plane || type == ShapeType::Mesh || type == ShapeType::Compound ||
+            type == ShapeType::Heightfield)
             refuse(field + ".shape.type", std::string("\"") + shapeTypeName(type) +
                                               "\" is not a convex shape; a compound's children are box, sphere, "
                                               "capsule, cylinder or convex");
@@ -475,6 +481,15 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
             compileMesh(shape, c.vertices_, c.faces_, c.faceNormals_, c.geometry_);
             c.activeFeatures_ = meshActiveFeatures(c.vertices_, c.faces_, c.faceNormals_);
             break;
+        case ShapeType::Heightfield: {
+            validateHeightfield(shape);
+            c.shape_ = shape;
+            const HeightfieldGrid grid(c.shape_);
+            c.activeFeatures_ = heightfieldActiveFeatures(grid);
+            c.geometry_ = heightfieldBounds(grid);
+            c.boundingRadius_ = solidBoundingRadius(c);
+            return compiled;
+        }
         case ShapeType::Compound:
             compileCompound(shape, c);
             c.shape_ = shape;
@@ -528,6 +543,16 @@ void CollisionShape::supportingFeature(const Matrix4 &pose, const Vector3 &direc
             if (triangle < 0 || triangle >= static_cast<int>(faces_.size())) break;
             triangleFeature(faces_[triangle], faceNormals_[triangle], vertices_, rotation, origin, direction, out);
             break;
+        case ShapeType::Heightfield: {
+            if (triangle < 0 || triangle >= triangleCount()) break;
+            Vector3 corners[3];
+            int ids[3];
+            this->triangle(triangle, corners, ids);
+            const bool facing = (rotation * triangleNormal(triangle)).dot(direction) >= 0;
+            for (int i = 0; i < 3; ++i) out.points[i] = rotation * corners[facing ? i : 2 - i] + origin;
+            out.count = 3;
+            break;
+        }
     }
 }
 
@@ -573,17 +598,41 @@ Vector3 CollisionShape::supportPoint(const Matrix4 &pose, const Vector3 &directi
             const std::size_t k = furthestPart(pose, direction);
             return parts_[k].shape->supportPoint(pose * parts_[k].pose, direction, -1);
         }
-        case ShapeType::Mesh: {
-            if (triangle < 0 || triangle >= static_cast<int>(faces_.size())) return origin;
+        case ShapeType::Mesh:
+        case ShapeType::Heightfield: {
+            if (triangle < 0 || triangle >= triangleCount()) return origin;
             const Vector3 local = rotation.transpose() * direction;
-            const std::vector<int> &t = faces_[triangle];
-            int best = t[0];
+            Vector3 corners[3];
+            int ids[3];
+            this->triangle(triangle, corners, ids);
+            int best = 0;
             for (int i = 1; i < 3; ++i)
-                if (vertices_[t[i]].dot(local) > vertices_[best].dot(local)) best = t[i];
-            return rotation * vertices_[best] + origin;
+                if (corners[i].dot(local) > corners[best].dot(local)) best = i;
+            return rotation * corners[best] + origin;
         }
     }
     return origin;
+}
+
+int CollisionShape::triangleCount() const {
+    if (shape_.type == ShapeType::Heightfield) return HeightfieldGrid(shape_).triangleCount();
+    return static_cast<int>(faces_.size());
+}
+
+void CollisionShape::triangle(int t, Vector3 (&corners)[3], int (&ids)[3]) const {
+    if (shape_.type == ShapeType::Heightfield) {
+        HeightfieldGrid(shape_).triangle(t, corners, ids);
+        return;
+    }
+    for (int k = 0; k < 3; ++k) {
+        ids[k] = faces_[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)];
+        corners[k] = vertices_[static_cast<std::size_t>(ids[k])];
+    }
+}
+
+Vector3 CollisionShape::triangleNormal(int t) const {
+    if (shape_.type == ShapeType::Heightfield) return HeightfieldGrid(shape_).normal(t);
+    return faceNormals_[static_cast<std::size_t>(t)];
 }
 
 }  // namespace cyclone::detail

@@ -61,9 +61,25 @@ public:
     const std::vector<std::vector<int>> &faces() const { return faces_; }
     /// Outward unit normal of each face, shape frame.
     const std::vector<Vector3> &faceNormals() const { return faceNormals_; }
-    /// Mesh: each triangle's active edges and vertices (mesh_features.h), the corners of
-    /// its surface; contacts on the others take the triangle's normal.
+    /// Mesh or height field: each triangle's active edges and vertices (mesh_features.h),
+    /// the corners of its surface; contacts on the others take the triangle's normal.
     const std::vector<std::uint8_t> &activeFeatures() const { return activeFeatures_; }
+    /// Whether this is a mesh or a height field: a surface of triangles, numbered by
+    /// FCL's primitive index (mesh) or by cell (heightfield.h).
+    bool hasTriangles() const {
+        return shape_.type == ShapeType::Mesh || shape_.type == ShapeType::Heightfield;
+    }
+    /// Mesh or height field: the number of triangles.
+    int triangleCount() const;
+    /// Mesh or height field: triangle t's corners (shape frame) and their vertex numbers.
+    void triangle(int t, Vector3 (&corners)[3], int (&ids)[3]) const;
+    /// Mesh or height field: triangle t's unit normal (counter-clockwise side), shape frame.
+    Vector3 triangleNormal(int t) const;
+    /// Which sides of the triangles collide: a mesh's own; a height field's front (its
+    /// solid lies below).
+    MeshSides triangleSides() const {
+        return shape_.type == ShapeType::Heightfield ? MeshSides::Front : shape_.sides;
+    }
     /// Plane: outward unit normal, shape frame (the solid is normal.x <= planeOffset()).
     const Vector3 &planeNormal() const { return planeNormal_; }
     /// Plane: distance of the surface from the frame origin along planeNormal(), m

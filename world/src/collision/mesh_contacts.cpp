@@ -22,7 +22,9 @@
 #include "collision/broadphase.h"
 #include "collision/contact_building.h"
 #include "collision/gjk.h"
+#include "collision/heightfield.h"
 #include "collision/mesh_features.h"
+#include "collision/shape_contact.h"
 
 namespace cyclone::detail {
 namespace {
@@ -66,20 +68,24 @@ struct MeshPair {
 
     MeshPair(const CollisionShape &a_, const Matrix4 &poseA_, const CollisionShape &b_, const Matrix4 &poseB_,
              real reach_)
-        : a(a_), poseA(poseA_), b(b_), poseB(poseB_), meshIsB(b_.shape().type == ShapeType::Mesh),
+        : a(a_), poseA(poseA_), b(b_), poseB(poseB_), meshIsB(b_.hasTriangles()),
           mesh(meshIsB ? b_ : a_), meshPose(meshIsB ? poseB_ : poseA_), other(meshIsB ? a_ : b_),
           otherPose(meshIsB ? poseA_ : poseB_), centre(otherPose * other.centroid()), reach(reach_) {}
 
     // The normal (A to B) along which triangle t pushes the other shape out.
     Vector3 front(int t) const {
-        const Vector3 n = meshPose.linear() * mesh.faceNormals()[t];
+        const Vector3 n = meshPose.linear() * mesh.triangleNormal(t);
         bool outward = true;  // pushes to the side n faces
-        switch (mesh.shape().sides) {
+        switch (mesh.triangleSides()) {
             case MeshSides::Front: break;
             case MeshSides::Back: outward = false; break;
-            case MeshSides::Both:
-                outward = n.dot(centre - meshPose * mesh.vertices()[mesh.faces()[t][0]]) >= 0;
+            case MeshSides::Both: {
+                Vector3 v[3];
+                int ids[3];
+                mesh.triangle(t, v, ids);
+                outward = n.dot(centre - meshPose * v[0]) >= 0;
                 break;
+            }
         }
         return outward != meshIsB ? n : Vector3(-n);
     }
@@ -92,19 +98,20 @@ struct MeshPair {
     // with the whole triangle: the triangle's vertices furthest along the normal.
     bool onInnerFeature(const MeshContact &c) const {
         const Vector3 towards = meshPose.linear().transpose() * (meshIsB ? Vector3(-c.normal) : c.normal);
-        const std::vector<int> &t = mesh.faces()[c.triangle];
-        const std::vector<Vector3> &v = mesh.vertices();
+        Vector3 v[3];
+        int ids[3];
+        mesh.triangle(c.triangle, v, ids);
         real top = -std::numeric_limits<real>::infinity();
         real longest = 0;
         for (int k = 0; k < 3; ++k) {
-            top = std::max(top, v[t[k]].dot(towards));
-            longest = std::max(longest, (v[t[(k + 1) % 3]] - v[t[k]]).norm());
+            top = std::max(top, v[k].dot(towards));
+            longest = std::max(longest, (v[(k + 1) % 3] - v[k]).norm());
         }
         const real tolerance = kPointTolerance + kFeatureSlope * longest;
         int touching[3];
         int n = 0;
         for (int k = 0; k < 3; ++k)
-            if (v[t[k]].dot(towards) > top - tolerance) touching[n++] = k;
+            if (v[k].dot(towards) > top - tolerance) touching[n++] = k;
         const std::uint8_t active = mesh.activeFeatures()[c.triangle];
         if (n == 3) return true;
         if (n == 1) return !(active & activeVertexBit(touching[0]));
@@ -128,6 +135,84 @@ struct MeshPair {
         c.cap = c.depth;
     }
 };
+
+// Adds a contact for triangle t if the other shape comes closer to it than `reach`
+// (measured by GJK between the shape and the triangle), or touches or overlaps it.
+void addTriangleWithinReach(const MeshPair &m, int t, real reach, real speculative, MeshContact *contacts,
+                            int &count) {
+    const Pair pair = m.pair(t, speculative);
+    const auto support = [&](const Vector3 &d) {
+        return Vector3(pair.a.supportPoint(pair.poseA, d, pair.triangleA) -
+                       pair.b.supportPoint(pair.poseB, -d, pair.triangleB));
+    };
+    const Vector3 front = m.front(t);
+    MeshContact &c = contacts[count];
+    c.triangle = t;
+    // The closest points of A - B: the line from B's to A's, so the normal (A to B)
+    // is its opposite.
+    Vector3 closest;
+    const bool apart = closestToOrigin(support, -front, closest);
+    const real distance = apart ? closest.norm() : 0;
+    if (!(distance < reach)) return;
+    if (distance > kPointTolerance) {
+        c.normal = -closest / distance;
+        if (c.normal.dot(front) < 0) return;  // behind a one-sided triangle
+        c.depth = -distance;
+    } else {
+        // Touching, which FCL does not report: the normal as for its contacts.
+        NormalRule rule;
+        rule.oneSided = true;
+        rule.front = front;
+        SupportFeature fa, fb;
+        c.normal = chooseNormal(pair, front, rule, true, fa, fb, c.depth);
+        if (!(c.depth > -speculative)) return;
+    }
+    m.classify(c, front);
+    if (c.face) c.normal = front;
+    ++count;
+}
+
+// The contact of a triangle FCL found touching the other shape, along FCL's normal
+// `rawNormal` (A to B) refined to the triangle's own best normal.
+void addTouchingTriangle(const MeshPair &m, int triangle, const Vector3 &rawNormal, real keep, MeshContact *contacts,
+                         int &count) {
+    NormalRule rule;
+    rule.oneSided = true;
+    rule.front = m.front(triangle);
+    // FCL's normals against triangles, even its exact sphere-triangle ones, describe
+    // the triangle alone: refinement finds each triangle's own best normal.
+    MeshContact &c = contacts[count];
+    SupportFeature fa, fb;
+    c.normal = chooseNormal(m.pair(triangle, keep), rawNormal, rule, true, fa, fb, c.depth);
+    if (!(c.depth > -keep)) return;
+    c.triangle = triangle;
+    m.classify(c, rule.front);
+    ++count;
+}
+
+// A height field's triangles under the other shape's box grown by the reach
+// (heightfield.h), as a mesh's: those FCL's triangle test finds touching it, then those
+// it comes closer to than `reach` (addTriangleWithinReach).
+void addHeightfieldTriangles(const MeshPair &m, real reach, real keep, MeshContact *contacts, int &count) {
+    const fcl::AABBd box = placedBox(*m.other.geometry(), m.meshPose.inverse() * m.otherPose, reach);
+    HeightfieldGrid(m.mesh.shape()).forEachTriangleIn(box.min_, box.max_, [&](int t) {
+        fcl::Vector3d corners[3];
+        int ids[3];
+        m.mesh.triangle(t, corners, ids);
+        fcl::Vector3d normal;
+        double depth = 0;
+        if (shapeTriangleContact(m.other.geometry().get(), m.otherPose, corners, m.meshPose, normal, depth)) {
+            // FCL's normal runs from the shape to the triangle.
+            const real length = normal.norm();
+            if (length > kMinNormalLength)
+                addTouchingTriangle(m, t, m.meshIsB ? Vector3(normal / length) : Vector3(-normal / length), keep,
+                                    contacts, count);
+        } else if (reach > 0) {
+            addTriangleWithinReach(m, t, reach, keep, contacts, count);
+        }
+        return count < kMaxMeshContacts;
+    });
+}
 
 // Adds a contact for each triangle not in `reported` that the other shape does not touch
 // but comes closer to than `reach`: found in the mesh's tree with the other shape's box
@@ -156,36 +241,7 @@ void addTrianglesWithinReach(const MeshPair &m, real reach, real speculative, co
         }
         const int t = node.primitiveId();
         if (std::find(reported, reported + reportedCount, t) != reported + reportedCount) continue;
-        const Pair pair = m.pair(t, speculative);
-        const auto support = [&](const Vector3 &d) {
-            return Vector3(pair.a.supportPoint(pair.poseA, d, pair.triangleA) -
-                           pair.b.supportPoint(pair.poseB, -d, pair.triangleB));
-        };
-        const Vector3 front = m.front(t);
-        MeshContact &c = contacts[count];
-        c.triangle = t;
-        // The closest points of A - B: the line from B's to A's, so the normal (A to B)
-        // is its opposite.
-        Vector3 closest;
-        const bool apart = closestToOrigin(support, -front, closest);
-        const real distance = apart ? closest.norm() : 0;
-        if (!(distance < reach)) continue;
-        if (distance > kPointTolerance) {
-            c.normal = -closest / distance;
-            if (c.normal.dot(front) < 0) continue;  // behind a one-sided triangle
-            c.depth = -distance;
-        } else {
-            // Touching, which FCL does not report: the normal as for its contacts.
-            NormalRule rule;
-            rule.oneSided = true;
-            rule.front = front;
-            SupportFeature fa, fb;
-            c.normal = chooseNormal(pair, front, rule, true, fa, fb, c.depth);
-            if (!(c.depth > -speculative)) continue;
-        }
-        m.classify(c, front);
-        if (c.face) c.normal = front;
-        ++count;
+        addTriangleWithinReach(m, t, reach, speculative, contacts, count);
     }
 }
 
@@ -230,7 +286,7 @@ void clipContact(const MeshPair &m, const MeshContact &c, const Vector3 &normal,
 int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
                  real speculative, real reach, const RawContact *raw, int rawCount, std::vector<Manifold> &out) {
     const MeshPair m(a, poseA, b, poseB, reach);
-    const int triangles = static_cast<int>(m.mesh.faces().size());
+    const int triangles = m.mesh.triangleCount();
     const real keep = std::max(speculative, reach);
 
     MeshContact contacts[kMaxMeshContacts];
@@ -241,20 +297,13 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
         const int triangle = m.meshIsB ? raw[i].triangleB : raw[i].triangleA;
         if (triangle < 0 || triangle >= triangles) continue;
         reported[reportedCount++] = triangle;
-        NormalRule rule;
-        rule.oneSided = true;
-        rule.front = m.front(triangle);
-        // FCL's normals against triangles, even its exact sphere-triangle ones, describe
-        // the triangle alone: refinement finds each triangle's own best normal.
-        MeshContact &c = contacts[count];
-        SupportFeature fa, fb;
-        c.normal = chooseNormal(m.pair(triangle, keep), raw[i].normal, rule, true, fa, fb, c.depth);
-        if (!(c.depth > -keep)) continue;
-        c.triangle = triangle;
-        m.classify(c, rule.front);
-        ++count;
+        addTouchingTriangle(m, triangle, raw[i].normal, keep, contacts, count);
     }
-    if (reach > 0) addTrianglesWithinReach(m, reach, keep, reported, reportedCount, contacts, count);
+    if (m.mesh.shape().type == ShapeType::Heightfield) {
+        addHeightfieldTriangles(m, reach, keep, contacts, count);
+    } else if (reach > 0) {
+        addTrianglesWithinReach(m, reach, keep, reported, reportedCount, contacts, count);
+    }
 
     // Face contacts first, then those of inner features, then the rest deepest first, as
     // Jolt orders them.
@@ -267,17 +316,19 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     auto isClaimed = [&](int vertex) { return std::find(claimed, claimed + claimedCount, vertex) != claimed + claimedCount; };
     for (int i = 0; i < count; ++i) {
         MeshContact &c = contacts[i];
-        const std::vector<int> &t = m.mesh.faces()[c.triangle];
+        Vector3 v[3];
+        int t[3];
+        m.mesh.triangle(c.triangle, v, t);
         if (!c.face || c.inner) {
             // The triangle's feature touching the other shape: its vertices furthest
             // towards that shape. Once face contacts hold them all it adds nothing.
             const Vector3 &n = c.featureNormal;
             const Vector3 towards = m.meshPose.linear().transpose() * (m.meshIsB ? Vector3(-n) : n);
             real top = -std::numeric_limits<real>::infinity();
-            for (int k = 0; k < 3; ++k) top = std::max(top, m.mesh.vertices()[t[k]].dot(towards));
+            for (int k = 0; k < 3; ++k) top = std::max(top, v[k].dot(towards));
             bool covered = true;
             for (int k = 0; k < 3; ++k)
-                if (m.mesh.vertices()[t[k]].dot(towards) > top - kPointTolerance && !isClaimed(t[k])) covered = false;
+                if (v[k].dot(towards) > top - kPointTolerance && !isClaimed(t[k])) covered = false;
             if (covered) {
                 c.kept = false;
                 continue;

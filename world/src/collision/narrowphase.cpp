@@ -140,7 +140,7 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
         const CollisionShape &plane = planeIsA ? a : b;
         const Matrix4 &planePose = planeIsA ? poseA : poseB;
         const CollisionShape &other = planeIsA ? b : a;
-        if (other.shape().type == ShapeType::Mesh) return -1;
+        if (other.hasTriangles()) return other.shape().type == ShapeType::Heightfield ? 0 : -1;
         const Vector3 up = planePose.linear() * plane.planeNormal();
         const real level = up.dot(planePose.translation()) + plane.planeOffset();
         const Vector3 deepest = other.supportPoint(planeIsA ? poseB : poseA, -up, -1);
@@ -402,6 +402,16 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
         const int appended = nativeContact(a, poseA, b, poseB, settings, out);
         if (appended >= 0) return appended;
     }
+    if (typeA == ShapeType::Heightfield || typeB == ShapeType::Heightfield) {
+        // The triangles of the cells the other shape's box covers (mesh_contacts.cpp);
+        // nothing for FCL to test (its geometry is the field's box). A test of its own, so
+        // shapes apart by up to the touch margin get a manifold too: a body that comes to
+        // rest a hair above the surface would otherwise fall into it for a whole step.
+        if (a.hasTriangles() && b.hasTriangles()) return 0;
+        if (typeA == ShapeType::Plane || typeB == ShapeType::Plane) return 0;
+        return meshContacts(a, poseA, b, poseB, settings.speculativeDistance,
+                            std::max(settings.reach, settings.touchMargin), nullptr, 0, out);
+    }
     const bool withMesh = typeA == ShapeType::Mesh || typeB == ShapeType::Mesh;
     const bool withPlane = typeA == ShapeType::Plane || typeB == ShapeType::Plane;
     // Two solids get a manifold below only when FCL finds them touching or apart by less
@@ -436,6 +446,19 @@ bool intersects(const CollisionShape &a, const Matrix4 &poseA, const CollisionSh
         return false;
     }
     if (b.isCompound()) return intersects(b, poseB, a, poseA);
+    if (a.shape().type == ShapeType::Heightfield || b.shape().type == ShapeType::Heightfield) {
+        // Its triangles' manifolds (FCL sees only the field's box): touching when a point
+        // is at or below the surface.
+        static thread_local std::vector<Manifold> manifolds;
+        manifolds.clear();
+        NarrowphaseSettings settings;
+        settings.speculativeDistance = 0;
+        collide(a, poseA, b, poseB, settings, manifolds);
+        for (const Manifold &m : manifolds)
+            for (int k = 0; k < m.count; ++k)
+                if (m.points[k].depth >= 0) return true;
+        return false;
+    }
     static const fcl::CollisionRequestd request = [] {
         fcl::CollisionRequestd r(1, false);
         r.gjk_solver_type = fcl::GST_LIBCCD;

@@ -10,6 +10,8 @@
 // bounding-volume tree (OBBs in the mesh's frame), nearest child first.
 #include "collision/ray_cast.h"
 
+#include "collision/heightfield.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -291,6 +293,7 @@ bool rayShape(const Ray &ray, const CollisionShape &shape, const Matrix4 &pose, 
         case ShapeType::Convex: found = rayLocalConvex(o, d, shape, limit, t, n); break;
         case ShapeType::Plane: found = rayLocalPlane(o, d, shape, limit, t, n); break;
         case ShapeType::Mesh: found = rayLocalMesh(o, d, shape, limit, t, n); break;
+        case ShapeType::Heightfield: found = rayHeightfield(o, d, HeightfieldGrid(s), limit, t, n); break;
         case ShapeType::Compound: break;  // taken child by child above
     }
     if (!found) return false;

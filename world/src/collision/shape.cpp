@@ -80,6 +80,16 @@ Shape Shape::compound(std::vector<CompoundChild> children) {
     return shape;
 }
 
+Shape Shape::heightfield(int rows, int columns, const std::array<real, 2> &spacing, std::vector<real> heights) {
+    Shape shape;
+    shape.type = ShapeType::Heightfield;
+    shape.rows = rows;
+    shape.columns = columns;
+    shape.spacing = spacing;
+    shape.heights = std::move(heights);
+    return shape;
+}
+
 const char *shapeTypeName(ShapeType type) {
     switch (type) {
         case ShapeType::Box: return "box";
@@ -90,6 +100,7 @@ const char *shapeTypeName(ShapeType type) {
         case ShapeType::Plane: return "plane";
         case ShapeType::Mesh: return "mesh";
         case ShapeType::Compound: return "compound";
+        case ShapeType::Heightfield: return "heightfield";
     }
     return "unknown";
 }

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "collision/gjk.h"
+#include "collision/heightfield.h"
 #include "collision/narrowphase.h"
 
 namespace cyclone::detail {
@@ -120,6 +121,29 @@ bool castAgainstMesh(const CollisionShape &moving, const Matrix4 &start, const V
     return found;
 }
 
+// The triangles of the cells under the swept shape's box (heightfield.h), each cast as a
+// mesh's triangle; the solid lies below, so each pushes upwards.
+bool castAgainstHeightfield(const CollisionShape &moving, const Matrix4 &start, const Vector3 &translation,
+                            const CollisionShape &field, const Matrix4 &fieldPose, real limit, CastHit &hit) {
+    const Matrix4 toField = fieldPose.inverse();
+    const Vector3 radius = Vector3::Constant(moving.boundingRadius() + kShapeCastTolerance);
+    const Vector3 from = toField * start.translation();
+    const Vector3 to = toField * (start.translation() + limit * translation);
+    bool found = false;
+    HeightfieldGrid(field.shape()).forEachTriangleIn(from.cwiseMin(to) - radius, from.cwiseMax(to) + radius, [&](int t) {
+        const Vector3 face = fieldPose.linear() * field.triangleNormal(t);
+        CastHit candidate;
+        if (castConvex(moving, start, translation, field, fieldPose, t, &face, limit, candidate) &&
+            (!found || candidate.fraction < hit.fraction)) {
+            hit = candidate;
+            limit = candidate.fraction;
+            found = true;
+        }
+        return true;
+    });
+    return found;
+}
+
 }  // namespace
 
 bool castShape(const CollisionShape &moving, const Matrix4 &start, const Vector3 &translation,
@@ -147,6 +171,8 @@ bool castShape(const CollisionShape &moving, const Matrix4 &start, const Vector3
     switch (target.shape().type) {
         case ShapeType::Plane: return castAgainstPlane(moving, start, translation, target, targetPose, limit, hit);
         case ShapeType::Mesh: return castAgainstMesh(moving, start, translation, target, targetPose, limit, hit);
+        case ShapeType::Heightfield:
+            return castAgainstHeightfield(moving, start, translation, target, targetPose, limit, hit);
         default: return castConvex(moving, start, translation, target, targetPose, -1, nullptr, limit, hit);
     }
 }

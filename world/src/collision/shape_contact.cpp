@@ -181,6 +181,22 @@ bool isSolid(const fcl::CollisionGeometryd *g) {
 
 }  // namespace
 
+bool shapeTriangleContact(const fcl::CollisionGeometryd *shape, const fcl::Transform3d &pose,
+                          const fcl::Vector3d (&p)[3], const fcl::Transform3d &trianglePose, fcl::Vector3d &normal,
+                          double &depth) {
+    if (!isSolid(shape)) return false;
+    // As fcl::collide sets up its solver for GST_LIBCCD, with a default request.
+    static const double tolerance = fcl::CollisionRequestd().gjk_tolerance;
+    Solver solver;
+    solver.collision_tolerance = tolerance;
+    bool touching = false;
+    withShape(shape, [&](const auto &s) {
+        fcl::Vector3d point;
+        touching = solver.shapeTriangleIntersect(s, pose, p[0], p[1], p[2], trianglePose, &point, &depth, &normal);
+    });
+    return touching;
+}
+
 std::size_t collideShapes(const fcl::CollisionGeometryd *a, const fcl::Transform3d &poseA,
                           const fcl::CollisionGeometryd *b, const fcl::Transform3d &poseB,
                           const fcl::CollisionRequestd &request, fcl::CollisionResultd &result) {

@@ -28,4 +28,13 @@ double distanceShapes(const fcl::CollisionGeometryd *a, const fcl::Transform3d &
                       const fcl::CollisionGeometryd *b, const fcl::Transform3d &poseB,
                       const fcl::DistanceRequestd &request, fcl::DistanceResultd &result);
 
+/// Whether `shape` (a box, sphere, capsule, cylinder or convex) at `pose` overlaps the
+/// triangle `p` (corners in the frame `trianglePose` places), by the libccd solver's
+/// shapeTriangleIntersect: the routine fcl::collide runs for each triangle of a mesh it
+/// tests against a shape. When it does: FCL's unit normal from the shape towards the
+/// triangle and its depth. False for any other geometry.
+bool shapeTriangleContact(const fcl::CollisionGeometryd *shape, const fcl::Transform3d &pose,
+                          const fcl::Vector3d (&p)[3], const fcl::Transform3d &trianglePose, fcl::Vector3d &normal,
+                          double &depth);
+
 }  // namespace cyclone::detail

@@ -82,7 +82,8 @@ real innerRadius(const CollisionShape &c) {
             return inner;
         }
         case ShapeType::Plane:
-        case ShapeType::Mesh: break;
+        case ShapeType::Mesh:
+        case ShapeType::Heightfield: break;
     }
     return 0;
 }

@@ -99,6 +99,8 @@ Matrix4 poseAfter(const BodyRecord &r, real dt, const Vector3 &fall) {
 // and a body passing by a corner would be stopped by it without this test.
 bool meetWithinStep(const BodyRecord &a, const BodyRecord &b, real dt, const Vector3 &fall) {
     if (a.isPlane || b.isPlane) return true;  // a half-space's normal is exact: closing() is the test
+    // A height field's FCL geometry is only its box: its triangles' normals are exact too.
+    if (a.shape->shape().type == ShapeType::Heightfield || b.shape->shape().type == ShapeType::Heightfield) return true;
     return meetDuring(sweptShape(*a.shape), a.body.getTransform(), poseAfter(a, dt, fall), sweptShape(*b.shape),
                       b.body.getTransform(), poseAfter(b, dt, fall)) != Impact::None;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "collision/narrowphase.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
@@ -9,6 +10,9 @@ namespace {
 
 // FCL's yes-or-no test (no contact points): all a sensor needs.
 bool overlapping(const BodyRecord &a, const BodyRecord &b) {
+    // A height field's box is not its shape: its triangles are tested (narrowphase.h).
+    if (a.shape->shape().type == ShapeType::Heightfield || b.shape->shape().type == ShapeType::Heightfield)
+        return intersects(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform());
     fcl::CollisionRequestd request(1, false);
     request.gjk_solver_type = fcl::GST_LIBCCD;
     fcl::CollisionResultd result;

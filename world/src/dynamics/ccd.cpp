@@ -73,6 +73,9 @@ ContinuousCollision::Stop ContinuousCollision::earliestStop(WorldState &world, s
     for (std::uint32_t other : candidates_) {
         if (other == index || (filtering && bodies.classify(index, other) != PairKind::Contact)) continue;
         const BodyRecord &o = bodies[other];
+        // FCL's sweep would meet a height field's box, not its surface: left to the
+        // contacts' reach (docs/level_features.md, "Heightfields").
+        if (o.shape->shape().type == ShapeType::Heightfield) continue;
         const SweptShape target = sweptShape(*o.shape);
         const Matrix4 &otherStart = o.object->getTransform();
         const Matrix4 otherEnd = o.body.getTransform();

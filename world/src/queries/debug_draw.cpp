@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "collision/heightfield.h"
 #include "world/validation.h"
 #include "world/world_impl.h"
 
@@ -125,6 +126,19 @@ void drawShape(CheckedDraw &draw, const detail::CollisionShape &shape, const Mat
             const std::vector<Vector3> &v = shape.vertices();
             for (const std::vector<int> &t : shape.faces())
                 for (int i = 0; i < 3; ++i) draw.line(pose * v[t[i]], pose * v[t[(i + 1) % 3]], color);
+            break;
+        }
+        case ShapeType::Heightfield: {
+            // Each sample's lines to its next neighbours along x and z and along the
+            // diagonal of the cell it opens: every edge of every triangle once.
+            const detail::HeightfieldGrid grid(s);
+            for (int i = 0; i < grid.rows; ++i)
+                for (int j = 0; j < grid.columns; ++j) {
+                    const Vector3 p = pose * grid.sample(i, j);
+                    if (j + 1 < grid.columns) draw.line(p, pose * grid.sample(i, j + 1), color);
+                    if (i + 1 < grid.rows) draw.line(p, pose * grid.sample(i + 1, j), color);
+                    if (i + 1 < grid.rows && j + 1 < grid.columns) draw.line(p, pose * grid.sample(i + 1, j + 1), color);
+                }
             break;
         }
         case ShapeType::Plane: {

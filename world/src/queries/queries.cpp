@@ -181,8 +181,9 @@ std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Qu
     const Impl &w = *impl_;
     detail::requirePlace(function, "position", position);
     detail::requireFinite(function, "orientation", orientation);
-    if (shape.type == ShapeType::Plane)
-        detail::refuse(function, "shape.type", "\"plane\" is unbounded and cannot be a query shape");
+    if (shape.type == ShapeType::Plane || shape.type == ShapeType::Heightfield)
+        detail::refuse(function, "shape.type",
+                       std::string("\"") + shapeTypeName(shape.type) + "\" cannot be a query shape; use a solid shape");
     const PlacedShape placed = placeQueryShape(function, shape, position, orientation);
     const std::shared_ptr<const detail::CollisionShape> &compiled = placed.shape;
     const Matrix4 &pose = placed.pose;
@@ -210,7 +211,7 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
     detail::requireFinite(function, "translation", translation);
     const real length = translation.stableNorm();
     if (!(length > 0)) detail::refuse(function, "translation", "must not be zero, got " + detail::show(translation));
-    if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh)
+    if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh || shape.type == ShapeType::Heightfield)
         detail::refuse(function, "shape.type",
                        std::string("\"") + shapeTypeName(shape.type) + "\" cannot be cast; cast a solid shape");
     const PlacedShape placed = placeQueryShape(function, shape, position, orientation);

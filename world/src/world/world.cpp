@@ -153,7 +153,8 @@ Motion checkedMotion(const char *function, const BodySettings &settings,
     if (!settings.name.empty() && names.count(settings.name))
         detail::refuse(function, "name", "must be unique, \"" + settings.name + "\" is already taken");
     const Motion motion = settings.motion;
-    const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh;
+    const bool staticOnly = settings.shape.type == ShapeType::Plane || settings.shape.type == ShapeType::Mesh ||
+                            settings.shape.type == ShapeType::Heightfield;
     if (staticOnly && motion != Motion::Static)
         detail::refuse(function, "shape.type",
                        std::string("\"") + shapeTypeName(settings.shape.type) + "\" is for static bodies only");

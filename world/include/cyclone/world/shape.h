@@ -10,7 +10,7 @@
 
 namespace cyclone {
 
-/// The kinds of collision shape. Plane and Mesh are for static bodies only.
+/// The kinds of collision shape. Plane, Mesh and Heightfield are for static bodies only.
 enum class ShapeType {
     Box,       ///< Shape::box: a box, by half extents.
     Sphere,    ///< Shape::sphere.
@@ -20,6 +20,7 @@ enum class ShapeType {
     Plane,     ///< Shape::plane: a half-space; static bodies only.
     Mesh,      ///< Shape::mesh: triangles; static bodies only.
     Compound,  ///< Shape::compound: convex children, each placed in the body's frame.
+    Heightfield,  ///< Shape::heightfield: a grid of heights, solid below; static bodies only.
 };
 
 /// Which sides of a mesh's triangles collide, and so where its solid lies.
@@ -57,6 +58,10 @@ struct Shape {
     real offset = 0;  ///< Plane: the solid is normal.x <= offset with the normal as given (distance offset/|normal| along it), m.
     /// Compound: the children, at least one, each a box, sphere, capsule, cylinder or convex hull.
     std::vector<CompoundChild> children;
+    int rows = 0;     ///< Heightfield: samples along local z, >= 2.
+    int columns = 0;  ///< Heightfield: samples along local x, >= 2.
+    std::array<real, 2> spacing = {1, 1};  ///< Heightfield: sample spacing along x and z, m, each > 0.
+    std::vector<real> heights;  ///< Heightfield: rows x columns heights (m, finite), row by row.
 
     /// A box centred on the origin with half sizes `halfExtents` along x, y, z (m, each
     /// finite and > 0).
@@ -103,6 +108,12 @@ struct Shape {
     /// RigidBody's position is its centre of mass. Children may overlap; they never
     /// collide with each other.
     static Shape compound(std::vector<CompoundChild> children);
+    /// A height field for static bodies: `rows` x `columns` samples (each >= 2), sample
+    /// (i, j) at (j spacing[0], heights[i columns + j], i spacing[1]) in the body's frame
+    /// (spacings m, finite, > 0; heights m, finite, row by row). Each cell is two triangles
+    /// split along its (i, j)-(i+1, j+1) diagonal; the solid lies below the surface, and
+    /// shapes are pushed out upwards (the side the surface faces).
+    static Shape heightfield(int rows, int columns, const std::array<real, 2> &spacing, std::vector<real> heights);
 };
 
 /// A child of a compound shape: a convex shape placed in the compound's frame.
