@@ -206,6 +206,59 @@ TEST(RayCast, ClosestOfManyAndFilters) {
     EXPECT_EQ(world.rayCast(o, x, kInf, staticOnly)->body, wall);
 }
 
+// A box face at x = 2.5, a sphere's near side at 5.5, a wall's face at 8.5 and a ground
+// plane below the ray: every body the ray along +x meets, nearest first, each where the
+// ray first meets it; the first hit is rayCast's.
+TEST(RayCastAll, EveryBodyAlongTheRayNearestFirst) {
+    World world;
+    const BodyId box = add(world, Shape::box(Vector3(0.5, 0.5, 0.5)), Vector3(3, 0, 0), Quaternion::Identity(), false);
+    const BodyId ball = add(world, Shape::sphere(0.5), Vector3(6, 0, 0), Quaternion::Identity(), false);
+    const BodyId wall = add(world, Shape::box(Vector3(0.5, 5, 5)), Vector3(9, 0, 0));
+    add(world, Shape::plane(Vector3::UnitY(), -1), Vector3::Zero());
+    const Vector3 o = Vector3::Zero();
+    const Vector3 x = Vector3::UnitX();
+    std::vector<RayHit> hits;
+    ASSERT_EQ(world.rayCastAll(o, x, hits), 3u);
+    const BodyId expected[3] = {box, ball, wall};
+    const real distances[3] = {2.5, 5.5, 8.5};
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(hits[k].body, expected[k]);
+        EXPECT_NEAR(hits[k].distance, distances[k], 1e-12);
+        EXPECT_LT((hits[k].point - Vector3(distances[k], 0, 0)).norm(), 1e-12);
+        EXPECT_LT((hits[k].normal + x).norm(), 1e-12);
+    }
+    EXPECT_EQ(world.rayCast(o, x)->body, hits[0].body);
+    // Within 6 m: the box and the ball; the ball filtered out: the box and the wall.
+    EXPECT_EQ(world.rayCastAll(o, x, hits, 6), 2u);
+    EXPECT_EQ(hits[1].body, ball);
+    QueryFilter filter;
+    filter.ignore = ball;
+    ASSERT_EQ(world.rayCastAll(o, x, hits, kInf, filter), 2u);
+    EXPECT_EQ(hits[1].body, wall);
+    // Straight down from above the box: its top at 1.5 m below, then the plane at 3 m.
+    ASSERT_EQ(world.rayCastAll(Vector3(3, 2, 0), -Vector3::UnitY(), hits), 2u);
+    EXPECT_NEAR(hits[0].distance, 1.5, 1e-12);
+    EXPECT_NEAR(hits[1].distance, 3, 1e-12);
+    // Nothing along -x: the list is emptied.
+    EXPECT_EQ(world.rayCastAll(o, -x, hits), 0u);
+    EXPECT_TRUE(hits.empty());
+}
+
+TEST(RayCastAll, RefusesBadInput) {
+    World world;
+    std::vector<RayHit> hits;
+    EXPECT_THROW(world.rayCastAll(Vector3::Zero(), Vector3::Zero(), hits), InvalidArgument);
+    EXPECT_THROW(world.rayCastAll(Vector3(kInf, 0, 0), Vector3::UnitX(), hits), InvalidArgument);
+    EXPECT_THROW(world.rayCastAll(Vector3::Zero(), Vector3::UnitX(), hits, 0), InvalidArgument);
+    try {
+        world.rayCastAll(Vector3::Zero(), Vector3::UnitX(), hits, -1);
+        FAIL();
+    } catch (const InvalidArgument &e) {
+        EXPECT_EQ(e.function(), "World::rayCastAll");
+        EXPECT_EQ(e.field(), "maxDistance");
+    }
+}
+
 TEST(RayCast, MaxDistanceIsInclusive) {
     World world;
     const BodyId box = add(world, Shape::box(Vector3(1, 1, 1)), Vector3(3, 0, 0));

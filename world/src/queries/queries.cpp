@@ -69,6 +69,41 @@ struct RayWalk {
     }
 };
 
+// Every body the ray meets: the walk keeps the ray's full length and visits every box it
+// reaches.
+template <class Accepts>
+struct RayAllWalk {
+    const detail::BodyStore &bodies;
+    const Accepts &accepts;
+    detail::Ray ray;
+    std::vector<std::pair<detail::RaySurfaceHit, std::uint32_t>> &hits;
+
+    void test(std::uint32_t index) {
+        if (!accepts(index)) return;
+        const BodyRecord &r = bodies[index];
+        detail::RaySurfaceHit hit;
+        if (detail::rayShape(ray, *r.shape, r.body.getTransform(), hit)) hits.emplace_back(hit, index);
+    }
+
+    void visit(const Node *node) {
+        if (node->isLeaf()) {
+            test(leafBody(node));
+            return;
+        }
+        for (const Node *child : node->children) {
+            real enter;
+            if (detail::rayBox(ray.origin, ray.direction, child->bv.min_, child->bv.max_, ray.maxDistance, enter))
+                visit(child);
+        }
+    }
+
+    void walk(const Node *root) {
+        real enter;
+        if (root && detail::rayBox(ray.origin, ray.direction, root->bv.min_, root->bv.max_, ray.maxDistance, enter))
+            visit(root);
+    }
+};
+
 template <class Test>
 struct OverlapWalk {
     const fcl::AABBd &box;
@@ -173,6 +208,37 @@ std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direc
     hit.point = walk.ray.origin + walk.hit.distance * walk.ray.direction;
     hit.normal = walk.hit.normal;
     return hit;
+}
+
+std::size_t World::rayCastAll(const Vector3 &origin, const Vector3 &direction, std::vector<RayHit> &out,
+                              real maxDistance, const QueryFilter &filter) const {
+    static const char *function = "World::rayCastAll";
+    const Impl &w = *impl_;
+    detail::requirePlace(function, "origin", origin);
+    detail::requireFinite(function, "direction", direction);
+    const real length = direction.stableNorm();
+    if (!(length > 0)) detail::refuse(function, "direction", "must not be zero, got " + detail::show(direction));
+    if (!(maxDistance > 0))
+        detail::refuse(function, "maxDistance", "must be > 0 (infinity allowed), got " + detail::show(maxDistance));
+
+    std::vector<std::pair<detail::RaySurfaceHit, std::uint32_t>> hits;
+    const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
+    RayAllWalk<decltype(accepts)> walk{w.bodies, accepts, {origin, direction / length, maxDistance}, hits};
+    visitTrees(w, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
+    std::sort(hits.begin(), hits.end(), [](const auto &x, const auto &y) {
+        return x.first.distance != y.first.distance ? x.first.distance < y.first.distance : x.second < y.second;
+    });
+    out.clear();
+    for (const auto &[surface, index] : hits) {
+        RayHit hit;
+        hit.body = w.bodies.idOf(index);
+        hit.userData = w.bodies[index].userData;
+        hit.distance = surface.distance;
+        hit.point = walk.ray.origin + surface.distance * walk.ray.direction;
+        hit.normal = surface.normal;
+        out.push_back(hit);
+    }
+    return out.size();
 }
 
 std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Quaternion &orientation,

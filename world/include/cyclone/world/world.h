@@ -327,6 +327,14 @@ public:
                                   real maxDistance = std::numeric_limits<real>::infinity(),
                                   const QueryFilter &filter = QueryFilter()) const;
 
+    /// Every body the ray meets within `maxDistance`, into `out` (cleared first), nearest
+    /// first, one hit per body (where the ray first meets it), ties by the smaller
+    /// BodyId::index; returns their count. The ray, the filter, the refusals and the hits
+    /// are rayCast()'s: its hit is the first of these.
+    std::size_t rayCastAll(const Vector3 &origin, const Vector3 &direction, std::vector<RayHit> &out,
+                           real maxDistance = std::numeric_limits<real>::infinity(),
+                           const QueryFilter &filter = QueryFilter()) const;
+
     /// The first body that `shape` (any shape but a plane or a mesh; a compound is placed
     /// by its frame), placed at `position` (m, finite, within 1e12 m of the origin) with
     /// `orientation` (finite; normalised; (0,0,0,0) means identity) and moved by
