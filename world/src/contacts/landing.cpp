@@ -27,10 +27,11 @@ constexpr int kRounds = 4;
 // may show; at the tolerance itself a resting pile would be pushed every step and sleep
 // later (docs/contacts_and_sleep.md, "Deep contacts in a falling pile").
 constexpr real kRestingFactor = 1.6;
-// How far a round's pushes between two movable bodies may move one of them, times its
-// bounding radius: a body overlapping many others (bodies spawned at one point) was
-// pushed by all of them at once through the static floor under it, whose pair with the
-// body the round had not tested. The next round tests that pair while it is shallow.
+// How far a round's pushes between two movable bodies may move one of them down (along
+// gravity), times its bounding radius: a body overlapping many others (bodies spawned at
+// one point) was pushed by all of them at once through the static floor under it, whose
+// pair with the body the round had not tested. The next round tests that pair while it
+// is shallow. Pushes across or up are not bounded: coincident spheres are parted along x.
 constexpr real kRoundReach = 0.25;
 // Nonlinear Gauss-Seidel passes a round makes over its points.
 constexpr int kPasses = 8;
@@ -412,8 +413,10 @@ int LandingCorrection::push(WorldState &world, int round) {
             if (!(k > 0)) continue;
             real lambda = (depth - point.target) / k;
             if (massA > 0 && massB > 0) {
-                lambda = std::min(lambda, roundBudget(bodies, point.a) / massA);
-                lambda = std::min(lambda, roundBudget(bodies, point.b) / massB);
+                // Only a push down is bounded: A moves along -normal, B along normal.
+                const real down = normal.dot(up);
+                if (down > 0) lambda = std::min(lambda, roundBudget(bodies, point.a) / massA);
+                if (down < 0) lambda = std::min(lambda, roundBudget(bodies, point.b) / massB);
                 if (!(lambda > 0)) continue;
             }
             if (massA > 0) translate(bodies, point.a, -lambda * massA * normal, lambda * massA);
