@@ -87,6 +87,9 @@ private:
     /// Nonlinear Gauss-Seidel passes over points_; marks each body moved as moved in
     /// `round`. Returns how many points were pushed.
     int push(WorldState &world, int round);
+    /// How much farther pushes between two movable bodies may move body `index` this round
+    /// (kRoundReach; unbounded for a member of a joint group), m.
+    real roundBudget(const BodyStore &bodies, std::uint32_t index) const;
 
     /// Per body index: the last round that moved it (0: it moved fast in the step; -1: none).
     std::vector<int> movedRound_;

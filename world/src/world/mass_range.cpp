@@ -62,4 +62,17 @@ void requireInertiaNearShape(const char *function, const Matrix3 &inertia, const
                show(kMinInertiaFraction) + " times it up, got " + showInertia(inertia));
 }
 
+Matrix3 withMomentFloor(const Matrix3 &inertia) {
+    const real scale = inertia.cwiseAbs().maxCoeff();
+    if (!(scale > 0) || !inertia.allFinite()) return inertia;  // refused by the mass checks
+    const Eigen::SelfAdjointEigenSolver<Matrix3> eigen(inertia / scale);
+    if (eigen.info() != Eigen::Success) return inertia;
+    const Vector3 moments = eigen.eigenvalues();
+    const real floor = kMinMomentRatio * moments.maxCoeff();
+    if (!(moments.minCoeff() < floor)) return inertia;
+    const Matrix3 &axes = eigen.eigenvectors();
+    const Matrix3 raised = axes * moments.cwiseMax(floor).asDiagonal() * axes.transpose();
+    return scale * Matrix3(0.5 * (raised + raised.transpose()));
+}
+
 }  // namespace cyclone::detail

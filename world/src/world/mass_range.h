@@ -20,4 +20,14 @@ inline constexpr real kMinInertiaFraction = 0.01;
 /// (the shape's tensor at uniform density for the body's mass) about the same axis.
 void requireInertiaNearShape(const char *function, const Matrix3 &inertia, const Matrix3 &shapeInertia);
 
+/// Smallest principal moment of inertia a shape-derived tensor keeps, as a fraction of its
+/// largest: below it the contact solve of a thin rod or needle gains energy without bound
+/// (docs/hostile_input.md, "Thin bodies").
+inline constexpr real kMinMomentRatio = 1e-3;
+
+/// `inertia` (symmetric, positive definite) with every principal moment raised to at least
+/// kMinMomentRatio times the largest, about the same principal axes; `inertia` itself,
+/// bit for bit, when no moment is below.
+Matrix3 withMomentFloor(const Matrix3 &inertia);
+
 }  // namespace cyclone::detail

@@ -125,7 +125,7 @@ RigidBody makeBody(const char *function, const BodySettings &s, const detail::Co
         return body;
     }
     body.setDamping(s.linearDamping, s.angularDamping);
-    const Matrix3 inertia = s.inertia ? *s.inertia : Matrix3(shape.unitInertia() * s.mass);
+    const Matrix3 inertia = s.inertia ? *s.inertia : withMomentFloor(shape.unitInertia() * s.mass);
     requireSolvableMass(function, s.mass, inertia, shape.boundingRadius());
     if (s.inertia && shape.volume() > 0) requireInertiaNearShape(function, inertia, shape.unitInertia() * s.mass);
     try {

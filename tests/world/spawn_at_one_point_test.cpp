@@ -1,0 +1,59 @@
+// Bodies spawned at one point over a thin static floor (issue 61, row 2): however hard
+// their neighbours push them apart, none is pushed out through the floor.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "world_fixture.h"
+
+namespace cyclone::test {
+namespace {
+
+// A capsule or cylinder of radius 0.2 m and length 0.6 m along z, or a compound of two
+// crossed bars (0.6 x 0.2 x 0.2 m along x, the same along y).
+Shape spawnShape(int kind) {
+    if (kind == 0) return Shape::capsule(0.2, 0.6);
+    if (kind == 1) return Shape::cylinder(0.2, 0.6);
+    CompoundChild across, up;
+    across.shape = Shape::box(Vector3(0.3, 0.1, 0.1));
+    up.shape = Shape::box(Vector3(0.1, 0.3, 0.1));
+    return Shape::compound({across, up});
+}
+
+// `count` bodies of `kind` at one point, their centres 0.5 m above the top face of a
+// static box floor 0.2 m thick and 100 m wide (none is pushed off its edge in 5 s: the
+// pile spreads a few metres). Each body's lowest point is at most 0.3 m below its centre,
+// so a body resting on the floor, or in it by less than its slop, has its centre above
+// the top face, y > 0; a body pushed through the floor falls for ever below it. Before,
+// 100 capsules lost 23, cylinders 17, the crossed bars 13, all in the first step (the
+// landing correction pushed a body by all its neighbours at once).
+std::vector<real> heightsAfterSpawn(int kind, int count) {
+    World world(noSleep());
+    addStatic(world, Shape::box(Vector3(50, 0.1, 50)), Vector3(0, -0.1, 0));
+    std::vector<BodyId> bodies;
+    for (int i = 0; i < count; ++i) {
+        BodySettings s;
+        s.shape = spawnShape(kind);
+        s.position = Vector3(0, 0.5, 0);
+        bodies.push_back(world.addBody(s));
+    }
+    for (int step = 0; step < 300; ++step) world.step(kDt);
+    std::vector<real> heights;
+    for (BodyId id : bodies) heights.push_back(world.body(id).getPosition().y());
+    return heights;
+}
+
+TEST(SpawnAtOnePoint, ThreeCapsulesStayOnAThinBoxFloor) {
+    for (real y : heightsAfterSpawn(0, 3)) EXPECT_GT(y, 0);
+}
+
+TEST(SpawnAtOnePoint, AHundredBodiesStayOnAThinBoxFloor) {
+    for (int kind = 0; kind < 3; ++kind) {
+        int below = 0;
+        for (real y : heightsAfterSpawn(kind, 100)) below += y <= 0;
+        EXPECT_EQ(below, 0) << "kind " << kind;
+    }
+}
+
+}  // namespace
+}  // namespace cyclone::test
