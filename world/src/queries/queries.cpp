@@ -104,6 +104,18 @@ struct RayAllWalk {
     }
 };
 
+// A query's ray, its direction normalised; refused with `function`'s name when the origin
+// is out of range, the direction zero or not finite, or the length not positive.
+detail::Ray checkedRay(const char *function, const Vector3 &origin, const Vector3 &direction, real maxDistance) {
+    detail::requirePlace(function, "origin", origin);
+    detail::requireFinite(function, "direction", direction);
+    const real length = direction.stableNorm();
+    if (!(length > 0)) detail::refuse(function, "direction", "must not be zero, got " + detail::show(direction));
+    if (!(maxDistance > 0))
+        detail::refuse(function, "maxDistance", "must be > 0 (infinity allowed), got " + detail::show(maxDistance));
+    return {origin, direction / length, maxDistance};
+}
+
 template <class Test>
 struct OverlapWalk {
     const fcl::AABBd &box;
@@ -188,17 +200,10 @@ bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter)
 
 std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direction, real maxDistance,
                                      const QueryFilter &filter) const {
-    static const char *function = "World::rayCast";
     const Impl &w = *impl_;
-    detail::requirePlace(function, "origin", origin);
-    detail::requireFinite(function, "direction", direction);
-    const real length = direction.stableNorm();
-    if (!(length > 0)) detail::refuse(function, "direction", "must not be zero, got " + detail::show(direction));
-    if (!(maxDistance > 0))
-        detail::refuse(function, "maxDistance", "must be > 0 (infinity allowed), got " + detail::show(maxDistance));
-
     const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
-    RayWalk<decltype(accepts)> walk{w.bodies, accepts, {origin, direction / length, maxDistance}, false, 0, {}};
+    RayWalk<decltype(accepts)> walk{w.bodies, accepts, checkedRay("World::rayCast", origin, direction, maxDistance),
+                                    false, 0, {}};
     visitTrees(w, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
     if (!walk.found) return std::nullopt;
     RayHit hit;
@@ -212,18 +217,11 @@ std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direc
 
 std::size_t World::rayCastAll(const Vector3 &origin, const Vector3 &direction, std::vector<RayHit> &out,
                               real maxDistance, const QueryFilter &filter) const {
-    static const char *function = "World::rayCastAll";
     const Impl &w = *impl_;
-    detail::requirePlace(function, "origin", origin);
-    detail::requireFinite(function, "direction", direction);
-    const real length = direction.stableNorm();
-    if (!(length > 0)) detail::refuse(function, "direction", "must not be zero, got " + detail::show(direction));
-    if (!(maxDistance > 0))
-        detail::refuse(function, "maxDistance", "must be > 0 (infinity allowed), got " + detail::show(maxDistance));
-
     std::vector<std::pair<detail::RaySurfaceHit, std::uint32_t>> hits;
     const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
-    RayAllWalk<decltype(accepts)> walk{w.bodies, accepts, {origin, direction / length, maxDistance}, hits};
+    RayAllWalk<decltype(accepts)> walk{w.bodies, accepts, checkedRay("World::rayCastAll", origin, direction, maxDistance),
+                                       hits};
     visitTrees(w, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
     std::sort(hits.begin(), hits.end(), [](const auto &x, const auto &y) {
         return x.first.distance != y.first.distance ? x.first.distance < y.first.distance : x.second < y.second;
