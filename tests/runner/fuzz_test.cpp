@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "runner_test_support.h"
+#include "../sanitized_build.h"
 
 namespace {
 
@@ -24,17 +25,7 @@ using namespace cyclone::scene;
 using nlohmann::json;
 
 // Sanitized builds run about ten times slower; they fuzz fewer inputs in the same time.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kScale = 4;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr int kScale = 4;
-#else
-constexpr int kScale = 1;
-#endif
-#else
-constexpr int kScale = 1;
-#endif
+constexpr int kScale = cyclone::test::kSanitized ? 4 : 1;
 
 // The first eight hold the format's first version; the others its second: ball, hinge,
 // slider and distance joints (chain-20, crane, door, ragdoll-stairs; the joint mutation
