@@ -57,6 +57,37 @@ real pairTolerance(const BodyRecord &a, const BodyRecord &b, real slop) {
     return toleranceFor(size, slop);
 }
 
+// Whether the support point bounds the shape: a convex one, or a compound (whose children
+// lie in the hull of their support points).
+bool bounded(const CollisionShape &shape) {
+    switch (shape.shape().type) {
+        case ShapeType::Box:
+        case ShapeType::Sphere:
+        case ShapeType::Capsule:
+        case ShapeType::Cylinder:
+        case ShapeType::Convex:
+        case ShapeType::Compound: return true;
+        default: return false;
+    }
+}
+
+// Whether the pair's shapes, both bounded, overlap by at most `depth` along an axis: its
+// normal at the step's start (turned with A), or the line between the bodies for a pair
+// that did not touch. No contact point between them can then be deeper than `depth`: two
+// convex shapes' penetration is at most their overlap along any axis (the support points
+// give it), and a compound's children lie within its hull.
+bool overlapWithin(const PairState &pair, const BodyRecord &a, const Matrix4 &poseA, const BodyRecord &b,
+                   const Matrix4 &poseB, real depth) {
+    if (!bounded(*a.shape) || !bounded(*b.shape)) return false;
+    Vector3 axis = pair.touching() ? Vector3(poseA.linear() * pair.manifolds[0].localNormal)
+                                   : Vector3(poseB.translation() - poseA.translation());
+    const real length = axis.norm();
+    if (!(length > 0)) return false;
+    axis /= length;
+    const real overlap = axis.dot(a.shape->supportPoint(poseA, axis, -1)) - axis.dot(b.shape->supportPoint(poseB, -axis, -1));
+    return overlap <= depth;
+}
+
 }  // namespace
 
 // Whether the passes may move the body: awake and moved fast by this step, and, in a
@@ -343,6 +374,26 @@ bool LandingCorrection::appendPoints(const std::vector<Manifold> &out, std::size
     return deep;
 }
 
+// The points of the pair's manifolds from the step's start, held by their anchors: a pair
+// the passes need not test gives them so that no push drives a body into the other.
+void LandingCorrection::appendAnchored(const PairState &pair, const Matrix4 &poseA, const Matrix4 &poseB,
+                                       real tolerance, const Vector3 &up, std::vector<Point> &found) {
+    for (const ManifoldState &m : pair.manifolds) {
+        for (int i = 0; i < m.count; ++i) {
+            const PersistentPoint &p = m.points[i];
+            Point point;
+            point.a = pair.a;
+            point.b = pair.b;
+            point.localA = p.localA;
+            point.localB = p.localB;
+            point.localNormal = m.localNormal;
+            point.target = 0.5 * tolerance;
+            point.height = up.dot(0.5 * (poseA * p.localA + poseB * p.localB));
+            found.push_back(point);
+        }
+    }
+}
+
 bool LandingCorrection::detect(WorldState &world) {
     const BodyStore &bodies = world.bodies;
     const PairCache &pairs = world.contacts.pairs;
@@ -378,11 +429,17 @@ bool LandingCorrection::detect(WorldState &world) {
             const BodyRecord &b = bodies[pair.b];
             const Matrix4 poseA = a.body.getTransform();
             const Matrix4 poseB = b.body.getTransform();
+            const real tolerance = pairTolerance(a, b, slop);
+            // A pair that overlaps by no more than the passes' target has no point to push:
+            // it is not tested again, and its start points stand guard.
+            if (overlapWithin(pair, a, poseA, b, poseB, 0.5 * tolerance)) {
+                appendAnchored(pair, poseA, poseB, tolerance, up, found);
+                continue;
+            }
             const std::size_t first = out.size();
             NormalMemo memo;
             collide(*a.shape, poseA, *b.shape, poseB, narrowphase, out, &memo);
             if (memo.a) memos.push_back({static_cast<std::uint32_t>(k), memo.touching, memo.normal});
-            const real tolerance = pairTolerance(a, b, slop);
             deep = appendPoints(out, first, pair, poseA, poseB, tolerance, up, found) || deep;
         }
         chunkDeep_[chunk] = deep ? 1 : 0;

@@ -29,6 +29,11 @@
 // distance joint's length depend only on the members' relative poses): a fast member
 // makes the whole group fast, so that every member's pairs are tested, and a group joined
 // to the world or to a body that may not move does not move.
+// A pair of convex shapes (or compounds) that overlaps along one axis (its normal at the
+// step's start, else the line between the bodies) by no more than the passes' target has
+// no point to push: two support points say so, and only the other pairs go through the
+// narrowphase (in a landing pile of 1,000 bodies, 7 % of the pairs listed). The points of
+// such a pair's start manifolds, held by their anchors, stand guard in the passes.
 // The points of every manifold found are kept, the shallow ones too, and shapes a hair
 // apart give points (WorldSettings::speculativeDistance, for the pairs with a test of
 // their own), so that a push does not drive a body into a neighbour the round tested;
@@ -81,6 +86,8 @@ private:
     static bool appendPoints(const std::vector<Manifold> &out, std::size_t first, const PairState &pair,
                              const Matrix4 &poseA, const Matrix4 &poseB, real tolerance, const Vector3 &up,
                              std::vector<Point> &found);
+    static void appendAnchored(const PairState &pair, const Matrix4 &poseA, const Matrix4 &poseB, real tolerance,
+                               const Vector3 &up, std::vector<Point> &found);
     /// Tests the pairs in pairs_ at the bodies' poses now and appends their manifolds'
     /// points; returns whether one of them is deeper than its pair's tolerance.
     bool detect(WorldState &world);
