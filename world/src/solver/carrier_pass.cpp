@@ -43,6 +43,116 @@ RunLanes laneRuns(const std::vector<SolverManifold> &manifolds, const CarrierRun
     return lanes;
 }
 
+// One contact slot of each lane, as its carried body takes it: the manifolds, their
+// carriers, and which side of each row is the carried body's.
+struct CarriedLanes {
+    const SolverManifold *m[kWideLanes];
+    Lanes sign;  // +1 where the carried body is B, -1 where it is A
+    Lanes SolverRow::*rxd[kWideLanes];  // the carried body's terms of a row
+    Lanes SolverRow::*ang[kWideLanes];
+    Lanes SolverRow::*carrierRxd[kWideLanes];  // the carrier's
+    WideVector carrierV, carrierW;               // the carriers' velocities
+
+    CYCLONE_INLINE CarriedLanes(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+                                const CarrierRuns &runs, const RunLanes &lanes, int slot) {
+        static const SolverManifold none{};
+        const SolverBody *carrier[kWideLanes];
+        for (int k = 0; k < kWideLanes; ++k) {
+            const bool has = k < lanes.count && slot < lanes.size[k];
+            m[k] = has ? &manifolds[runs.manifolds[lanes.first[k] + slot]] : &none;
+            const bool b = carriesB(*m[k]);
+            carrier[k] = &bodies[b ? m[k]->a : m[k]->b];
+            sign[k] = b ? 1 : -1;
+            rxd[k] = b ? &SolverRow::rBxd : &SolverRow::rAxd;
+            ang[k] = b ? &SolverRow::angB : &SolverRow::angA;
+            carrierRxd[k] = b ? &SolverRow::rAxd : &SolverRow::rBxd;
+        }
+        transposeIn(carrier[0]->v, carrier[1]->v, carrier[2]->v, carrier[3]->v, carrierV);
+        transposeIn(carrier[0]->w, carrier[1]->w, carrier[2]->w, carrier[3]->w, carrierW);
+    }
+
+    // A vector of each lane, signed as the carried body takes it.
+    template <typename Field>
+    CYCLONE_INLINE void vectors(Field field, WideVector &out) const {
+        transposeIn(field(0), field(1), field(2), field(3), out);
+        out.x *= sign, out.y *= sign, out.z *= sign;
+    }
+    template <typename Field>
+    static CYCLONE_INLINE void lanesOf(Field field, Lanes &out) {
+        out = Lanes{field(0), field(1), field(2), field(3)};
+    }
+    // A row as the carried body takes it, and the carrier's share of its relative velocity
+    // along d (`direction`, already negated where the carried body is A): minus the
+    // carrier's own terms where the carried body is B. The carrier's lever terms are
+    // negated with d, so the share is -(d . v + (r x d) . w) of the signed terms in every
+    // lane: the sign times that of the unsigned terms, exactly (exactDot).
+    template <typename Row>
+    CYCLONE_INLINE void loadRow(Row row, const WideVector &direction, WideCarriedRow &out, Lanes &share) const {
+        vectors([&](int k) -> const Lanes & { return row(k).*rxd[k]; }, out.rxd);
+        vectors([&](int k) -> const Lanes & { return row(k).*ang[k]; }, out.ang);
+        WideVector lever;
+        vectors([&](int k) -> const Lanes & { return row(k).*carrierRxd[k]; }, lever);
+        Lanes linear, angular;
+        exactDot(direction, carrierV, linear);
+        exactDot(lever, carrierW, angular);
+        share = -(linear + angular);
+    }
+};
+
+// The normal rows of the lanes' points into c: lane point i is the i-th in the
+// manifold's solve order. With `patchCentre`, every point's carrier share along the
+// normal is that of the patch's centre (loadContact).
+CYCLONE_INLINE void loadPoints(const CarriedLanes &l, const CouplingOrder *order, bool patchCentre,
+                               WideCarriedContact &c) {
+    static const SolverPoint zeroPoint{};
+    Lanes entry[kWideLanes];
+    for (int i = 0; i < kMaxManifoldPoints; ++i) {
+        const SolverPoint *p[kWideLanes];
+        for (int k = 0; k < kWideLanes; ++k) p[k] = i < l.m[k]->count ? &l.m[k]->points[l.m[k]->order[i]] : &zeroPoint;
+        const auto row = [&](int k) -> const SolverRow & { return p[k]->normal; };
+        l.loadRow(row, c.normal, c.points[i], c.carrier[i]);
+        l.lanesOf([&](int k) { return row(k).carriedMass; }, c.mass[i]);
+        l.lanesOf([&](int k) { return row(k).impulse; }, c.impulse[i]);
+        l.lanesOf([&](int k) { return p[k]->velocityBias; }, c.bias[i]);
+        for (int k = 0; k < kWideLanes; ++k) order[k].normal(l.m[k]->carriedCouplings, i, entry[k]);
+        transpose(entry[0], entry[1], entry[2], entry[3], c.normalCoupling[i]);
+    }
+    if (!patchCentre) return;
+    for (int k = 0; k < kWideLanes; ++k) {
+        const int count = l.m[k]->count;
+        if (count == 0) continue;
+        real sum = 0;
+        for (int i = 0; i < count; ++i) sum += c.carrier[i][k];
+        for (int i = 0; i < count; ++i) c.carrier[i][k] = sum / count;
+    }
+}
+
+// The friction rows, the twist row and the patch's friction terms of the lanes into c.
+CYCLONE_INLINE void loadFriction(const CarriedLanes &l, const CouplingOrder *order, WideCarriedContact &c) {
+    for (int r = 0; r < 2; ++r) {
+        const auto row = [&](int k) -> const SolverRow & { return l.m[k]->frictionRow[r]; };
+        l.loadRow(row, c.tangent[r], c.friction[r], c.frictionCarrier[r]);
+        l.lanesOf([&](int k) { return row(k).impulse; }, c.frictionImpulse[r]);
+        // The relative velocity is B's less A's in every lane (loadRow): its target too.
+        Lanes target;
+        l.lanesOf([&](int k) { return row(k).target; }, target);
+        c.frictionCarrier[r] -= target;
+    }
+    // The twist row's lever terms are the normal itself, on either side.
+    l.vectors([&](int k) -> const Lanes & { return l.m[k]->twist.*l.ang[k]; }, c.twist);
+    exactDot(c.normal, l.carrierW, c.frictionCarrier[2]);
+    c.frictionCarrier[2] = -c.frictionCarrier[2];
+    l.lanesOf([&](int k) { return l.m[k]->twist.impulse; }, c.twistImpulse);
+    Lanes entry[kWideLanes];
+    for (int r = 0; r < 3; ++r) {
+        for (int k = 0; k < kWideLanes; ++k) order[k].friction(l.m[k]->carriedCouplings, r, entry[k]);
+        transpose(entry[0], entry[1], entry[2], entry[3], c.frictionCoupling[r]);
+    }
+    for (int e = 0; e < 6; ++e) l.lanesOf([&](int k) { return l.m[k]->carriedFrictionInverse[e]; }, c.frictionInverse[e]);
+    l.lanesOf([&](int k) { return l.m[k]->friction; }, c.coefficient);
+    l.lanesOf([&](int k) { return l.m[k]->twistRadius; }, c.twistRadius);
+}
+
 // Copies each lane's contact `slot` into c, as its carried body takes it. With
 // `patchCentre`, every point's carrier share along the normal is that of the patch's
 // centre (the mean of the points'): the carrier taken as moving with its patch, its turn
@@ -54,97 +164,13 @@ RunLanes laneRuns(const std::vector<SolverManifold> &manifolds, const CarrierRun
 CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
                                 const CarrierRuns &runs, const RunLanes &lanes, int slot, bool patchCentre,
                                 WideCarriedContact &c) {
-    static const SolverManifold none{};
-    static const SolverPoint zeroPoint{};
-    const SolverManifold *m[kWideLanes];
-    const SolverBody *carrier[kWideLanes];
-    Lanes sign;  // +1 where the carried body is B, -1 where it is A
-    Lanes SolverRow::*rxd[kWideLanes];  // the carried body's terms of a row
-    Lanes SolverRow::*ang[kWideLanes];
-    Lanes SolverRow::*carrierRxd[kWideLanes];  // the carrier's
-    for (int k = 0; k < kWideLanes; ++k) {
-        const bool has = k < lanes.count && slot < lanes.size[k];
-        m[k] = has ? &manifolds[runs.manifolds[lanes.first[k] + slot]] : &none;
-        const bool b = carriesB(*m[k]);
-        carrier[k] = &bodies[b ? m[k]->a : m[k]->b];
-        sign[k] = b ? 1 : -1;
-        rxd[k] = b ? &SolverRow::rBxd : &SolverRow::rAxd;
-        ang[k] = b ? &SolverRow::angB : &SolverRow::angA;
-        carrierRxd[k] = b ? &SolverRow::rAxd : &SolverRow::rBxd;
-    }
-    WideVector carrierV, carrierW;
-    transposeIn(carrier[0]->v, carrier[1]->v, carrier[2]->v, carrier[3]->v, carrierV);
-    transposeIn(carrier[0]->w, carrier[1]->w, carrier[2]->w, carrier[3]->w, carrierW);
-    const auto vectors = [&](auto field, WideVector &out) __attribute__((always_inline)) {
-        transposeIn(field(0), field(1), field(2), field(3), out);
-        out.x *= sign, out.y *= sign, out.z *= sign;
-    };
-    const auto lanesOf = [&](auto field, Lanes &out) __attribute__((always_inline)) {
-        out = Lanes{field(0), field(1), field(2), field(3)};
-    };
-    // A row as the carried body takes it, and the carrier's share of its relative velocity
-    // along d (`direction`, already negated where the carried body is A): minus the
-    // carrier's own terms where the carried body is B. The carrier's lever terms are
-    // negated with d, so the share is -(d . v + (r x d) . w) of the signed terms in every
-    // lane: the sign times that of the unsigned terms, exactly (exactDot).
-    const auto loadRow = [&](auto row, const WideVector &direction, WideCarriedRow &out, Lanes &share)
-                             __attribute__((always_inline)) {
-        vectors([&](int k) -> const Lanes & { return row(k).*rxd[k]; }, out.rxd);
-        vectors([&](int k) -> const Lanes & { return row(k).*ang[k]; }, out.ang);
-        WideVector lever;
-        vectors([&](int k) -> const Lanes & { return row(k).*carrierRxd[k]; }, lever);
-        Lanes linear, angular;
-        exactDot(direction, carrierV, linear);
-        exactDot(lever, carrierW, angular);
-        share = -(linear + angular);
-    };
+    const CarriedLanes l(bodies, manifolds, runs, lanes, slot);
     for (int d = 0; d < 3; ++d)
-        vectors([&](int k) -> const Lanes & { return m[k]->direction[d]; }, d == 0 ? c.normal : c.tangent[d - 1]);
-    // Lane point i is the i-th in the manifold's solve order.
-    const CouplingOrder order[kWideLanes] = {CouplingOrder(*m[0]), CouplingOrder(*m[1]), CouplingOrder(*m[2]),
-                                             CouplingOrder(*m[3])};
-    Lanes entry[kWideLanes];
-    for (int i = 0; i < kMaxManifoldPoints; ++i) {
-        const SolverPoint *p[kWideLanes];
-        for (int k = 0; k < kWideLanes; ++k) p[k] = i < m[k]->count ? &m[k]->points[m[k]->order[i]] : &zeroPoint;
-        const auto row = [&](int k) -> const SolverRow & { return p[k]->normal; };
-        loadRow(row, c.normal, c.points[i], c.carrier[i]);
-        lanesOf([&](int k) { return row(k).carriedMass; }, c.mass[i]);
-        lanesOf([&](int k) { return row(k).impulse; }, c.impulse[i]);
-        lanesOf([&](int k) { return p[k]->velocityBias; }, c.bias[i]);
-        for (int k = 0; k < kWideLanes; ++k) order[k].normal(m[k]->carriedCouplings, i, entry[k]);
-        transpose(entry[0], entry[1], entry[2], entry[3], c.normalCoupling[i]);
-    }
-    if (patchCentre) {
-        for (int k = 0; k < kWideLanes; ++k) {
-            const int count = m[k]->count;
-            if (count == 0) continue;
-            real sum = 0;
-            for (int i = 0; i < count; ++i) sum += c.carrier[i][k];
-            for (int i = 0; i < count; ++i) c.carrier[i][k] = sum / count;
-        }
-    }
-    for (int r = 0; r < 2; ++r) {
-        const auto row = [&](int k) -> const SolverRow & { return m[k]->frictionRow[r]; };
-        loadRow(row, c.tangent[r], c.friction[r], c.frictionCarrier[r]);
-        lanesOf([&](int k) { return row(k).impulse; }, c.frictionImpulse[r]);
-        // The relative velocity is B's less A's in every lane (loadRow): its target too.
-        Lanes target;
-        lanesOf([&](int k) { return row(k).target; }, target);
-        c.frictionCarrier[r] -= target;
-    }
-    // The twist row's lever terms are the normal itself, on either side.
-    vectors([&](int k) -> const Lanes & { return m[k]->twist.*ang[k]; }, c.twist);
-    exactDot(c.normal, carrierW, c.frictionCarrier[2]);
-    c.frictionCarrier[2] = -c.frictionCarrier[2];
-    lanesOf([&](int k) { return m[k]->twist.impulse; }, c.twistImpulse);
-    for (int r = 0; r < 3; ++r) {
-        for (int k = 0; k < kWideLanes; ++k) order[k].friction(m[k]->carriedCouplings, r, entry[k]);
-        transpose(entry[0], entry[1], entry[2], entry[3], c.frictionCoupling[r]);
-    }
-    for (int e = 0; e < 6; ++e) lanesOf([&](int k) { return m[k]->carriedFrictionInverse[e]; }, c.frictionInverse[e]);
-    lanesOf([&](int k) { return m[k]->friction; }, c.coefficient);
-    lanesOf([&](int k) { return m[k]->twistRadius; }, c.twistRadius);
+        l.vectors([&](int k) -> const Lanes & { return l.m[k]->direction[d]; }, d == 0 ? c.normal : c.tangent[d - 1]);
+    const CouplingOrder order[kWideLanes] = {CouplingOrder(*l.m[0]), CouplingOrder(*l.m[1]), CouplingOrder(*l.m[2]),
+                                             CouplingOrder(*l.m[3])};
+    loadPoints(l, order, patchCentre, c);
+    loadFriction(l, order, c);
 }
 
 // Writes back the accumulated impulses of each lane's contact `slot` where the carrier is
