@@ -123,6 +123,74 @@ int cylinderContact(const Pair &pair, real reach, std::vector<Manifold> &out) {
     return roundPairManifold(pair, normal, out);
 }
 
+// A plane against a solid shape: a solid shape's support point is exact, so it touches
+// the half-space when that point lies on or below the surface (as in FCL). A mesh needs
+// FCL's triangles (-1); a heightfield never meets a plane (both static).
+int planePairContact(const Pair &pair, bool planeIsA, real reach, std::vector<Manifold> &out) {
+    const CollisionShape &plane = planeIsA ? pair.a : pair.b;
+    const Matrix4 &planePose = planeIsA ? pair.poseA : pair.poseB;
+    const CollisionShape &other = planeIsA ? pair.b : pair.a;
+    if (other.hasTriangles()) return other.shape().type == ShapeType::Heightfield ? 0 : -1;
+    const Vector3 up = planePose.linear() * plane.planeNormal();
+    const real level = up.dot(planePose.translation()) + plane.planeOffset();
+    const Vector3 deepest = other.supportPoint(planeIsA ? pair.poseB : pair.poseA, -up, -1);
+    if (!(level - deepest.dot(up) >= -reach)) return 0;
+    return planeContact(pair, planeIsA, out);
+}
+
+// A sphere against a sphere, a box or a capsule (-1 for other shapes).
+int spherePairContact(const Pair &pair, bool sphereIsA, real reach, std::vector<Manifold> &out) {
+    const CollisionShape &sphere = sphereIsA ? pair.a : pair.b;
+    const CollisionShape &other = sphereIsA ? pair.b : pair.a;
+    const Vector3 centre = (sphereIsA ? pair.poseA : pair.poseB).translation();
+    const Matrix4 &otherPose = sphereIsA ? pair.poseB : pair.poseA;
+    Manifold manifold;
+    bool hit = false;
+    if (other.shape().type == ShapeType::Sphere)
+        hit = sphereSphere(sphere.shape().radius, centre, other.shape().radius, otherPose.translation(), manifold,
+                           reach);
+    else if (other.shape().type == ShapeType::Box)
+        hit = sphereBox(sphere.shape().radius, centre, other.shape().halfExtents, otherPose, manifold, reach);
+    else if (other.shape().type == ShapeType::Capsule) {
+        const AxisCore core = axisCore(other, otherPose);
+        hit = sphereCapsule(sphere.shape().radius, centre, core.radius, core.end0, core.end1, manifold, reach);
+    } else
+        return -1;
+    if (!hit) return 0;
+    if (!sphereIsA) {
+        // Computed with the sphere as A: turned into (a, b)'s order.
+        manifold.normal = -manifold.normal;
+        std::swap(manifold.points[0].pointA, manifold.points[0].pointB);
+    }
+    out.push_back(manifold);
+    return 1;
+}
+
+// A capsule against a capsule or a box (-1 for other shapes): the normal from the
+// closest features, the points clipped along it.
+int capsulePairContact(const Pair &pair, bool capsuleIsA, real reach, std::vector<Manifold> &out) {
+    const CollisionShape &capsule = capsuleIsA ? pair.a : pair.b;
+    const CollisionShape &other = capsuleIsA ? pair.b : pair.a;
+    const Matrix4 &otherPose = capsuleIsA ? pair.poseB : pair.poseA;
+    const AxisCore core = axisCore(capsule, capsuleIsA ? pair.poseA : pair.poseB);
+    // Found from the capsule (or A's capsule) to the other shape.
+    Vector3 normal;
+    real depth = 0;
+    bool hit = false;
+    if (other.shape().type == ShapeType::Capsule) {
+        const AxisCore otherCore = axisCore(other, otherPose);
+        hit = capsuleCapsuleNormal(core.radius, core.end0, core.end1, otherCore.radius, otherCore.end0, otherCore.end1,
+                                   normal, depth, reach);
+    } else if (other.shape().type == ShapeType::Box) {
+        hit = capsuleBoxNormal(core.radius, core.end0, core.end1, other.shape().halfExtents, otherPose, normal, depth,
+                               reach);
+    } else {
+        return -1;
+    }
+    if (!hit) return 0;
+    return clipAlong(pair, capsuleIsA ? normal : Vector3(-normal), out);
+}
+
 // The pairs with a test of their own, which FCL would only have told touch: the
 // manifolds they append are the ones the FCL path builds (the same normal, by least
 // overlap, and the same clipping). Returns the number appended, or -1 for a pair that
@@ -133,20 +201,8 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
     const ShapeType typeB = b.shape().type;
     const real reach = std::max(settings.reach, settings.touchMargin);
     const Pair pair{a, poseA, -1, b, poseB, -1, std::max(settings.speculativeDistance, reach), settings.reach};
-    if (typeA == ShapeType::Plane || typeB == ShapeType::Plane) {
-        // A solid shape's support point is exact: it touches the half-space when that
-        // point lies on or below the surface (as in FCL). A mesh needs FCL's triangles.
-        const bool planeIsA = typeA == ShapeType::Plane;
-        const CollisionShape &plane = planeIsA ? a : b;
-        const Matrix4 &planePose = planeIsA ? poseA : poseB;
-        const CollisionShape &other = planeIsA ? b : a;
-        if (other.hasTriangles()) return other.shape().type == ShapeType::Heightfield ? 0 : -1;
-        const Vector3 up = planePose.linear() * plane.planeNormal();
-        const real level = up.dot(planePose.translation()) + plane.planeOffset();
-        const Vector3 deepest = other.supportPoint(planeIsA ? poseB : poseA, -up, -1);
-        if (!(level - deepest.dot(up) >= -reach)) return 0;
-        return planeContact(pair, planeIsA, out);
-    }
+    if (typeA == ShapeType::Plane || typeB == ShapeType::Plane)
+        return planePairContact(pair, typeA == ShapeType::Plane, reach, out);
     if (typeA == ShapeType::Box && typeB == ShapeType::Box) {
         Vector3 normal;
         real overlap = 0;
@@ -154,58 +210,12 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
             return 0;
         return clipAlong(pair, normal, out);
     }
-    if (typeA == ShapeType::Sphere || typeB == ShapeType::Sphere) {
-        const bool sphereIsA = typeA == ShapeType::Sphere;
-        const CollisionShape &sphere = sphereIsA ? a : b;
-        const CollisionShape &other = sphereIsA ? b : a;
-        const Vector3 centre = (sphereIsA ? poseA : poseB).translation();
-        const Matrix4 &otherPose = sphereIsA ? poseB : poseA;
-        Manifold manifold;
-        bool hit = false;
-        if (other.shape().type == ShapeType::Sphere)
-            hit = sphereSphere(sphere.shape().radius, centre, other.shape().radius, otherPose.translation(), manifold,
-                               reach);
-        else if (other.shape().type == ShapeType::Box)
-            hit = sphereBox(sphere.shape().radius, centre, other.shape().halfExtents, otherPose, manifold, reach);
-        else if (other.shape().type == ShapeType::Capsule) {
-            const AxisCore core = axisCore(other, otherPose);
-            hit = sphereCapsule(sphere.shape().radius, centre, core.radius, core.end0, core.end1, manifold, reach);
-        } else
-            return -1;
-        if (!hit) return 0;
-        if (!sphereIsA) {
-            // Computed with the sphere as A: turned into (a, b)'s order.
-            manifold.normal = -manifold.normal;
-            std::swap(manifold.points[0].pointA, manifold.points[0].pointB);
-        }
-        out.push_back(manifold);
-        return 1;
-    }
+    if (typeA == ShapeType::Sphere || typeB == ShapeType::Sphere)
+        return spherePairContact(pair, typeA == ShapeType::Sphere, reach, out);
     if (typeA == ShapeType::Cylinder || typeB == ShapeType::Cylinder)
         return cylinderRoundPair(typeA, typeB) ? cylinderContact(pair, reach, out) : -1;
-    if (typeA == ShapeType::Capsule || typeB == ShapeType::Capsule) {
-        const bool capsuleIsA = typeA == ShapeType::Capsule;
-        const CollisionShape &capsule = capsuleIsA ? a : b;
-        const CollisionShape &other = capsuleIsA ? b : a;
-        const Matrix4 &otherPose = capsuleIsA ? poseB : poseA;
-        const AxisCore core = axisCore(capsule, capsuleIsA ? poseA : poseB);
-        // Found from the capsule (or A's capsule) to the other shape.
-        Vector3 normal;
-        real depth = 0;
-        bool hit = false;
-        if (other.shape().type == ShapeType::Capsule) {
-            const AxisCore otherCore = axisCore(other, otherPose);
-            hit = capsuleCapsuleNormal(core.radius, core.end0, core.end1, otherCore.radius, otherCore.end0,
-                                       otherCore.end1, normal, depth, reach);
-        } else if (other.shape().type == ShapeType::Box) {
-            hit = capsuleBoxNormal(core.radius, core.end0, core.end1, other.shape().halfExtents, otherPose, normal,
-                                   depth, reach);
-        } else {
-            return -1;
-        }
-        if (!hit) return 0;
-        return clipAlong(pair, capsuleIsA ? normal : Vector3(-normal), out);
-    }
+    if (typeA == ShapeType::Capsule || typeB == ShapeType::Capsule)
+        return capsulePairContact(pair, typeA == ShapeType::Capsule, reach, out);
     return -1;
 }
 
