@@ -67,6 +67,59 @@ void arc(Draw &draw, const Vector3 &centre, const Vector3 &u, const Vector3 &v, 
     }
 }
 
+// A capsule (two circles, four side lines and its end caps' half circles) or a
+// cylinder (two circles and four side lines), along local z.
+void drawRound(CheckedDraw &draw, const Shape &s, const Matrix4 &pose, int segments, const DebugColor &color) {
+    const Matrix3 rotation = pose.linear();
+    const Vector3 x = rotation.col(0);
+    const Vector3 y = rotation.col(1);
+    const Vector3 z = rotation.col(2);
+    const Vector3 top = pose.translation() + z * (s.length / 2);
+    const Vector3 bottom = pose.translation() - z * (s.length / 2);
+    draw.circle(top, z, s.radius, segments, color);
+    draw.circle(bottom, z, s.radius, segments, color);
+    if (s.type == ShapeType::Cylinder) {
+        for (const Vector3 &side : {x, y, Vector3(-x), Vector3(-y)})
+            draw.line(top + s.radius * side, bottom + s.radius * side, color);
+        return;
+    }
+    for (const Vector3 &side : {x, y}) {
+        draw.line(top + s.radius * side, bottom + s.radius * side, color);
+        draw.line(top - s.radius * side, bottom - s.radius * side, color);
+        // The end caps: half circles over the ends, in the planes of x and y.
+        arc(draw, top, side, z, s.radius, 0, kPi, segments / 2, color);
+        arc(draw, bottom, side, z, s.radius, kPi, 2 * kPi, segments / 2, color);
+    }
+}
+
+// Each sample's lines to its next neighbours along x and z and along the diagonal of the
+// cell it opens: every edge of every triangle once.
+void drawHeightfield(CheckedDraw &draw, const Shape &s, const Matrix4 &pose, const DebugColor &color) {
+    const detail::HeightfieldGrid grid(s);
+    for (int i = 0; i < grid.rows; ++i)
+        for (int j = 0; j < grid.columns; ++j) {
+            const Vector3 p = pose * grid.sample(i, j);
+            if (j + 1 < grid.columns) draw.line(p, pose * grid.sample(i, j + 1), color);
+            if (i + 1 < grid.rows) draw.line(p, pose * grid.sample(i + 1, j), color);
+            if (i + 1 < grid.rows && j + 1 < grid.columns) draw.line(p, pose * grid.sample(i + 1, j + 1), color);
+        }
+}
+
+// A square around the plane's point nearest the world origin, its diagonals, and its normal.
+void drawPlane(CheckedDraw &draw, const detail::CollisionShape &shape, const Matrix4 &pose,
+               const DebugDrawOptions &options, const DebugColor &color) {
+    const Vector3 normal = pose.linear() * shape.planeNormal();
+    const Vector3 onPlane = pose.translation() + shape.planeOffset() * normal;
+    const Vector3 centre = onPlane - normal.dot(onPlane) * normal;
+    const Vector3 u = normal.unitOrthogonal() * options.planeHalfSize;
+    const Vector3 w = normal.cross(u);
+    const Vector3 corners[4] = {centre - u - w, centre + u - w, centre + u + w, centre - u + w};
+    for (int i = 0; i < 4; ++i) draw.line(corners[i], corners[(i + 1) % 4], color);
+    draw.line(corners[0], corners[2], color);
+    draw.line(corners[1], corners[3], color);
+    draw.line(centre, centre + options.normalLength * normal, color);
+}
+
 void drawShape(CheckedDraw &draw, const detail::CollisionShape &shape, const Matrix4 &pose,
                const DebugDrawOptions &options, const DebugColor &color) {
     const Shape &s = shape.shape();
@@ -87,29 +140,8 @@ void drawShape(CheckedDraw &draw, const detail::CollisionShape &shape, const Mat
             draw.circle(origin, y, s.radius, segments, color);
             draw.circle(origin, z, s.radius, segments, color);
             break;
-        case ShapeType::Capsule: {
-            const Vector3 top = origin + z * (s.length / 2);
-            const Vector3 bottom = origin - z * (s.length / 2);
-            draw.circle(top, z, s.radius, segments, color);
-            draw.circle(bottom, z, s.radius, segments, color);
-            for (const Vector3 &side : {x, y}) {
-                draw.line(top + s.radius * side, bottom + s.radius * side, color);
-                draw.line(top - s.radius * side, bottom - s.radius * side, color);
-                // The end caps: half circles over the ends, in the planes of x and y.
-                arc(draw, top, side, z, s.radius, 0, kPi, segments / 2, color);
-                arc(draw, bottom, side, z, s.radius, kPi, 2 * kPi, segments / 2, color);
-            }
-            break;
-        }
-        case ShapeType::Cylinder: {
-            const Vector3 top = origin + z * (s.length / 2);
-            const Vector3 bottom = origin - z * (s.length / 2);
-            draw.circle(top, z, s.radius, segments, color);
-            draw.circle(bottom, z, s.radius, segments, color);
-            for (const Vector3 &side : {x, y, Vector3(-x), Vector3(-y)})
-                draw.line(top + s.radius * side, bottom + s.radius * side, color);
-            break;
-        }
+        case ShapeType::Capsule:
+        case ShapeType::Cylinder: drawRound(draw, s, pose, segments, color); break;
         case ShapeType::Convex: {
             // Hull faces run counter-clockwise, so each edge appears once in each
             // direction: drawing it from its smaller vertex draws it once.
@@ -128,33 +160,8 @@ void drawShape(CheckedDraw &draw, const detail::CollisionShape &shape, const Mat
                 for (int i = 0; i < 3; ++i) draw.line(pose * v[t[i]], pose * v[t[(i + 1) % 3]], color);
             break;
         }
-        case ShapeType::Heightfield: {
-            // Each sample's lines to its next neighbours along x and z and along the
-            // diagonal of the cell it opens: every edge of every triangle once.
-            const detail::HeightfieldGrid grid(s);
-            for (int i = 0; i < grid.rows; ++i)
-                for (int j = 0; j < grid.columns; ++j) {
-                    const Vector3 p = pose * grid.sample(i, j);
-                    if (j + 1 < grid.columns) draw.line(p, pose * grid.sample(i, j + 1), color);
-                    if (i + 1 < grid.rows) draw.line(p, pose * grid.sample(i + 1, j), color);
-                    if (i + 1 < grid.rows && j + 1 < grid.columns) draw.line(p, pose * grid.sample(i + 1, j + 1), color);
-                }
-            break;
-        }
-        case ShapeType::Plane: {
-            // A square around the plane's point nearest the world origin, and its normal.
-            const Vector3 normal = rotation * shape.planeNormal();
-            const Vector3 onPlane = origin + shape.planeOffset() * normal;
-            const Vector3 centre = onPlane - normal.dot(onPlane) * normal;
-            const Vector3 u = normal.unitOrthogonal() * options.planeHalfSize;
-            const Vector3 w = normal.cross(u);
-            const Vector3 corners[4] = {centre - u - w, centre + u - w, centre + u + w, centre - u + w};
-            for (int i = 0; i < 4; ++i) draw.line(corners[i], corners[(i + 1) % 4], color);
-            draw.line(corners[0], corners[2], color);
-            draw.line(corners[1], corners[3], color);
-            draw.line(centre, centre + options.normalLength * normal, color);
-            break;
-        }
+        case ShapeType::Heightfield: drawHeightfield(draw, s, pose, color); break;
+        case ShapeType::Plane: drawPlane(draw, shape, pose, options, color); break;
     }
 }
 
