@@ -281,32 +281,11 @@ void clipContact(const MeshPair &m, const MeshContact &c, const Vector3 &normal,
     }
 }
 
-}  // namespace
-
-int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
-                 real speculative, real reach, const RawContact *raw, int rawCount, std::vector<Manifold> &out) {
-    const MeshPair m(a, poseA, b, poseB, reach);
-    const int triangles = m.mesh.triangleCount();
-    const real keep = std::max(speculative, reach);
-
-    MeshContact contacts[kMaxMeshContacts];
-    int count = 0;
-    int reported[kMaxFclContacts];
-    int reportedCount = 0;
-    for (int i = 0; i < rawCount && i < kMaxFclContacts; ++i) {
-        const int triangle = m.meshIsB ? raw[i].triangleB : raw[i].triangleA;
-        if (triangle < 0 || triangle >= triangles) continue;
-        reported[reportedCount++] = triangle;
-        addTouchingTriangle(m, triangle, raw[i].normal, keep, contacts, count);
-    }
-    if (m.mesh.shape().type == ShapeType::Heightfield) {
-        addHeightfieldTriangles(m, reach, keep, contacts, count);
-    } else if (reach > 0) {
-        addTrianglesWithinReach(m, reach, keep, reported, reportedCount, contacts, count);
-    }
-
-    // Face contacts first, then those of inner features, then the rest deepest first, as
-    // Jolt orders them.
+// Drops the contacts of edges and vertices that face contacts (or the features kept
+// before them) already hold: with face contacts first, then those of inner features,
+// then the rest deepest first, as Jolt orders them, a feature touching the other shape
+// (the triangle's vertices furthest towards it) adds nothing once its vertices are claimed.
+void dropClaimedFeatures(const MeshPair &m, MeshContact *contacts, int count) {
     const auto rank = [](const MeshContact &c) { return c.face ? (c.inner ? 1 : 0) : 2; };
     std::sort(contacts, contacts + count, [&](const MeshContact &x, const MeshContact &y) {
         return rank(x) != rank(y) ? rank(x) < rank(y) : x.depth > y.depth;
@@ -320,8 +299,6 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
         int t[3];
         m.mesh.triangle(c.triangle, v, t);
         if (!c.face || c.inner) {
-            // The triangle's feature touching the other shape: its vertices furthest
-            // towards that shape. Once face contacts hold them all it adds nothing.
             const Vector3 &n = c.featureNormal;
             const Vector3 towards = m.meshPose.linear().transpose() * (m.meshIsB ? Vector3(-n) : n);
             real top = -std::numeric_limits<real>::infinity();
@@ -337,9 +314,12 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
         for (int k = 0; k < 3; ++k)
             if (!isClaimed(t[k])) claimed[claimedCount++] = t[k];
     }
+}
 
-    // One manifold per normal: the clipped points of all its triangles, reduced once so
-    // that the points where triangles split a face do not crowd out its corners.
+// One manifold per normal: the clipped points of all its triangles, reduced once so that
+// the points where triangles split a face do not crowd out its corners. Returns how many
+// were appended.
+int appendByNormal(const MeshPair &m, MeshContact *contacts, int count, real keep, std::vector<Manifold> &out) {
     int appended = 0;
     for (int i = 0; i < count; ++i) {
         if (!contacts[i].kept) continue;
@@ -364,6 +344,33 @@ int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
         appended += appendReduced(points, normal, out);
     }
     return appended;
+}
+
+}  // namespace
+
+int meshContacts(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                 real speculative, real reach, const RawContact *raw, int rawCount, std::vector<Manifold> &out) {
+    const MeshPair m(a, poseA, b, poseB, reach);
+    const int triangles = m.mesh.triangleCount();
+    const real keep = std::max(speculative, reach);
+
+    MeshContact contacts[kMaxMeshContacts];
+    int count = 0;
+    int reported[kMaxFclContacts];
+    int reportedCount = 0;
+    for (int i = 0; i < rawCount && i < kMaxFclContacts; ++i) {
+        const int triangle = m.meshIsB ? raw[i].triangleB : raw[i].triangleA;
+        if (triangle < 0 || triangle >= triangles) continue;
+        reported[reportedCount++] = triangle;
+        addTouchingTriangle(m, triangle, raw[i].normal, keep, contacts, count);
+    }
+    if (m.mesh.shape().type == ShapeType::Heightfield) {
+        addHeightfieldTriangles(m, reach, keep, contacts, count);
+    } else if (reach > 0) {
+        addTrianglesWithinReach(m, reach, keep, reported, reportedCount, contacts, count);
+    }
+    dropClaimedFeatures(m, contacts, count);
+    return appendByNormal(m, contacts, count, keep, out);
 }
 
 }  // namespace cyclone::detail
