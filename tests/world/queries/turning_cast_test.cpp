@@ -134,16 +134,18 @@ TEST(TurningCast, ATurningSphereIsTheStraightCast) {
     // 10 m, turning 90 degrees about z, meets the face x = 4 of a cube centred at x = 5
     // when its centre reaches 3.5 m, as without the turn (ShapeCast.SphereAgainstBoxFace).
     World world;
-    const BodyId box = addStatic(world, Shape::box({1, 1, 1}), {5, 0, 0});
-    const auto hit = world.shapeCast(Shape::sphere(0.5), Vector3::Zero(), Quaternion::Identity(), Vector3(10, 0, 0),
-                                     turn(kPi / 2, Vector3::UnitZ()));
-    ASSERT_TRUE(hit);
-    EXPECT_EQ(hit->body, box);
-    EXPECT_LE(hit->distance, 3.5);
-    EXPECT_GE(hit->distance, 3.5 - kTolerance);
-    EXPECT_NEAR(hit->fraction, hit->distance / 10, 1e-15);
-    EXPECT_NEAR((hit->point - Vector3(4, 0, 0)).norm(), 0, kTolerance);
-    EXPECT_NEAR((hit->normal - Vector3(-1, 0, 0)).norm(), 0, 1e-9);
+    addStatic(world, Shape::box({1, 1, 1}), {5, 0, 0});
+    const Shape ball = Shape::sphere(0.5);
+    const Vector3 along(10, 0, 0);
+    const auto straight = world.shapeCast(ball, Vector3::Zero(), Quaternion::Identity(), along);
+    const auto turning =
+        world.shapeCast(ball, Vector3::Zero(), Quaternion::Identity(), along, turn(kPi / 2, Vector3::UnitZ()));
+    ASSERT_TRUE(straight && turning);
+    EXPECT_EQ(turning->body, straight->body);
+    EXPECT_LE(turning->distance, 3.5);
+    EXPECT_GE(turning->distance, 3.5 - kTolerance);
+    EXPECT_NEAR((turning->point - straight->point).norm(), 0, kTolerance);
+    EXPECT_NEAR((turning->normal - straight->normal).norm(), 0, 1e-9);
 }
 
 TEST(TurningCast, NoTurnIsTheStraightCast) {
