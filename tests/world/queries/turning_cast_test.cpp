@@ -69,6 +69,34 @@ TEST(TurningCast, ACompoundTurnsAboutItsFrameOrigin) {
     expectWallHit(hit, wall);
 }
 
+TEST(TurningCast, ADoorSwingsAboutItsHingeIntoAStop) {
+    // A door: a compound whose one child, half sizes 0.5 (x), 1 (y), 0.05 (z), lies at
+    // (0.5, 0, 0) from its frame's origin, the hinge. Turned about +y, its direction in
+    // (x, z) is u = (cos(theta), -sin(theta)) and its leading side the line at 0.05 along
+    // v = (-sin(theta), -cos(theta)). A stop, half sizes 0.1, 1, 0.1, centred at (0.7, 0,
+    // -0.5): its corner (0.8, -0.4), at r = sqrt(0.8) and angle beta = atan2(0.4, 0.8)
+    // below the x axis, meets that side when r sin(beta - theta) = 0.05,
+    //   theta = beta - asin(0.05 / r) = 0.407717 rad,
+    // before any other point of the stop (the rest lie at larger angles beta), and within
+    // the door's length (r cos(beta - theta) = 0.893 < 1); it closes at 0.893 m per rad.
+    World world;
+    const BodyId stop = addStatic(world, Shape::box({0.1, 1, 0.1}), {0.7, 0, -0.5});
+    CompoundChild leaf;
+    leaf.shape = Shape::box({0.5, 1, 0.05});
+    leaf.position = Vector3(0.5, 0, 0);
+    const auto hit = world.shapeCast(Shape::compound({leaf}), Vector3::Zero(), Quaternion::Identity(),
+                                     Vector3::Zero(), turn(kPi / 2, Vector3::UnitY()));
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->body, stop);
+    const real r = std::sqrt(0.8);
+    const real theta = std::atan2(0.4, 0.8) - std::asin(0.05 / r);
+    const real exact = theta / (kPi / 2);
+    EXPECT_LE(hit->fraction, exact);
+    EXPECT_GE(hit->fraction, exact - kTolerance / (r * std::cos(std::atan2(0.4, 0.8) - theta)) / (kPi / 2));
+    // One of the door's points on its leading side.
+    EXPECT_NEAR(hit->point.dot(Vector3(-std::sin(theta), 0, -std::cos(theta))), 0.05, 1e-3);
+}
+
 // A bar, half sizes 1 (x), 0.1 (y), 0.1 (z), centred 0.5 m above the ground, turns 90
 // degrees about +z: a point (x, y) goes to height x sin(theta) + y cos(theta), so its
 // lowest corner (-1, -0.1) is at 0.5 - sin(theta) - 0.1 cos(theta), which is zero when
