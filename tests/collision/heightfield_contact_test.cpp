@@ -84,7 +84,8 @@ TEST(HeightfieldContact, MatchesTheEquivalentMeshTestedByFcl) {
         const Vector3 lowest = shape->supportPoint(p, -Vector3::UnitY(), -1);
         real t = 0;
         Vector3 n;
-        ASSERT_TRUE(detail::rayHeightfield(Vector3(lowest.x(), 10, lowest.z()), -Vector3::UnitY(), grid, 20, t, n));
+        ASSERT_TRUE(detail::rayHeightfield(Vector3(lowest.x(), 10, lowest.z()), -Vector3::UnitY(), grid,
+                                           compiledField->geometry()->aabb_local, 20, t, n));
         p.translation().y() = 10 - t - lowest.y() - c.at.y();
         const std::vector<Manifold> byField = collide(c.shape, p, f, pose(Vector3::Zero()));
         const std::vector<Manifold> byMesh = collide(c.shape, p, mesh, pose(Vector3::Zero()));
@@ -117,7 +118,7 @@ TEST(HeightfieldContact, InnerEdgesAreTheMeshsInnerEdges) {
     const auto mesh = detail::compileShape(equivalentMesh(f));
     ASSERT_EQ(field->triangleCount(), mesh->triangleCount());
     for (int t = 0; t < field->triangleCount(); ++t)
-        EXPECT_EQ(field->activeFeatures()[static_cast<std::size_t>(t)], mesh->activeFeatures()[static_cast<std::size_t>(t)])
+        EXPECT_EQ(field->activeFeatures(t), mesh->activeFeatures(t))
             << "triangle " << t;
 }
 

@@ -14,7 +14,10 @@ using detail::activeVertexBit;
 
 // The features of a compiled mesh.
 std::vector<std::uint8_t> featuresOf(const std::vector<Vector3> &vertices, const std::vector<std::array<int, 3>> &triangles) {
-    return detail::compileShape(Shape::mesh(vertices, triangles))->activeFeatures();
+    const auto mesh = detail::compileShape(Shape::mesh(vertices, triangles));
+    std::vector<std::uint8_t> features;
+    for (int t = 0; t < mesh->triangleCount(); ++t) features.push_back(mesh->activeFeatures(t));
+    return features;
 }
 
 TEST(MeshFeatures, FlatSquareHasAnInnerDiagonal) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "floor_crossing.h"
 #include "world_fixture.h"
 
 namespace cyclone::test::heightfield_world {
@@ -22,12 +23,16 @@ Shape field(int rows, int columns, real spacing, Height h) {
     return Shape::heightfield(rows, columns, {spacing, spacing}, heights);
 }
 
-// A flat 20 m x 20 m field at y = 0 of 1 m cells, centred on the origin.
+// A flat 20 m x 20 m field at y = 0 of 1 m cells, centred on the origin when placed at
+// kFlatCorner.
+Shape flatShape() { return field(21, 21, 1.0, [](real, real) { return real(0); }); }
+const Vector3 kFlatCorner(-10, 0, -10);
+
 BodyId flatField(World &world, real friction = 0.6) {
     BodySettings s;
     s.motion = Motion::Static;
-    s.shape = field(21, 21, 1.0, [](real, real) { return real(0); });
-    s.position = Vector3(-10, 0, -10);
+    s.shape = flatShape();
+    s.position = kFlatCorner;
     s.material.friction = friction;
     return world.addBody(s);
 }
@@ -39,30 +44,11 @@ struct Track {
 };
 
 // `shape` (turned by `orientation`) started at rest height `rest` with `velocity` across
-// the flat field, rolling without slipping (w = (up x v) / r) when `roll`, for 6 s.
+// the flat field, rolling without slipping when `roll`, for 6 s (floor_crossing.h).
 Track cross(const Shape &shape, const Quaternion &orientation, real rest, const Vector3 &velocity, bool roll,
             real friction) {
-    WorldFixture f(noSleep());
-    flatField(f.world, friction);
-    BodySettings s;
-    s.shape = shape;
-    s.orientation = orientation;
-    s.position = Vector3(-8.3, rest, -2.1);
-    s.velocity = velocity;
-    s.rotation = roll ? Vector3(Vector3::UnitY().cross(velocity) / rest) : Vector3::Zero();
-    s.mass = 1;
-    s.material.friction = friction;
-    const BodyId id = f.world.addBody(s);
-    Track track;
-    for (int i = 0; i < 360; ++i) {
-        f.world.step(kDt);
-        track.heightError = std::max(track.heightError, std::abs(f.position(id).y() - rest));
-        // A body put down exactly touching starts with the gravity of its first sub-steps
-        // (up to g dt = 0.16 m/s) before its contact holds it, on a plane as here.
-        if (i >= 15) track.verticalSpeed = std::max(track.verticalSpeed, std::abs(f.world.body(id).getVelocity().y()));
-    }
-    track.travelled = (f.position(id) - s.position).norm();
-    return track;
+    const FloorTrack t = crossFloor(flatShape(), shape, orientation, rest, velocity, roll, friction, 6.0, kFlatCorner);
+    return {heightError(t, rest), verticalSpeed(t, 15), t.travelled};
 }
 
 TEST(Heightfield, BallRollsAcrossCellsAndDiagonalsWithoutBumps) {

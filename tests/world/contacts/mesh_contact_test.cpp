@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "floor_crossing.h"
 #include "world_fixture.h"
 
 namespace cyclone::test {
@@ -136,52 +137,7 @@ TEST(MeshContact, TwoSidedMeshStopsABodyFromBelowToo) {
     }
 }
 
-// Rolls or slides `shape` (turned by `orientation`) across a floor from rest height
-// `rest` at `velocity` (rolling without slipping when `roll`: w = (up x v) / r) for
-// `seconds` at 60 Hz; the heights and vertical speeds after each step.
-struct Track {
-    std::vector<real> height;
-    std::vector<real> verticalSpeed;
-    real travelled = 0;
-};
-Track crossFloor(const Shape &floor, const Shape &shape, const Quaternion &orientation, real rest,
-                 const Vector3 &velocity, bool roll, real friction, double seconds) {
-    WorldFixture f(noSleep());
-    addStaticBody(f, floor, friction);
-    BodySettings s;
-    s.shape = shape;
-    s.orientation = orientation;
-    s.position = Vector3(-8.3, rest, -2.1);
-    s.velocity = velocity;
-    s.rotation = roll ? Vector3(Vector3::UnitY().cross(velocity) / rest) : Vector3::Zero();
-    s.mass = 1;
-    s.material.friction = friction;
-    const BodyId id = f.world.addBody(s);
-    Track track;
-    const int steps = static_cast<int>(std::lround(seconds / kDt));
-    for (int i = 0; i < steps; ++i) {
-        f.world.step(kDt);
-        track.height.push_back(f.position(id).y());
-        track.verticalSpeed.push_back(f.world.body(id).getVelocity().y());
-    }
-    track.travelled = (f.position(id) - s.position).norm();
-    return track;
-}
-
-// The largest |height - rest| and |vy| of a track.
-real heightError(const Track &t, real rest) {
-    real e = 0;
-    for (real y : t.height) e = std::max(e, std::abs(y - rest));
-    return e;
-}
-// From step `from` on: a body put down exactly touching a floor starts with the
-// gravity of its first sub-steps (up to g dt = 0.16 m/s) before its contact holds it, on
-// a plane as on a mesh.
-real verticalSpeed(const Track &t, std::size_t from = 0) {
-    real e = 0;
-    for (std::size_t i = from; i < t.verticalSpeed.size(); ++i) e = std::max(e, std::abs(t.verticalSpeed[i]));
-    return e;
-}
+using Track = FloorTrack;  // floor_crossing.h
 
 const Shape kPlaneFloor = Shape::plane(Vector3::UnitY(), 0);
 

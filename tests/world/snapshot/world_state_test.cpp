@@ -7,11 +7,11 @@
 
 #include "cyclone/world.h"
 #include "mixed_pile.h"
+#include "world_fixture.h"
 
 namespace cyclone::test {
 namespace {
 
-constexpr real kDt = 1.0 / 60;
 constexpr int kSaveStep = 100;
 constexpr int kAfter = 150;
 

@@ -483,10 +483,8 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
             break;
         case ShapeType::Heightfield: {
             validateHeightfield(shape);
-            c.shape_ = shape;
-            const HeightfieldGrid grid(c.shape_);
-            c.activeFeatures_ = heightfieldActiveFeatures(grid);
-            c.geometry_ = heightfieldBounds(grid);
+            c.shape_ = Shape::heightfield(shape.rows, shape.columns, shape.spacing, copyHeights(shape.heights));
+            c.geometry_ = heightfieldBounds(HeightfieldGrid(c.shape_));
             c.boundingRadius_ = solidBoundingRadius(c);
             return compiled;
         }
@@ -628,6 +626,11 @@ void CollisionShape::triangle(int t, Vector3 (&corners)[3], int (&ids)[3]) const
         ids[k] = faces_[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)];
         corners[k] = vertices_[static_cast<std::size_t>(ids[k])];
     }
+}
+
+std::uint8_t CollisionShape::activeFeatures(int t) const {
+    if (shape_.type == ShapeType::Heightfield) return HeightfieldGrid(shape_).activeFeatures(t);
+    return activeFeatures_[static_cast<std::size_t>(t)];
 }
 
 Vector3 CollisionShape::triangleNormal(int t) const {

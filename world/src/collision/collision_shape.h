@@ -61,9 +61,10 @@ public:
     const std::vector<std::vector<int>> &faces() const { return faces_; }
     /// Outward unit normal of each face, shape frame.
     const std::vector<Vector3> &faceNormals() const { return faceNormals_; }
-    /// Mesh or height field: each triangle's active edges and vertices (mesh_features.h),
+    /// Mesh or height field: triangle t's active edges and vertices (mesh_features.h),
     /// the corners of its surface; contacts on the others take the triangle's normal.
-    const std::vector<std::uint8_t> &activeFeatures() const { return activeFeatures_; }
+    /// Stored for a mesh, computed from the heights around it for a height field.
+    std::uint8_t activeFeatures(int t) const;
     /// Whether this is a mesh or a height field: a surface of triangles, numbered by
     /// FCL's primitive index (mesh) or by cell (heightfield.h).
     bool hasTriangles() const {

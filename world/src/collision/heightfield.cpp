@@ -1,8 +1,13 @@
 #include "collision/heightfield.h"
 
 #include <charconv>
+#include <cstdint>
 #include <limits>
 #include <string>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "collision/mesh_features.h"
 #include "cyclone/world/error.h"
@@ -85,68 +90,68 @@ void validateHeightfield(const Shape &shape) {
 
 namespace {
 
-// The unit normals of the two triangles of each cell of row i: 2 j + k for cell (i, j).
-void rowNormals(const HeightfieldGrid &grid, int i, std::vector<Vector3> &out) {
-    out.resize(2 * static_cast<std::size_t>(grid.cellColumns()));
-    for (int j = 0; j < grid.cellColumns(); ++j) {
-        const Vector3 a = grid.sample(i, j), b = grid.sample(i + 1, j), c = grid.sample(i + 1, j + 1),
-                      d = grid.sample(i, j + 1);
-        out[2 * static_cast<std::size_t>(j)] = (b - a).cross(c - a).normalized();
-        out[2 * static_cast<std::size_t>(j) + 1] = (c - a).cross(d - a).normalized();
+// The edges of a field, each named by its first sample (a, b): the row edge runs to
+// (a, b + 1), the column edge to (a + 1, b), the diagonal to (a + 1, b + 1). An edge is
+// inner when both triangles beside it exist and their normals meet almost flat.
+struct FieldEdges {
+    const HeightfieldGrid &grid;
+
+    int cellRows() const { return grid.rows - 1; }
+    // Triangle k of cell (i, j)'s unit normal (heightfield.h numbering).
+    Vector3 normal(int i, int j, int k) const { return grid.normal(2 * (i * grid.cellColumns() + j) + k); }
+
+    // Between cell (a - 1, b)'s triangle 0 and cell (a, b)'s triangle 1.
+    bool rowActive(int a, int b) const {
+        return a == 0 || a == cellRows() || !flatEdge(normal(a - 1, b, 0), normal(a, b, 1));
     }
-}
+    // Between cell (a, b)'s triangle 0 and cell (a, b - 1)'s triangle 1.
+    bool columnActive(int a, int b) const {
+        return b == 0 || b == grid.cellColumns() || !flatEdge(normal(a, b, 0), normal(a, b - 1, 1));
+    }
+    bool diagonalActive(int a, int b) const { return !flatEdge(normal(a, b, 0), normal(a, b, 1)); }
+
+    // Whether one of the edges that meet at sample (a, b) is active.
+    bool sampleActive(int a, int b) const {
+        const bool right = b < grid.cellColumns(), left = b > 0, down = a < cellRows(), up = a > 0;
+        return (right && rowActive(a, b)) || (left && rowActive(a, b - 1)) || (down && columnActive(a, b)) ||
+               (up && columnActive(a - 1, b)) || (down && right && diagonalActive(a, b)) ||
+               (up && left && diagonalActive(a - 1, b - 1));
+    }
+};
 
 }  // namespace
 
-std::vector<std::uint8_t> heightfieldActiveFeatures(const HeightfieldGrid &grid) {
-    const int cellRows = grid.rows - 1;
-    const int cellColumns = grid.cellColumns();
-    std::vector<std::uint8_t> features(static_cast<std::size_t>(grid.triangleCount()), 0);
-    std::vector<char> vertexActive(static_cast<std::size_t>(grid.rows) * grid.columns, 0);
-    // Rows i - 1, i and i + 1 of triangle normals, each computed once.
-    std::vector<Vector3> above, here, below;
-    rowNormals(grid, 0, here);
-    for (int i = 0; i < cellRows; ++i) {
-        if (i + 1 < cellRows) rowNormals(grid, i + 1, below);
-        for (int j = 0; j < cellColumns; ++j) {
-            const auto at = [](const std::vector<Vector3> &row, int cell, int k) {
-                return row[2 * static_cast<std::size_t>(cell) + static_cast<std::size_t>(k)];
-            };
-            const Vector3 &lower = at(here, j, 0);
-            const Vector3 &upper = at(here, j, 1);
-            // Edge e of each triangle, and the triangle across it (none at the border).
-            const bool diagonal = !flatEdge(lower, upper);
-            const bool active[2][3] = {
-                {j == 0 || !flatEdge(lower, at(here, j - 1, 1)), i + 1 == cellRows || !flatEdge(lower, at(below, j, 1)),
-                 diagonal},
-                {diagonal, j + 1 == cellColumns || !flatEdge(upper, at(here, j + 1, 0)),
-                 i == 0 || !flatEdge(upper, at(above, j, 0))}};
-            // Sample numbers of each triangle's corners (heightfield.h).
-            const int s = i * grid.columns + j;
-            const int ids[2][3] = {{s, s + grid.columns, s + grid.columns + 1}, {s, s + grid.columns + 1, s + 1}};
-            const auto t = static_cast<std::size_t>(2 * (i * cellColumns + j));
-            for (int k = 0; k < 2; ++k)
-                for (int e = 0; e < 3; ++e) {
-                    if (!active[k][e]) continue;
-                    features[t + static_cast<std::size_t>(k)] |= activeEdgeBit(e);
-                    vertexActive[static_cast<std::size_t>(ids[k][e])] = 1;
-                    vertexActive[static_cast<std::size_t>(ids[k][(e + 1) % 3])] = 1;
-                }
-        }
-        std::swap(above, here);
-        std::swap(here, below);
+std::uint8_t HeightfieldGrid::activeFeatures(int t) const {
+    const FieldEdges edges{*this};
+    const int cell = t / 2;
+    const int i = cell / cellColumns();
+    const int j = cell % cellColumns();
+    // Edge e of each triangle runs from its corner e to corner e + 1 (heightfield.h).
+    const bool active[2][3] = {{edges.columnActive(i, j), edges.rowActive(i + 1, j), edges.diagonalActive(i, j)},
+                               {edges.diagonalActive(i, j), edges.columnActive(i, j + 1), edges.rowActive(i, j)}};
+    const int di[2][3] = {{0, 1, 1}, {0, 1, 0}};
+    const int dj[2][3] = {{0, 0, 1}, {0, 1, 1}};
+    std::uint8_t features = 0;
+    for (int e = 0; e < 3; ++e) {
+        if (active[t % 2][e]) features |= activeEdgeBit(e);
+        if (edges.sampleActive(i + di[t % 2][e], j + dj[t % 2][e])) features |= activeVertexBit(e);
     }
-    for (int i = 0; i < cellRows; ++i)
-        for (int j = 0; j < cellColumns; ++j) {
-            const int s = i * grid.columns + j;
-            const int ids[2][3] = {{s, s + grid.columns, s + grid.columns + 1}, {s, s + grid.columns + 1, s + 1}};
-            const auto t = static_cast<std::size_t>(2 * (i * cellColumns + j));
-            for (int k = 0; k < 2; ++k)
-                for (int v = 0; v < 3; ++v)
-                    if (vertexActive[static_cast<std::size_t>(ids[k][v])])
-                        features[t + static_cast<std::size_t>(k)] |= activeVertexBit(v);
-        }
     return features;
+}
+
+std::vector<real> copyHeights(const std::vector<real> &heights) {
+    std::vector<real> copy;
+    copy.reserve(heights.size());
+#if defined(MADV_HUGEPAGE)
+    // The buffer is fresh and untouched: advise its 2 MB-aligned part before writing it.
+    constexpr std::uintptr_t huge = std::uintptr_t(1) << 21;
+    const auto begin = reinterpret_cast<std::uintptr_t>(copy.data());
+    const std::uintptr_t first = (begin + huge - 1) & ~(huge - 1);
+    const std::uintptr_t last = (begin + heights.size() * sizeof(real)) & ~(huge - 1);
+    if (last > first) madvise(reinterpret_cast<void *>(first), last - first, MADV_HUGEPAGE);  // a hint: may fail
+#endif
+    copy.assign(heights.begin(), heights.end());
+    return copy;
 }
 
 std::shared_ptr<fcl::CollisionGeometryd> heightfieldBounds(const HeightfieldGrid &grid) {
@@ -158,12 +163,10 @@ std::shared_ptr<fcl::CollisionGeometryd> heightfieldBounds(const HeightfieldGrid
     return geometry;
 }
 
-bool rayHeightfield(const Vector3 &o, const Vector3 &d, const HeightfieldGrid &grid, real limit, real &t,
-                    Vector3 &n) {
-    const auto count = static_cast<std::size_t>(grid.rows) * grid.columns;
-    const auto [lowest, highest] = std::minmax_element(grid.heights, grid.heights + count);
-    const Vector3 low(0, *lowest, 0);
-    const Vector3 high(grid.cellColumns() * grid.dx, *highest, (grid.rows - 1) * grid.dz);
+bool rayHeightfield(const Vector3 &o, const Vector3 &d, const HeightfieldGrid &grid, const fcl::AABBd &box, real limit,
+                    real &t, Vector3 &n) {
+    const Vector3 &low = box.min_;
+    const Vector3 &high = box.max_;
     // The stretch of the ray inside the field's box.
     real enter = 0, leave = limit;
     for (int k = 0; k < 3; ++k) {

@@ -1,7 +1,9 @@
 // A height field: a grid of samples whose cells are two triangles each, read in closed
-// form from the heights alone. Nothing per triangle is stored but one byte of active
-// features (mesh_features.h), so a 1024 x 1024 field costs the 8 bytes of its heights
-// plus 2 per sample; queries visit only the cells under the box or ray they are given.
+// form from the heights alone. Nothing per triangle is stored: a triangle's normal and
+// active features (mesh_features.h) are computed from the heights around it when a query
+// asks, so a 1024 x 1024 field costs the 8 bytes of its heights per sample and loads in
+// the time of copying them; queries visit only the cells under the box or ray they are
+// given.
 //
 // Triangle t of cell c = i (columns - 1) + j is 2c + k: k = 0 holds samples
 // (i, j), (i+1, j), (i+1, j+1), k = 1 holds (i, j), (i+1, j+1), (i, j+1); both wound
@@ -60,6 +62,14 @@ struct HeightfieldGrid {
         return (c[1] - c[0]).cross(c[2] - c[0]).normalized();
     }
 
+    /// Triangle t's active edges and vertices (mesh_features.h): the bits
+    /// meshActiveFeatures gives the same triangles as a mesh. A cell's diagonal and the
+    /// edges between cells are inner where the two triangles' normals are within
+    /// kInnerEdgeCosine; the field's border edges are active; a sample is active when
+    /// one of the six edges that meet at it is. Reads the normals of at most the 12
+    /// triangles around t's corners.
+    std::uint8_t activeFeatures(int t) const;
+
     /// Calls visit(t) for each triangle of the cells whose column of samples meets the
     /// box [low, high] (shape frame): the cells under its x-z extent whose heights are
     /// not all above high.y or all below low.y. Stops when visit returns false.
@@ -93,11 +103,10 @@ struct HeightfieldGrid {
 /// with function "" and the field (e.g. "shape.heights[12]") as compileShape does.
 void validateHeightfield(const Shape &shape);
 
-/// The active features of each triangle (mesh_features.h), as meshActiveFeatures gives
-/// for the same triangles as a mesh: a cell's diagonal and the edges between cells are
-/// inner where the two triangles' normals are within kInnerEdgeCosine; the field's
-/// border edges are active.
-std::vector<std::uint8_t> heightfieldActiveFeatures(const HeightfieldGrid &grid);
+/// A copy of a field's heights for its compiled shape. Where the system has them (Linux's
+/// transparent huge pages, on request), in 2 MB pages: a 1024 x 1024 field's 8 MB
+/// otherwise costs 2048 page faults, most of the time of adding it to a World.
+std::vector<real> copyHeights(const std::vector<real> &heights);
 
 /// The broadphase's geometry of a height field: a box whose local AABB is the field's
 /// (x in [0, (columns-1) dx], z in [0, (rows-1) dz], y between the lowest and highest
@@ -106,8 +115,9 @@ std::shared_ptr<fcl::CollisionGeometryd> heightfieldBounds(const HeightfieldGrid
 
 /// The first triangle the ray from `o` along `d` (shape frame, unit) hits from above
 /// within `limit`: its distance `t` and unit normal `n`, by a walk over the cells under
-/// the ray (a 2D digital differential analyser) from the ray's entry into the field's box.
-bool rayHeightfield(const Vector3 &o, const Vector3 &d, const HeightfieldGrid &grid, real limit, real &t,
-                    Vector3 &n);
+/// the ray (a 2D digital differential analyser) from the ray's entry into `box`, the
+/// field's box (heightfieldBounds' local AABB).
+bool rayHeightfield(const Vector3 &o, const Vector3 &d, const HeightfieldGrid &grid, const fcl::AABBd &box, real limit,
+                    real &t, Vector3 &n);
 
 }  // namespace cyclone::detail

@@ -112,7 +112,7 @@ struct MeshPair {
         int n = 0;
         for (int k = 0; k < 3; ++k)
             if (v[k].dot(towards) > top - tolerance) touching[n++] = k;
-        const std::uint8_t active = mesh.activeFeatures()[c.triangle];
+        const std::uint8_t active = mesh.activeFeatures(c.triangle);
         if (n == 3) return true;
         if (n == 1) return !(active & activeVertexBit(touching[0]));
         // Edge k runs from vertex k to k + 1; (0, 2) is edge 2.

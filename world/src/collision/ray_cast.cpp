@@ -293,7 +293,9 @@ bool rayShape(const Ray &ray, const CollisionShape &shape, const Matrix4 &pose, 
         case ShapeType::Convex: found = rayLocalConvex(o, d, shape, limit, t, n); break;
         case ShapeType::Plane: found = rayLocalPlane(o, d, shape, limit, t, n); break;
         case ShapeType::Mesh: found = rayLocalMesh(o, d, shape, limit, t, n); break;
-        case ShapeType::Heightfield: found = rayHeightfield(o, d, HeightfieldGrid(s), limit, t, n); break;
+        case ShapeType::Heightfield:
+            found = rayHeightfield(o, d, HeightfieldGrid(s), shape.geometry()->aabb_local, limit, t, n);
+            break;
         case ShapeType::Compound: break;  // taken child by child above
     }
     if (!found) return false;

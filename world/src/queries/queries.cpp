@@ -25,14 +25,46 @@ std::uint32_t leafBody(const Node *node) {
     return detail::bodyIndexOf(static_cast<const fcl::CollisionObjectd *>(node->data));
 }
 
+// The descent both ray walks share: every box the ray reaches within ray.maxDistance,
+// the nearer child first, each leaf's body to Walk::test (which may shorten the ray, and
+// so prune the boxes beyond its hit).
+template <class Walk>
+struct RayDescent {
+    void visit(const Node *node) {
+        Walk &self = static_cast<Walk &>(*this);
+        if (node->isLeaf()) {
+            self.test(leafBody(node));
+            return;
+        }
+        const Node *children[2] = {node->children[0], node->children[1]};
+        real enter[2] = {0, 0};
+        bool reached[2];
+        for (int k = 0; k < 2; ++k)
+            reached[k] = detail::rayBox(self.ray.origin, self.ray.direction, children[k]->bv.min_,
+                                        children[k]->bv.max_, self.ray.maxDistance, enter[k]);
+        detail::visitNearestFirst(children, reached, enter, self.ray.maxDistance,
+                                  [this](const Node *child) { visit(child); });
+    }
+
+    void walk(const Node *root) {
+        const detail::Ray &ray = static_cast<Walk &>(*this).ray;
+        real enter;
+        if (root && detail::rayBox(ray.origin, ray.direction, root->bv.min_, root->bv.max_, ray.maxDistance, enter))
+            visit(root);
+    }
+};
+
+// The closest hit: each hit shortens the ray.
 template <class Accepts>
-struct RayWalk {
+struct RayWalk : RayDescent<RayWalk<Accepts>> {
     const detail::BodyStore &bodies;
     const Accepts &accepts;
     detail::Ray ray;
     bool found = false;
     std::uint32_t body = 0;
     detail::RaySurfaceHit hit;
+
+    RayWalk(const detail::BodyStore &b, const Accepts &a, const detail::Ray &r) : bodies(b), accepts(a), ray(r) {}
 
     void test(std::uint32_t index) {
         if (!accepts(index)) return;
@@ -47,60 +79,26 @@ struct RayWalk {
         hit = candidate;
         ray.maxDistance = candidate.distance;
     }
-
-    void visit(const Node *node) {
-        if (node->isLeaf()) {
-            test(leafBody(node));
-            return;
-        }
-        const Node *children[2] = {node->children[0], node->children[1]};
-        real enter[2] = {0, 0};
-        bool reached[2];
-        for (int k = 0; k < 2; ++k)
-            reached[k] = detail::rayBox(ray.origin, ray.direction, children[k]->bv.min_, children[k]->bv.max_,
-                                        ray.maxDistance, enter[k]);
-        detail::visitNearestFirst(children, reached, enter, ray.maxDistance, [this](const Node *child) { visit(child); });
-    }
-
-    void walk(const Node *root) {
-        real enter;
-        if (root && detail::rayBox(ray.origin, ray.direction, root->bv.min_, root->bv.max_, ray.maxDistance, enter))
-            visit(root);
-    }
 };
 
-// Every body the ray meets: the walk keeps the ray's full length and visits every box it
-// reaches.
+// Every body the ray meets: the ray keeps its full length, so every box it reaches is
+// visited.
 template <class Accepts>
-struct RayAllWalk {
+struct RayAllWalk : RayDescent<RayAllWalk<Accepts>> {
     const detail::BodyStore &bodies;
     const Accepts &accepts;
     detail::Ray ray;
     std::vector<std::pair<detail::RaySurfaceHit, std::uint32_t>> &hits;
+
+    RayAllWalk(const detail::BodyStore &b, const Accepts &a, const detail::Ray &r,
+               std::vector<std::pair<detail::RaySurfaceHit, std::uint32_t>> &h)
+        : bodies(b), accepts(a), ray(r), hits(h) {}
 
     void test(std::uint32_t index) {
         if (!accepts(index)) return;
         const BodyRecord &r = bodies[index];
         detail::RaySurfaceHit hit;
         if (detail::rayShape(ray, *r.shape, r.body.getTransform(), hit)) hits.emplace_back(hit, index);
-    }
-
-    void visit(const Node *node) {
-        if (node->isLeaf()) {
-            test(leafBody(node));
-            return;
-        }
-        for (const Node *child : node->children) {
-            real enter;
-            if (detail::rayBox(ray.origin, ray.direction, child->bv.min_, child->bv.max_, ray.maxDistance, enter))
-                visit(child);
-        }
-    }
-
-    void walk(const Node *root) {
-        real enter;
-        if (root && detail::rayBox(ray.origin, ray.direction, root->bv.min_, root->bv.max_, ray.maxDistance, enter))
-            visit(root);
     }
 };
 
@@ -202,8 +200,7 @@ std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direc
                                      const QueryFilter &filter) const {
     const Impl &w = *impl_;
     const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
-    RayWalk<decltype(accepts)> walk{w.bodies, accepts, checkedRay("World::rayCast", origin, direction, maxDistance),
-                                    false, 0, {}};
+    RayWalk<decltype(accepts)> walk(w.bodies, accepts, checkedRay("World::rayCast", origin, direction, maxDistance));
     visitTrees(w, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
     if (!walk.found) return std::nullopt;
     RayHit hit;
@@ -220,8 +217,8 @@ std::size_t World::rayCastAll(const Vector3 &origin, const Vector3 &direction, s
     const Impl &w = *impl_;
     std::vector<std::pair<detail::RaySurfaceHit, std::uint32_t>> hits;
     const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
-    RayAllWalk<decltype(accepts)> walk{w.bodies, accepts, checkedRay("World::rayCastAll", origin, direction, maxDistance),
-                                       hits};
+    RayAllWalk<decltype(accepts)> walk(w.bodies, accepts,
+                                       checkedRay("World::rayCastAll", origin, direction, maxDistance), hits);
     visitTrees(w, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
     std::sort(hits.begin(), hits.end(), [](const auto &x, const auto &y) {
         return x.first.distance != y.first.distance ? x.first.distance < y.first.distance : x.second < y.second;
@@ -265,28 +262,13 @@ std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Qu
     return out.size();
 }
 
-std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &position,
-                                             const Quaternion &orientation, const Vector3 &translation,
-                                             const QueryFilter &filter) const {
-    static const char *function = "World::shapeCast";
-    const Impl &w = *impl_;
-    detail::requirePlace(function, "position", position);
-    detail::requireFinite(function, "orientation", orientation);
-    detail::requireFinite(function, "translation", translation);
-    const real length = translation.stableNorm();
-    if (!(length > 0)) detail::refuse(function, "translation", "must not be zero, got " + detail::show(translation));
-    if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh || shape.type == ShapeType::Heightfield)
-        detail::refuse(function, "shape.type",
-                       std::string("\"") + shapeTypeName(shape.type) + "\" cannot be cast; cast a solid shape");
-    const PlacedShape placed = placeQueryShape(function, shape, position, orientation);
-    const std::shared_ptr<const detail::CollisionShape> &compiled = placed.shape;
-    const Matrix4 &start = placed.pose;
-    detail::requireReach(function, "translation", start.translation() + translation, compiled->boundingRadius());
+namespace {
 
-    // Every body whose box meets the box swept by the shape's.
-    const fcl::CollisionObjectd query(compiled->geometry(), start);
-    fcl::AABBd swept = query.getAABB();
-    swept += fcl::AABBd(swept.min_ + translation, swept.max_ + translation);
+// The earliest hit of `shape` cast from `start` by `motion` among the bodies `filter`
+// accepts whose boxes meet `swept`; ties to the smaller index.
+std::optional<ShapeCastHit> castAmong(const detail::WorldState &w, const detail::CollisionShape &shape,
+                                      const Matrix4 &start, const detail::CastMotion &motion, const fcl::AABBd &swept,
+                                      const QueryFilter &filter) {
     bool found = false;
     std::uint32_t best = 0;
     detail::CastHit hit;
@@ -295,7 +277,7 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
         const BodyRecord &r = w.bodies[index];
         detail::CastHit candidate;
         const real limit = found ? hit.fraction : 1;
-        if (!detail::castShape(*compiled, start, translation, *r.shape, r.body.getTransform(), limit, candidate)) return;
+        if (!detail::castShape(shape, start, motion, *r.shape, r.body.getTransform(), limit, candidate)) return;
         if (found && (candidate.fraction > hit.fraction || (candidate.fraction == hit.fraction && index > best))) return;
         found = true;
         best = index;
@@ -308,10 +290,98 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
     result.body = w.bodies.idOf(best);
     result.userData = w.bodies[best].userData;
     result.fraction = hit.fraction;
-    result.distance = hit.fraction * length;
+    result.distance = hit.fraction * motion.translation.stableNorm();
     result.point = hit.point;
     result.normal = hit.normal;
     return result;
+}
+
+// A shape cast's shape: refused when it is a plane, a mesh or a height field.
+void requireCastable(const char *function, const Shape &shape) {
+    if (shape.type == ShapeType::Plane || shape.type == ShapeType::Mesh || shape.type == ShapeType::Heightfield)
+        detail::refuse(function, "shape.type",
+                       std::string("\"") + shapeTypeName(shape.type) + "\" cannot be cast; cast a solid shape");
+}
+
+// How far a unit quaternion's norm may be from 1.
+constexpr real kUnitNormTolerance = 1e-6;
+
+void requireUnitQuaternion(const char *function, const char *field, const Quaternion &q) {
+    detail::requireFinite(function, field, q);
+    if (!(std::abs(q.norm() - 1) <= kUnitNormTolerance))
+        detail::refuse(function, field,
+                       "must be a unit quaternion (norm within 1e-6 of 1), got " + detail::show(q) + " of norm " +
+                           detail::show(q.norm()));
+}
+
+// The turn from `from` to `to` (unit quaternions) the shorter way, about an axis through
+// `pivot`, with the translation: angle in [0, pi]; a half turn goes about the vector part
+// of to from^-1 as given.
+detail::CastMotion turningMotion(const Vector3 &translation, const Vector3 &pivot, const Quaternion &from,
+                                 const Quaternion &to) {
+    detail::CastMotion motion;
+    motion.translation = translation;
+    motion.pivot = pivot;
+    Quaternion relative = to.normalized() * from.normalized().conjugate();
+    if (relative.w() < 0) relative.coeffs() = -relative.coeffs();
+    const real sine = relative.vec().norm();
+    if (!(sine > 0)) return motion;
+    motion.axis = relative.vec() / sine;
+    motion.angle = 2 * std::atan2(sine, relative.w());
+    return motion;
+}
+
+}  // namespace
+
+std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &position,
+                                             const Quaternion &orientation, const Vector3 &translation,
+                                             const QueryFilter &filter) const {
+    static const char *function = "World::shapeCast";
+    const Impl &w = *impl_;
+    detail::requirePlace(function, "position", position);
+    detail::requireFinite(function, "orientation", orientation);
+    detail::requireFinite(function, "translation", translation);
+    if (!(translation.stableNorm() > 0))
+        detail::refuse(function, "translation", "must not be zero, got " + detail::show(translation));
+    requireCastable(function, shape);
+    const PlacedShape placed = placeQueryShape(function, shape, position, orientation);
+    const std::shared_ptr<const detail::CollisionShape> &compiled = placed.shape;
+    const Matrix4 &start = placed.pose;
+    detail::requireReach(function, "translation", start.translation() + translation, compiled->boundingRadius());
+
+    // Every body whose box meets the box swept by the shape's.
+    const fcl::CollisionObjectd query(compiled->geometry(), start);
+    fcl::AABBd swept = query.getAABB();
+    swept += fcl::AABBd(swept.min_ + translation, swept.max_ + translation);
+    detail::CastMotion motion;
+    motion.translation = translation;
+    motion.pivot = position;
+    return castAmong(w, *compiled, start, motion, swept, filter);
+}
+
+std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &position,
+                                             const Quaternion &orientation, const Vector3 &translation,
+                                             const Quaternion &endOrientation, const QueryFilter &filter) const {
+    static const char *function = "World::shapeCast";
+    detail::requirePlace(function, "position", position);
+    requireUnitQuaternion(function, "orientation", orientation);
+    detail::requireFinite(function, "translation", translation);
+    requireUnitQuaternion(function, "endOrientation", endOrientation);
+    const detail::CastMotion motion = turningMotion(translation, position, orientation, endOrientation);
+    // Without a turn, the straight cast (its refusals and its answer).
+    if (motion.angle == 0) return shapeCast(shape, position, orientation, translation, filter);
+    const Impl &w = *impl_;
+    requireCastable(function, shape);
+    const PlacedShape placed = placeQueryShape(function, shape, position, orientation);
+    const real radius = placed.shape->boundingRadius();
+    detail::requireReach(function, "translation", motion.at(placed.pose, 1).translation(), radius);
+
+    // Every point stays within `reach` of the pivot, which moves along the translation.
+    const real reach = motion.reach(placed.pose, radius);
+    const Vector3 widen = Vector3::Constant(reach);
+    fcl::AABBd swept(position - widen, position + widen);
+    swept += fcl::AABBd(position + translation - widen, position + translation + widen);
+    return castAmong(w, *placed.shape, placed.pose, motion, swept, filter);
 }
 
 }  // namespace cyclone

@@ -59,7 +59,8 @@ struct ShapeCastHit {
     BodyId body;
     /// How much of the translation the shape travels before it touches, in [0, 1].
     real fraction = 0;
-    /// The same as a distance along the translation, m: fraction times its length.
+    /// The same as a distance along the translation, m: fraction times its length (0 for
+    /// a shape that turns in place).
     real distance = 0;
     /// World-space point where the shapes touch, on the cast shape, m (along a face or
     /// an edge, one of its points).

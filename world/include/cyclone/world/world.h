@@ -350,6 +350,26 @@ public:
                                           const Vector3 &translation,
                                           const QueryFilter &filter = QueryFilter()) const;
 
+    /// shapeCast() for a shape that also turns as it moves: over the cast it turns from
+    /// `orientation` to `endOrientation` (both finite unit quaternions, norm within 1e-6
+    /// of 1) the shorter way, at a constant angular velocity about the point `position`
+    /// (its frame's origin), which moves by `translation` (m, finite; zero for a turn in
+    /// place) at a constant velocity. The hit, the filter, the refusals, the tolerance and
+    /// the start rule are shapeCast()'s (a body touched at the start is hit at 0 only if
+    /// the point that touches it moves into it), `distance` is the fraction times the
+    /// translation's length, and every point of the shape, at the start and at the end,
+    /// must be within 1e12 m of the origin. Equal orientations give shapeCast()'s answer
+    /// (and a zero translation with them is refused, field "translation"). A half turn
+    /// goes about the vector part of endOrientation times orientation's conjugate. Solved
+    /// by conservative advancement: no point moves faster towards a target than the
+    /// translation's part plus the turn's rate times its farthest point's distance from
+    /// `position`, so a cast that passes a body within a few tolerances takes many small
+    /// steps there (at most 256 per pair of convex pieces; if they run out, it reports a
+    /// touch where it stopped, the shapes still apart).
+    std::optional<ShapeCastHit> shapeCast(const Shape &shape, const Vector3 &position, const Quaternion &orientation,
+                                          const Vector3 &translation, const Quaternion &endOrientation,
+                                          const QueryFilter &filter = QueryFilter()) const;
+
     /// The bodies whose shapes intersect (overlap or touch) `shape` placed at `position`
     /// (m, finite, within 1e12 m of the origin) with `orientation` (finite, normalised;
     /// (0,0,0,0) means identity), among those `filter` accepts, written into `out`
