@@ -43,10 +43,12 @@ inline SolverBody stampedSolverBody(const StampedBody &stamped, const BodyRecord
 
 /// Makes the Jacobians of `m` (its normal, count, rows' anchors, sides a and b (0:
 /// immovable) and carrier set) as ConstraintSolver::prepareManifold makes them, for bodies
-/// `posedA` and `posedB` at their stamped poses.
+/// `posedA` and `posedB` at their stamped poses (`scratch`: room for the carried terms'
+/// solver bodies).
 __attribute__((noinline)) inline void remakeJacobians(SolverManifold &m, const std::optional<Carrier> &carrier,
                                                       const SolverBody &sa, const SolverBody &sb,
-                                                      const RigidBody &posedA, const RigidBody &posedB) {
+                                                      const RigidBody &posedA, const RigidBody &posedB,
+                                                      std::vector<SolverBody> &scratch) {
     tangentBasis(m.normal, m.tangent[0], m.tangent[1]);
     prepareDirections(m);
     Vector3 points[kMaxManifoldPoints];
@@ -59,8 +61,8 @@ __attribute__((noinline)) inline void remakeJacobians(SolverManifold &m, const s
     prepareCouplings(sa, sb, m);
     if (carrier) {
         m.carrier = *carrier;
-        const std::vector<SolverBody> bodies = {SolverBody(), sa, sb};
-        prepareCarriedMasses(bodies, m);
+        scratch.assign({SolverBody(), sa, sb});
+        prepareCarriedMasses(scratch, m);
     }
 }
 

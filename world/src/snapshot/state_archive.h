@@ -26,8 +26,9 @@ public:
     explicit StateWriter(std::vector<std::uint8_t> &out) : out_(out) {}
     std::size_t size() const { return out_.size(); }
     void bytes(const void *data, std::size_t size) {
-        const auto *b = static_cast<const std::uint8_t *>(data);
-        out_.insert(out_.end(), b, b + size);
+        const std::size_t at = out_.size();
+        out_.resize(at + size);
+        if (size > 0) std::memcpy(out_.data() + at, data, size);
     }
     void byte(std::uint8_t b) { out_.push_back(b); }
     /// Writes a count and returns it (the item size matters only when reading).

@@ -204,12 +204,8 @@ struct StateFields {
     /// pose when that gives their bits (RigidBody::calculateDerivedData keeps them so).
     template <class A>
     static void body(A &a, RigidBody &b) {
-        io(a, b.inverseMass);
-        inertia(a, b.inverseInertiaTensor);
-        io(a, b.linearDamping, b.angularDamping);
         io(a, b.position, b.orientation);
-        io(a, b.acceleration);
-        io(a, b.motion, b.sleepEpsilon, b.movingMotionCap, b.isAwake, b.canSleep, b.gyroscopicStep, b.rotationStep);
+        io(a, b.motion, b.isAwake);
         std::uint8_t derived = 0;
         if constexpr (!A::kReading) {
             RigidBody made = b;
@@ -221,9 +217,66 @@ struct StateFields {
         io(a, derived);
         if (!derived) io(a, b.transformMatrix, b.inverseInertiaTensorWorld);
         else if constexpr (A::kReading) b.calculateDerivedData();
-        // Zero in a body at rest or asleep: a bit each says so, and only the others follow.
-        mostlyZero(a, {&b.velocity, &b.rotation, &b.forceAccum, &b.torqueAccum, &b.lastFrameAcceleration});
+        // Zero in a body at rest or asleep: a bit each says so, and only the others follow;
+        // the last step's acceleration is the body's own but under forces.
+        std::uint8_t ownAcceleration = 0;
+        if constexpr (!A::kReading)
+            ownAcceleration = std::memcmp(b.lastFrameAcceleration.data(), b.acceleration.data(), sizeof(Vector3)) == 0;
+        io(a, ownAcceleration);
+        mostlyZero(a, {&b.velocity, &b.rotation, &b.forceAccum, &b.torqueAccum});
+        if (!ownAcceleration) io(a, b.lastFrameAcceleration);
+        else if constexpr (A::kReading) b.lastFrameAcceleration = b.acceleration;
     }
+
+    /// What the bodies of a scene mostly share: material, kind, filter, damping, gravity,
+    /// sleep threshold and integration schemes.
+    template <class A>
+    static void kind(A &a, BodyRecord &r) {
+        RigidBody &b = r.body;
+        io(a, r.material, r.immovable, r.kinematic, r.isPlane, r.ccd, r.layer, r.collidesWith, r.sensor);
+        io(a, b.linearDamping, b.angularDamping, b.acceleration, b.sleepEpsilon, b.movingMotionCap, b.canSleep);
+        io(a, b.gyroscopicStep, b.rotationStep);
+    }
+
+    template <class A>
+    static void mass(A &a, BodyRecord &r) {
+        io(a, r.body.inverseMass);
+        inertia(a, r.body.inverseInertiaTensor);
+    }
+
+    /// Fields written by `fields` as a flag when their bytes are those of the last live
+    /// body's (`last` holds them), else as they are.
+    template <class A, class Fields>
+    static void likeLast(A &a, BodyRecord &r, std::vector<std::uint8_t> &last, std::vector<std::uint8_t> &scratch,
+                         Fields fields) {
+        std::uint8_t same = 0;
+        if constexpr (!A::kReading) {
+            scratch.clear();
+            StateWriter w(scratch);
+            fields(w, r);
+            same = !last.empty() && scratch == last;
+            io(a, same);
+            if (!same) a.bytes(scratch.data(), scratch.size());
+            last.swap(scratch);
+        } else {
+            io(a, same);
+            if (same) {
+                if (last.empty()) throw UnreadableState{"a body repeats fields not given"};
+                StateReader before(last.data(), last.size());
+                fields(before, r);
+            } else {
+                fields(a, r);
+                last.clear();
+                StateWriter w(last);
+                fields(w, r);
+            }
+        }
+    }
+
+    /// The bytes of the last live body's kind and mass (likeLast).
+    struct LastBody {
+        std::vector<std::uint8_t> kind, mass, scratch;
+    };
 
     /// An inverse inertia tensor: a flag, then its diagonal when the rest is zero, else all.
     template <class A>
@@ -289,18 +342,17 @@ struct StateFields {
 
     /// A live body's record but its shape and collision object.
     template <class A>
-    static void record(A &a, BodyRecord &r) {
+    static void record(A &a, BodyRecord &r, LastBody &last) {
         packed(a, r.shapeIndex);
-        io(a, r.name, r.material, r.immovable, r.kinematic, r.moving, r.isPlane, r.ccd, r.isolated, r.simulated, r.tree);
+        io(a, r.name, r.moving, r.isolated, r.simulated, r.tree);
+        likeLast(a, r, last.kind, last.scratch, [](auto &archive, BodyRecord &record) { kind(archive, record); });
+        likeLast(a, r, last.mass, last.scratch, [](auto &archive, BodyRecord &record) { mass(archive, record); });
         packedIndex(a, r.sleepingIsland);
         packedIndex(a, r.island);
         packedIndex(a, r.solverIndex);
         packedIndex(a, r.awakeSlot);
         packed(a, r.pairs);
         packed(a, r.rank);
-        std::uint8_t layer = static_cast<std::uint8_t>(r.layer);
-        io(a, layer, r.collidesWith, r.sensor);
-        if constexpr (A::kReading) r.layer = layer;
         packed(a, r.keptApart);
         options(a, r);
         body(a, r.body);
@@ -356,14 +408,19 @@ struct StateFields {
         }
         for (std::size_t p = 0; p < slots; ++p) {
             PairState &pair = cache.pairs_[p];
-            io(a, pair.alive);
+            // 0: a free slot; else one more than the pair's manifolds.
+            std::uint32_t tag = pair.alive ? static_cast<std::uint32_t>(pair.manifolds.size()) + 1 : 0;
+            packed(a, tag);
+            if constexpr (A::kReading) pair.alive = tag != 0;
             if (!pair.alive) continue;
             packed(a, pair.a);
             packed(a, pair.b);
             packedStep(a, pair.lastSeen, now);
-            std::size_t n = a.count(pair.manifolds.size(), 1);
+            const std::size_t n = tag - 1;
+            if (n > 255) throw UnreadableState{"a pair has too many manifolds"};
             if (n == 0) continue;
-            io(a, cache.relativePoses_[p]);
+            RelativePose &pose = cache.relativePoses_[p];
+            io(a, pose.position, pose.orientation);
             if constexpr (A::kReading) pair.manifolds.resize(n);
             for (ManifoldState &m : pair.manifolds) manifold(a, m, now);
         }
@@ -410,61 +467,76 @@ struct StateFields {
         }
     }
 
-    /// The end normals (the landing correction's memos, which the next narrowphase
-    /// reads): the memo's shapes as which body's shape each is, and its poses as a flag
-    /// when they are the pair's bodies' poses as they stand (the correction tested them
-    /// where it left them). The table from pair slot to entry is made again.
-    template <class A>
-    static void endNormals(A &a, ContactManager &c, const BodyStore &bodies, std::uint64_t now) {
-        std::size_t n = a.count(c.endNormals_.size(), 1);
-        if constexpr (A::kReading) {
-            c.endNormals_.resize(n);
-            c.endNormalOf_.assign(c.pairs.slots(), ContactManager::kNoSlot);
+    /// Which body of pair `pair` the memo's shape `shape` is (1: A, 2: B; 0: neither),
+    /// when the memo tested it at the pose it stands at.
+    static std::uint8_t standingSide(const WorldState &w, const PairState &pair, const CollisionShape *shape,
+                                     const Eigen::Matrix<real, 3, 4> &pose) {
+        for (std::uint8_t side : {1, 2}) {
+            const BodyRecord &r = w.bodies[side == 1 ? pair.a : pair.b];
+            if (shape != r.shape.get()) continue;
+            const Eigen::Matrix<real, 3, 4> now = r.body.getTransform().matrix().topRows<3>();
+            return std::memcmp(now.data(), pose.data(), sizeof pose) == 0 ? side : 0;
         }
-        for (std::size_t k = 0; k < n; ++k) {
-            ContactManager::EndNormal &e = c.endNormals_[k];
-            NormalMemo &m = e.memo;
+        return 0;
+    }
+
+    /// The end normals (the landing correction's memos, which the next narrowphase takes
+    /// in place of FCL's test when its pair's shapes stand bit for bit at the poses the
+    /// memo tested): those whose shapes stand there, each shape as which body's it is and
+    /// its pose as that body's. The others hold only for a body put back at those poses
+    /// bit for bit, and then give what the test gives (docs/solver.md, "Landing
+    /// correction"). The table from pair slot to entry is made again.
+    static void saveEndNormals(StateWriter &a, const WorldState &w) {
+        const ContactManager &c = w.contacts;
+        std::vector<std::pair<const ContactManager::EndNormal *, std::uint8_t>> standing;
+        for (const ContactManager::EndNormal &e : c.endNormals_) {
+            if (e.pair >= c.pairs.slots() || !c.pairs[e.pair].alive) continue;
+            const PairState &pair = c.pairs[e.pair];
+            const std::uint8_t sideA = standingSide(w, pair, e.memo.a, e.memo.poseA);
+            const std::uint8_t sideB = standingSide(w, pair, e.memo.b, e.memo.poseB);
+            if (sideA != 0 && sideB != 0) standing.push_back({&e, static_cast<std::uint8_t>(sideA | sideB << 2)});
+        }
+        a.count(standing.size());
+        for (auto [entry, sides] : standing) {
+            ContactManager::EndNormal e = *entry;
             packed(a, e.pair);
-            packedStep(a, e.step, now);
-            const PairState *pair = e.pair < c.pairs.slots() && c.pairs[e.pair].alive ? &c.pairs[e.pair] : nullptr;
-            // A pair removed since has no entry (ContactManager::removePair).
-            if constexpr (A::kReading) {
-                if (pair) c.endNormalOf_[e.pair] = static_cast<std::uint32_t>(k);
-            }
-            std::uint8_t sides[2] = {0, 0};
-            const CollisionShape *memoShapes[2] = {m.a, m.b};
-            Eigen::Matrix<real, 3, 4> *poses[2] = {&m.poseA, &m.poseB};
-            for (int s = 0; s < 2; ++s) {
-                if constexpr (!A::kReading) {
-                    if (memoShapes[s] && pair)
-                        sides[s] = memoShapes[s] == bodies[pair->a].shape.get() ? 1 : memoShapes[s] == bodies[pair->b].shape.get() ? 2 : 0;
-                }
-                io(a, sides[s]);
-                if (sides[s] > 2 || (sides[s] != 0 && !pair)) throw UnreadableState{"an end normal's side is out of range"};
-                const BodyRecord *body = sides[s] == 0 ? nullptr : &bodies[sides[s] == 1 ? pair->a : pair->b];
-                if constexpr (A::kReading) (s == 0 ? m.a : m.b) = body ? body->shape.get() : nullptr;
-                posedAs(a, *poses[s], body);
-            }
-            io(a, m.touching, m.normal);
+            packedStep(a, e.step, w.stepCount);
+            io(a, sides, e.memo.touching);
+            if (e.memo.touching) io(a, e.memo.normal);
         }
     }
 
-    /// A memo's pose: a flag, then the pose unless it is `body`'s transform.
-    template <class A>
-    static void posedAs(A &a, Eigen::Matrix<real, 3, 4> &pose, const BodyRecord *body) {
-        std::uint8_t standing = 0;
-        Eigen::Matrix<real, 3, 4> now;
-        if (body) now = body->body.getTransform().matrix().topRows<3>();
-        if constexpr (!A::kReading) standing = body && std::memcmp(now.data(), pose.data(), sizeof pose) == 0;
-        io(a, standing);
-        if (!standing) io(a, pose);
-        else if constexpr (A::kReading) pose = now;
+    static void restoreEndNormals(StateReader &a, WorldState &w) {
+        ContactManager &c = w.contacts;
+        c.endNormals_.resize(a.count(0, 4));
+        c.endNormalOf_.assign(c.pairs.slots(), ContactManager::kNoSlot);
+        for (std::size_t k = 0; k < c.endNormals_.size(); ++k) {
+            ContactManager::EndNormal &e = c.endNormals_[k];
+            NormalMemo &m = e.memo;
+            std::uint8_t sides = 0;
+            packed(a, e.pair);
+            packedStep(a, e.step, w.stepCount);
+            io(a, sides, m.touching);
+            m.normal = Vector3::UnitY();
+            if (m.touching) io(a, m.normal);
+            const std::uint8_t sideA = sides & 3, sideB = sides >> 2;
+            if (e.pair >= c.pairs.slots() || !c.pairs[e.pair].alive || sideA == 0 || sideA > 2 || sideB == 0 || sideB > 2)
+                throw UnreadableState{"an end normal names no pair"};
+            const PairState &pair = c.pairs[e.pair];
+            const BodyRecord &ra = w.bodies[sideA == 1 ? pair.a : pair.b];
+            const BodyRecord &rb = w.bodies[sideB == 1 ? pair.a : pair.b];
+            m.a = ra.shape.get();
+            m.b = rb.shape.get();
+            m.poseA = ra.body.getTransform().matrix().topRows<3>();
+            m.poseB = rb.body.getTransform().matrix().topRows<3>();
+            c.endNormalOf_[e.pair] = static_cast<std::uint32_t>(k);
+        }
     }
 
     /// The contacts. The step's lists (its pairs, their places, the candidates' slots of
     /// the last look-up) are rewritten before they are read, or only hint: not saved.
     template <class A>
-    static void contacts(A &a, ContactManager &c, const BodyStore &bodies, std::uint64_t now) {
+    static void contacts(A &a, ContactManager &c, std::uint64_t now) {
         pairCache(a, c.pairs, now);
         packed(a, c.touchingPairs);
         packed(a, c.anchorsIssued_);
@@ -475,7 +547,7 @@ struct StateFields {
         }
         tracks(a, c.tracks_, c.pairs.slots());
         packed(a, c.eventSlots_);
-        endNormals(a, c, bodies, now);
+
     }
 
     template <class A>
@@ -557,14 +629,36 @@ struct StateFields {
         }
     }
 
-    /// A body at a stamped pose, its transform and world inertia made from it.
-    static RigidBody posed(const RigidBody &body, const StampedBody &stamped) {
-        RigidBody b = body;
-        b.position = stamped.position;
-        b.orientation = stamped.orientation;
-        b.calculateDerivedData();
-        return b;
-    }
+    /// Bodies at stamped poses, their transforms and world inertia made from them: the
+    /// last pose asked of each body is kept (a body's slots are mostly stamped at one).
+    class PosedBodies {
+    public:
+        explicit PosedBodies(std::size_t bodies) : entry_(bodies, -1) { posed_.reserve(bodies); }
+        SolverManifold fresh;              ///< Room for a slot made again.
+        std::vector<SolverBody> carried;   ///< Room for remakeJacobians.
+        const RigidBody &at(const RigidBody &body, std::uint32_t index, const StampedBody &stamped) {
+            int &k = entry_[index];
+            if (k >= 0 && std::memcmp(posed_[k].position.data(), stamped.position.data(), sizeof(Vector3)) == 0 &&
+                std::memcmp(posed_[k].orientation.coeffs().data(), stamped.orientation.coeffs().data(),
+                            sizeof(Quaternion)) == 0)
+                return posed_[k];
+            if (k < 0) {
+                k = static_cast<int>(posed_.size());
+                posed_.push_back(body);  // never past the room reserved: one per body
+            } else {
+                posed_[k] = body;
+            }
+            RigidBody &b = posed_[k];
+            b.position = stamped.position;
+            b.orientation = stamped.orientation;
+            b.calculateDerivedData();
+            return b;
+        }
+
+    private:
+        std::vector<int> entry_;
+        std::vector<RigidBody> posed_;
+    };
 
     /// The manifold that took a solver slot in the last step, and its pair's bodies.
     struct SlotSource {
@@ -586,7 +680,7 @@ struct StateFields {
     /// Slot `m` made again from its stamp, its source's anchors and `normal`; false when
     /// the source's points do not fit the stamp's rows.
     static bool remade(const WorldState &w, const JacobianStamp &stamp, const SlotSource &source, const Vector3 &normal,
-                       SolverManifold &m) {
+                       SolverManifold &m, PosedBodies &posed) {
         const ManifoldState &from = *source.manifold;
         m = SolverManifold();
         m.normal = normal;
@@ -600,13 +694,23 @@ struct StateFields {
         }
         const BodyRecord &ra = w.bodies[source.a];
         const BodyRecord &rb = w.bodies[source.b];
-        const RigidBody posedA = posed(ra.body, stamp.body[0]);
-        const RigidBody posedB = posed(rb.body, stamp.body[1]);
+        const RigidBody &posedA = posed.at(ra.body, source.a, stamp.body[0]);
+        const RigidBody &posedB = posed.at(rb.body, source.b, stamp.body[1]);
         m.a = stamp.body[0].movable ? 1 : 0;
         m.b = stamp.body[1].movable ? 2 : 0;
         remakeJacobians(m, stamp.carrier, stampedSolverBody(stamp.body[0], ra, posedA),
-                        stampedSolverBody(stamp.body[1], rb, posedB), posedA, posedB);
+                        stampedSolverBody(stamp.body[1], rb, posedB), posedA, posedB, posed.carried);
         return true;
+    }
+
+    /// The normal a slot's Jacobians were made with: a flag when it is its manifold's.
+    template <class A>
+    static void slotNormal(A &a, Vector3 &normal, const ManifoldState &m) {
+        std::uint8_t same = 0;
+        if constexpr (!A::kReading) same = std::memcmp(normal.data(), m.normal.data(), sizeof(Vector3)) == 0;
+        io(a, same);
+        if (!same) io(a, normal);
+        else if constexpr (A::kReading) normal = m.normal;
     }
 
     /// The solver's slots, each Unkept, Remade or Copied (snapshot/solver_slots.h).
@@ -615,7 +719,7 @@ struct StateFields {
         const std::size_t n = a.count(s.manifolds_.size());
         const std::vector<SlotSource> sources = slotSources(w, n);
         std::vector<const StampedBody *> last(w.bodies.size(), nullptr);
-        SolverManifold fresh;
+        PosedBodies posed(w.bodies.size());
         for (std::size_t k = 0; k < n; ++k) {
             JacobianStamp &st = s.stamps_[k];
             SolverManifold &m = s.manifolds_[k];
@@ -623,13 +727,15 @@ struct StateFields {
             SlotForm form = SlotForm::Unkept;
             if (source.manifold && st.anchorsId != 0 && source.manifold->anchorsId == st.anchorsId) {
                 const bool carried = st.carrier && *st.carrier != Carrier::None;
-                form = remade(w, st, source, m.normal, fresh) && sameJacobians(fresh, m, carried) ? SlotForm::Remade : SlotForm::Copied;
+                form = remade(w, st, source, m.normal, posed.fresh, posed) && sameJacobians(posed.fresh, m, carried)
+                           ? SlotForm::Remade
+                           : SlotForm::Copied;
             }
             io(a, form);
             if (form == SlotForm::Unkept) continue;
             const std::uint32_t bodies[2] = {source.a, source.b};
             stamp(a, st, bodies, last);
-            if (form == SlotForm::Remade) io(a, m.normal);
+            if (form == SlotForm::Remade) slotNormal(a, m.normal, *source.manifold);
             else solverManifold(a, m);
         }
     }
@@ -641,6 +747,7 @@ struct StateFields {
         s.stamps_.resize(n);
         const std::vector<SlotSource> sources = slotSources(w, n);
         std::vector<const StampedBody *> last(w.bodies.size(), nullptr);
+        PosedBodies posed(w.bodies.size());
         for (std::size_t k = 0; k < n; ++k) {
             JacobianStamp &st = s.stamps_[k];
             SlotForm form = SlotForm::Unkept;
@@ -659,8 +766,8 @@ struct StateFields {
                 continue;
             }
             Vector3 normal;
-            io(a, normal);
-            if ( source.manifold->anchorsId != st.anchorsId || !remade(w, st, source, normal, s.manifolds_[k]))
+            slotNormal(a, normal, *source.manifold);
+            if ( source.manifold->anchorsId != st.anchorsId || !remade(w, st, source, normal, s.manifolds_[k], posed))
                 throw UnreadableState{"a solver slot's anchors are not its manifold's"};
         }
     }
@@ -686,7 +793,9 @@ struct StateFields {
     /// springs, characters, the solver's kept data and the events recorded between steps.
     template <class A>
     static void managers(A &a, WorldState &w) {
-        contacts(a, w.contacts, w.bodies, w.stepCount);
+        contacts(a, w.contacts, w.stepCount);
+        if constexpr (A::kReading) restoreEndNormals(a, w);
+        else saveEndNormals(a, w);
         sensors(a, w.sensors, w.stepCount);
         islands(a, w.islands);
         joints(a, w.joints);
@@ -775,7 +884,7 @@ struct StateFields {
 
     static void save(const WorldState &state, std::vector<std::uint8_t> &out);
     static void restore(WorldState &w, const std::uint8_t *data, std::size_t size);
-    static void restoreBody(StateReader &a, WorldState &w, std::uint32_t index);
+    static void restoreBody(StateReader &a, WorldState &w, std::uint32_t index, LastBody &last);
 };
 
 void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) {
@@ -789,11 +898,12 @@ void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) 
 
     BodyStore &bodies = w.bodies;
     a.count(bodies.size());
+    LastBody last;
     for (std::size_t k = 0; k < bodies.size(); ++k) {
         BodyRecord &r = bodies[static_cast<std::uint32_t>(k)];
         io(a, r.alive, r.generation);
         if (!r.alive) continue;
-        record(a, r);
+        record(a, r, last);
         if (r.object) boxes(a, *r.object);
     }
     bodyLists(a, bodies);
@@ -810,7 +920,7 @@ void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) 
     managers(a, w);
 }
 
-void StateFields::restoreBody(StateReader &a, WorldState &w, std::uint32_t index) {
+void StateFields::restoreBody(StateReader &a, WorldState &w, std::uint32_t index, LastBody &last) {
     BodyRecord &r = w.bodies[index];
     const bool wasAlive = r.alive;
     const std::uint32_t oldShape = r.shapeIndex;
@@ -821,7 +931,7 @@ void StateFields::restoreBody(StateReader &a, WorldState &w, std::uint32_t index
         r.generation = generation;
         return;
     }
-    record(a, r);
+    record(a, r, last);
     if (r.shapeIndex >= w.shapes.size()) throw UnreadableState{"names a shape this World does not have"};
     // A body that kept its slot and shape keeps its collision object (and ccd core).
     const bool same = wasAlive && oldShape == r.shapeIndex && r.shape == w.shapes[r.shapeIndex];
@@ -859,7 +969,8 @@ void StateFields::restore(WorldState &w, const std::uint8_t *data, std::size_t s
     BodyStore &bodies = w.bodies;
     const std::size_t slots = a.count(0, 5);
     bodies.records.resize(slots);
-    for (std::size_t k = 0; k < slots; ++k) restoreBody(a, w, static_cast<std::uint32_t>(k));
+    LastBody last;
+    for (std::size_t k = 0; k < slots; ++k) restoreBody(a, w, static_cast<std::uint32_t>(k), last);
     bodyLists(a, bodies);
     bodies.names.clear();
     for (std::uint32_t index : bodies.order)
