@@ -882,6 +882,14 @@ struct StateFields {
         HierarchyAccess::path(tree) = path;
     }
 
+    /// Bytes enough for most states of `w` (growing the state as it is written copied
+    /// it several times over): a body's record and box, a pair slot, a touching pair's
+    /// pose and manifolds, a solver slot's stamp, each rounded up.
+    static std::size_t roomFor(const WorldState &w) {
+        return kHeaderSize + 1024 + 256 * w.bodies.size() + 16 * w.contacts.pairs.slots() +
+               512 * w.contacts.touchingPairs.size() + 160 * w.solver.manifolds_.size();
+    }
+
     static void save(const WorldState &state, std::vector<std::uint8_t> &out);
     static void restore(WorldState &w, const std::uint8_t *data, std::size_t size);
     static void restoreBody(StateReader &a, WorldState &w, std::uint32_t index, LastBody &last);
@@ -1003,6 +1011,7 @@ namespace cyclone {
 
 std::vector<std::uint8_t> World::saveState() const {
     std::vector<std::uint8_t> out(detail::kHeaderSize);
+    out.reserve(detail::StateFields::roomFor(*impl_));
     detail::StateFields::save(*impl_, out);
     const std::uint64_t length = out.size() - detail::kHeaderSize;
     detail::put(out, 0, detail::kStateTag);
