@@ -4,17 +4,20 @@
 // each body names its shape by its place in WorldState::shapes, the shapes in the order
 // of the addBody calls, so that a World built by the same calls reads it, and a state
 // whose shapes' fingerprint differs is refused. What is copied is what a step reads of
-// the steps before it: the bodies' records and dynamic state, the contact pairs with
-// their manifolds, anchors and warm-start impulses, the end normals the narrowphase
-// reuses, the solver's kept Jacobians (a slot keeps them while its bodies hardly move),
-// the joints and springs with their impulses, the sensors' overlaps, the islands, the
-// events recorded between steps, and the broadphase's three trees node by node: the walk
-// that lists the candidate pairs, and so the solve order, follows the trees' shapes, and
-// FCL's incremental balancing compares node addresses, so the internal nodes are
-// restored in the same order of addresses (their rank is saved). Each struct's fields are
-// listed once, in a function of StateFields that reads or writes them through io()
-// (state_archive.h): a field added to a struct is one line there. Scratch that a step
-// rewrites before it reads it is not saved. Sizes and timings: docs/rollback.md.
+// the steps before it and cannot make again: the bodies' records and dynamic state, the
+// contact pairs with their manifolds, anchors and warm-start impulses, the end normals
+// the next narrowphase can take, what the solver's kept Jacobians were made from (they
+// are made again: snapshot/solver_slots.h), the joints and springs with their impulses,
+// the sensors' overlaps, the islands, the events recorded between steps, and the
+// broadphase's three trees node by node: the walk that lists the candidate pairs, and so
+// the solve order, follows the trees' shapes, and FCL's incremental balancing compares
+// node addresses, so the internal nodes are restored in the same order of addresses
+// (their rank is saved). What is made again from what is stored (a body's transform, a
+// tree's boxes, a slot's Jacobians) is stored instead wherever making it again would not
+// give its bits: the save checks. Each struct's fields are listed once, in a function of
+// StateFields that reads or writes them through io() or packed() (state_archive.h): a
+// field added to a struct is one line there. Scratch that a step rewrites before it
+// reads it is not saved. Sizes and timings: docs/rollback.md.
 #include <algorithm>
 #include <initializer_list>
 #include <unordered_map>
@@ -31,7 +34,7 @@ namespace cyclone::detail {
 namespace {
 
 constexpr std::uint32_t kStateTag = 0x54535943;  // "CYST"
-constexpr std::uint32_t kStateVersion = 1;
+constexpr std::uint32_t kStateVersion = 2;
 /// Tag, version, payload length, checksum.
 constexpr std::size_t kHeaderSize = 4 + 4 + 8 + 8;
 
