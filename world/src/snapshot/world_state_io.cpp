@@ -329,9 +329,12 @@ struct StateFields {
     template <class A>
     static void options(A &a, BodyRecord &r) {
         std::uint8_t defaults = 0;
-        if constexpr (!A::kReading)
-            defaults = r.gravityScale == 1 && !r.locked.any() && r.surfaceVelocity.isZero(0) && r.oneWay.isZero(0) &&
+        if constexpr (!A::kReading) {
+            static const Vector3 kZero = Vector3::Zero();
+            const auto zero = [](const Vector3 &v) { return std::memcmp(v.data(), kZero.data(), sizeof(Vector3)) == 0; };
+            defaults = r.gravityScale == 1 && !r.locked.any() && zero(r.surfaceVelocity) && zero(r.oneWay) &&
                        r.userData == 0;
+        }
         io(a, defaults);
         if (!defaults) io(a, r.gravityScale, r.locked, r.surfaceVelocity, r.oneWay, r.userData);
         else if constexpr (A::kReading) {
@@ -371,7 +374,8 @@ struct StateFields {
         packed(a, s.simulated);
         packed(a, s.kinematic);
         packed(a, s.moving);
-        io(a, s.filteredCount, s.sensorCount, s.roundCount, s.keptApartCount, s.lockedCount, s.ruledCount, s.isolatedCount);
+        io(a, s.filteredCount, s.sensorCount, s.roundCount, s.keptApartCount, s.lockedCount, s.ruledCount);
+        io(a, s.isolatedCount);
         packed(a, s.planes);
     }
 
@@ -550,7 +554,6 @@ struct StateFields {
         }
         tracks(a, c.tracks_, c.pairs.slots());
         packed(a, c.eventSlots_);
-
     }
 
     template <class A>
@@ -613,7 +616,8 @@ struct StateFields {
             std::uint8_t same = 0;
             if constexpr (!A::kReading)
                 same = before && std::memcmp(before->position.data(), b.position.data(), sizeof(Vector3)) == 0 &&
-                       std::memcmp(before->orientation.coeffs().data(), b.orientation.coeffs().data(), sizeof(Quaternion)) == 0;
+                       std::memcmp(before->orientation.coeffs().data(), b.orientation.coeffs().data(),
+                                   sizeof(Quaternion)) == 0;
             io(a, b.movable, same);
             if (same && !before) throw UnreadableState{"a stamp repeats a pose not given"};
             if (!same) io(a, b.position, b.orientation);
@@ -626,7 +630,8 @@ struct StateFields {
         std::uint8_t carrier = s.carrier ? static_cast<std::uint8_t>(*s.carrier) : 0xFF;
         io(a, carrier);
         if constexpr (A::kReading) {
-            if (carrier != 0xFF && carrier > static_cast<std::uint8_t>(Carrier::B)) throw UnreadableState{"a slot's carrier is out of range"};
+            if (carrier != 0xFF && carrier > static_cast<std::uint8_t>(Carrier::B))
+                throw UnreadableState{"a slot's carrier is out of range"};
             s.carrier = carrier == 0xFF ? std::nullopt : std::optional<Carrier>(static_cast<Carrier>(carrier));
             s.kept = false;
         }
@@ -637,8 +642,8 @@ struct StateFields {
     class PosedBodies {
     public:
         explicit PosedBodies(std::size_t bodies) : entry_(bodies, -1) { posed_.reserve(bodies); }
-        SolverManifold fresh;              ///< Room for a slot made again.
-        std::vector<SolverBody> carried;   ///< Room for remakeJacobians.
+        SolverManifold fresh;             ///< Room for a slot made again.
+        std::vector<SolverBody> carried;  ///< Room for remakeJacobians.
         const RigidBody &at(const RigidBody &body, std::uint32_t index, const StampedBody &stamped) {
             int &k = entry_[index];
             if (k >= 0 && std::memcmp(posed_[k].position.data(), stamped.position.data(), sizeof(Vector3)) == 0 &&
@@ -770,7 +775,7 @@ struct StateFields {
             }
             Vector3 normal;
             slotNormal(a, normal, *source.manifold);
-            if ( source.manifold->anchorsId != st.anchorsId || !remade(w, st, source, normal, s.manifolds_[k], posed))
+            if (source.manifold->anchorsId != st.anchorsId || !remade(w, st, source, normal, s.manifolds_[k], posed))
                 throw UnreadableState{"a solver slot's anchors are not its manifold's"};
         }
     }
