@@ -178,6 +178,36 @@ TEST_P(WorldState, BodyAddedAfterTheSaveIsGoneAndRemovedOneIsBack) {
     ASSERT_TRUE(sameTrajectory(trajectory(scene, kAfter), expected));
 }
 
+// A body given options after it was added (no gravity, a user value), removed after the
+// save and its slot taken by a new body: it comes back with them. Without gravity it rises after the restore as it did in
+// the run that never saved (with gravity it would fall from the first step on).
+TEST_P(WorldState, RemovedBodyComesBackWithItsOptions) {
+    const auto withOptions = [](RollbackScene &scene) {
+        scene.world.setGravityScale(scene.ids[3], 0);
+        scene.world.setUserData(scene.ids[3], 42);
+        scene.world.setVelocity(scene.ids[3], Vector3(0, 0.5, 0));
+    };
+    RollbackScene reference(GetParam());
+    reference.run(kSaveStep);
+    withOptions(reference);
+    const auto expected = trajectory(reference, kAfter);
+
+    RollbackScene scene(GetParam());
+    scene.run(kSaveStep);
+    withOptions(scene);
+    const std::vector<std::uint8_t> state = scene.world.saveState();
+    scene.world.removeBody(scene.ids[3]);
+    BodySettings box;  // takes the removed body's slot, with the default options
+    box.shape = Shape::box(Vector3(0.2, 0.2, 0.2));
+    box.position = Vector3(0, 4, 0);
+    const BodyId added = scene.world.addBody(box);
+    ASSERT_EQ(added.index, scene.ids[3].index);
+    scene.run(10);
+    scene.world.restoreState(state);
+    EXPECT_EQ(scene.world.userData(scene.ids[3]), 42u);
+    ASSERT_TRUE(sameTrajectory(trajectory(scene, kAfter), expected));
+}
+
 // Axes locked on the pile's bodies after step 100: their slots keep the Jacobians made
 // without the locks (a slot holds while its bodies hardly move), which the state cannot
 // make again from the bodies as they are (a locked body's solver inverse inertia is zero
