@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -23,10 +24,13 @@ class StateWriter {
 public:
     static constexpr bool kReading = false;
     explicit StateWriter(std::vector<std::uint8_t> &out) : out_(out) {}
+    std::size_t size() const { return out_.size(); }
     void bytes(const void *data, std::size_t size) {
-        const auto *b = static_cast<const std::uint8_t *>(data);
-        out_.insert(out_.end(), b, b + size);
+        const std::size_t at = out_.size();
+        out_.resize(at + size);
+        if (size > 0) std::memcpy(out_.data() + at, data, size);
     }
+    void byte(std::uint8_t b) { out_.push_back(b); }
     /// Writes a count and returns it (the item size matters only when reading).
     std::size_t count(std::size_t n, std::size_t = 1) {
         const auto value = static_cast<std::uint32_t>(n);
@@ -56,6 +60,10 @@ public:
         if (itemSize > 0 && value > static_cast<std::size_t>(end_ - at_) / itemSize)
             throw UnreadableState{"a count exceeds its bytes"};
         return value;
+    }
+    std::uint8_t byte() {
+        if (at_ == end_) throw UnreadableState{"it is cut short"};
+        return *at_++;
     }
     bool done() const { return at_ == end_; }
 
@@ -97,6 +105,45 @@ void io(Archive &archive, std::vector<T> &items) {
     } else {
         for (T &item : items) io(archive, item);
     }
+}
+
+/// An unsigned number seven bits a byte, low bits first, the high bit set on every byte
+/// but the last: numbers below 128 take one byte (indices, counts, step differences).
+template <class Archive, class T>
+void packed(Archive &archive, T &value) {
+    static_assert(std::is_unsigned_v<T>, "packed numbers are unsigned");
+    if constexpr (Archive::kReading) {
+        std::uint64_t v = 0;
+        for (int shift = 0;; shift += 7) {
+            if (shift >= 64) throw UnreadableState{"a packed number is too long"};
+            const std::uint8_t b = archive.byte();
+            v |= std::uint64_t(b & 0x7F) << shift;
+            if (!(b & 0x80)) break;
+        }
+        if (v > std::numeric_limits<T>::max()) throw UnreadableState{"a packed number is out of range"};
+        value = static_cast<T>(v);
+    } else {
+        std::uint64_t v = value;
+        for (; v >= 0x80; v >>= 7) archive.byte(static_cast<std::uint8_t>(v | 0x80));
+        archive.byte(static_cast<std::uint8_t>(v));
+    }
+}
+
+/// A list of unsigned numbers, packed.
+template <class Archive, class T>
+void packed(Archive &archive, std::vector<T> &items) {
+    const std::size_t n = archive.count(items.size());
+    if constexpr (Archive::kReading) items.resize(n);
+    for (T &item : items) packed(archive, item);
+}
+
+/// A step number packed as how many steps before `now` it was (0: `now`; any number,
+/// "never" included, reads back: the difference wraps around).
+template <class Archive>
+void packedStep(Archive &archive, std::uint64_t &step, std::uint64_t now) {
+    std::uint64_t before = now - step;
+    packed(archive, before);
+    if constexpr (Archive::kReading) step = now - before;
 }
 
 /// Several fields in a row: io(archive, a, b, c).
