@@ -8,7 +8,7 @@
 // normal they were made with, the bodies' masses and locks, and, for the carried terms,
 // the carrier they were made for. A state holds those (about 150 bytes) and a restore
 // makes the Jacobians again through the very functions the step uses
-// (ConstraintSolver::prepareManifold's). The save makes them too and compares them bit for
+// (prepareJacobians, as ConstraintSolver::prepareManifold). The save makes them too and compares them bit for
 // bit with the slot's; a slot where they differ (a mass changed since, a moving kinematic
 // body whose lever arms turned with it) is copied whole. A slot whose stamp names anchors
 // no manifold has cannot keep its Jacobians: the next step makes them anew, and the state
@@ -50,15 +50,7 @@ __attribute__((noinline)) inline void remakeJacobians(SolverManifold &m, const s
                                                       const RigidBody &posedA, const RigidBody &posedB,
                                                       std::vector<SolverBody> &scratch) {
     tangentBasis(m.normal, m.tangent[0], m.tangent[1]);
-    prepareDirections(m);
-    Vector3 points[kMaxManifoldPoints];
-    for (int i = 0; i < m.count; ++i) {
-        const SolverPoint &p = m.points[i];
-        points[i] = 0.5 * (posedA.getPointInWorldSpace(p.localA) + posedB.getPointInWorldSpace(p.localB));
-        prepareRows(sa, sb, points[i] - posedA.getPosition(), points[i] - posedB.getPosition(), m, m.points[i]);
-    }
-    prepareFrictionRows(sa, sb, points, posedA.getPosition(), posedB.getPosition(), m);
-    prepareCouplings(sa, sb, m);
+    prepareJacobians(sa, sb, posedA, posedB, m);
     if (carrier) {
         m.carrier = *carrier;
         scratch.assign({SolverBody(), sa, sb});

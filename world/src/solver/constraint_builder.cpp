@@ -384,20 +384,11 @@ void ConstraintSolver::prepareManifold(const BodyStore &bodies, std::size_t s, r
     const SolverBody &sa = bodies_[m.a];
     const SolverBody &sb = bodies_[m.b];
     if (!stamps_[s].kept) {
-        prepareDirections(m);
         const int simulated = static_cast<int>(bodies.simulated.size());
         LeverTurns turns;
         if (m.a > simulated) turns.any |= midStepTurn(a, dt, turns.a);
         if (m.b > simulated) turns.any |= midStepTurn(b, dt, turns.b);
-        Vector3 points[kMaxManifoldPoints];
-        for (int i = 0; i < m.count; ++i) {
-            const SolverPoint &p = m.points[i];
-            points[i] = 0.5 * (a.getPointInWorldSpace(p.localA) + b.getPointInWorldSpace(p.localB));
-            prepareRows(sa, sb, turns.leverA(points[i] - a.getPosition()), turns.leverB(points[i] - b.getPosition()), m,
-                        m.points[i]);
-        }
-        prepareFrictionRows(sa, sb, points, a.getPosition(), b.getPosition(), m, turns);
-        prepareCouplings(sa, sb, m);
+        prepareJacobians(sa, sb, a, b, m, turns);
     }
     // The first sub-step's targets are set here, while the points are in the cache (later
     // sub-steps set theirs at their depths: ConstraintSolver::solveVelocities).

@@ -364,6 +364,20 @@ void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &
     m.carriedCouplings = m.couplings;
 }
 
+void prepareJacobians(const SolverBody &sa, const SolverBody &sb, const RigidBody &bodyA, const RigidBody &bodyB,
+                      SolverManifold &m, const LeverTurns &turns) {
+    prepareDirections(m);
+    Vector3 points[kMaxManifoldPoints];
+    for (int i = 0; i < m.count; ++i) {
+        const SolverPoint &p = m.points[i];
+        points[i] = 0.5 * (bodyA.getPointInWorldSpace(p.localA) + bodyB.getPointInWorldSpace(p.localB));
+        prepareRows(sa, sb, turns.leverA(points[i] - bodyA.getPosition()), turns.leverB(points[i] - bodyB.getPosition()),
+                    m, m.points[i]);
+    }
+    prepareFrictionRows(sa, sb, points, bodyA.getPosition(), bodyB.getPosition(), m, turns);
+    prepareCouplings(sa, sb, m);
+}
+
 CYCLONE_SIMD_CLONES
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
                          const Vector3 &positionB, SolverManifold &m, const LeverTurns &turns) {

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cyclone/body.h"
 #include "cyclone/core.h"
 #include "solver/simd/vector4.h"
 
@@ -245,6 +246,13 @@ void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3
 /// Fills the manifold's couplings from its rows (after prepareRows and
 /// prepareFrictionRows), and its carried couplings with the same.
 void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &m);
+
+/// Makes the manifold's Jacobians (its directions, point rows, friction rows and
+/// couplings; its normal and tangents set) for bodies `bodyA` and `bodyB` (solver bodies
+/// sa and sb) at their poses now, lever arms turned by `turns`. The step's and a saved
+/// state's restore (snapshot/solver_slots.h) go through it, so that both make the same bits.
+void prepareJacobians(const SolverBody &sa, const SolverBody &sb, const RigidBody &bodyA, const RigidBody &bodyB,
+                      SolverManifold &m, const LeverTurns &turns = LeverTurns());
 
 /// Fills carriedMass and the carried couplings of a manifold that has a carrying
 /// side (after assignCarriers).
