@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "world/world_impl.h"
+#include "contacts/pair_cache.h"
+#include "world/body_store.h"
+#include "world/step_context.h"
 
 namespace cyclone::detail {
 namespace {
@@ -37,26 +39,24 @@ StepPlan plan(int substeps, int iterations, const WorldSettings &settings) {
 
 }  // namespace
 
-StepPlan planStep(const WorldState &world, real dt) {
-    const WorldSettings &settings = world.settings;
+StepPlan planStep(const WorldSettings &settings, const StepContext &context, const BodyStore &bodies,
+                  const PairCache &pairs, std::uint64_t stepCount, real dt) {
     const StepPlan full = plan(settings.substeps, settings.velocityIterations, settings);
     const int resting = settings.debug.restingSubsteps;
     if (resting <= 0 || resting >= settings.substeps) return full;
     // Joints and springs are stiff where sub-steps are short; a moving kinematic body
     // moves what it touches.
-    if (world.context.activeJoints > 0 || world.context.activeSprings > 0 || !world.bodies.moving.empty()) return full;
+    if (context.activeJoints > 0 || context.activeSprings > 0 || !bodies.moving.empty()) return full;
     // A long step lets gravity carry a resting body through its contacts' reach within one
     // sub-step (|g| h^2 beyond speculativeDistance): its sub-steps stay.
     const real h = dt / resting;
     if (settings.gravity.norm() * h * h > settings.speculativeDistance) return full;
-    const BodyStore &bodies = world.bodies;
-    const PairCache &pairs = world.contacts.pairs;
     for (std::uint32_t index : bodies.simulated) {
         const BodyRecord &r = bodies[index];
         if (r.isolated) continue;
         const RigidBody &body = r.body;
         const real reach = (body.getVelocity().norm() + body.getRotation().norm() * r.boundingRadius) * dt;
-        if (reach >= kRestingReach || !restsOnWarmContacts(r, pairs, world.stepCount)) return full;
+        if (reach >= kRestingReach || !restsOnWarmContacts(r, pairs, stepCount)) return full;
     }
     // restingIterations passes per step, at most a full step's, shared by the sub-steps
     // (rounded up).

@@ -16,7 +16,9 @@
 
 namespace cyclone::detail {
 
-struct WorldState;
+struct BodyStore;
+class PairCache;
+struct StepContext;
 
 /// How far (m) a body may move in a step, at its velocity and turn, and still count as
 /// resting: the reach below which its contacts count it as still (contact_manager.cpp).
@@ -37,8 +39,11 @@ struct StepPlan {
     real recovery = 0;
 };
 
-/// The plan of the step of `dt` about to be solved: called after the narrowphase (it
-/// reads which bodies touch something) and before the solver's manifolds are built.
-StepPlan planStep(const WorldState &world, real dt);
+/// The plan of the step of `dt` (step number `stepCount`) about to be solved, from the
+/// settings, the step's active joints and springs (`context`), the bodies and their
+/// contact pairs: called after the narrowphase (it reads which bodies touch something)
+/// and before the solver's manifolds are built.
+StepPlan planStep(const WorldSettings &settings, const StepContext &context, const BodyStore &bodies,
+                  const PairCache &pairs, std::uint64_t stepCount, real dt);
 
 }  // namespace cyclone::detail

@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "joints/joint_set.h"
-#include "world/world_impl.h"
 
 namespace cyclone::detail {
 namespace {

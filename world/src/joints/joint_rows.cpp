@@ -14,7 +14,6 @@
 #include <cmath>
 
 #include "joints/joint_set.h"
-#include "world/world_impl.h"
 
 namespace cyclone::detail {
 namespace {
@@ -412,10 +411,9 @@ void JointSet::measure(const BodyStore &bodies, const JointRecord &j, real *erro
     }
 }
 
-void JointSet::makeRows(const WorldState &world, const std::vector<SolverBody> &solverBodies, real h,
-                        bool positions) {
-    const BodyStore &bodies = world.bodies;
-    const bool warmStart = !positions && world.settings.debug.warmStarting;
+void JointSet::makeRows(const BodyStore &bodies, bool warmStarting, const std::vector<SolverBody> &solverBodies,
+                        real h, bool positions) {
+    const bool warmStart = !positions && warmStarting;
     rows_.clear();
     equality_.clear();
     bounded_.clear();

@@ -124,7 +124,7 @@ void JointSet::prepare(WorldState &world, const std::vector<SolverBody> &solverB
         return;
     }
     stepTime_ += h;
-    makeRows(world, solverBodies, h, false);
+    makeRows(world.bodies, world.settings.debug.warmStarting, solverBodies, h, false);
     factorise(solverBodies);
     constrainBoundedMasses(solverBodies, h);
     world.stats.jointRows += static_cast<int>(rows_.size());
@@ -406,7 +406,7 @@ void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody>
         rows_.clear();
         return;
     }
-    makeRows(world, solverBodies, 1, true);
+    makeRows(world.bodies, world.settings.debug.warmStarting, solverBodies, 1, true);
     EqualityErrors errors = equalityErrors();
     for (int it = 0; it < projections; ++it) {
         if (!(errors.largest > kProjectionTolerance)) break;
@@ -444,7 +444,7 @@ void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody>
         for (int halving = 0; halving <= kProjectionHalvings && !progressed; ++halving, scale *= 0.5) {
             if (halving > 0) takeBack();
             applyMoves(bodies, scale);
-            makeRows(world, solverBodies, 1, true);
+            makeRows(world.bodies, world.settings.debug.warmStarting, solverBodies, 1, true);
             const EqualityErrors after = equalityErrors();
             progressed = after.squares <= errors.squares;
             if (progressed) errors = after;

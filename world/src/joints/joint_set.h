@@ -156,7 +156,8 @@ private:
     }
     /// Makes the rows of every joint at the current poses (joint_rows.cpp); `positions`
     /// leaves out motors and soft rows, and keeps only violated limits.
-    void makeRows(const WorldState &world, const std::vector<SolverBody> &solverBodies, real h, bool positions);
+    void makeRows(const BodyStore &bodies, bool warmStarting, const std::vector<SolverBody> &solverBodies, real h,
+                  bool positions);
     /// Factorises J M^-1 J^T of the equality rows (equality_).
     void factorise(const std::vector<SolverBody> &solverBodies);
     /// Gives each bounded row and pull block its effective mass with the equality rows

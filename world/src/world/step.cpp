@@ -32,7 +32,7 @@ void WorldState::step(real dt, const World &queries) {
     KinematicBodies::number(bodies);
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
     if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(*this); }
-    context.plan = planStep(*this, dt);
+    context.plan = planStep(settings, context, bodies, contacts.pairs, stepCount, dt);
     const StepPlan &plan = context.plan;
     { const StageTimer t(ms.manifolds); solver.build(*this); }
     { const StageTimer t(ms.islands); islands.build(*this); }
