@@ -40,6 +40,7 @@ struct RunResult {
     int steps = 0;
     double medianMs = kNaN;
     double p95Ms = kNaN;
+    double p99Ms = kNaN;
     double meanMs = kNaN;
     double maxMs = kNaN;
     int contactsLast = 0;
@@ -222,6 +223,7 @@ Run runIsolated(const Scene &scene, const std::string &engineName, int steps) {
 void summarise(RunResult &result, const std::vector<double> &times) {
     result.medianMs = median(times);
     result.p95Ms = percentile(times, 0.95);
+    result.p99Ms = percentile(times, 0.99);
     double total = 0;
     for (double t : times) total += t;
     result.meanMs = total / static_cast<double>(times.size());
@@ -304,9 +306,9 @@ struct Row {
 };
 
 void printTable(const std::vector<Row> &rows, const std::vector<std::string> &sceneOrder) {
-    std::cout << "| scene | engine | bodies | median ms | p95 ms | contacts | µs/contact | peak heap MiB | "
+    std::cout << "| scene | engine | bodies | median ms | p95 ms | p99 ms | slowest ms | contacts | µs/contact | peak heap MiB | "
                  "peak RSS Δ MiB | state B/body | allocs/step | top-box drift cm | deepest pen. mm |\n"
-              << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+              << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const std::string &scene : sceneOrder) {
         const RunResult *ours = nullptr;
         const RunResult *bullet = nullptr;
@@ -315,19 +317,21 @@ void printTable(const std::vector<Row> &rows, const std::vector<std::string> &sc
             const RunResult &r = row.result;
             if (!r.ok) {
                 std::cout << "| " << scene << " | " << row.engine << " | " << r.bodies
-                          << " | failed (see below) | | | | | | | | | |\n";
+                          << " | failed (see below) | | | | | | | | | | | |\n";
                 continue;
             }
             (row.engine == "cyclone" ? ours : bullet) = &r;
             std::cout << "| " << scene << " | " << row.engine << " | " << r.bodies << " | " << milliseconds(r.medianMs)
-                      << " | " << milliseconds(r.p95Ms) << " | " << r.contactsLast << " | " << fixed(r.usPerContact, 3)
+                      << " | " << milliseconds(r.p95Ms) << " | " << milliseconds(r.p99Ms) << " | "
+                      << milliseconds(r.maxMs) << " | " << r.contactsLast << " | " << fixed(r.usPerContact, 3)
                       << " | " << mebibytes(r.peakHeapBytes) << " | " << mebibytes(r.peakRssBytes) << " | "
                       << fixed(asDouble(r.stateBytes) / r.bodies, 0) << " | " << fixed(r.allocsPerStep, 2) << " | "
                       << fixed(r.driftM * 100, 2) << " | " << fixed(r.penetrationM * 1000, 2) << " |\n";
         }
         if (ours && bullet) {
             std::cout << "| " << scene << " | **ours/Bullet** | | **" << ratio(ours->medianMs, bullet->medianMs)
-                      << "** | " << ratio(ours->p95Ms, bullet->p95Ms) << " | "
+                      << "** | " << ratio(ours->p95Ms, bullet->p95Ms) << " | " << ratio(ours->p99Ms, bullet->p99Ms)
+                      << " | " << ratio(ours->maxMs, bullet->maxMs) << " | "
                       << ratio(ours->contactsLast, bullet->contactsLast) << " | "
                       << ratio(ours->usPerContact, bullet->usPerContact) << " | "
                       << ratio(asDouble(ours->peakHeapBytes), asDouble(bullet->peakHeapBytes)) << " | "
@@ -369,15 +373,15 @@ void printSleepingRatio(const std::vector<Row> &rows) {
 }
 
 void writeCsv(std::ofstream &out, const std::vector<Row> &rows) {
-    out << "scene,engine,bodies,steps,median_ms,p95_ms,mean_ms,max_ms,contacts_last,us_per_contact,"
+    out << "scene,engine,bodies,steps,median_ms,p95_ms,p99_ms,mean_ms,max_ms,contacts_last,us_per_contact,"
            "peak_heap_bytes,peak_rss_bytes,state_bytes,allocs_per_step,drift_m,penetration_m,error\n";
     char line[1024];
     for (const Row &row : rows) {
         const RunResult &r = row.result;
         std::string error = r.error;
         std::replace(error.begin(), error.end(), '"', '\'');
-        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.6f,%.6f,%.6f,%.6f,%d,%.6f,%lld,%lld,%lld,%.3f,%.9f,%.9f,\"%s\"\n",
-                      row.scene.c_str(), row.engine.c_str(), r.bodies, r.steps, r.medianMs, r.p95Ms, r.meanMs,
+        std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%d,%.6f,%lld,%lld,%lld,%.3f,%.9f,%.9f,\"%s\"\n",
+                      row.scene.c_str(), row.engine.c_str(), r.bodies, r.steps, r.medianMs, r.p95Ms, r.p99Ms, r.meanMs,
                       r.maxMs, r.contactsLast, r.usPerContact, r.peakHeapBytes, r.peakRssBytes, r.stateBytes,
                       r.allocsPerStep, r.driftM, r.penetrationM, error.c_str());
         out << line;
