@@ -1,6 +1,7 @@
 #include "contacts/landing.h"
 
 #include <algorithm>
+#include <iterator>
 #include <limits>
 
 #include "collision/time_of_impact.h"
@@ -195,6 +196,7 @@ void LandingCorrection::correct(WorldState &world) {
     if (!world.joints.empty()) buildJointGroups(world);
 
     points_.clear();
+    nextOrder_ = 0;
     for (int round = 1; round <= kRounds; ++round) {
         const int last = round - 1;
         listRoundPairs(world, last);
@@ -207,7 +209,7 @@ void LandingCorrection::correct(WorldState &world) {
         // The first round acts only where some point is deeper than its tolerance; a later
         // one wherever its fresh points lie deeper than their targets.
         if (round == 1 ? !deep : points_.size() == before) break;
-        orderPoints();
+        orderPoints(before);
         world.stats.landingPushes += push(world, round);
     }
 
@@ -316,15 +318,23 @@ void LandingCorrection::listRoundPairs(WorldState &world, int last) {
 
 // Lowest first: a push up out of what is below is not undone by the one below it. Small
 // keys are sorted and the points then put in their order: moving whole points about in
-// the sort cost more.
-void LandingCorrection::orderPoints() {
+// the sort cost more. The points kept from the last round are in order already (a point's
+// height is that of its finding): only the new ones are sorted, then merged with them.
+// Keys differ in `order`, so any sort gives the one order.
+void LandingCorrection::orderPoints(std::size_t kept) {
     sortKeys_.clear();
     for (std::size_t i = 0; i < points_.size(); ++i)
         sortKeys_.push_back({points_[i].height, points_[i].order, static_cast<std::uint32_t>(i)});
     const auto lower = [](const SortKey &x, const SortKey &y) {
         return x.height < y.height || (x.height == y.height && x.order < y.order);
     };
-    std::sort(sortKeys_.begin(), sortKeys_.end(), lower);
+    const auto fresh = sortKeys_.begin() + static_cast<std::ptrdiff_t>(kept);
+    std::sort(fresh, sortKeys_.end(), lower);
+    if (kept > 0) {
+        mergedKeys_.clear();
+        std::merge(sortKeys_.begin(), fresh, fresh, sortKeys_.end(), std::back_inserter(mergedKeys_), lower);
+        sortKeys_.swap(mergedKeys_);
+    }
     placeInOrder();
 }
 
@@ -460,7 +470,7 @@ bool LandingCorrection::detect(WorldState &world) {
     for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
         deep = deep || chunkDeep_[chunk] != 0;
         for (Point point : chunkPoints_[chunk]) {
-            point.order = static_cast<std::uint32_t>(points_.size());
+            point.order = nextOrder_++;
             points_.push_back(point);
         }
     }

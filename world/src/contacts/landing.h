@@ -71,7 +71,7 @@ private:
         Vector3 localNormal = Vector3::Zero();  ///< Normal A to B in A's body space.
         real target = 0;                     ///< Depth the passes push it back to, m.
         real height = 0;                     ///< Along -gravity: the passes go lowest first.
-        std::uint32_t order = 0;             ///< Place in the pair walk: breaks ties in height.
+        std::uint32_t order = 0;             ///< Place in the rounds' pair walks: breaks ties in height.
     };
 
     /// Marks the bodies round 0 moves: those that moved fast this step and those of the
@@ -79,8 +79,9 @@ private:
     void markFastBodies(WorldState &world);
     /// Lists in pairs_ the pairs a round tests: those with a body moved in round `last`.
     void listRoundPairs(WorldState &world, int last);
-    /// Puts points_ lowest first (ties in the pair walk's order).
-    void orderPoints();
+    /// Puts points_ lowest first (ties in the pair walks' order); its first `kept` points
+    /// are in that order already.
+    void orderPoints(std::size_t kept);
     /// Whether body `index` moved in `round`.
     bool movedIn(std::uint32_t index, int round) const;
     static bool appendPoints(const std::vector<Manifold> &out, std::size_t first, const PairState &pair,
@@ -154,6 +155,8 @@ private:
         std::uint32_t index = 0;  ///< In points_.
     };
     std::vector<SortKey> sortKeys_;
+    std::vector<SortKey> mergedKeys_;  ///< The kept and the new keys merged.
+    std::uint32_t nextOrder_ = 0;      ///< The order the next point found takes.
     /// Puts points_ in the order of sortKeys_ (sorted: the k-th key names the point that
     /// goes k-th), in place.
     void placeInOrder();
