@@ -66,7 +66,7 @@ void WorldState::step(real dt, const World &queries) {
         solver.storeImpulses(*this);
         joints.finishStep(*this, dt);
     }
-    { const StageTimer t(ms.ccd); ccd.sweep(*this); }
+    { const StageTimer t(ms.ccd); ccd.sweep(settings, bodies, broadphase, contacts.pairs, stepCount, stats); }
     { const StageTimer t(ms.landing); landing.correct(*this); }
     { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
     { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
