@@ -77,9 +77,9 @@ void ConstraintSolver::build(WorldState &world) {
     sortByHeight(keys_, keysScratch_);
     // The contact listener and the built-in rules may disable manifolds (their keys go)
     // and change the others' friction, restitution and surface velocity.
-    if (world.preSolve.active(world)) {
+    if (world.preSolve.active(world.bodies)) {
         world.stats.preSolvedManifolds += static_cast<int>(keys_.size());
-        world.preSolve.run(world, keys_);
+        world.preSolve.run(world.bodies, world.contacts.pairs, keys_);
     } else if (world.preSolve.ran()) {
         world.preSolve.skip();
     }
