@@ -31,7 +31,7 @@ void WorldState::step(real dt, const World &queries) {
     integration.closeAdmission(*this);
     KinematicBodies::number(bodies);
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
-    if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(*this); }
+    if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(bodies, broadphase, contacts.sensorCandidates(), stepCount, *events.sink, stats); }
     context.plan = planStep(settings, context, bodies, contacts.pairs, stepCount, dt);
     const StepPlan &plan = context.plan;
     { const StageTimer t(ms.manifolds); solver.build(*this); }

@@ -67,7 +67,7 @@ void WorldState::isolate(std::uint32_t index) {
     bodies.updateAwakeList(index);
     setTree(index, Tree::None);
     contacts.removePairsOf(bodies, index);
-    sensors.removed(*this, index);
+    sensors.removed(bodies, *events.sink, index);
 }
 
 void WorldState::setTree(std::uint32_t index, Tree tree) {
@@ -84,7 +84,7 @@ void WorldState::refreshCollisionObject(std::uint32_t index) {
     BodyRecord &r = bodies[index];
     if (r.object && r.object->place(r.body.getTransform(), kBroadphaseMargin))
         broadphase.refit(r.object.get(), r.tree);
-    sensors.moved(*this, index);
+    sensors.moved(bodies, index);
     if (!r.immovable) {
         wake(index);
         return;

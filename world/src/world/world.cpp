@@ -322,7 +322,7 @@ BodyId World::addBody(const BodySettings &settings) {
     w.shapes.push_back(shape);
     countBody(w.bodies, index);
     enterCollision(w, index);
-    w.sensors.added(w, index);
+    w.sensors.added(w.bodies, index);
     return w.bodies.idOf(index);
 }
 
