@@ -2,6 +2,7 @@
 // sensors -> constraints -> islands -> per sub-step (forces, solve, integrate, penetration,
 // locked axes) -> continuous collision -> landing correction -> locked axes -> sleep ->
 // characters. Each stage adds its time to stats().ms.
+#include "world/body_transitions.h"
 #include "world/stage_timer.h"
 #include "world/world_impl.h"
 
@@ -22,7 +23,7 @@ void WorldState::step(real dt, const World &queries) {
         const StageTimer t(ms.forces);
         integration.beginStep(*this, dt);
         axisLocks.beginStep(bodies);
-        kinematicBodies.beginStep(*this);
+        KinematicBodies::beginStep(bodies, contacts.pairs, BodyTransitions(*this));
         joints.beginStep(*this);
     }
     { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
@@ -35,7 +36,7 @@ void WorldState::step(real dt, const World &queries) {
     context.plan = planStep(settings, context, bodies, contacts.pairs, stepCount, dt);
     const StepPlan &plan = context.plan;
     { const StageTimer t(ms.manifolds); solver.build(*this); }
-    { const StageTimer t(ms.islands); islands.build(*this); }
+    { const StageTimer t(ms.islands); islands.build(bodies, solver.manifolds(), springs, joints, stats); }
 
     const real h = dt / plan.substeps;
     {
@@ -56,7 +57,7 @@ void WorldState::step(real dt, const World &queries) {
         {
             const StageTimer t(ms.integrate);
             integration.integrate(*this, h);
-            kinematicBodies.integrate(*this, h);
+            KinematicBodies::integrate(bodies, h);
         }
         { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position
         { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
@@ -69,7 +70,10 @@ void WorldState::step(real dt, const World &queries) {
     { const StageTimer t(ms.ccd); ccd.sweep(settings, bodies, broadphase, contacts.pairs, stepCount, stats); }
     { const StageTimer t(ms.landing); landing.correct(*this); }
     { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
-    { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
+    {
+        const StageTimer t(ms.sleep);
+        for (const int island : islands.still(settings, bodies)) sleepIsland(islands.members(island), islands.size(island));
+    }
     if (!characters.empty()) { const StageTimer t(ms.characters); characters.update(*this, queries, dt); }
     events.closeStep();
 

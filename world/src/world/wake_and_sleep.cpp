@@ -3,6 +3,7 @@
 // an isolated body (non-finite state) leaves collision and the solve for good. A body
 // woken during a step, before its contacts are final, joins that step's solve
 // (Integration::admit): a hit on a sleeping body is a hit on a body with mass.
+#include "world/body_transitions.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
@@ -96,5 +97,11 @@ void WorldState::refreshCollisionObject(std::uint32_t index) {
         if (!bodies[other].immovable) wake(other);
     }
 }
+
+void BodyTransitions::wake(std::uint32_t index) const { world_->wake(index); }
+
+void BodyTransitions::isolate(std::uint32_t index) const { world_->isolate(index); }
+
+void BodyTransitions::setTree(std::uint32_t index, Tree tree) const { world_->setTree(index, tree); }
 
 }  // namespace cyclone::detail
