@@ -21,7 +21,7 @@ void WorldState::step(real dt, const World &queries) {
     if (!characters.empty()) { const StageTimer t(ms.characters); characters.beginStep(*this, queries, dt); }
     {
         const StageTimer t(ms.forces);
-        integration.beginStep(*this, dt);
+        integration.beginStep(bodies, springs, BodyTransitions(*this), context, dt);
         axisLocks.beginStep(bodies);
         KinematicBodies::beginStep(bodies, contacts.pairs, BodyTransitions(*this));
         joints.beginStep(*this);
@@ -29,7 +29,7 @@ void WorldState::step(real dt, const World &queries) {
     { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
     { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
     // The step's bodies are final: those woken by its contacts, joints and springs are in.
-    integration.closeAdmission(*this);
+    integration.closeAdmission(settings, bodies);
     KinematicBodies::number(bodies);
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
     if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(bodies, broadphase, contacts.sensorCandidates(), stepCount, *events.sink, stats); }
@@ -46,7 +46,7 @@ void WorldState::step(real dt, const World &queries) {
     ms.solve += ms.solveParts.setup;
     for (int substep = 0; substep < plan.substeps; ++substep) {
         const bool first = substep == 0;
-        { const StageTimer t(ms.forces); integration.addSubstepForces(*this, h, first); }
+        { const StageTimer t(ms.forces); integration.addSubstepForces(settings, bodies, springs, context, h, first); }
         {
             // The velocity part is the solve less the carrier pass, which times itself.
             const double carrierBefore = ms.solveParts.carrier;
@@ -56,7 +56,7 @@ void WorldState::step(real dt, const World &queries) {
         }
         {
             const StageTimer t(ms.integrate);
-            integration.integrate(*this, h);
+            integration.integrate(bodies, workers, BodyTransitions(*this), h);
             KinematicBodies::integrate(bodies, h);
         }
         { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position

@@ -17,7 +17,7 @@ void WorldState::wake(std::uint32_t index) {
             events.sink->wokeUp.push_back(bodies.idOf(index));
         }
         bodies.updateAwakeList(index);
-        integration.admit(*this, index);
+        integration.admit(bodies, BodyTransitions(*this), index);
         return;
     }
     const int island = r.sleepingIsland;
@@ -29,7 +29,7 @@ void WorldState::wake(std::uint32_t index) {
         member.object->place(member.body.getTransform(), kBroadphaseMargin);
         setTree(m, Tree::Awake);
         bodies.updateAwakeList(m);
-        integration.admit(*this, m);
+        integration.admit(bodies, BodyTransitions(*this), m);
     }
     islands.sleeping[island].clear();
     islands.freeSleeping.push_back(island);
