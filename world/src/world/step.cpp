@@ -35,13 +35,16 @@ void WorldState::step(real dt, const World &queries) {
     if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(bodies, broadphase, contacts.sensorCandidates(), stepCount, *events.sink, stats); }
     context.plan = planStep(settings, context, bodies, contacts.pairs, stepCount, dt);
     const StepPlan &plan = context.plan;
-    { const StageTimer t(ms.manifolds); solver.build(*this); }
+    {
+        const StageTimer t(ms.manifolds);
+        solver.build(settings, bodies, contacts, preSolve, workers, stepCount, context, stats);
+    }
     { const StageTimer t(ms.islands); islands.build(bodies, solver.manifolds(), springs, joints, stats); }
 
     const real h = dt / plan.substeps;
     {
         const StageTimer t(ms.solveParts.setup);
-        solver.prepare(*this, h);
+        solver.prepare(settings, bodies, workers, context, stats, h);
     }
     ms.solve += ms.solveParts.setup;
     for (int substep = 0; substep < plan.substeps; ++substep) {
