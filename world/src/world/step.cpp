@@ -24,7 +24,7 @@ void WorldState::step(real dt, const World &queries) {
         integration.beginStep(bodies, springs, BodyTransitions(*this), context, dt);
         axisLocks.beginStep(bodies);
         KinematicBodies::beginStep(bodies, contacts.pairs, BodyTransitions(*this));
-        joints.beginStep(*this);
+        joints.beginStep(bodies, BodyTransitions(*this), context);
     }
     { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
     { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
@@ -68,7 +68,7 @@ void WorldState::step(real dt, const World &queries) {
     {
         const StageTimer t(ms.solve);
         solver.storeImpulses(*this);
-        joints.finishStep(*this, dt);
+        joints.finishStep(bodies, context, *events.sink, BodyTransitions(*this), dt);
     }
     { const StageTimer t(ms.ccd); ccd.sweep(settings, bodies, broadphase, contacts.pairs, stepCount, stats); }
     { const StageTimer t(ms.landing); landing.correct(*this); }

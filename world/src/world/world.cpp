@@ -339,7 +339,7 @@ void World::removeBody(BodyId id) {
         if (pair.touching() && !w.bodies[other].immovable) w.wake(other);
     }
     w.contacts.removePairsOf(w.bodies, index);
-    w.joints.removeJointsOf(w, id);
+    w.joints.removeJointsOf(w.bodies, detail::BodyTransitions(w), id);
     w.leaveFilters(index);
     for (detail::SpringRecord &s : w.springs) {
         if (!s.alive) continue;
