@@ -7,6 +7,26 @@
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
+namespace {
+
+// The step's counts and times, once its stages are done.
+void report(const StepContext &context, const BodyStore &bodies, const Workers &workers, StepStats &stats) {
+    stats.substeps = context.plan.substeps;
+    stats.joints = context.activeJoints;
+    stats.springs = context.activeSprings;
+    stats.maxPenetration = context.deepest;
+    stats.integratedBodies = static_cast<int>(bodies.simulated.size());
+    stats.movingKinematicBodies = static_cast<int>(bodies.moving.size());
+    stats.bodies = static_cast<int>(bodies.order.size());
+    stats.awakeBodies = static_cast<int>(bodies.awake.size());
+    stats.isolatedBodies = bodies.isolatedCount;
+    StageTimes &ms = stats.ms;
+    ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.sensors + ms.manifolds + ms.islands + ms.solve +
+               ms.integrate + ms.ccd + ms.landing + ms.sleep + ms.characters;
+    ms.shared = workers.shared();
+}
+
+}  // namespace
 
 void WorldState::step(real dt, const World &queries) {
     stats = StepStats();
@@ -32,7 +52,10 @@ void WorldState::step(real dt, const World &queries) {
     integration.closeAdmission(settings, bodies);
     KinematicBodies::number(bodies);
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
-    if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(bodies, broadphase, contacts.sensorCandidates(), stepCount, *events.sink, stats); }
+    if (bodies.sensorCount > 0) {
+        const StageTimer t(ms.sensors);
+        sensors.update(bodies, broadphase, contacts.sensorCandidates(), stepCount, *events.sink, stats);
+    }
     context.plan = planStep(settings, context, bodies, contacts.pairs, stepCount, dt);
     const StepPlan &plan = context.plan;
     {
@@ -79,19 +102,7 @@ void WorldState::step(real dt, const World &queries) {
     }
     if (!characters.empty()) { const StageTimer t(ms.characters); characters.update(*this, queries, dt); }
     events.closeStep();
-
-    stats.substeps = plan.substeps;
-    stats.joints = context.activeJoints;
-    stats.springs = context.activeSprings;
-    stats.maxPenetration = context.deepest;
-    stats.integratedBodies = static_cast<int>(bodies.simulated.size());
-    stats.movingKinematicBodies = static_cast<int>(bodies.moving.size());
-    stats.bodies = static_cast<int>(bodies.order.size());
-    stats.awakeBodies = static_cast<int>(bodies.awake.size());
-    stats.isolatedBodies = bodies.isolatedCount;
-    ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.sensors + ms.manifolds + ms.islands + ms.solve +
-               ms.integrate + ms.ccd + ms.landing + ms.sleep + ms.characters;
-    ms.shared = workers.shared();
+    report(context, bodies, workers, stats);
 }
 
 }  // namespace cyclone::detail
