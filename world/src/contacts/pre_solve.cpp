@@ -4,8 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "contacts/pair_cache.h"
+#include "world/body_store.h"
 #include "world/validation.h"
-#include "world/world_impl.h"
 
 namespace cyclone::detail {
 
@@ -14,12 +15,12 @@ static_assert(Manifold::kMaxPoints <= kMaxContactPoints, "PreSolveContact holds 
 namespace {
 
 // The contact as the listener sees it, set up from the materials and the built-in rules.
-PreSolveContact describe(const WorldState &world, const PairState &pair, const ManifoldState &m) {
-    const BodyRecord &a = world.bodies[pair.a];
-    const BodyRecord &b = world.bodies[pair.b];
+PreSolveContact describe(const BodyStore &bodies, const PairState &pair, const ManifoldState &m) {
+    const BodyRecord &a = bodies[pair.a];
+    const BodyRecord &b = bodies[pair.b];
     PreSolveContact c;
-    c.a = world.bodies.idOf(pair.a);
-    c.b = world.bodies.idOf(pair.b);
+    c.a = bodies.idOf(pair.a);
+    c.b = bodies.idOf(pair.b);
     c.normal = m.normal;
     c.pointCount = m.count;
     for (int i = 0; i < m.count; ++i) {
@@ -44,7 +45,7 @@ void requireListenerValues(const PreSolveContact &c) {
 
 }  // namespace
 
-bool PreSolve::active(const WorldState &world) const { return listener || world.bodies.ruledCount > 0; }
+bool PreSolve::active(const BodyStore &bodies) const { return listener || bodies.ruledCount > 0; }
 
 void PreSolve::skip() {
     ran_ = false;
@@ -60,20 +61,21 @@ bool PreSolve::disabled(std::uint32_t pair) const {
 
 // Whether the one-way bodies of the pair let its manifold be solved (see the design note),
 // recording the pair's decision for the next step.
-bool PreSolve::oneWayAllows(const WorldState &world, std::uint32_t p, const ManifoldRef &ref) {
-    const PairState &pair = world.contacts.pairs[p];
+bool PreSolve::oneWayAllows(const BodyStore &bodies, const PairCache &pairs, std::uint32_t p,
+                            const ManifoldRef &ref) {
+    const PairState &pair = pairs[p];
     const OneWayPair key{pair.a, pair.b, false};
     const auto before = std::lower_bound(oneWayBefore_.begin(), oneWayBefore_.end(), key);
     bool passing;
     if (before != oneWayBefore_.end() && before->a == pair.a && before->b == pair.b) {
         passing = before->passing;
     } else {
-        const ManifoldState &m = world.contacts.pairs[ref.pair].manifolds[ref.index];
+        const ManifoldState &m = pairs[ref.pair].manifolds[ref.index];
         real deepest = -std::numeric_limits<real>::infinity();
         for (int i = 0; i < m.count; ++i) deepest = std::max(deepest, m.points[i].depth);
         passing = deepest > kOneWayEntryDepth;
         for (const std::uint32_t index : {pair.a, pair.b}) {
-            const BodyRecord &r = world.bodies[index];
+            const BodyRecord &r = bodies[index];
             if (r.oneWay.isZero(0)) continue;
             const Vector3 away = index == pair.a ? m.normal : Vector3(-m.normal);  // from it to the other body
             if (!((r.body.getOrientation() * r.oneWay).dot(away) >= kOneWayCosine)) passing = true;
@@ -83,7 +85,7 @@ bool PreSolve::oneWayAllows(const WorldState &world, std::uint32_t p, const Mani
     return !passing;
 }
 
-void PreSolve::run(WorldState &world, std::vector<ManifoldKey> &keys) {
+void PreSolve::run(const BodyStore &bodies, const PairCache &pairs, std::vector<ManifoldKey> &keys) {
     ran_ = true;
     overrides_.clear();
     disabledPairs_.clear();
@@ -91,11 +93,11 @@ void PreSolve::run(WorldState &world, std::vector<ManifoldKey> &keys) {
     std::size_t kept = 0;
     for (const ManifoldKey &key : keys) {
         const std::uint32_t p = key.manifold.pair;
-        const PairState &pair = world.contacts.pairs[p];
-        const ManifoldState &m = world.contacts.pairs[p].manifolds[key.manifold.index];
-        PreSolveContact contact = describe(world, pair, m);
-        if (!world.bodies[pair.a].oneWay.isZero(0) || !world.bodies[pair.b].oneWay.isZero(0))
-            contact.enabled = oneWayAllows(world, p, key.manifold);
+        const PairState &pair = pairs[p];
+        const ManifoldState &m = pairs[p].manifolds[key.manifold.index];
+        PreSolveContact contact = describe(bodies, pair, m);
+        if (!bodies[pair.a].oneWay.isZero(0) || !bodies[pair.b].oneWay.isZero(0))
+            contact.enabled = oneWayAllows(bodies, pairs, p, key.manifold);
         if (listener) {
             listener->preSolve(contact);
             requireListenerValues(contact);

@@ -24,7 +24,8 @@
 
 namespace cyclone::detail {
 
-struct WorldState;
+struct BodyStore;
+class PairCache;
 
 /// How the solver is to solve one manifold, as the stage left it.
 struct ContactOverride {
@@ -47,11 +48,12 @@ public:
     ContactListener *listener = nullptr;
 
     /// Whether the stage runs this step: a listener, or a body with a built-in rule.
-    bool active(const WorldState &world) const;
-    /// Runs the rules and the listener over `keys` (in solve order) and removes the keys
-    /// of disabled manifolds; override(k) is then kept key k's. Throws InvalidArgument on
-    /// a value the listener set out of range (nothing of the step's solve has begun).
-    void run(WorldState &world, std::vector<ManifoldKey> &keys);
+    bool active(const BodyStore &bodies) const;
+    /// Runs the rules and the listener over `keys` (in solve order; the manifolds of
+    /// `pairs`, between `bodies`) and removes the keys of disabled manifolds; override(k)
+    /// is then kept key k's. Throws InvalidArgument on a value the listener set out of
+    /// range (nothing of the step's solve has begun).
+    void run(const BodyStore &bodies, const PairCache &pairs, std::vector<ManifoldKey> &keys);
     /// Forgets this step's overrides and disabled pairs (a step without the stage).
     void skip();
     /// Whether run() set the overrides of this step.
@@ -69,7 +71,7 @@ private:
         bool passing = false;
         bool operator<(const OneWayPair &o) const { return a != o.a ? a < o.a : b < o.b; }
     };
-    bool oneWayAllows(const WorldState &world, std::uint32_t pair, const ManifoldRef &ref);
+    bool oneWayAllows(const BodyStore &bodies, const PairCache &pairs, std::uint32_t pair, const ManifoldRef &ref);
 
     bool ran_ = false;
     std::vector<ContactOverride> overrides_;

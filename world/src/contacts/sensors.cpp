@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "collision/narrowphase.h"
-#include "world/world_impl.h"
+#include "world/body_store.h"
 
 namespace cyclone::detail {
 namespace {
@@ -27,44 +27,42 @@ bool bySensorThenBody(const SensorEvent &x, const SensorEvent &y) {
 
 }  // namespace
 
-void Sensors::added(WorldState &world, std::uint32_t index) {
-    const BodyRecord &r = world.bodies[index];
+void Sensors::added(const BodyStore &bodies, std::uint32_t index) {
+    const BodyRecord &r = bodies[index];
     const bool awakeDynamic = !r.immovable && r.body.getAwake();
-    if (r.sensor || (world.bodies.sensorCount > 0 && !awakeDynamic)) recheck(index);
+    if (r.sensor || (bodies.sensorCount > 0 && !awakeDynamic)) recheck(index);
 }
 
-void Sensors::moved(WorldState &world, std::uint32_t index) {
-    if (world.bodies.sensorCount > 0 && world.bodies[index].immovable) recheck(index);
+void Sensors::moved(const BodyStore &bodies, std::uint32_t index) {
+    if (bodies.sensorCount > 0 && bodies[index].immovable) recheck(index);
 }
 
-void Sensors::removed(WorldState &world, std::uint32_t index) {
+void Sensors::removed(const BodyStore &bodies, WorldEvents &events, std::uint32_t index) {
     for (std::uint32_t slot = 0; slot < overlaps_.slots(); ++slot) {
         const PairState &pair = overlaps_[slot];
-        if (pair.alive && (pair.a == index || pair.b == index)) end(world, slot);
+        if (pair.alive && (pair.a == index || pair.b == index)) end(bodies, events, slot);
     }
 }
 
-void Sensors::filterChanged(WorldState &world, std::uint32_t index) {
+void Sensors::filterChanged(const BodyStore &bodies, WorldEvents &events, std::uint32_t index) {
     for (std::uint32_t slot = 0; slot < overlaps_.slots(); ++slot) {
         const PairState &pair = overlaps_[slot];
-        if (pair.alive && (pair.a == index || pair.b == index) && world.bodies.classify(pair.a, pair.b) != PairKind::Sensor)
-            end(world, slot);
+        if (pair.alive && (pair.a == index || pair.b == index) && bodies.classify(pair.a, pair.b) != PairKind::Sensor)
+            end(bodies, events, slot);
     }
-    if (world.bodies.sensorCount > 0) recheck(index);
+    if (bodies.sensorCount > 0) recheck(index);
 }
 
-void Sensors::end(WorldState &world, std::uint32_t slot) {
-    const BodyStore &bodies = world.bodies;
+void Sensors::end(const BodyStore &bodies, WorldEvents &events, std::uint32_t slot) {
     const PairState &pair = overlaps_[slot];
     const bool aIsSensor = bodies[pair.a].sensor;
     const std::uint32_t sensor = aIsSensor ? pair.a : pair.b, body = aIsSensor ? pair.b : pair.a;
-    world.events.sink->sensorEnds.push_back(
+    events.sensorEnds.push_back(
         {bodies.idOf(sensor), bodies.idOf(body), bodies[sensor].userData, bodies[body].userData});
     overlaps_.remove(slot);
 }
 
-void Sensors::gatherAround(WorldState &world, std::uint32_t index) {
-    const BodyStore &bodies = world.bodies;
+void Sensors::gatherAround(const BodyStore &bodies, Broadphase &broadphase, std::uint32_t index) {
     const auto consider = [&](std::uint32_t other) {
         if (other == index || bodies.classify(index, other) != PairKind::Sensor) return;
         candidates_.push_back(bodies[index].sensor ? CandidatePair{index, other} : CandidatePair{other, index});
@@ -77,27 +75,25 @@ void Sensors::gatherAround(WorldState &world, std::uint32_t index) {
         return;
     }
     found_.clear();
-    world.broadphase.overlapping(r.object->getAABB(), found_);
+    broadphase.overlapping(r.object->getAABB(), found_);
     for (std::uint32_t other : found_) consider(other);
     for (std::uint32_t plane : bodies.planes) consider(plane);
 }
 
-void Sensors::update(WorldState &world) {
-    BodyStore &bodies = world.bodies;
-    const std::uint64_t step = world.stepCount;
-    WorldEvents &events = *world.events.sink;
+void Sensors::update(const BodyStore &bodies, Broadphase &broadphase, const std::vector<CandidatePair> &candidates,
+                     std::uint64_t step, WorldEvents &events, StepStats &stats) {
     const std::size_t beginsBefore = events.sensorBegins.size();
     const std::size_t endsBefore = events.sensorEnds.size();
 
     candidates_.clear();
-    for (const CandidatePair &c : world.contacts.sensorCandidates())
+    for (const CandidatePair &c : candidates)
         candidates_.push_back(bodies[c.a].sensor ? c : CandidatePair{c.b, c.a});
     if (checkedStep_.size() < bodies.size()) checkedStep_.resize(bodies.size(), 0);
     for (std::uint32_t index : rechecks_) {
         const BodyRecord &r = bodies[index];
         if (!r.alive || r.isolated || checkedStep_[index] == step) continue;
         checkedStep_[index] = step;
-        gatherAround(world, index);
+        gatherAround(bodies, broadphase, index);
     }
     rechecks_.clear();
     // Each pair once, sensor by sensor: the events come in this order.
@@ -108,7 +104,7 @@ void Sensors::update(WorldState &world) {
                       candidates_.end());
 
     for (const CandidatePair &c : candidates_) {
-        ++world.stats.sensorPairs;
+        ++stats.sensorPairs;
         if (overlapping(bodies[c.a], bodies[c.b])) {
             bool created = false;
             const std::uint32_t slot = overlaps_.findOrAdd(c.a, c.b, created);
@@ -116,7 +112,7 @@ void Sensors::update(WorldState &world) {
             if (created)
                 events.sensorBegins.push_back({bodies.idOf(c.a), bodies.idOf(c.b), bodies[c.a].userData, bodies[c.b].userData});
         } else if (const long slot = overlaps_.find(c.a, c.b); slot >= 0) {
-            end(world, static_cast<std::uint32_t>(slot));
+            end(bodies, events, static_cast<std::uint32_t>(slot));
         }
     }
 
@@ -129,7 +125,7 @@ void Sensors::update(WorldState &world) {
         const BodyRecord &b = bodies[pair.b];
         if (a.simulated || a.moving || b.simulated || b.moving || checkedStep_[pair.a] == step ||
             checkedStep_[pair.b] == step)
-            end(world, slot);
+            end(bodies, events, slot);
     }
     std::sort(events.sensorBegins.begin() + static_cast<std::ptrdiff_t>(beginsBefore), events.sensorBegins.end(),
               bySensorThenBody);

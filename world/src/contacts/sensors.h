@@ -17,37 +17,43 @@
 
 #include "collision/broadphase.h"
 #include "contacts/pair_cache.h"
+#include "cyclone/world/events.h"
+#include "cyclone/world/stats.h"
 
 namespace cyclone::detail {
 
-struct WorldState;
+struct BodyStore;
 
 class Sensors {
 public:
     friend struct StateFields;  ///< Saves and restores the state (snapshot/world_state_io.cpp).
     /// Body `index` was just added: a sensor, or a body not awake while there are sensors,
     /// is tested against every body its box overlaps in the next step.
-    void added(WorldState &world, std::uint32_t index);
+    void added(const BodyStore &bodies, std::uint32_t index);
     /// Body `index` was moved by a call: a static or kinematic one (which the broadphase
     /// may not see against sleeping bodies) is tested again in the next step.
-    void moved(WorldState &world, std::uint32_t index);
-    /// Body `index` leaves collision (removed or isolated): its overlaps end now.
-    void removed(WorldState &world, std::uint32_t index);
-    /// Body `index`'s layers or pair rules changed: the overlaps they now forbid end now,
-    /// and the body is tested again in the next step.
-    void filterChanged(WorldState &world, std::uint32_t index);
-    /// The sensor stage (run only while there are sensors): tests the step's sensor pairs
-    /// and records the begin and end events.
-    void update(WorldState &world);
+    void moved(const BodyStore &bodies, std::uint32_t index);
+    /// Body `index` leaves collision (removed or isolated): its overlaps end now, each an
+    /// end event in `events`.
+    void removed(const BodyStore &bodies, WorldEvents &events, std::uint32_t index);
+    /// Body `index`'s layers or pair rules changed: the overlaps they now forbid end now
+    /// (end events in `events`), and the body is tested again in the next step.
+    void filterChanged(const BodyStore &bodies, WorldEvents &events, std::uint32_t index);
+    /// The sensor stage of step `step` (run only while there are sensors): tests the
+    /// broadphase's sensor pairs (`candidates`) and the rechecked bodies against what the
+    /// broadphase finds around them, records the begin and end events in `events` and
+    /// counts the tests in stats.sensorPairs.
+    void update(const BodyStore &bodies, Broadphase &broadphase, const std::vector<CandidatePair> &candidates,
+                std::uint64_t step, WorldEvents &events, StepStats &stats);
 
 private:
     /// Queues body `index` for a test against every body its box overlaps.
     void recheck(std::uint32_t index) { rechecks_.push_back(index); }
     /// Appends (sensor, other) for every body that `index` may overlap and that is its
     /// sensor or that it sees, from the trees and the planes.
-    void gatherAround(WorldState &world, std::uint32_t index);
-    /// Ends the overlap in slot `slot`: an end event, and the slot freed.
-    void end(WorldState &world, std::uint32_t slot);
+    void gatherAround(const BodyStore &bodies, Broadphase &broadphase, std::uint32_t index);
+    /// Ends the overlap in slot `slot`: an end event in `events`, and the slot freed.
+    void end(const BodyStore &bodies, WorldEvents &events, std::uint32_t slot);
 
     PairCache overlaps_;                     ///< The overlapping pairs (nothing else).
     std::vector<std::uint32_t> rechecks_;    ///< Bodies to test in the next step.

@@ -22,15 +22,17 @@
 #include <algorithm>
 
 #include "collision/time_of_impact.h"
-#include "world/world_impl.h"
+#include "collision/broadphase.h"
+#include "contacts/pair_cache.h"
+#include "world/body_store.h"
 
 namespace cyclone::detail {
 
-void ContinuousCollision::sweep(WorldState &world) {
-    BodyStore &bodies = world.bodies;
+void ContinuousCollision::sweep(const WorldSettings &settings, BodyStore &bodies, Broadphase &broadphase,
+                                const PairCache &pairs, std::uint64_t stepCount, StepStats &stats) {
     // How deep a stopped body is left in what it hits: the slop, which the solver leaves
     // alone, and at least 0.1 mm.
-    const real depth = std::max(world.settings.penetrationSlop, real(0.0001));
+    const real depth = std::max(settings.penetrationSlop, real(0.0001));
     for (std::uint32_t index : bodies.simulated) {
         BodyRecord &r = bodies[index];
         if (!r.core || r.isolated || !r.object) continue;
@@ -39,36 +41,35 @@ void ContinuousCollision::sweep(WorldState &world) {
         const SweptShape self = sweptShape(*r.shape);
         const real travel = detail::travel(start, end, self.boundingRadius);
         if (!(travel > self.innerRadius)) continue;
-        ++world.stats.ccdSweeps;
-        const Stop at = earliestStop(world, index, start, end, travel, depth);
+        ++stats.ccdSweeps;
+        const Stop at = earliestStop(bodies, broadphase, pairs, stepCount, index, start, end, travel, depth);
         if (!(at.fraction < 1)) continue;
         stopAt(bodies, index, start, end, at);
-        ++world.stats.ccdHits;
+        ++stats.ccdHits;
     }
 }
 
 // The earliest fraction of body `index`'s motion from `start` to `end` at which it must
 // stop, against the bodies its swept box meets and the planes, and the body whose core
 // stopped it (-1: none).
-ContinuousCollision::Stop ContinuousCollision::earliestStop(WorldState &world, std::uint32_t index,
-                                                            const Matrix4 &start, const Matrix4 &end, real travel,
-                                                            real depth) {
-    const BodyStore &bodies = world.bodies;
-    const PairCache &pairs = world.contacts.pairs;
+ContinuousCollision::Stop ContinuousCollision::earliestStop(const BodyStore &bodies, Broadphase &broadphase,
+                                                            const PairCache &pairs, std::uint64_t stepCount,
+                                                            std::uint32_t index, const Matrix4 &start,
+                                                            const Matrix4 &end, real travel, real depth) {
     const BodyRecord &r = bodies[index];
     const SweptShape self = sweptShape(*r.shape);
     real stop = 1;
     long coreStop = -1;
     const auto touching = [&](std::uint32_t other) {
         const long p = pairs.find(index, other);
-        return p >= 0 && pairs[p].lastSeen == world.stepCount && pairs[p].touching();
+        return p >= 0 && pairs[p].lastSeen == stepCount && pairs[p].touching();
     };
     const SweptShape core = sweptCore(*r.core);
 
     fcl::AABBd swept(start.translation(), end.translation());
     swept.expand(fcl::Vector3d::Constant(self.boundingRadius + kBroadphaseMargin));
     candidates_.clear();
-    world.broadphase.overlapping(swept, candidates_);
+    broadphase.overlapping(swept, candidates_);
     const bool filtering = bodies.filtering();
     for (std::uint32_t other : candidates_) {
         if (other == index || (filtering && bodies.classify(index, other) != PairKind::Contact)) continue;

@@ -8,14 +8,19 @@
 
 namespace cyclone::detail {
 
-struct WorldState;
+class Broadphase;
 struct BodyStore;
+class PairCache;
 
 class ContinuousCollision {
 public:
     /// Puts each ccd body that moved further than its inner radius back to where its
-    /// motion first touched something (collision/time_of_impact.h), a slop deep.
-    void sweep(WorldState &world);
+    /// motion first touched something (collision/time_of_impact.h), a slop deep
+    /// (settings.penetrationSlop). Reads the bodies' collision objects (their poses at the
+    /// step's start), the pairs touching in step `stepCount` and the broadphase; writes the
+    /// stopped bodies' poses and velocities, and stats.ccdSweeps and ccdHits.
+    void sweep(const WorldSettings &settings, BodyStore &bodies, Broadphase &broadphase, const PairCache &pairs,
+               std::uint64_t stepCount, StepStats &stats);
 
 private:
     /// Where a body's motion stops: a fraction of it (1: nowhere), and the body whose core
@@ -24,8 +29,8 @@ private:
         real fraction = 1;
         long core = -1;
     };
-    Stop earliestStop(WorldState &world, std::uint32_t index, const Matrix4 &start, const Matrix4 &end, real travel,
-                      real depth);
+    Stop earliestStop(const BodyStore &bodies, Broadphase &broadphase, const PairCache &pairs, std::uint64_t stepCount,
+                      std::uint32_t index, const Matrix4 &start, const Matrix4 &end, real travel, real depth);
     static void stopAt(BodyStore &bodies, std::uint32_t index, const Matrix4 &start, const Matrix4 &end,
                        const Stop &at);
 

@@ -2,8 +2,11 @@
 
 #include <cmath>
 
+#include "dynamics/springs.h"
+#include "world/body_store.h"
+#include "world/step_context.h"
 #include "world/validation.h"
-#include "world/world_impl.h"
+#include "world/workers.h"
 
 namespace cyclone::detail {
 namespace {
@@ -17,8 +20,8 @@ bool stateFinite(const RigidBody &body) {
 
 }  // namespace
 
-void Integration::beginStep(WorldState &world, real dt) {
-    BodyStore &bodies = world.bodies;
+void Integration::beginStep(BodyStore &bodies, const SpringSet &springs, BodyTransitions transitions,
+                            StepContext &context, real dt) {
     bodies.sortAwake();
     // `simulated` of the bodies simulated last step; the others are already false.
     for (std::uint32_t index : bodies.simulated) bodies[index].simulated = false;
@@ -26,29 +29,28 @@ void Integration::beginStep(WorldState &world, real dt) {
     stepSeconds_ = dt;
     admitting_ = true;
     for (std::size_t k = 0; k < bodies.awake.size(); ++k)
-        if (!enter(world, bodies.awake[k])) --k;  // isolated: slot k now holds another body
-    for (SpringRecord &s : world.springs) {
+        if (!enter(bodies, transitions, bodies.awake[k])) --k;  // isolated: slot k now holds another body
+    for (const SpringRecord &s : springs) {
         if (!s.alive) continue;
-        BodyRecord &a = bodies[s.settings.a.index];
-        BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
+        const BodyRecord &a = bodies[s.settings.a.index];
+        const BodyRecord *b = s.settings.b ? &bodies[s.settings.b->index] : nullptr;
         if (!a.simulated && !(b && b->simulated)) continue;
         // An isolated (non-finite) end would carry its state to the other: the spring is off.
         if (a.isolated || (b && b->isolated)) continue;
         // A spring joins its bodies: one awake end wakes the other, which joins this step.
-        if (!a.simulated) world.wake(s.settings.a.index);
-        if (b && !b->simulated) world.wake(s.settings.b->index);
-        ++world.context.activeSprings;
+        if (!a.simulated) transitions.wake(s.settings.a.index);
+        if (b && !b->simulated) transitions.wake(s.settings.b->index);
+        ++context.activeSprings;
     }
 }
 
-void Integration::admit(WorldState &world, std::uint32_t index) {
-    const BodyRecord &r = world.bodies[index];
+void Integration::admit(BodyStore &bodies, BodyTransitions transitions, std::uint32_t index) {
+    const BodyRecord &r = bodies[index];
     if (!admitting_ || r.simulated || r.immovable || r.isolated || !r.body.getAwake()) return;
-    enter(world, index);
+    enter(bodies, transitions, index);
 }
 
-bool Integration::enter(WorldState &world, std::uint32_t index) {
-    BodyStore &bodies = world.bodies;
+bool Integration::enter(BodyStore &bodies, BodyTransitions transitions, std::uint32_t index) {
     BodyRecord &r = bodies[index];
     // A force whose velocity overflows within the step (1e300 N on 1 kg) would reach
     // other bodies through springs before the solver's check: isolate the body now.
@@ -57,7 +59,7 @@ bool Integration::enter(WorldState &world, std::uint32_t index) {
     const Vector3 v = body.getVelocity() + dt * (body.getAcceleration() + body.getInverseMass() * body.getAccumulatedForce());
     const Vector3 w = body.getRotation() + dt * (body.getInverseInertiaTensorWorld() * body.getAccumulatedTorque());
     if (!std::isfinite(v.squaredNorm() + w.squaredNorm())) {
-        world.isolate(index);
+        transitions.isolate(index);
         return false;
     }
     r.simulated = true;
@@ -66,10 +68,9 @@ bool Integration::enter(WorldState &world, std::uint32_t index) {
     return true;
 }
 
-void Integration::closeAdmission(WorldState &world) {
+void Integration::closeAdmission(const WorldSettings &settings, const BodyStore &bodies) {
     admitting_ = false;
-    BodyStore &bodies = world.bodies;
-    if (world.settings.substeps <= 1) return;
+    if (settings.substeps <= 1) return;
     savedForces_.resize(bodies.simulated.size());
     savedTorques_.resize(bodies.simulated.size());
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
@@ -81,8 +82,8 @@ void Integration::closeAdmission(WorldState &world) {
 // Held for a whole step, an explicit spring force would gain energy at any stiffness once
 // there are sub-steps (the positions would move under a force that lags them): springs
 // act at each sub-step's start.
-void Integration::addSubstepForces(WorldState &world, real h, bool firstSubstep) {
-    BodyStore &bodies = world.bodies;
+void Integration::addSubstepForces(const WorldSettings &settings, BodyStore &bodies, SpringSet &springs,
+                                   const StepContext &context, real h, bool firstSubstep) {
     if (!firstSubstep) {
         for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
             BodyRecord &r = bodies[bodies.simulated[k]];
@@ -91,24 +92,23 @@ void Integration::addSubstepForces(WorldState &world, real h, bool firstSubstep)
             r.body.addTorque(savedTorques_[k]);
         }
     }
-    if (world.context.activeSprings == 0) return;
+    if (context.activeSprings == 0) return;
     // The explicit forces first: the implicit ones are solved with them in place.
-    const int implicitCount = world.springs.chooseForces(bodies, world.settings, h);
-    world.springs.addExplicitForces(bodies);
-    if (implicitCount > 0) world.springs.addImplicitForces(bodies, h);
+    const int implicitCount = springs.chooseForces(bodies, settings, h);
+    springs.addExplicitForces(bodies);
+    if (implicitCount > 0) springs.addImplicitForces(bodies, h);
 }
 
-void Integration::integrate(WorldState &world, real h) {
-    BodyStore &bodies = world.bodies;
+void Integration::integrate(BodyStore &bodies, Workers &workers, BodyTransitions transitions, real h) {
     nonFinite_.assign(bodies.simulated.size(), 0);
-    world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
+    workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         RigidBody &body = bodies[bodies.simulated[k]].body;
         if (bodies[bodies.simulated[k]].isolated) return;
         body.integrate(h, false);
         nonFinite_[k] = !stateFinite(body);
     });
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
-        if (nonFinite_[k]) world.isolate(bodies.simulated[k]);
+        if (nonFinite_[k]) transitions.isolate(bodies.simulated[k]);
 }
 
 }  // namespace cyclone::detail

@@ -5,33 +5,41 @@
 #include <vector>
 
 #include "cyclone/world/world.h"
+#include "world/body_transitions.h"
 
 namespace cyclone::detail {
 
-struct WorldState;
+struct BodyStore;
+class SpringSet;
+struct StepContext;
+class Workers;
 
 class Integration {
 public:
     /// The forces stage: lists the bodies the step moves (BodyStore::simulated, awake
     /// when it starts), isolating any whose forces overflow its velocity; wakes the other
-    /// end of a spring on a moving body. Admission stays open until closeAdmission.
-    void beginStep(WorldState &world, real dt);
+    /// end of a spring on a moving body and counts the active springs
+    /// (context.activeSprings). Admission stays open until closeAdmission.
+    void beginStep(BodyStore &bodies, const SpringSet &springs, BodyTransitions transitions, StepContext &context,
+                   real dt);
     /// Adds a body woken during the step (by a contact, joint, spring or kinematic body)
     /// to the bodies it moves, while admission is open; otherwise nothing.
-    void admit(WorldState &world, std::uint32_t index);
+    void admit(BodyStore &bodies, BodyTransitions transitions, std::uint32_t index);
     /// Ends admission once the contacts are known: the step's bodies are final. Keeps the
-    /// user's forces for the later sub-steps.
-    void closeAdmission(WorldState &world);
+    /// user's forces for the later sub-steps (when settings.substeps > 1).
+    void closeAdmission(const WorldSettings &settings, const BodyStore &bodies);
     /// Forces of one sub-step of h seconds: the user's forces again after the first
-    /// sub-step (integrate cleared them), then the springs at the sub-step's start.
-    void addSubstepForces(WorldState &world, real h, bool firstSubstep);
-    /// Moves every simulated body over h seconds; isolates those whose state is no
-    /// longer finite.
-    void integrate(WorldState &world, real h);
+    /// sub-step (integrate cleared them), then the springs at the sub-step's start (when
+    /// context.activeSprings is not 0).
+    void addSubstepForces(const WorldSettings &settings, BodyStore &bodies, SpringSet &springs,
+                          const StepContext &context, real h, bool firstSubstep);
+    /// Moves every simulated body over h seconds (shared by the workers); isolates those
+    /// whose state is no longer finite.
+    void integrate(BodyStore &bodies, Workers &workers, BodyTransitions transitions, real h);
 
 private:
     /// Lists one awake body as simulated, or isolates it (false) if its forces overflow.
-    bool enter(WorldState &world, std::uint32_t index);
+    bool enter(BodyStore &bodies, BodyTransitions transitions, std::uint32_t index);
 
     real stepSeconds_ = 0;   ///< The step's dt, s.
     bool admitting_ = false; ///< Between beginStep and closeAdmission.

@@ -4,26 +4,29 @@
 #include <numeric>
 
 #include "dynamics/union_find.h"
-#include "world/world_impl.h"
+#include "dynamics/springs.h"
+#include "joints/joint_set.h"
+#include "solver/contact_solver.h"
+#include "world/body_store.h"
 
 namespace cyclone::detail {
 
-void Islands::build(WorldState &world) {
-    BodyStore &bodies = world.bodies;
+void Islands::build(BodyStore &bodies, const std::vector<SolverManifold> &manifolds, const SpringSet &springs,
+                    const JointSet &joints, StepStats &stats) {
     const int n = static_cast<int>(bodies.simulated.size());
     parent_.resize(n);
     std::iota(parent_.begin(), parent_.end(), 0);
     const auto unite = [&](int x, int y) { uniteSets(parent_, x, y); };
     // Static and kinematic bodies (entry 0, entries past the simulated) join no island.
-    for (const SolverManifold &m : world.solver.manifolds())
+    for (const SolverManifold &m : manifolds)
         if (m.a > 0 && m.b > 0 && m.a <= n && m.b <= n) unite(m.a - 1, m.b - 1);
-    for (const SpringRecord &s : world.springs) {
+    for (const SpringRecord &s : springs) {
         if (!s.alive || !s.settings.b) continue;
         const BodyRecord &a = bodies[s.settings.a.index];
         const BodyRecord &b = bodies[s.settings.b->index];
         if (a.simulated && b.simulated) unite(a.solverIndex - 1, b.solverIndex - 1);
     }
-    for (const JointRecord &j : world.joints.records) {
+    for (const JointRecord &j : joints.records) {
         if (!j.alive || !j.settings.b) continue;
         const BodyRecord &a = bodies[j.settings.a.index];
         const BodyRecord &b = bodies[j.settings.b->index];
@@ -50,12 +53,12 @@ void Islands::build(WorldState &world) {
     for (int k = 0; k < n; ++k) members_[start_[~parent_[k]]++] = bodies.simulated[k];
     for (int i = islands - 1; i > 0; --i) start_[i] = start_[i - 1];
     start_[0] = 0;
-    world.stats.islands = islands;
+    stats.islands = islands;
 }
 
-void Islands::updateSleep(WorldState &world) {
-    if (!world.settings.sleep) return;
-    const BodyStore &bodies = world.bodies;
+const std::vector<int> &Islands::still(const WorldSettings &settings, const BodyStore &bodies) {
+    still_.clear();
+    if (!settings.sleep) return still_;
     const int islands = static_cast<int>(start_.size()) - 1;
     for (int i = 0; i < islands; ++i) {
         const int start = start_[i];
@@ -66,8 +69,9 @@ void Islands::updateSleep(WorldState &world) {
             still = !r.isolated && r.body.getAwake() && r.body.getCanSleep() &&
                     r.body.getSleepAverage() < r.body.getSleepEpsilon();
         }
-        if (still) world.sleepIsland(members_.data() + start, end - start);
+        if (still) still_.push_back(i);
     }
+    return still_;
 }
 
 }  // namespace cyclone::detail

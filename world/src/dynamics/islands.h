@@ -9,7 +9,10 @@
 
 namespace cyclone::detail {
 
-struct WorldState;
+struct BodyStore;
+class JointSet;
+struct SolverManifold;
+class SpringSet;
 
 class Islands {
 public:
@@ -18,11 +21,15 @@ public:
     std::vector<std::vector<std::uint32_t>> sleeping;
     std::vector<int> freeSleeping;  ///< Entries of `sleeping` free for reuse.
 
-    /// The islands stage: joins the simulated bodies by the step's contacts and springs.
-    void build(WorldState &world);
-    /// Puts to sleep every island whose bodies are all still (RigidBody's sleep average
-    /// below its sleep epsilon).
-    void updateSleep(WorldState &world);
+    /// The islands stage: joins the simulated bodies by the solver's manifolds, the
+    /// springs and the joints; writes each simulated body's BodyRecord::island and
+    /// stats.islands.
+    void build(BodyStore &bodies, const std::vector<SolverManifold> &manifolds, const SpringSet &springs,
+               const JointSet &joints, StepStats &stats);
+    /// This step's islands whose bodies are all still (RigidBody's sleep average below its
+    /// sleep epsilon), in order; none when settings.sleep is off. The step puts each to
+    /// sleep (WorldState::sleepIsland).
+    const std::vector<int> &still(const WorldSettings &settings, const BodyStore &bodies);
     /// The bodies of this step's island `island` (BodyRecord::island).
     const std::uint32_t *members(int island) const { return members_.data() + start_[island]; }
     int size(int island) const { return start_[island + 1] - start_[island]; }
@@ -31,6 +38,7 @@ private:
     std::vector<int> parent_;  ///< Union-find over the simulated bodies, by solver index - 1.
     std::vector<int> start_;   ///< Island i's members are members_[start_[i], start_[i + 1]).
     std::vector<std::uint32_t> members_;
+    std::vector<int> still_;  ///< What still() returned.
 };
 
 }  // namespace cyclone::detail

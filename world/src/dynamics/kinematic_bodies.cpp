@@ -1,20 +1,20 @@
 #include "dynamics/kinematic_bodies.h"
 
-#include "world/world_impl.h"
+#include "contacts/pair_cache.h"
+#include "world/body_store.h"
 
 namespace cyclone::detail {
 
-void KinematicBodies::beginStep(WorldState &world) {
-    BodyStore &bodies = world.bodies;
+void KinematicBodies::beginStep(BodyStore &bodies, const PairCache &pairs, BodyTransitions transitions) {
     bodies.moving.clear();
     for (std::uint32_t index : bodies.kinematic) {
         BodyRecord &r = bodies[index];
         const bool moving = !r.isolated && movesAt(r.body.getVelocity(), r.body.getRotation());
-        if (moving && !r.moving) startMoving(world, index);
+        if (moving && !r.moving) startMoving(bodies, pairs, transitions, index);
         if (!moving && r.moving) {
             r.moving = false;
             r.body.setAwake(false);  // its velocities are zero already
-            world.setTree(index, Tree::Static);
+            transitions.setTree(index, Tree::Static);
         }
         r.solverIndex = 0;
         if (moving) bodies.moving.push_back(index);
@@ -27,23 +27,23 @@ void KinematicBodies::number(BodyStore &bodies) {
         bodies[bodies.moving[k]].solverIndex = static_cast<int>(simulated + k) + 1;
 }
 
-void KinematicBodies::startMoving(WorldState &world, std::uint32_t index) {
-    BodyRecord &r = world.bodies[index];
+void KinematicBodies::startMoving(BodyStore &bodies, const PairCache &pairs, BodyTransitions transitions,
+                                  std::uint32_t index) {
+    BodyRecord &r = bodies[index];
     if (r.moving || r.isolated) return;
     r.moving = true;
     r.body.setAwake(true);
     if (r.object) r.object->place(r.body.getTransform(), kBroadphaseMargin);
-    world.setTree(index, Tree::Awake);
+    transitions.setTree(index, Tree::Awake);
     // What rested on it must follow from the first step it moves.
     for (std::uint32_t p : r.pairs) {
-        const PairState &pair = world.contacts.pairs[p];
+        const PairState &pair = pairs[p];
         const std::uint32_t other = pair.a == index ? pair.b : pair.a;
-        if (!world.bodies[other].immovable) world.wake(other);
+        if (!bodies[other].immovable) transitions.wake(other);
     }
 }
 
-void KinematicBodies::integrate(WorldState &world, real h) {
-    BodyStore &bodies = world.bodies;
+void KinematicBodies::integrate(BodyStore &bodies, real h) {
     for (std::uint32_t index : bodies.moving) {
         RigidBody &body = bodies[index].body;
         body.setPosition(body.getPosition() + h * body.getVelocity());

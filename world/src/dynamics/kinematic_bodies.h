@@ -9,25 +9,29 @@
 #pragma once
 
 #include "cyclone/world/world.h"
+#include "world/body_transitions.h"
 
 namespace cyclone::detail {
 
-struct WorldState;
 struct BodyStore;
+class PairCache;
 
 class KinematicBodies {
 public:
     /// At the start of a step, after the simulated bodies are listed: lists the moving
-    /// kinematic bodies (BodyStore::moving) and puts each in the tree its motion asks for.
-    void beginStep(WorldState &world);
+    /// kinematic bodies (BodyStore::moving) and puts each in the tree its motion asks for
+    /// (`transitions`), waking what a body that starts moving touches (its `pairs`).
+    static void beginStep(BodyStore &bodies, const PairCache &pairs, BodyTransitions transitions);
     /// Gives the moving kinematic bodies their solver indices, after the simulated
     /// bodies' (once the step's simulated bodies are final).
     static void number(BodyStore &bodies);
     /// Moves each moving kinematic body over h seconds at its velocity and rotation
     /// (the rotation exactly: a turn of |w| h about w).
-    void integrate(WorldState &world, real h);
-    /// Puts a kinematic body that just got a velocity in motion, waking what it touches.
-    void startMoving(WorldState &world, std::uint32_t index);
+    static void integrate(BodyStore &bodies, real h);
+    /// Puts a kinematic body that just got a velocity in motion: its collision object to
+    /// the awake tree, and what it touches (its `pairs`) woken.
+    static void startMoving(BodyStore &bodies, const PairCache &pairs, BodyTransitions transitions,
+                            std::uint32_t index);
 };
 
 /// Whether a kinematic body with these velocities moves.

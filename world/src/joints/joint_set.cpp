@@ -5,7 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "world/world_impl.h"
+#include "world/body_store.h"
+#include "world/step_context.h"
 
 namespace cyclone::detail {
 namespace {
@@ -99,35 +100,35 @@ void JointSet::remove(std::uint32_t index) {
     --count;
 }
 
-void JointSet::beginStep(WorldState &world) {
+void JointSet::beginStep(const BodyStore &bodies, BodyTransitions transitions, StepContext &context) {
     if (empty()) return;
-    BodyStore &bodies = world.bodies;
     stepTime_ = 0;
     for (JointRecord &j : records) {
         if (!j.alive) continue;
         j.linearImpulse.setZero();
         j.angularImpulse.setZero();
-        BodyRecord &a = bodies[j.settings.a.index];
-        BodyRecord *b = j.settings.b ? &bodies[j.settings.b->index] : nullptr;
+        const BodyRecord &a = bodies[j.settings.a.index];
+        const BodyRecord *b = j.settings.b ? &bodies[j.settings.b->index] : nullptr;
         if (!a.simulated && !(b && b->simulated)) continue;
         if (a.isolated || (b && b->isolated)) continue;
         // A joint joins its bodies: one awake end wakes the other.
-        if (!a.simulated && !a.immovable) world.wake(j.settings.a.index);
-        if (b && !b->simulated && !b->immovable) world.wake(j.settings.b->index);
-        ++world.context.activeJoints;
+        if (!a.simulated && !a.immovable) transitions.wake(j.settings.a.index);
+        if (b && !b->simulated && !b->immovable) transitions.wake(j.settings.b->index);
+        ++context.activeJoints;
     }
 }
 
-void JointSet::prepare(WorldState &world, const std::vector<SolverBody> &solverBodies, real h) {
-    if (world.context.activeJoints == 0) {
+void JointSet::prepare(const BodyStore &bodies, bool warmStarting, const StepContext &context, StepStats &stats,
+                       const std::vector<SolverBody> &solverBodies, real h) {
+    if (context.activeJoints == 0) {
         rows_.clear();
         return;
     }
     stepTime_ += h;
-    makeRows(world.bodies, world.settings.debug.warmStarting, solverBodies, h, false);
+    makeRows(bodies, warmStarting, solverBodies, h, false);
     factorise(solverBodies);
     constrainBoundedMasses(solverBodies, h);
-    world.stats.jointRows += static_cast<int>(rows_.size());
+    stats.jointRows += static_cast<int>(rows_.size());
 }
 
 void JointSet::factorise(const std::vector<SolverBody> &solverBodies) {
@@ -398,15 +399,15 @@ void JointSet::applyMoves(BodyStore &bodies, real scale) const {
 // ends for the sub-step. A step that does not overshoot is taken whole. (The Newton step
 // lowers the sum of squares to first order, so a short enough part of it does too; the
 // largest error alone has no such guarantee.)
-void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody> &solverBodies, int iterations) {
-    if (world.context.activeJoints == 0) return;
-    BodyStore &bodies = world.bodies;
+void JointSet::correctPositions(BodyStore &bodies, bool warmStarting, const StepContext &context,
+                                const std::vector<SolverBody> &solverBodies, int iterations) {
+    if (context.activeJoints == 0) return;
     const int projections = iterations > 0 ? std::max(iterations, kMaxProjections) : 0;
     if (projections == 0) {
         rows_.clear();
         return;
     }
-    makeRows(world.bodies, world.settings.debug.warmStarting, solverBodies, 1, true);
+    makeRows(bodies, warmStarting, solverBodies, 1, true);
     EqualityErrors errors = equalityErrors();
     for (int it = 0; it < projections; ++it) {
         if (!(errors.largest > kProjectionTolerance)) break;
@@ -444,7 +445,7 @@ void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody>
         for (int halving = 0; halving <= kProjectionHalvings && !progressed; ++halving, scale *= 0.5) {
             if (halving > 0) takeBack();
             applyMoves(bodies, scale);
-            makeRows(world.bodies, world.settings.debug.warmStarting, solverBodies, 1, true);
+            makeRows(bodies, warmStarting, solverBodies, 1, true);
             const EqualityErrors after = equalityErrors();
             progressed = after.squares <= errors.squares;
             if (progressed) errors = after;
@@ -457,8 +458,9 @@ void JointSet::correctPositions(WorldState &world, const std::vector<SolverBody>
     rows_.clear();
 }
 
-void JointSet::finishStep(WorldState &world, real dt) {
-    if (world.context.activeJoints == 0) return;
+void JointSet::finishStep(const BodyStore &bodies, const StepContext &context, WorldEvents &events,
+                          BodyTransitions transitions, real dt) {
+    if (context.activeJoints == 0) return;
     const real time = stepTime_ > 0 ? stepTime_ : dt;
     broken_.clear();
     for (std::uint32_t index = 0; index < records.size(); ++index) {
@@ -471,16 +473,16 @@ void JointSet::finishStep(WorldState &world, real dt) {
     }
     for (const std::uint32_t index : broken_) {
         JointRecord &j = records[index];
-        world.events.sink->jointsBroken.push_back({{index, j.generation}, j.force, j.torque});
+        events.jointsBroken.push_back({{index, j.generation}, j.force, j.torque});
         const BodyId a = j.settings.a;
         const std::optional<BodyId> b = j.settings.b;
         remove(index);
-        if (!world.bodies[a.index].immovable) world.wake(a.index);
-        if (b && !world.bodies[b->index].immovable) world.wake(b->index);
+        if (!bodies[a.index].immovable) transitions.wake(a.index);
+        if (b && !bodies[b->index].immovable) transitions.wake(b->index);
     }
 }
 
-void JointSet::removeJointsOf(WorldState &world, BodyId id) {
+void JointSet::removeJointsOf(const BodyStore &bodies, BodyTransitions transitions, BodyId id) {
     if (empty()) return;
     for (std::uint32_t index = 0; index < records.size(); ++index) {
         const JointRecord &j = records[index];
@@ -490,7 +492,7 @@ void JointSet::removeJointsOf(WorldState &world, BodyId id) {
         if (!onA && !onB) continue;
         const std::optional<BodyId> other = onA ? j.settings.b : std::optional<BodyId>(j.settings.a);
         remove(index);
-        if (other && world.bodies.contains(*other) && !world.bodies[other->index].immovable) world.wake(other->index);
+        if (other && bodies.contains(*other) && !bodies[other->index].immovable) transitions.wake(other->index);
     }
 }
 

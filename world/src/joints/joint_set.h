@@ -25,13 +25,16 @@
 #include <vector>
 
 #include "cyclone/world/debug_draw.h"
+#include "cyclone/world/events.h"
 #include "cyclone/world/joints.h"
+#include "cyclone/world/stats.h"
 #include "solver/contact_solver.h"
 #include "world/body_store.h"
+#include "world/body_transitions.h"
 
 namespace cyclone::detail {
 
-struct WorldState;
+struct StepContext;
 
 /// Most rows a joint has: a slider's 2 across + 3 rotation locks + lower, upper, motor
 /// (a ball joint: 3 + swing + twist lower, upper + 3 friction; a hinge's friction: 8).
@@ -123,11 +126,15 @@ public:
     /// The joint's error and position at the bodies' current poses.
     void measure(const BodyStore &bodies, const JointRecord &joint, real *error, real *position) const;
 
-    /// Start of a step: a joint whose one end is simulated wakes the other (from the next
-    /// step on, as springs do); counts the joints the step solves.
-    void beginStep(WorldState &world);
-    /// The sub-step's rows at the bodies' current poses, and the direct block's factorisation.
-    void prepare(WorldState &world, const std::vector<SolverBody> &solverBodies, real h);
+    /// Start of a step: a joint whose one end is simulated wakes the other (`transitions`;
+    /// from the next step on, as springs do); counts the joints the step solves
+    /// (context.activeJoints).
+    void beginStep(const BodyStore &bodies, BodyTransitions transitions, StepContext &context);
+    /// The sub-step's rows at the bodies' current poses (warm started or not), and the
+    /// direct block's factorisation; nothing when context.activeJoints is 0. Counts the
+    /// rows in stats.jointRows.
+    void prepare(const BodyStore &bodies, bool warmStarting, const StepContext &context, StepStats &stats,
+                 const std::vector<SolverBody> &solverBodies, real h);
     /// Applies the rows' warm-start impulses.
     void warmStart(std::vector<SolverBody> &solverBodies) const;
     /// One velocity pass: the equality rows at once (when there are bounded rows or
@@ -138,12 +145,15 @@ public:
     void storeImpulses();
     /// After integration: projects the positions onto the joints (no projection when
     /// `iterations`, WorldSettings::positionIterations, is 0).
-    void correctPositions(WorldState &world, const std::vector<SolverBody> &solverBodies, int iterations);
+    void correctPositions(BodyStore &bodies, bool warmStarting, const StepContext &context,
+                          const std::vector<SolverBody> &solverBodies, int iterations);
     /// End of a step of dt seconds: each joint's mean force and torque; the joints whose
-    /// force or torque exceeds their threshold are removed, their bodies woken, and reported.
-    void finishStep(WorldState &world, real dt);
-    /// Removes the joints of body `id`, waking their other bodies.
-    void removeJointsOf(WorldState &world, BodyId id);
+    /// force or torque exceeds their threshold are removed, their bodies woken
+    /// (`transitions`), and reported in `events`.
+    void finishStep(const BodyStore &bodies, const StepContext &context, WorldEvents &events,
+                    BodyTransitions transitions, real dt);
+    /// Removes the joints of body `id`, waking their other bodies (`transitions`).
+    void removeJointsOf(const BodyStore &bodies, BodyTransitions transitions, BodyId id);
     /// Draws every joint's anchors, axis and limits (joint_drawing.cpp).
     void draw(const BodyStore &bodies, DebugDraw &draw, const DebugDrawOptions &options) const;
     /// Whether a sub-step has rows to solve.

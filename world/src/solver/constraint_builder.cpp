@@ -8,7 +8,11 @@
 
 #include "contacts/pose_change.h"
 #include "solver/constraint_solver.h"
-#include "world/world_impl.h"
+#include "contacts/contact_manager.h"
+#include "contacts/pre_solve.h"
+#include "dynamics/axis_locks.h"
+#include "world/step_context.h"
+#include "world/workers.h"
 
 namespace cyclone::detail {
 namespace {
@@ -50,14 +54,14 @@ void stampBody(StampedBody &stamped, const BodyRecord &r) {
 
 }  // namespace
 
-void ConstraintSolver::build(WorldState &world) {
-    const BodyStore &bodies = world.bodies;
-    const ContactManager &contacts = world.contacts;
+void ConstraintSolver::build(const WorldSettings &settings, const BodyStore &bodies, ContactManager &contacts,
+                             PreSolve &preSolve, Workers &workers, std::uint64_t stepCount, StepContext &context,
+                             StepStats &stats) {
     // The solve order is settled on small keys first and the solver manifolds are then
     // built in that order: sorting the built manifolds (~2 KB each) meant copying all of
     // them every step.
     keys_.clear();
-    const Vector3 up = -world.settings.gravity;
+    const Vector3 up = -settings.gravity;
     for (std::uint32_t p : contacts.touchingPairs) {
         const PairState &pair = contacts.pairs[p];
         const BodyRecord &a = bodies[pair.a];
@@ -77,13 +81,13 @@ void ConstraintSolver::build(WorldState &world) {
     sortByHeight(keys_, keysScratch_);
     // The contact listener and the built-in rules may disable manifolds (their keys go)
     // and change the others' friction, restitution and surface velocity.
-    if (world.preSolve.active(world)) {
-        world.stats.preSolvedManifolds += static_cast<int>(keys_.size());
-        world.preSolve.run(world, keys_);
-    } else if (world.preSolve.ran()) {
-        world.preSolve.skip();
+    if (preSolve.active(bodies)) {
+        stats.preSolvedManifolds += static_cast<int>(keys_.size());
+        preSolve.run(bodies, contacts.pairs, keys_);
+    } else if (preSolve.ran()) {
+        preSolve.skip();
     }
-    assignSlots(world);
+    assignSlots(contacts.pairs, workers, stepCount);
     // Last step's manifolds are overwritten in place (see addSolverManifold); only new
     // slots are value-initialised.
     manifolds_.resize(keys_.size());
@@ -94,25 +98,25 @@ void ConstraintSolver::build(WorldState &world) {
     // The counters are summed chunk by chunk as the slots are written, then in the
     // chunks' order (a count and a maximum: the same whatever the order).
     chunkCounts_.resize(Workers::chunksOf(keys_.size()));
-    world.workers.forEachChunk(keys_.size(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    workers.forEachChunk(keys_.size(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkCount &count = chunkCounts_[chunk];
         count = ChunkCount();
         for (std::size_t s = begin; s < end; ++s) {
-            addSolverManifold(world, keyOfSlot_[s], s);
+            addSolverManifold(settings, bodies, contacts, preSolve, stepCount, context.plan.warmScale, keyOfSlot_[s], s);
             const SolverManifold &m = manifolds_[s];
             count.contacts += m.count;
             for (int i = 0; i < m.count; ++i) count.deepest = std::max(count.deepest, m.points[i].depth);
         }
     });
-    world.stats.manifolds += static_cast<int>(keys_.size());
+    stats.manifolds += static_cast<int>(keys_.size());
     for (const ChunkCount &count : chunkCounts_) {
-        world.stats.contacts += count.contacts;
-        world.context.deepest = std::max(world.context.deepest, count.deepest);
+        stats.contacts += count.contacts;
+        context.deepest = std::max(context.deepest, count.deepest);
     }
     roundDepths_.clear();
     if (bodies.roundCount == 0) return;
     roundDepths_.reset(manifolds_.size());
-    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
+    workers.forEach(manifolds_.size(), [&](std::size_t s) {
         roundDepths_.add(s, bodies[slotBodies_[s].a], bodies[slotBodies_[s].b], contacts, sources_[s], manifolds_[s].normal);
     });
     roundDepths_.finish();
@@ -127,22 +131,23 @@ void ConstraintSolver::build(WorldState &world) {
 static_assert(sizeof(SolverPoint) == 256 && sizeof(SolverManifold) == 2304,
               "a solver manifold or point field was added or removed: reset it in addSolverManifold");
 
-void ConstraintSolver::addSolverManifold(WorldState &world, std::uint32_t keyIndex, std::size_t slot) {
+void ConstraintSolver::addSolverManifold(const WorldSettings &settings, const BodyStore &bodies,
+                                         ContactManager &contacts, const PreSolve &preSolve, std::uint64_t stepCount,
+                                         real warmScale, std::uint32_t keyIndex, std::size_t slot) {
     const ManifoldKey &key = keys_[keyIndex];
-    const BodyStore &bodies = world.bodies;
-    const PairState &pair = world.contacts.pairs[key.manifold.pair];
-    ManifoldState &m = world.contacts.manifold(key.manifold);
+    const PairState &pair = contacts.pairs[key.manifold.pair];
+    ManifoldState &m = contacts.manifold(key.manifold);
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
-    const bool preSolved = world.preSolve.ran();
-    const real friction = preSolved ? world.preSolve.override(keyIndex).friction
+    const bool preSolved = preSolve.ran();
+    const real friction = preSolved ? preSolve.override(keyIndex).friction
                                     : std::sqrt(a.material.friction * b.material.friction);
     // The slot holds an earlier step's manifold (or a value-initialised one). Resetting
     // all ~2.3 KB of it every step cost more than the rest of this function, and most of
     // it is the Jacobians, which prepareSolver writes anyway unless they still hold.
     SolverManifold &sm = manifolds_[slot];
     JacobianStamp &stamp = stamps_[slot];
-    stamp.kept = jacobiansHold(world, stamp, pair, m);
+    stamp.kept = jacobiansHold(settings.debug.manifoldReuseTolerance, bodies, stamp, pair, m);
     if (stamp.kept) {
         // The manifold's points come in the order of their depths (refreshFromAnchors):
         // the solve order follows them, and the rows stay where they were made.
@@ -162,21 +167,21 @@ void ConstraintSolver::addSolverManifold(WorldState &world, std::uint32_t keyInd
     }
     for (int i = m.count; i < kMaxManifoldPoints; ++i) sm.order[i] = static_cast<signed char>(i);
     m.solverSlot = static_cast<std::uint32_t>(slot);
-    m.solverStep = world.stepCount;
+    m.solverStep = stepCount;
     sm.a = a.simulated || a.moving ? a.solverIndex : 0;
     sm.b = b.simulated || b.moving ? b.solverIndex : 0;
     sm.friction = friction;
-    sm.restitution = preSolved ? world.preSolve.override(keyIndex).restitution
+    sm.restitution = preSolved ? preSolve.override(keyIndex).restitution
                                : std::max(a.material.restitution, b.material.restitution);
     // The surfaces do not slide while vB + sB = vA + sA: the bodies' relative velocity
     // vB - vA is driven towards sA - sB, minus B's surface velocity relative to A's.
-    const Vector3 surface = preSolved ? world.preSolve.override(keyIndex).surfaceVelocity : Vector3::Zero();
+    const Vector3 surface = preSolved ? preSolve.override(keyIndex).surfaceVelocity : Vector3::Zero();
     sm.frictionRow[0].target = -surface.dot(sm.tangent[0]);
     sm.frictionRow[1].target = -surface.dot(sm.tangent[1]);
     sm.carrier = Carrier::None;
     sm.count = m.count;
-    const bool warm = world.settings.debug.warmStarting;
-    const real scale = world.context.plan.warmScale;  // stored per default sub-step (step_plan.h)
+    const bool warm = settings.debug.warmStarting;
+    const real scale = warmScale;  // stored per default sub-step (step_plan.h)
     sm.frictionRow[0].impulse = warm ? m.frictionImpulse.dot(sm.tangent[0]) * scale : 0;
     sm.frictionRow[1].impulse = warm ? m.frictionImpulse.dot(sm.tangent[1]) * scale : 0;
     sm.twist.impulse = warm ? m.twistImpulse * scale : 0;
@@ -198,25 +203,25 @@ void ConstraintSolver::addSolverManifold(WorldState &world, std::uint32_t keyInd
 // Whether the Jacobians in a slot, made at an earlier step (jacobian_stamp.h), hold for
 // manifold `m` of `pair`: the same anchors (in any order, and so the same bodies), the
 // bodies in the same roles, neither moved more than the manifold-reuse tolerance since.
-bool ConstraintSolver::jacobiansHold(const WorldState &world, const JacobianStamp &stamp, const PairState &pair,
-                                     const ManifoldState &m) const {
-    const real tolerance = world.settings.debug.manifoldReuseTolerance;
+bool ConstraintSolver::jacobiansHold(real tolerance, const BodyStore &bodies, const JacobianStamp &stamp,
+                                     const PairState &pair, const ManifoldState &m) const {
     return tolerance > 0 && m.anchorsId != 0 && stamp.anchorsId == m.anchorsId &&
-           stillStamped(stamp.body[0], world.bodies[pair.a], tolerance) &&
-           stillStamped(stamp.body[1], world.bodies[pair.b], tolerance);
+           stillStamped(stamp.body[0], bodies[pair.a], tolerance) &&
+           stillStamped(stamp.body[1], bodies[pair.b], tolerance);
 }
 
 // Each manifold goes back to the slot it had last step when it can, so that the slot's
 // Jacobians may be kept (jacobian_stamp.h); the others take the free slots in solve
 // order. solveOrder_ lists the slots in solve order.
-void ConstraintSolver::assignSlots(WorldState &world) {
+void ConstraintSolver::assignSlots(const PairCache &pairs, Workers &workers, std::uint64_t stepCount) {
     const std::size_t n = keys_.size();
     // Each manifold's slot of last step is read on several threads (the reads miss the
     // cache), then claimed in solve order: the first to claim a slot keeps it.
     solveOrder_.resize(n);
-    world.workers.forEach(n, [&](std::size_t k) {
-        const ManifoldState &m = world.contacts.manifold(keys_[k].manifold);
-        const bool kept = m.solvedInStepBefore(world.stepCount) && m.solverSlot < n;
+    workers.forEach(n, [&](std::size_t k) {
+        const ManifoldRef &ref = keys_[k].manifold;
+        const ManifoldState &m = pairs[ref.pair].manifolds[ref.index];
+        const bool kept = m.solvedInStepBefore(stepCount) && m.solverSlot < n;
         solveOrder_[k] = kept ? static_cast<int>(m.solverSlot) : -1;
     });
     slotTaken_.assign(n, 0);
@@ -244,18 +249,18 @@ void ConstraintSolver::assignSlots(WorldState &world) {
     }
 }
 
-void ConstraintSolver::prepare(WorldState &world, real h) {
-    prepareBodies(world, h);
+void ConstraintSolver::prepare(const WorldSettings &settings, const BodyStore &bodies, Workers &workers,
+                               const StepContext &context, StepStats &stats, real h) {
+    prepareBodies(bodies, workers, h);
     if (manifolds_.empty()) return;  // nothing below is read without contacts
-    orderManifolds(world);
-    prepareManifolds(world, h);
-    prepareResistanceAndShares(world);
+    orderManifolds(settings, bodies, workers);
+    prepareManifolds(settings, bodies, workers, context.plan.substeps, stats, h);
+    prepareResistanceAndShares(settings, bodies, workers, stats);
 }
 
 // The solver bodies: each simulated body's velocities, inverse mass and inertia at the
 // step's start; moving kinematic bodies as immovable entries that keep their velocity.
-void ConstraintSolver::prepareBodies(WorldState &world, real h) {
-    const BodyStore &bodies = world.bodies;
+void ConstraintSolver::prepareBodies(const BodyStore &bodies, Workers &workers, real h) {
     const std::size_t n = bodies.simulated.size();
     bodies_.resize(n + 1 + bodies.moving.size());
     bodies_[0] = SolverBody();
@@ -266,7 +271,7 @@ void ConstraintSolver::prepareBodies(WorldState &world, real h) {
     positions_.resize(bodies_.size());
     stepImpulse_.assign(manifolds_.size(), 0);
     resistance_.clear();
-    world.workers.forEach(n, [&](std::size_t k) {
+    workers.forEach(n, [&](std::size_t k) {
         const BodyRecord &r = bodies[bodies.simulated[k]];
         const RigidBody &body = r.body;
         SolverBody &sb = bodies_[k + 1];
@@ -291,15 +296,14 @@ void ConstraintSolver::prepareBodies(WorldState &world, real h) {
 }
 
 // The velocity passes' partition between threads and the carrier pass's order.
-void ConstraintSolver::orderManifolds(WorldState &world) {
-    const WorldSettings &settings = world.settings;
-    const std::size_t n = world.bodies.simulated.size();
+void ConstraintSolver::orderManifolds(const WorldSettings &settings, const BodyStore &bodies, Workers &workers) {
+    const std::size_t n = bodies.simulated.size();
     // The split reads the manifolds' bodies, the carriers their normals, and writes only
     // the carriers: the two run at once.
     const bool carriers = settings.debug.carrierPass;
-    world.workers.forEachTask(carriers ? 2 : 1, [&](int task) {
+    workers.forEachTask(carriers ? 2 : 1, [&](int task) {
         if (task == 0) {
-            partitionManifolds(manifolds_, heights_, solveOrder_, positions_, world.workers.parallel(),
+            partitionManifolds(manifolds_, heights_, solveOrder_, positions_, workers.parallel(),
                                           partitionScratch_, partition_);
         } else {
             assignCarriers(static_cast<int>(bodies_.size()), static_cast<int>(n + 1), -settings.gravity, manifolds_,
@@ -307,25 +311,24 @@ void ConstraintSolver::orderManifolds(WorldState &world) {
         }
     });
     if (carriers) {
-        const bool shared = world.workers.parallel() && partition_.split;
+        const bool shared = workers.parallel() && partition_.split;
         buildCarrierThreads(carrierRuns_, manifolds_, shared ? &partitionScratch_.side : nullptr,
                                   static_cast<int>(bodies_.size()), carrierThreads_);
     }
 }
 
-void ConstraintSolver::prepareManifolds(WorldState &world, real h) {
-    const BodyStore &bodies = world.bodies;
-    const WorldSettings &settings = world.settings;
+void ConstraintSolver::prepareManifolds(const WorldSettings &settings, const BodyStore &bodies, Workers &workers,
+                                        int substeps, StepStats &stats, real h) {
     const bool carriers = settings.debug.carrierPass;
     // Jacobians and effective masses are made once per step, at the step's poses, unless
     // the slot's still hold (jacobian_stamp.h).
     // The counters are summed chunk by chunk, then in the chunks' order.
     chunkCounts_.resize(Workers::chunksOf(manifolds_.size()));
-    world.workers.forEachChunk(manifolds_.size(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    workers.forEachChunk(manifolds_.size(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkCount &count = chunkCounts_[chunk];
         count = ChunkCount();
         for (std::size_t s = begin; s < end; ++s) {
-            prepareManifold(bodies, s, h, h * world.context.plan.substeps, settings.restitutionThreshold);
+            prepareManifold(bodies, s, h, h * substeps, settings.restitutionThreshold);
             JacobianStamp &stamp = stamps_[s];
             const SolverManifold &m = manifolds_[s];
             if (carriers && stamp.carrier != m.carrier) {
@@ -340,17 +343,17 @@ void ConstraintSolver::prepareManifolds(WorldState &world, real h) {
         }
     });
     for (const ChunkCount &count : chunkCounts_) {
-        world.stats.jacobiansMade += count.jacobians;
-        world.stats.frictionRows += count.frictionRows;
-        world.stats.restitutionContacts += count.restitution;
+        stats.jacobiansMade += count.jacobians;
+        stats.frictionRows += count.frictionRows;
+        stats.restitutionContacts += count.restitution;
     }
 }
 
 // The rolling and spinning resistance rows, in solve order, and how two threads share
 // them and the manifolds without a carrier.
-void ConstraintSolver::prepareResistanceAndShares(WorldState &world) {
-    const BodyStore &bodies = world.bodies;
-    const bool carriers = world.settings.debug.carrierPass;
+void ConstraintSolver::prepareResistanceAndShares(const WorldSettings &settings, const BodyStore &bodies,
+                                                  Workers &workers, StepStats &stats) {
+    const bool carriers = settings.debug.carrierPass;
     for (const int s : solveOrder_) {
         const Material &ma = bodies[slotBodies_[s].a].material;
         const Material &mb = bodies[slotBodies_[s].b].material;
@@ -358,10 +361,10 @@ void ConstraintSolver::prepareResistanceAndShares(WorldState &world) {
                           std::max(ma.spinningFriction, mb.spinningFriction), resistance_);
     }
     for (const ResistanceRow &row : resistance_)
-        world.stats.resistanceRows += (row.mass[0] > 0) + (row.mass[1] > 0) + (row.mass[2] > 0);
+        stats.resistanceRows += (row.mass[0] > 0) + (row.mass[1] > 0) + (row.mass[2] > 0);
     // Two threads share the resistance rows and the manifolds without a carrier by the
     // partition's halves, with the numbers of one (threads/ordered_shares.h).
-    orderedShares_ = world.workers.parallel() && partition_.split;
+    orderedShares_ = workers.parallel() && partition_.split;
     if (!orderedShares_) return;
     const int bodyCount = static_cast<int>(bodies_.size());
     const std::vector<signed char> &side = partitionScratch_.side;

@@ -25,6 +25,10 @@
 namespace cyclone::detail {
 
 struct WorldState;
+class ContactManager;
+class PreSolve;
+struct StepContext;
+class Workers;
 
 /// The split-impulse target normal velocity of point p of m in a sub-step of h s
 /// (inverseH = 1 / h): a gap may close within the sub-step and no more; a contact
@@ -48,12 +52,17 @@ public:
     /// The step's solver manifolds, in their slots (solve order: solveOrder_).
     const std::vector<SolverManifold> &manifolds() const { return manifolds_; }
 
-    /// Orders the touching pairs' manifolds (lowest first), gives each a solver slot and
-    /// fills it from the manifold.
-    void build(WorldState &world);
+    /// Orders the touching pairs' manifolds of `contacts` (lowest first along -gravity),
+    /// runs the pre-solve stage over them, gives each a solver slot and fills it from the
+    /// manifold (warm started at context.plan.warmScale); writes each manifold's slot and
+    /// step (`stepCount`), context.deepest and the stats' manifold and contact counts.
+    void build(const WorldSettings &settings, const BodyStore &bodies, ContactManager &contacts, PreSolve &preSolve,
+               Workers &workers, std::uint64_t stepCount, StepContext &context, StepStats &stats);
     /// Sets up the solver bodies and, for every slot whose Jacobians do not still hold,
-    /// the Jacobians and effective masses; orders the passes and the carrier pass.
-    void prepare(WorldState &world, real h);
+    /// the Jacobians and effective masses (sub-steps of h s, context.plan.substeps of
+    /// them); orders the passes and the carrier pass; counts the rows in `stats`.
+    void prepare(const WorldSettings &settings, const BodyStore &bodies, Workers &workers, const StepContext &context,
+                 StepStats &stats, real h);
     /// One sub-step's velocities: predicted without contacts, then corrected by the
     /// velocity passes and the carrier pass, and given to the bodies.
     void solveVelocities(WorldState &world, real h, bool firstSubstep);
@@ -66,16 +75,20 @@ public:
 
 private:
     // Building (constraint_builder.cpp).
-    void addSolverManifold(WorldState &world, std::uint32_t keyIndex, std::size_t slot);
-    void assignSlots(WorldState &world);
+    void addSolverManifold(const WorldSettings &settings, const BodyStore &bodies, ContactManager &contacts,
+                           const PreSolve &preSolve, std::uint64_t stepCount, real warmScale, std::uint32_t keyIndex,
+                           std::size_t slot);
+    void assignSlots(const PairCache &pairs, Workers &workers, std::uint64_t stepCount);
     // Preparing (constraint_builder.cpp), in order.
-    void prepareBodies(WorldState &world, real h);
-    void orderManifolds(WorldState &world);
-    void prepareManifolds(WorldState &world, real h);
-    void prepareResistanceAndShares(WorldState &world);
+    void prepareBodies(const BodyStore &bodies, Workers &workers, real h);
+    void orderManifolds(const WorldSettings &settings, const BodyStore &bodies, Workers &workers);
+    void prepareManifolds(const WorldSettings &settings, const BodyStore &bodies, Workers &workers, int substeps,
+                          StepStats &stats, real h);
+    void prepareResistanceAndShares(const WorldSettings &settings, const BodyStore &bodies, Workers &workers,
+                                    StepStats &stats);
     void prepareManifold(const BodyStore &bodies, std::size_t s, real h, real dt,
                          real restitutionThreshold);
-    bool jacobiansHold(const WorldState &world, const JacobianStamp &stamp, const PairState &pair,
+    bool jacobiansHold(real tolerance, const BodyStore &bodies, const JacobianStamp &stamp, const PairState &pair,
                        const ManifoldState &m) const;
     // Solving (solve.cpp). One sub-step's stages, in order:
     void predictVelocities(WorldState &world, real h, bool firstSubstep);

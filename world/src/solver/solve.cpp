@@ -130,7 +130,7 @@ void ConstraintSolver::solvePasses(WorldState &world, real h, bool firstSubstep)
     // passes as the contacts, after them (joints/joint_set.h).
     const bool joints = world.context.activeJoints > 0;
     if (joints) {
-        world.joints.prepare(world, bodies_, h);
+        world.joints.prepare(world.bodies, world.settings.debug.warmStarting, world.context, stats, bodies_, h);
         world.joints.warmStart(bodies_);
     }
     if (!manifolds_.empty()) {
@@ -266,7 +266,8 @@ void ConstraintSolver::solveResistancePass(WorldState &world) {
 
 void ConstraintSolver::recoverPenetration(WorldState &world, real h) {
     recoverContactPenetration(world, h);
-    if (world.context.activeJoints > 0) world.joints.correctPositions(world, bodies_, world.settings.positionIterations);
+    if (world.context.activeJoints > 0) world.joints.correctPositions(world.bodies, world.settings.debug.warmStarting, world.context, bodies_,
+                                      world.settings.positionIterations);
 }
 
 void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {

@@ -2,10 +2,31 @@
 // sensors -> constraints -> islands -> per sub-step (forces, solve, integrate, penetration,
 // locked axes) -> continuous collision -> landing correction -> locked axes -> sleep ->
 // characters. Each stage adds its time to stats().ms.
+#include "world/body_transitions.h"
 #include "world/stage_timer.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
+namespace {
+
+// The step's counts and times, once its stages are done.
+void report(const StepContext &context, const BodyStore &bodies, const Workers &workers, StepStats &stats) {
+    stats.substeps = context.plan.substeps;
+    stats.joints = context.activeJoints;
+    stats.springs = context.activeSprings;
+    stats.maxPenetration = context.deepest;
+    stats.integratedBodies = static_cast<int>(bodies.simulated.size());
+    stats.movingKinematicBodies = static_cast<int>(bodies.moving.size());
+    stats.bodies = static_cast<int>(bodies.order.size());
+    stats.awakeBodies = static_cast<int>(bodies.awake.size());
+    stats.isolatedBodies = bodies.isolatedCount;
+    StageTimes &ms = stats.ms;
+    ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.sensors + ms.manifolds + ms.islands + ms.solve +
+               ms.integrate + ms.ccd + ms.landing + ms.sleep + ms.characters;
+    ms.shared = workers.shared();
+}
+
+}  // namespace
 
 void WorldState::step(real dt, const World &queries) {
     stats = StepStats();
@@ -20,32 +41,38 @@ void WorldState::step(real dt, const World &queries) {
     if (!characters.empty()) { const StageTimer t(ms.characters); characters.beginStep(*this, queries, dt); }
     {
         const StageTimer t(ms.forces);
-        integration.beginStep(*this, dt);
+        integration.beginStep(bodies, springs, BodyTransitions(*this), context, dt);
         axisLocks.beginStep(bodies);
-        kinematicBodies.beginStep(*this);
-        joints.beginStep(*this);
+        KinematicBodies::beginStep(bodies, contacts.pairs, BodyTransitions(*this));
+        joints.beginStep(bodies, BodyTransitions(*this), context);
     }
     { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
     { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
     // The step's bodies are final: those woken by its contacts, joints and springs are in.
-    integration.closeAdmission(*this);
+    integration.closeAdmission(settings, bodies);
     KinematicBodies::number(bodies);
     { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
-    if (bodies.sensorCount > 0) { const StageTimer t(ms.sensors); sensors.update(*this); }
+    if (bodies.sensorCount > 0) {
+        const StageTimer t(ms.sensors);
+        sensors.update(bodies, broadphase, contacts.sensorCandidates(), stepCount, *events.sink, stats);
+    }
     context.plan = planStep(settings, context, bodies, contacts.pairs, stepCount, dt);
     const StepPlan &plan = context.plan;
-    { const StageTimer t(ms.manifolds); solver.build(*this); }
-    { const StageTimer t(ms.islands); islands.build(*this); }
+    {
+        const StageTimer t(ms.manifolds);
+        solver.build(settings, bodies, contacts, preSolve, workers, stepCount, context, stats);
+    }
+    { const StageTimer t(ms.islands); islands.build(bodies, solver.manifolds(), springs, joints, stats); }
 
     const real h = dt / plan.substeps;
     {
         const StageTimer t(ms.solveParts.setup);
-        solver.prepare(*this, h);
+        solver.prepare(settings, bodies, workers, context, stats, h);
     }
     ms.solve += ms.solveParts.setup;
     for (int substep = 0; substep < plan.substeps; ++substep) {
         const bool first = substep == 0;
-        { const StageTimer t(ms.forces); integration.addSubstepForces(*this, h, first); }
+        { const StageTimer t(ms.forces); integration.addSubstepForces(settings, bodies, springs, context, h, first); }
         {
             // The velocity part is the solve less the carrier pass, which times itself.
             const double carrierBefore = ms.solveParts.carrier;
@@ -55,8 +82,8 @@ void WorldState::step(real dt, const World &queries) {
         }
         {
             const StageTimer t(ms.integrate);
-            integration.integrate(*this, h);
-            kinematicBodies.integrate(*this, h);
+            integration.integrate(bodies, workers, BodyTransitions(*this), h);
+            KinematicBodies::integrate(bodies, h);
         }
         { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position
         { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
@@ -64,27 +91,18 @@ void WorldState::step(real dt, const World &queries) {
     {
         const StageTimer t(ms.solve);
         solver.storeImpulses(*this);
-        joints.finishStep(*this, dt);
+        joints.finishStep(bodies, context, *events.sink, BodyTransitions(*this), dt);
     }
-    { const StageTimer t(ms.ccd); ccd.sweep(*this); }
+    { const StageTimer t(ms.ccd); ccd.sweep(settings, bodies, broadphase, contacts.pairs, stepCount, stats); }
     { const StageTimer t(ms.landing); landing.correct(*this); }
     { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
-    { const StageTimer t(ms.sleep); islands.updateSleep(*this); }
+    {
+        const StageTimer t(ms.sleep);
+        for (const int island : islands.still(settings, bodies)) sleepIsland(islands.members(island), islands.size(island));
+    }
     if (!characters.empty()) { const StageTimer t(ms.characters); characters.update(*this, queries, dt); }
     events.closeStep();
-
-    stats.substeps = plan.substeps;
-    stats.joints = context.activeJoints;
-    stats.springs = context.activeSprings;
-    stats.maxPenetration = context.deepest;
-    stats.integratedBodies = static_cast<int>(bodies.simulated.size());
-    stats.movingKinematicBodies = static_cast<int>(bodies.moving.size());
-    stats.bodies = static_cast<int>(bodies.order.size());
-    stats.awakeBodies = static_cast<int>(bodies.awake.size());
-    stats.isolatedBodies = bodies.isolatedCount;
-    ms.total = ms.forces + ms.broadphase + ms.narrowphase + ms.events + ms.sensors + ms.manifolds + ms.islands + ms.solve +
-               ms.integrate + ms.ccd + ms.landing + ms.sleep + ms.characters;
-    ms.shared = workers.shared();
+    report(context, bodies, workers, stats);
 }
 
 }  // namespace cyclone::detail

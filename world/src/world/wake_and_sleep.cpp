@@ -3,6 +3,7 @@
 // an isolated body (non-finite state) leaves collision and the solve for good. A body
 // woken during a step, before its contacts are final, joins that step's solve
 // (Integration::admit): a hit on a sleeping body is a hit on a body with mass.
+#include "world/body_transitions.h"
 #include "world/world_impl.h"
 
 namespace cyclone::detail {
@@ -16,7 +17,7 @@ void WorldState::wake(std::uint32_t index) {
             events.sink->wokeUp.push_back(bodies.idOf(index));
         }
         bodies.updateAwakeList(index);
-        integration.admit(*this, index);
+        integration.admit(bodies, BodyTransitions(*this), index);
         return;
     }
     const int island = r.sleepingIsland;
@@ -28,7 +29,7 @@ void WorldState::wake(std::uint32_t index) {
         member.object->place(member.body.getTransform(), kBroadphaseMargin);
         setTree(m, Tree::Awake);
         bodies.updateAwakeList(m);
-        integration.admit(*this, m);
+        integration.admit(bodies, BodyTransitions(*this), m);
     }
     islands.sleeping[island].clear();
     islands.freeSleeping.push_back(island);
@@ -67,7 +68,7 @@ void WorldState::isolate(std::uint32_t index) {
     bodies.updateAwakeList(index);
     setTree(index, Tree::None);
     contacts.removePairsOf(bodies, index);
-    sensors.removed(*this, index);
+    sensors.removed(bodies, *events.sink, index);
 }
 
 void WorldState::setTree(std::uint32_t index, Tree tree) {
@@ -84,7 +85,7 @@ void WorldState::refreshCollisionObject(std::uint32_t index) {
     BodyRecord &r = bodies[index];
     if (r.object && r.object->place(r.body.getTransform(), kBroadphaseMargin))
         broadphase.refit(r.object.get(), r.tree);
-    sensors.moved(*this, index);
+    sensors.moved(bodies, index);
     if (!r.immovable) {
         wake(index);
         return;
@@ -96,5 +97,11 @@ void WorldState::refreshCollisionObject(std::uint32_t index) {
         if (!bodies[other].immovable) wake(other);
     }
 }
+
+void BodyTransitions::wake(std::uint32_t index) const { world_->wake(index); }
+
+void BodyTransitions::isolate(std::uint32_t index) const { world_->isolate(index); }
+
+void BodyTransitions::setTree(std::uint32_t index, Tree tree) const { world_->setTree(index, tree); }
 
 }  // namespace cyclone::detail

@@ -322,7 +322,7 @@ BodyId World::addBody(const BodySettings &settings) {
     w.shapes.push_back(shape);
     countBody(w.bodies, index);
     enterCollision(w, index);
-    w.sensors.added(w, index);
+    w.sensors.added(w.bodies, index);
     return w.bodies.idOf(index);
 }
 
@@ -339,7 +339,7 @@ void World::removeBody(BodyId id) {
         if (pair.touching() && !w.bodies[other].immovable) w.wake(other);
     }
     w.contacts.removePairsOf(w.bodies, index);
-    w.joints.removeJointsOf(w, id);
+    w.joints.removeJointsOf(w.bodies, detail::BodyTransitions(w), id);
     w.leaveFilters(index);
     for (detail::SpringRecord &s : w.springs) {
         if (!s.alive) continue;
@@ -451,7 +451,8 @@ void World::setVelocity(BodyId id, const Vector3 &velocity) {
     detail::requireFinite(function, "velocity", velocity);
     impl_->wake(id.index);
     r.body.setVelocity(velocity);
-    if (r.kinematic && detail::movesAt(velocity, r.body.getRotation())) impl_->kinematicBodies.startMoving(*impl_, id.index);
+    if (r.kinematic && detail::movesAt(velocity, r.body.getRotation()))
+        detail::KinematicBodies::startMoving(impl_->bodies, impl_->contacts.pairs, detail::BodyTransitions(*impl_), id.index);
 }
 
 void World::setRotation(BodyId id, const Vector3 &rotation) {
@@ -460,7 +461,8 @@ void World::setRotation(BodyId id, const Vector3 &rotation) {
     detail::requireFinite(function, "rotation", rotation);
     impl_->wake(id.index);
     r.body.setRotation(rotation);
-    if (r.kinematic && detail::movesAt(r.body.getVelocity(), rotation)) impl_->kinematicBodies.startMoving(*impl_, id.index);
+    if (r.kinematic && detail::movesAt(r.body.getVelocity(), rotation))
+        detail::KinematicBodies::startMoving(impl_->bodies, impl_->contacts.pairs, detail::BodyTransitions(*impl_), id.index);
 }
 
 void World::moveKinematic(BodyId id, const Vector3 &targetPosition, const Quaternion &targetOrientation, real dt) {
@@ -484,7 +486,8 @@ void World::moveKinematic(BodyId id, const Vector3 &targetPosition, const Quater
         detail::refuse(function, "dt", "gives a non-finite velocity, got " + detail::show(dt));
     r.body.setVelocity(velocity);
     r.body.setRotation(rotation);
-    if (detail::movesAt(velocity, rotation)) w.kinematicBodies.startMoving(w, id.index);
+    if (detail::movesAt(velocity, rotation))
+        detail::KinematicBodies::startMoving(w.bodies, w.contacts.pairs, detail::BodyTransitions(w), id.index);
 }
 
 void World::applyImpulse(BodyId id, const Vector3 &impulse) {

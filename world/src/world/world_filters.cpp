@@ -27,12 +27,12 @@ void eraseFrom(std::vector<std::uint32_t> &list, std::uint32_t value) {
 void detail::WorldState::filterChanged(std::uint32_t index) {
     // The broadphase replays its last walk while no tree changes: it must ask again.
     broadphase.invalidate();
-    sensors.filterChanged(*this, index);
+    sensors.filterChanged(bodies, *events.sink, index);
 }
 
 void detail::WorldState::leaveFilters(std::uint32_t index) {
     BodyRecord &r = bodies[index];
-    sensors.removed(*this, index);
+    sensors.removed(bodies, *events.sink, index);
     for (std::uint32_t other : r.keptApart) {
         eraseFrom(bodies[other].keptApart, index);
         --bodies.keptApartCount;

@@ -45,7 +45,6 @@ struct WorldState {
     ConstraintSolver solver;
     Integration integration;
     AxisLocks axisLocks;
-    KinematicBodies kinematicBodies;
     Islands islands;
     ContinuousCollision ccd;
     LandingCorrection landing;
