@@ -21,11 +21,12 @@
 #include "solver/threads/partition.h"
 #include "solver/velocity_pass.h"
 #include "world/body_store.h"
+#include "world/body_transitions.h"
 
 namespace cyclone::detail {
 
-struct WorldState;
 class ContactManager;
+class JointSet;
 class PreSolve;
 struct StepContext;
 class Workers;
@@ -64,14 +65,21 @@ public:
     void prepare(const WorldSettings &settings, const BodyStore &bodies, Workers &workers, const StepContext &context,
                  StepStats &stats, real h);
     /// One sub-step's velocities: predicted without contacts, then corrected by the
-    /// velocity passes and the carrier pass, and given to the bodies.
-    void solveVelocities(WorldState &world, real h, bool firstSubstep);
-    /// Pushes bodies out of penetration beyond the slop without adding energy, then
-    /// projects the joined bodies' positions onto their joints.
-    void recoverPenetration(WorldState &world, real h);
+    /// velocity passes, the joints (when context.activeJoints) and the carrier pass (its
+    /// direction from `stepCount`), and given to the bodies; a body whose velocity
+    /// overflows is isolated through `transitions`. Counts its passes in `stats`.
+    void solveVelocities(const WorldSettings &settings, BodyStore &bodies, JointSet &joints, Workers &workers,
+                         BodyTransitions transitions, const StepContext &context, std::uint64_t stepCount,
+                         StepStats &stats, real h, bool firstSubstep);
+    /// Pushes bodies out of penetration beyond the slop without adding energy (a body whose
+    /// pose overflows is isolated through `transitions`), then projects the joined bodies'
+    /// positions onto their joints.
+    void recoverPenetration(const WorldSettings &settings, BodyStore &bodies, JointSet &joints, Workers &workers,
+                            BodyTransitions transitions, const StepContext &context, StepStats &stats, real h);
     /// Hands the accumulated impulses back to the pairs' manifolds for warm starting, and
-    /// reports each solved pair's normal impulse of the step (WorldEvents::contactImpulses).
-    void storeImpulses(WorldState &world);
+    /// reports each solved pair's normal impulse of the step in events.contactImpulses.
+    void storeImpulses(const BodyStore &bodies, PairCache &pairs, Workers &workers, const StepContext &context,
+                       WorldEvents &events);
 
 private:
     // Building (constraint_builder.cpp).
@@ -91,18 +99,23 @@ private:
     bool jacobiansHold(real tolerance, const BodyStore &bodies, const JacobianStamp &stamp, const PairState &pair,
                        const ManifoldState &m) const;
     // Solving (solve.cpp). One sub-step's stages, in order:
-    void predictVelocities(WorldState &world, real h, bool firstSubstep);
-    void refreshTargets(WorldState &world, real h);
-    void solvePasses(WorldState &world, real h, bool firstSubstep);
-    void giveVelocities(WorldState &world, bool firstSubstep);
+    void predictVelocities(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
+                           BodyTransitions transitions, int substeps, StepStats &stats, real h, bool firstSubstep);
+    void refreshTargets(const BodyStore &bodies, Workers &workers, real restitutionThreshold, real h);
+    void solvePasses(const WorldSettings &settings, const BodyStore &bodies, JointSet &joints, Workers &workers,
+                     const StepContext &context, std::uint64_t stepCount, StepStats &stats, real h,
+                     bool firstSubstep);
+    void giveVelocities(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
+                        BodyTransitions transitions, bool firstSubstep);
     // The passes.
-    void loadVelocityPasses(WorldState &world, bool firstSubstep);
-    void solveVelocityPass(WorldState &world, bool reverse);
-    void storeVelocityPasses(WorldState &world);
-    void solveCarrierPass(WorldState &world, bool reverse);
-    void solveResistancePass(WorldState &world);
-    void recoverContactPenetration(WorldState &world, real h);
-    void reportImpulses(WorldState &world);
+    void loadVelocityPasses(Workers &workers, const WorldSettings &settings, bool firstSubstep);
+    void solveVelocityPass(Workers &workers, bool reverse);
+    void storeVelocityPasses(Workers &workers);
+    void solveCarrierPass(Workers &workers, StepStats &stats, bool reverse);
+    void solveResistancePass(Workers &workers);
+    void recoverContactPenetration(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
+                                   BodyTransitions transitions, real recovery, StepStats &stats, real h);
+    void reportImpulses(const BodyStore &bodies, const PairCache &pairs, std::vector<ContactImpulse> &out);
 
     /// The body records of a slot's A and B: the passes over the slots read them here,
     /// not from the pair, whose record is a cache miss away.

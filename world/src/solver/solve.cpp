@@ -7,8 +7,12 @@
 #include <cmath>
 
 #include "solver/constraint_solver.h"
+#include "dynamics/axis_locks.h"
+#include "joints/joint_set.h"
+#include "world/body_transitions.h"
 #include "world/stage_timer.h"
-#include "world/world_impl.h"
+#include "world/step_context.h"
+#include "world/workers.h"
 
 namespace cyclone::detail {
 namespace {
@@ -24,8 +28,7 @@ DepthFrame depthFrame(const RigidBody &a, const RigidBody &b, const Vector3 &nor
 // nothing, when the change is not finite (the solve overflowed for this body): the caller
 // then isolates the body, as a non-finite state does, so that the rest of the world
 // steps on.
-bool changeVelocities(WorldState &world, std::uint32_t index, const Vector3 &dv, const Vector3 &dw) {
-    RigidBody &body = world.bodies[index].body;
+bool changeVelocities(RigidBody &body, const Vector3 &dv, const Vector3 &dw) {
     if (!(body.getVelocity() + dv).allFinite() || !(body.getRotation() + dw).allFinite()) return false;
     body.addVelocity(dv);
     body.addRotation(dw);
@@ -36,16 +39,18 @@ bool changeVelocities(WorldState &world, std::uint32_t index, const Vector3 &dv,
 
 // One sub-step: the velocities each body reaches without contacts, the contacts' targets at
 // the sub-step's poses, the passes, and the change they made handed to the bodies.
-void ConstraintSolver::solveVelocities(WorldState &world, real h, bool firstSubstep) {
-    predictVelocities(world, h, firstSubstep);
-    if (!firstSubstep) refreshTargets(world, h);
-    solvePasses(world, h, firstSubstep);
-    giveVelocities(world, firstSubstep);
+void ConstraintSolver::solveVelocities(const WorldSettings &settings, BodyStore &bodies, JointSet &joints,
+                                       Workers &workers, BodyTransitions transitions, const StepContext &context,
+                                       std::uint64_t stepCount, StepStats &stats, real h, bool firstSubstep) {
+    predictVelocities(settings, bodies, workers, transitions, context.plan.substeps, stats, h, firstSubstep);
+    if (!firstSubstep) refreshTargets(bodies, workers, settings.restitutionThreshold, h);
+    solvePasses(settings, bodies, joints, workers, context, stepCount, stats, h, firstSubstep);
+    giveVelocities(settings, bodies, workers, transitions, firstSubstep);
 }
 
-void ConstraintSolver::predictVelocities(WorldState &world, real h, bool firstSubstep) {
-    BodyStore &bodies = world.bodies;
-    const WorldSettings &settings = world.settings;
+void ConstraintSolver::predictVelocities(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
+                                         BodyTransitions transitions, int substeps, StepStats &stats, real h,
+                                         bool firstSubstep) {
     // Predicted velocities: (v + a h) damping^h, with the sub-step's forces.
     //
     // The gyroscopic step is applied to the body here rather than inside integrate(h): it
@@ -64,7 +69,7 @@ void ConstraintSolver::predictVelocities(WorldState &world, real h, bool firstSu
                             settings.integrator == Integrator::NewtonEulerImplicit;
     overflowed_.assign(bodies.simulated.size(), 0);
     std::atomic<int> gyroscopicBodies{0};
-    world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
+    workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         SolverBody &sb = bodies_[k + 1];
         if (r.isolated) {
@@ -72,7 +77,7 @@ void ConstraintSolver::predictVelocities(WorldState &world, real h, bool firstSu
             return;
         }
         if (gyroscopic && firstSubstep && !r.body.hasIsotropicInertia()) {
-            r.body.applyGyroscopicStep(GyroscopicStep::Midpoint, h * world.context.plan.substeps);
+            r.body.applyGyroscopicStep(GyroscopicStep::Midpoint, h * substeps);
             gyroscopicBodies.fetch_add(1, std::memory_order_relaxed);
         }
         const Vector3 a = r.body.getAcceleration() + r.body.getAccumulatedForce() * sb.invMass;
@@ -95,9 +100,9 @@ void ConstraintSolver::predictVelocities(WorldState &world, real h, bool firstSu
             sb = SolverBody();
         }
     });
-    world.stats.gyroscopicBodies += gyroscopicBodies.load(std::memory_order_relaxed);
+    stats.gyroscopicBodies += gyroscopicBodies.load(std::memory_order_relaxed);
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
-        if (overflowed_[k]) world.isolate(bodies.simulated[k]);
+        if (overflowed_[k]) transitions.isolate(bodies.simulated[k]);
 }
 
 // Current separations from the anchors (positions move only between sub-steps), and the
@@ -105,11 +110,9 @@ void ConstraintSolver::predictVelocities(WorldState &world, real h, bool firstSu
 // them, and its depths (addSolverManifold) are current: along the normal it last found,
 // which differs from a kept manifold's (jacobian_stamp.h) by less than the reuse
 // tolerance's turn; prepareManifold set their targets.
-void ConstraintSolver::refreshTargets(WorldState &world, real h) {
-    const BodyStore &bodies = world.bodies;
-    const real threshold = world.settings.restitutionThreshold;
+void ConstraintSolver::refreshTargets(const BodyStore &bodies, Workers &workers, real threshold, real h) {
     const real inverseH = 1 / h;
-    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
+    workers.forEach(manifolds_.size(), [&](std::size_t s) {
         SolverManifold &m = manifolds_[s];
         DepthFrame frame = depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body, m.normal);
         if (!roundDepths_.empty()) frame.offset += roundDepths_.change(s, frame);
@@ -123,26 +126,26 @@ void ConstraintSolver::refreshTargets(WorldState &world, real h) {
 
 // The velocity passes, the resistance rows and the joints, then the carrier pass; each
 // slot's normal impulses are added to its step's total.
-void ConstraintSolver::solvePasses(WorldState &world, real h, bool firstSubstep) {
-    const WorldSettings &settings = world.settings;
-    StepStats &stats = world.stats;
+void ConstraintSolver::solvePasses(const WorldSettings &settings, const BodyStore &bodies, JointSet &joints,
+                                   Workers &workers, const StepContext &context, std::uint64_t stepCount,
+                                   StepStats &stats, real h, bool firstSubstep) {
     // Joints: rows made at the sub-step's poses, warm-started, and solved in the same
     // passes as the contacts, after them (joints/joint_set.h).
-    const bool joints = world.context.activeJoints > 0;
-    if (joints) {
-        world.joints.prepare(world.bodies, world.settings.debug.warmStarting, world.context, stats, bodies_, h);
-        world.joints.warmStart(bodies_);
+    const bool joined = context.activeJoints > 0;
+    if (joined) {
+        joints.prepare(bodies, settings.debug.warmStarting, context, stats, bodies_, h);
+        joints.warmStart(bodies_);
     }
     if (!manifolds_.empty()) {
-        loadVelocityPasses(world, firstSubstep);
+        loadVelocityPasses(workers, settings, firstSubstep);
         beginResistance(manifolds_, resistance_);
-        const int passes = world.context.plan.velocityIterations;
+        const int passes = context.plan.velocityIterations;
         for (int it = 0; it < passes; ++it) {
-            solveVelocityPass(world, (it & 1) != 0);
-            solveResistancePass(world);
-            if (joints) world.joints.solveVelocities(bodies_);
+            solveVelocityPass(workers, (it & 1) != 0);
+            solveResistancePass(workers);
+            if (joined) joints.solveVelocities(bodies_);
         }
-        storeVelocityPasses(world);
+        storeVelocityPasses(workers);
         stats.velocityIterations += passes;
         // The carrier pass comes after the velocity passes, never instead of one: alone,
         // it would let no body push the bodies carrying it.
@@ -150,14 +153,14 @@ void ConstraintSolver::solvePasses(WorldState &world, real h, bool firstSubstep)
             const StageTimer timed(stats.ms.solveParts.carrier);
             // A run sweeps its points in one direction: the other one next step, so that
             // no point of a face takes the larger share step after step (carrier_pass.h).
-            solveCarrierPass(world, ((passes & 1) != 0) != ((world.stepCount & 1) != 0));
+            solveCarrierPass(workers, stats, ((passes & 1) != 0) != ((stepCount & 1) != 0));
             // The carrier pass moved joined bodies too: the joints have the last word.
-            if (joints) world.joints.solveVelocities(bodies_);
+            if (joined) joints.solveVelocities(bodies_);
         }
-    } else if (joints) {
-        for (int it = 0; it < world.context.plan.velocityIterations; ++it) world.joints.solveVelocities(bodies_);
+    } else if (joined) {
+        for (int it = 0; it < context.plan.velocityIterations; ++it) joints.solveVelocities(bodies_);
     }
-    if (joints) world.joints.storeImpulses();
+    if (joined) joints.storeImpulses();
     // What the sub-step's contacts gave: each point's accumulated impulse, warm start included.
     for (std::size_t s = 0; s < manifolds_.size(); ++s) {
         const SolverManifold &m = manifolds_[s];
@@ -165,8 +168,8 @@ void ConstraintSolver::solvePasses(WorldState &world, real h, bool firstSubstep)
     }
 }
 
-void ConstraintSolver::giveVelocities(WorldState &world, bool firstSubstep) {
-    BodyStore &bodies = world.bodies;
+void ConstraintSolver::giveVelocities(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
+                                      BodyTransitions transitions, bool firstSubstep) {
     // integrate(h) will turn v into (v + a h) damping^h, so the change to give the body
     // now is the solver's change divided by the damping factor.
     //
@@ -178,9 +181,9 @@ void ConstraintSolver::giveVelocities(WorldState &world, bool firstSubstep) {
     // the code").
     //
     // Each body on its own, in chunks shared between the threads, as above.
-    const bool conserving = world.settings.integrator == Integrator::MomentumConserving;
+    const bool conserving = settings.integrator == Integrator::MomentumConserving;
     overflowed_.assign(bodies.simulated.size(), 0);
-    world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
+    workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         if (r.isolated) return;
         const SolverBody &sb = bodies_[k + 1];
@@ -194,10 +197,10 @@ void ConstraintSolver::giveVelocities(WorldState &world, bool firstSubstep) {
                 dw = r.body.getInverseInertiaTensorWorld() * sb.invInertia.inverse() * dw;
             dw /= angularFactor_[k];
         }
-        overflowed_[k] = !changeVelocities(world, bodies.simulated[k], dv, dw);
+        overflowed_[k] = !changeVelocities(r.body, dv, dw);
     });
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
-        if (overflowed_[k]) world.isolate(bodies.simulated[k]);
+        if (overflowed_[k]) transitions.isolate(bodies.simulated[k]);
 }
 
 // The velocity passes work on a copy of the rows they solve (velocity_pass.h), taken at the
@@ -206,9 +209,9 @@ void ConstraintSolver::giveVelocities(WorldState &world, bool firstSubstep) {
 // only the impulses and targets again. Every part is loaded, the empty ones too: an
 // unsplit step must not find the seam's rows of an earlier split one. The seam comes
 // last, as in a pass: its warm start moves bodies of both halves.
-void ConstraintSolver::loadVelocityPasses(WorldState &world, bool firstSubstep) {
-    const bool warm = world.settings.debug.warmStarting;
-    const bool recovers = world.settings.positionIterations > 0;
+void ConstraintSolver::loadVelocityPasses(Workers &workers, const WorldSettings &settings, bool firstSubstep) {
+    const bool warm = settings.debug.warmStarting;
+    const bool recovers = settings.positionIterations > 0;
     const auto load = [&](int part) {
         if (firstSubstep)
             loadBatches(bodies_, manifolds_, partition_.groups[part], warm, batches_[part],
@@ -216,27 +219,27 @@ void ConstraintSolver::loadVelocityPasses(WorldState &world, bool firstSubstep) 
         else
             reloadBatches(bodies_, manifolds_, partition_.groups[part], warm, batches_[part]);
     };
-    world.workers.forEachTask(2, load);
+    workers.forEachTask(2, load);
     load(SolverPartition::kSeam);
 }
 
-void ConstraintSolver::solveVelocityPass(WorldState &world, bool reverse) {
-    world.workers.forEachTask(partition_.split ? 2 : 1, [&](int half) { solveVelocityBatches(bodies_, batches_[half], reverse); });
+void ConstraintSolver::solveVelocityPass(Workers &workers, bool reverse) {
+    workers.forEachTask(partition_.split ? 2 : 1, [&](int half) { solveVelocityBatches(bodies_, batches_[half], reverse); });
     solveVelocityBatches(bodies_, batches_[SolverPartition::kSeam], reverse);
 }
 
-void ConstraintSolver::storeVelocityPasses(WorldState &world) {
-    world.workers.forEachTask(3, [&](int part) {
+void ConstraintSolver::storeVelocityPasses(Workers &workers) {
+    workers.forEachTask(3, [&](int part) {
         storeBatches(batches_[part], partition_.groups[part], manifolds_);
     });
 }
 
 // The partition's halves at once, each run once its carriers are done (threads/carrier_threads.h).
-void ConstraintSolver::solveCarrierPass(WorldState &world, bool reverse) {
+void ConstraintSolver::solveCarrierPass(Workers &workers, StepStats &stats, bool reverse) {
     const std::vector<int> &uncarried = carrierRuns_.uncarried;
     if (orderedShares_ && uncarried.size() >= kMinSharedEntries) {
         beginOrderedPass(uncarriedShares_);
-        world.workers.forEachTask(2, [&](int share) {
+        workers.forEachTask(2, [&](int share) {
             solveOrderedShare(uncarriedShares_, share,
                               [&](int k) { solveUncarriedManifold(bodies_, manifolds_[uncarried[k]], reverse); });
         });
@@ -245,35 +248,35 @@ void ConstraintSolver::solveCarrierPass(WorldState &world, bool reverse) {
     }
     beginCarrierPass(carrierThreads_);
     for (CarrierPassScratch &s : carrierThreads_.scratch) s.sweeps = 0;
-    world.workers.forEachTask(carrierThreads_.share[1].empty() ? 1 : 2, [&](int share) {
+    workers.forEachTask(carrierThreads_.share[1].empty() ? 1 : 2, [&](int share) {
         solveCarrierShare(bodies_, manifolds_, carrierRuns_, carrierThreads_, share, reverse);
     });
-    for (const CarrierPassScratch &s : carrierThreads_.scratch) world.stats.carrierSweeps += static_cast<int>(s.sweeps);
+    for (const CarrierPassScratch &s : carrierThreads_.scratch) stats.carrierSweeps += static_cast<int>(s.sweeps);
 }
 
 // One pass over the resistance rows: on two threads (threads/ordered_shares.h) when there
 // are enough of them to outweigh the hand-over, with the same numbers either way.
-void ConstraintSolver::solveResistancePass(WorldState &world) {
+void ConstraintSolver::solveResistancePass(Workers &workers) {
     if (!orderedShares_ || resistance_.size() < kMinSharedEntries) {
         solveResistance(bodies_, resistance_);
         return;
     }
     beginOrderedPass(resistanceShares_);
-    world.workers.forEachTask(2, [&](int share) {
+    workers.forEachTask(2, [&](int share) {
         solveOrderedShare(resistanceShares_, share, [&](int k) { solveResistanceRow(bodies_, resistance_[k]); });
     });
 }
 
-void ConstraintSolver::recoverPenetration(WorldState &world, real h) {
-    recoverContactPenetration(world, h);
-    if (world.context.activeJoints > 0) world.joints.correctPositions(world.bodies, world.settings.debug.warmStarting, world.context, bodies_,
-                                      world.settings.positionIterations);
+void ConstraintSolver::recoverPenetration(const WorldSettings &settings, BodyStore &bodies, JointSet &joints,
+                                          Workers &workers, BodyTransitions transitions, const StepContext &context,
+                                          StepStats &stats, real h) {
+    recoverContactPenetration(settings, bodies, workers, transitions, context.plan.recovery, stats, h);
+    if (context.activeJoints > 0)
+        joints.correctPositions(bodies, settings.debug.warmStarting, context, bodies_, settings.positionIterations);
 }
 
-void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
-    BodyStore &bodies = world.bodies;
-    const WorldSettings &settings = world.settings;
-    StepStats &stats = world.stats;
+void ConstraintSolver::recoverContactPenetration(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
+                                                 BodyTransitions transitions, real recovery, StepStats &stats, real h) {
     if (settings.positionIterations == 0 || manifolds_.empty()) return;
     const StageTimer timed(stats.ms.solveParts.position);
     // Split impulse: pseudo-velocities push penetration beyond the slop out by a fraction
@@ -281,13 +284,13 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
     // The passes run on the velocity passes' groups and rows (penetration_pass.h); the first
     // sets each group's targets from its depths at the poses integration left.
     depthFrames_.resize(manifolds_.size());
-    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
+    workers.forEach(manifolds_.size(), [&](std::size_t s) {
         depthFrames_[s] = depthFrame(bodies[slotBodies_[s].a].body, bodies[slotBodies_[s].b].body,
                                     manifolds_[s].normal);
         if (!roundDepths_.empty()) depthFrames_[s].offset += roundDepths_.change(s, depthFrames_[s]);
     });
     const PseudoTargets targets{depthFrames_.data(), settings.penetrationSlop,
-                                        world.context.plan.recovery / h};
+                                        recovery / h};
     const int seam = SolverPartition::kSeam;
     const int last = settings.positionIterations - 1;
     for (int it = 0; it <= last; ++it) {
@@ -298,13 +301,13 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
                                            carried, set);
         };
         bool pushed[3] = {};
-        world.workers.forEachTask(partition_.split ? 2 : 1, [&](int half) { pushed[half] = pass(half); });
+        workers.forEachTask(partition_.split ? 2 : 1, [&](int half) { pushed[half] = pass(half); });
         pushed[seam] = pass(seam);
         if (it == 0 && !pushed[0] && !pushed[1] && !pushed[seam]) return;  // nothing penetrates beyond what is allowed
     }
     stats.positionIterations += settings.positionIterations;
     overflowed_.assign(bodies.simulated.size(), 0);
-    world.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
+    workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         BodyRecord &r = bodies[bodies.simulated[k]];
         SolverBody &sb = bodies_[k + 1];
         const Vector3 pv = toVector3(sb.pv);
@@ -324,14 +327,15 @@ void ConstraintSolver::recoverContactPenetration(WorldState &world, real h) {
         r.body.setOrientation(q);
     });
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k)
-        if (overflowed_[k]) world.isolate(bodies.simulated[k]);
+        if (overflowed_[k]) transitions.isolate(bodies.simulated[k]);
 }
 
-void ConstraintSolver::storeImpulses(WorldState &world) {
-    const real scale = 1 / world.context.plan.warmScale;  // stored per default sub-step (step_plan.h)
-    world.workers.forEach(manifolds_.size(), [&](std::size_t s) {
+void ConstraintSolver::storeImpulses(const BodyStore &bodies, PairCache &pairs, Workers &workers,
+                                     const StepContext &context, WorldEvents &events) {
+    const real scale = 1 / context.plan.warmScale;  // stored per default sub-step (step_plan.h)
+    workers.forEach(manifolds_.size(), [&](std::size_t s) {
         const SolverManifold &m = manifolds_[s];
-        PairState &pair = world.contacts.pairs[sources_[s].pair];
+        PairState &pair = pairs[sources_[s].pair];
         const std::size_t k = sources_[s].index;
         if (!pair.alive || k >= pair.manifolds.size()) return;  // a body was isolated
         ManifoldState &state = pair.manifolds[k];
@@ -339,18 +343,17 @@ void ConstraintSolver::storeImpulses(WorldState &world) {
         state.frictionImpulse = (m.frictionRow[0].impulse * m.tangent[0] + m.frictionRow[1].impulse * m.tangent[1]) * scale;
         state.twistImpulse = m.twist.impulse * scale;
     });
-    reportImpulses(world);
+    reportImpulses(bodies, pairs, events.contactImpulses);
 }
 
 // One entry per solved pair, summed over its manifolds, in the order of the bodies'
 // indices (the slots' order changes with the heights); in place, so that a steady step
 // allocates nothing.
-void ConstraintSolver::reportImpulses(WorldState &world) {
-    const BodyStore &bodies = world.bodies;
-    std::vector<ContactImpulse> &out = world.events.sink->contactImpulses;
+void ConstraintSolver::reportImpulses(const BodyStore &bodies, const PairCache &pairs,
+                                      std::vector<ContactImpulse> &out) {
     const std::size_t first = out.size();
     for (std::size_t s = 0; s < manifolds_.size(); ++s) {
-        if (!world.contacts.pairs[sources_[s].pair].alive) continue;  // a body was isolated
+        if (!pairs[sources_[s].pair].alive) continue;  // a body was isolated
         const SlotBodies pair = slotBodies_[s];
         out.push_back({bodies.idOf(pair.a), bodies.idOf(pair.b), bodies[pair.a].userData, bodies[pair.b].userData,
                        stepImpulse_[s]});

@@ -77,7 +77,8 @@ void WorldState::step(real dt, const World &queries) {
             // The velocity part is the solve less the carrier pass, which times itself.
             const double carrierBefore = ms.solveParts.carrier;
             const StageTimer t(ms.solve);
-            solver.solveVelocities(*this, h, first);
+            solver.solveVelocities(settings, bodies, joints, workers, BodyTransitions(*this), context, stepCount, stats,
+                                   h, first);
             ms.solveParts.velocity += t.elapsed() - (ms.solveParts.carrier - carrierBefore);
         }
         {
@@ -85,12 +86,15 @@ void WorldState::step(real dt, const World &queries) {
             integration.integrate(bodies, workers, BodyTransitions(*this), h);
             KinematicBodies::integrate(bodies, h);
         }
-        { const StageTimer t(ms.solve); solver.recoverPenetration(*this, h); }  // times itself into solveParts.position
+        {
+            const StageTimer t(ms.solve);  // recoverPenetration times itself into solveParts.position
+            solver.recoverPenetration(settings, bodies, joints, workers, BodyTransitions(*this), context, stats, h);
+        }
         { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
     }
     {
         const StageTimer t(ms.solve);
-        solver.storeImpulses(*this);
+        solver.storeImpulses(bodies, contacts.pairs, workers, context, *events.sink);
         joints.finishStep(bodies, context, *events.sink, BodyTransitions(*this), dt);
     }
     { const StageTimer t(ms.ccd); ccd.sweep(settings, bodies, broadphase, contacts.pairs, stepCount, stats); }
