@@ -4,7 +4,9 @@
 #include <limits>
 
 #include "collision/time_of_impact.h"
-#include "world/world_impl.h"
+#include "joints/joint_set.h"
+#include "world/body_transitions.h"
+#include "world/workers.h"
 
 namespace cyclone::detail {
 namespace {
@@ -115,19 +117,18 @@ RelativePose relativePose(const RigidBody &a, const RigidBody &b) {
 // Flags each simulated, then moving kinematic, body by flag(index) on the threads, then
 // calls act(index) for the flagged ones in that order on this thread. `flags` is scratch.
 template <class Flag, class Act>
-void forFlaggedBodies(WorldState &world, std::vector<char> &flags, const Flag &flag, const Act &act) {
-    const BodyStore &bodies = world.bodies;
+void forFlaggedBodies(const BodyStore &bodies, Workers &workers, std::vector<char> &flags, const Flag &flag,
+                      const Act &act) {
     const std::size_t simulated = bodies.simulated.size();
     const auto bodyAt = [&](std::size_t k) { return k < simulated ? bodies.simulated[k] : bodies.moving[k - simulated]; };
-    world.workers.forFlagged(simulated + bodies.moving.size(), flags, [&](std::size_t k) { return flag(bodyAt(k)); },
-                             [&](std::size_t k) { act(bodyAt(k)); });
+    workers.forFlagged(simulated + bodies.moving.size(), flags, [&](std::size_t k) { return flag(bodyAt(k)); },
+                       [&](std::size_t k) { act(bodyAt(k)); });
 }
 
 }  // namespace
 
-void ContactManager::findCandidates(WorldState &world, real dt) {
-    BodyStore &bodies = world.bodies;
-    const WorldSettings &settings = world.settings;
+void ContactManager::findCandidates(const WorldSettings &settings, BodyStore &bodies, Broadphase &broadphase,
+                                    Workers &workers, StepStats &stats, real dt) {
     movedObjects_.clear();
     // A body's box reaches as far as the body can move in the step, so that a pair that
     // can meet within it is a candidate (and gets a speculative contact).
@@ -142,9 +143,9 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
         const real reach = settings.debug.speculativeContacts ? stepReach(r, dt, falls ? fall : Vector3(Vector3::Zero())) : 0;
         return r.object->place(r.body.getTransform(), kBroadphaseMargin, reach >= kMinReach ? reach : 0);
     };
-    forFlaggedBodies(world, flags_, place,
+    forFlaggedBodies(bodies, workers, flags_, place,
                      [&](std::uint32_t index) { movedObjects_.push_back(bodies[index].object.get()); });
-    world.broadphase.refitAwake(movedObjects_);
+    broadphase.refitAwake(movedObjects_);
 
     // Planes stay out of the trees: test each awake body's AABB against each plane (and,
     // for sensors, each moving kinematic body's). The half-space is the compiled one (unit
@@ -190,38 +191,42 @@ void ContactManager::findCandidates(WorldState &world, real dt) {
     const std::size_t budget = static_cast<std::size_t>(settings.maxPairs);
     const std::size_t planeCount = planePairs_.contacts.size() + planePairs_.sensors.size();
     const std::size_t treeBudget = budget > planeCount ? budget - planeCount : 0;
-    const bool complete = world.broadphase.findPairs(found_, filtering ? &bodies : nullptr, treeBudget,
-                                                     [&](int count, const auto &task) { world.workers.forEachTask(count, task); });
+    const bool complete = broadphase.findPairs(found_, filtering ? &bodies : nullptr, treeBudget,
+                                               [&](int count, const auto &task) { workers.forEachTask(count, task); });
     found_.contacts.insert(found_.contacts.end(), planePairs_.contacts.begin(), planePairs_.contacts.end());
     found_.sensors.insert(found_.sensors.end(), planePairs_.sensors.begin(), planePairs_.sensors.end());
     found_.filtered += planePairs_.filtered;
     if (found_.contacts.size() > budget) found_.contacts.resize(budget);  // more plane pairs than the budget
-    if (!complete || planeCount > budget) world.stats.errors |= StepError::PairBudgetExceeded;
-    world.stats.broadphasePairs = static_cast<int>(found_.contacts.size());
-    world.stats.filteredPairs = found_.filtered;
+    if (!complete || planeCount > budget) stats.errors |= StepError::PairBudgetExceeded;
+    stats.broadphasePairs = static_cast<int>(found_.contacts.size());
+    stats.filteredPairs = found_.filtered;
 }
 
-void ContactManager::updateContacts(WorldState &world, real dt) {
+void ContactManager::updateContacts(const WorldSettings &settings, BodyStore &bodies, const JointSet &joints,
+                                    Workers &workers, BodyTransitions transitions, std::uint64_t stepCount,
+                                    StepStats &stats, real dt) {
     stepPairs_.clear();
     touchingPairs.clear();
-    listCandidates(world);
+    listCandidates(bodies, joints, workers, stats);
     // A body woken by a contact joins this step (Integration::admit), and so do its
     // island's pairs: they were not candidates, the broadphase skipping sleeping bodies.
     // Tested in turn, they may wake further islands.
-    BodyStore &bodies = world.bodies;
+    const PairTest test{settings, bodies, workers, stepCount, dt};
     for (std::size_t begin = 0; begin < stepPairs_.size();) {
         const std::size_t end = stepPairs_.size();
         const std::size_t simulated = bodies.simulated.size();
-        testPairs(world, dt, begin, end);
+        testPairs(test, begin, end);
+        countAnchors(stats, begin, end);
+        mergePairs(bodies, workers, begin, end);
+        wakeTouched(transitions, begin, end);
         begin = end;
-        for (std::size_t k = simulated; k < bodies.simulated.size(); ++k) listPairsOf(world, bodies.simulated[k]);
+        for (std::size_t k = simulated; k < bodies.simulated.size(); ++k) listPairsOf(bodies, joints, bodies.simulated[k]);
     }
-    removeUnseenPairs(world);
+    removeUnseenPairs(bodies, workers, stepCount);
 }
 
 // The step's pairs, each once, in the broadphase's order.
-void ContactManager::listCandidates(WorldState &world) {
-    BodyStore &bodies = world.bodies;
+void ContactManager::listCandidates(BodyStore &bodies, const JointSet &joints, Workers &workers, StepStats &stats) {
     // The broadphase lists a settled scene's pairs in the same order step after step:
     // the slot each candidate had last step is checked first, saving most table look-ups.
     // That check and the look-up of the others are made on several threads (both miss the
@@ -229,11 +234,11 @@ void ContactManager::listCandidates(WorldState &world) {
     const std::vector<CandidatePair> &candidates = found_.contacts;
     candidateSlots_.resize(candidates.size(), kNoSlot);
     candidateKinds_.resize(candidates.size());
-    world.workers.forEach(candidates.size(), [&](std::size_t k) {
+    workers.forEach(candidates.size(), [&](std::size_t k) {
         pairs.prefetchAhead(candidateSlots_, k, candidates.size());
         const CandidatePair &c = candidates[k];
         CandidateKind kind = CandidateKind::Held;
-        if (world.joints.excludesContact(c.a, c.b)) kind = CandidateKind::Excluded;  // joined without collideConnected
+        if (joints.excludesContact(c.a, c.b)) kind = CandidateKind::Excluded;  // joined without collideConnected
         else if (bodies[c.a].immovable && bodies[c.b].immovable) kind = CandidateKind::Immovable;
         else if (!pairs.holds(candidateSlots_[k], c.a, c.b)) {
             const long found = pairs.find(c.a, c.b);
@@ -248,7 +253,7 @@ void ContactManager::listCandidates(WorldState &world) {
         if (kind == CandidateKind::Excluded) continue;
         if (kind == CandidateKind::Immovable) {
             // A moving kinematic body with a static or kinematic one: neither can push.
-            ++world.stats.immovablePairsSkipped;
+            ++stats.immovablePairsSkipped;
             continue;
         }
         std::uint32_t p = candidateSlots_[k];
@@ -271,56 +276,54 @@ void ContactManager::listPair(std::uint32_t p) {
 
 // A woken body's pairs kept from before it slept: with its island's other members (woken
 // with it) and with static bodies, each touching as it was when the island fell asleep.
-void ContactManager::listPairsOf(const WorldState &world, std::uint32_t index) {
-    for (std::uint32_t p : world.bodies[index].pairs)
-        if (!world.joints.excludesContact(pairs[p].a, pairs[p].b)) listPair(p);
+void ContactManager::listPairsOf(const BodyStore &bodies, const JointSet &joints, std::uint32_t index) {
+    for (std::uint32_t p : bodies[index].pairs)
+        if (!joints.excludesContact(pairs[p].a, pairs[p].b)) listPair(p);
 }
 
 // Each pair on its own, in chunks shared between the threads: pairs that hardly moved
 // keep their manifolds, the others go through the narrowphase, which writes what it finds
 // into its chunk's list. The finds are then merged into the pairs one after another in
 // the pairs' order (anchors are numbered in that order), so the results do not depend on
-// the thread count. Pairs that touch after it are listed, and wake their sleeping bodies.
-void ContactManager::testPairs(WorldState &world, real dt, std::size_t first, std::size_t last) {
-    const std::uint64_t stepCount = world.stepCount;
+// the thread count (countAnchors, mergePairs). Pairs that touch after it are listed, and
+// wake their sleeping bodies (wakeTouched).
+void ContactManager::testPairs(const PairTest &test, std::size_t first, std::size_t last) {
+    const std::uint64_t stepCount = test.stepCount;
     const std::size_t count = last - first;
-    world.workers.forEach(count, [&](std::size_t k) { pairs[stepPairs_[first + k]].lastSeen = stepCount; });
+    test.workers.forEach(count, [&](std::size_t k) { pairs[stepPairs_[first + k]].lastSeen = stepCount; });
     const std::size_t chunks = Workers::chunksOf(count);
     // Room for one manifold per pair (convex pairs find at most one), so that a chunk's
     // list is not grown by a few more touching pairs in a later step.
     while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
     finds_.resize(last);
-    world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    test.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         out.clear();
         for (std::size_t k = first + begin; k < first + end; ++k) {
             pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
             find = Find();
-            find.reused = reuseManifolds(world, stepPairs_[k]);
+            find.reused = reuseManifolds(test.settings, test.bodies, stepPairs_[k]);
             if (find.reused) continue;
             find.first = static_cast<std::uint32_t>(out.size());
             NormalMemo *memo = endNormal(stepPairs_[k], stepCount - 1);
-            find.count = static_cast<std::uint32_t>(detect(world, stepPairs_[k], dt, out, memo));
-            find.anchors = static_cast<std::uint32_t>(anchorsIssuedBy(world, stepPairs_[k], find.count));
+            find.count = static_cast<std::uint32_t>(detect(test, stepPairs_[k], out, memo));
+            find.anchors = static_cast<std::uint32_t>(anchorsIssuedBy(test.bodies, stepPairs_[k], find.count));
         }
     });
-    countAnchors(world, first, last);
-    mergePairs(world, first, last);
-    wakeTouched(world, first, last);
 }
 
 // The anchor numbers each merge issues, counted with the tests, are handed out first, in
 // the pairs' order, so that each pair gets the same numbers whichever thread merges it.
-void ContactManager::countAnchors(WorldState &world, std::size_t first, std::size_t last) {
+void ContactManager::countAnchors(StepStats &stats, std::size_t first, std::size_t last) {
     std::uint64_t issued = anchorsIssued_;
     for (std::size_t k = first; k < last; ++k) {
         Find &find = finds_[k];
         if (find.reused) {
-            ++world.stats.pairsReused;
+            ++stats.pairsReused;
             continue;
         }
-        ++world.stats.pairsTested;
+        ++stats.pairsTested;
         find.issuedBefore = issued;
         issued += find.anchors;
     }
@@ -329,18 +332,17 @@ void ContactManager::countAnchors(WorldState &world, std::size_t first, std::siz
 
 // The finds are merged into their pairs, chunk by chunk: a merge writes only its own pair
 // (but the detection reads other pairs' manifolds, so it comes after all of them).
-void ContactManager::mergePairs(WorldState &world, std::size_t first, std::size_t last) {
-    const BodyStore &bodies = world.bodies;
+void ContactManager::mergePairs(const BodyStore &bodies, Workers &workers, std::size_t first, std::size_t last) {
     const std::size_t count = last - first;
     while (mergeScratch_.size() < Workers::chunksOf(count)) mergeScratch_.emplace_back();
-    world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         const std::vector<Manifold> &out = chunkFinds_[chunk];
         for (std::size_t k = first + begin; k < first + end; ++k) {
             pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
             if (!find.reused)
-                mergeFinds(world, p, out.data() + find.first, find.count, find.issuedBefore, mergeScratch_[chunk]);
+                mergeFinds(bodies, p, out.data() + find.first, find.count, find.issuedBefore, mergeScratch_[chunk]);
             const PairState &pair = pairs[p];
             find.touching = pair.touching();
             if (!find.touching) continue;
@@ -354,14 +356,14 @@ void ContactManager::mergePairs(WorldState &world, std::size_t first, std::size_
 
 // A contact, touching or speculative, of an awake or moving kinematic body wakes the
 // sleeping body it reaches, which joins this step (Integration::admit).
-void ContactManager::wakeTouched(WorldState &world, std::size_t first, std::size_t last) {
+void ContactManager::wakeTouched(BodyTransitions transitions, std::size_t first, std::size_t last) {
     for (std::size_t k = first; k < last; ++k) {
         const Find &find = finds_[k];
         if (!find.touching) continue;
         const std::uint32_t p = stepPairs_[k];
         touchingPairs.push_back(p);
-        if (find.wakeB) world.wake(pairs[p].b);
-        if (find.wakeA) world.wake(pairs[p].a);
+        if (find.wakeB) transitions.wake(pairs[p].b);
+        if (find.wakeA) transitions.wake(pairs[p].a);
     }
 }
 
@@ -369,12 +371,10 @@ void ContactManager::wakeTouched(WorldState &world, std::size_t first, std::size
 // (walked body by body: sleeping bodies' pairs cost nothing). Which bodies have such a pair
 // is found on several threads; removing pairs only shortens the lists, so the walk over
 // those bodies alone removes the same pairs in the same order.
-void ContactManager::removeUnseenPairs(WorldState &world) {
-    BodyStore &bodies = world.bodies;
-    const std::uint64_t stepCount = world.stepCount;
+void ContactManager::removeUnseenPairs(BodyStore &bodies, Workers &workers, std::uint64_t stepCount) {
     const auto unseen = [&](std::uint32_t p) { return pairs[p].lastSeen != stepCount; };
     forFlaggedBodies(
-        world, flags_,
+        bodies, workers, flags_,
         [&](std::uint32_t index) { return std::any_of(bodies[index].pairs.begin(), bodies[index].pairs.end(), unseen); },
         [&](std::uint32_t index) {
             std::vector<std::uint32_t> &list = bodies[index].pairs;
@@ -386,9 +386,7 @@ void ContactManager::removeUnseenPairs(WorldState &world) {
 // Only a touching pair is reused: one with no manifold may come into contact within the
 // tolerance, and FCL does not see contacts that are apart by a hair. A pair touches only
 // through a merge, which kept its relative pose.
-bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
-    const BodyStore &bodies = world.bodies;
-    const WorldSettings &settings = world.settings;
+bool ContactManager::reuseManifolds(const WorldSettings &settings, const BodyStore &bodies, std::uint32_t p) {
     PairState &pair = pairs[p];
     if (!pair.touching() || settings.debug.manifoldReuseTolerance <= 0) return false;
     const BodyRecord &a = bodies[pair.a];
@@ -405,10 +403,11 @@ bool ContactManager::reuseManifolds(const WorldState &world, std::uint32_t p) {
     return true;
 }
 
-std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
+std::size_t ContactManager::detect(const PairTest &test, std::uint32_t p, std::vector<Manifold> &out,
                                    NormalMemo *memo) const {
-    const BodyStore &bodies = world.bodies;
-    const WorldSettings &settings = world.settings;
+    const BodyStore &bodies = test.bodies;
+    const WorldSettings &settings = test.settings;
+    const real dt = test.dt;
     const PairState &pair = pairs[p];
     const BodyRecord &a = bodies[pair.a];
     const BodyRecord &b = bodies[pair.b];
@@ -417,7 +416,7 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
     narrowphase.speculativeDistance = settings.speculativeDistance;
     // The fall counts against a body that does not fall: two dynamic bodies fall together.
     Vector3 fall = a.immovable != b.immovable ? stepFall(settings, dt) : Vector3(Vector3::Zero());
-    if (fall.squaredNorm() > 0 && !fallsFreelyNow(a.immovable ? b : a, bodies, pairs, world.stepCount)) fall.setZero();
+    if (fall.squaredNorm() > 0 && !fallsFreelyNow(a.immovable ? b : a, bodies, pairs, test.stepCount)) fall.setZero();
     const real reach = settings.debug.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;
@@ -441,15 +440,14 @@ std::size_t ContactManager::detect(const WorldState &world, std::uint32_t p, rea
     return out.size() - first;
 }
 
-std::uint64_t ContactManager::anchorsIssuedBy(const WorldState &world, std::uint32_t p, std::size_t n) const {
+std::uint64_t ContactManager::anchorsIssuedBy(const BodyStore &bodies, std::uint32_t p, std::size_t n) const {
     const PairState &pair = pairs[p];
     if (n == 0) return pair.manifolds.size();  // keepNearPoints renumbers each kept manifold
-    return keptManifolds(n, world.bodies[pair.a].shape->isCompound() || world.bodies[pair.b].shape->isCompound());
+    return keptManifolds(n, bodies[pair.a].shape->isCompound() || bodies[pair.b].shape->isCompound());
 }
 
-void ContactManager::mergeFinds(const WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n,
+void ContactManager::mergeFinds(const BodyStore &bodies, std::uint32_t p, const Manifold *found, std::size_t n,
                                 std::uint64_t issued, MergeScratch &scratch) {
-    const BodyStore &bodies = world.bodies;
     PairState &pair = pairs[p];
     // A pair apart that stays apart (most of a pile's pairs) has nothing to merge, and
     // its pose is not kept: only a touching pair is reused.
@@ -554,9 +552,7 @@ void ContactManager::removePairsOf(BodyStore &bodies, std::uint32_t index) {
 // it had at the end of the last step. The state is kept per pair slot together with the
 // two BodyIds it belonged to, so a slot reused by another pair, or a pair whose body was
 // removed (its generation moved on), ends the old contact before the new one begins.
-void ContactManager::reportContactEvents(WorldState &world) {
-    const BodyStore &bodies = world.bodies;
-    WorldEvents &events = world.events.events;
+void ContactManager::reportContactEvents(const BodyStore &bodies, Workers &workers, WorldEvents &events) {
     if (tracks_.size() < pairs.slots()) tracks_.resize(pairs.slots());
     // Only slots the narrowphase saw or that were removed can have changed. Those whose
     // state did change (few: a resting scene has none) are taken in slot order, so that
@@ -575,8 +571,8 @@ void ContactManager::reportContactEvents(WorldState &world) {
         return track.touching != now.touching || (now.touching && (track.a != now.a || track.b != now.b));
     };
     std::size_t changed = 0;
-    world.workers.forFlagged(eventSlots_.size(), flags_, changedAt,
-                             [&](std::size_t k) { eventSlots_[changed++] = eventSlots_[k]; });
+    workers.forFlagged(eventSlots_.size(), flags_, changedAt,
+                       [&](std::size_t k) { eventSlots_[changed++] = eventSlots_[k]; });
     eventSlots_.resize(changed);
     std::sort(eventSlots_.begin(), eventSlots_.end());
     eventSlots_.erase(std::unique(eventSlots_.begin(), eventSlots_.end()), eventSlots_.end());

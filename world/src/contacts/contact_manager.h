@@ -12,10 +12,12 @@
 #include "contacts/pair_cache.h"
 #include "cyclone/world/world.h"
 #include "world/body_store.h"
+#include "world/body_transitions.h"
 
 namespace cyclone::detail {
 
-struct WorldState;
+class JointSet;
+class Workers;
 
 /// A pair slot's touching state at the end of the last step, for contact events.
 struct ContactTrack {
@@ -32,17 +34,21 @@ public:
     /// Pairs touching after this step's narrowphase, in the broadphase's order.
     std::vector<std::uint32_t> touchingPairs;
 
-    /// The broadphase stage: refits the awake bodies' boxes, each grown by how far the
-    /// body can move in the step of `dt` s, and lists the candidate pairs (planes tested
-    /// apart).
-    void findCandidates(WorldState &world, real dt);
-    /// The narrowphase stage: each candidate's manifolds, kept or made anew (speculative
-    /// ones for shapes apart that can meet within `dt`); wakes the sleeping bodies a
-    /// contact reaches, which join this step with their island's pairs; drops the pairs
-    /// that separated.
-    void updateContacts(WorldState &world, real dt);
-    /// Records the contacts that began or ended since the last call in the step's events.
-    void reportContactEvents(WorldState &world);
+    /// The broadphase stage: places the awake bodies' collision objects and refits their
+    /// boxes in `broadphase`, each grown by how far the body can move in the step of `dt`
+    /// s, and lists the candidate pairs (planes tested apart); counts them, and a pair
+    /// budget exceeded, in `stats`.
+    void findCandidates(const WorldSettings &settings, BodyStore &bodies, Broadphase &broadphase,
+                        Workers &workers, StepStats &stats, real dt);
+    /// The narrowphase stage of step `stepCount`: each candidate's manifolds, kept or made
+    /// anew (speculative ones for shapes apart that can meet within `dt`), but for bodies
+    /// whose joints exclude the contact; wakes the sleeping bodies a contact reaches
+    /// (through `transitions`), which join this step with their island's pairs; drops the
+    /// pairs that separated. Counts the pairs tested, reused and skipped in `stats`.
+    void updateContacts(const WorldSettings &settings, BodyStore &bodies, const JointSet &joints, Workers &workers,
+                        BodyTransitions transitions, std::uint64_t stepCount, StepStats &stats, real dt);
+    /// Records the contacts that began or ended since the last call in `events`.
+    void reportContactEvents(const BodyStore &bodies, Workers &workers, WorldEvents &events);
 
     /// The step's pairs of a sensor and a body it sees (either order), for the sensors.
     const std::vector<CandidatePair> &sensorCandidates() const { return found_.sensors; }
@@ -75,31 +81,40 @@ public:
     void keepEndNormal(std::uint32_t p, const NormalMemo &memo, std::uint64_t step);
 
 private:
-    /// Lists the candidates' pair slots in stepPairs_ (creating new pairs).
-    void listCandidates(WorldState &world);
+    /// What testing the step's pairs reads (testPairs, detect).
+    struct PairTest {
+        const WorldSettings &settings;
+        const BodyStore &bodies;
+        Workers &workers;
+        std::uint64_t stepCount;
+        real dt;  ///< The step's length, s.
+    };
+    /// Lists the candidates' pair slots in stepPairs_ (creating new pairs), but for those
+    /// whose joints exclude the contact or whose bodies are both immovable (counted).
+    void listCandidates(BodyStore &bodies, const JointSet &joints, Workers &workers, StepStats &stats);
     /// Appends pair slot p to stepPairs_ unless it is there already.
     void listPair(std::uint32_t p);
     /// Appends the pairs of a body woken in this step to stepPairs_.
-    void listPairsOf(const WorldState &world, std::uint32_t index);
-    /// Tests stepPairs_[first, last): manifolds kept or found and merged; touching ones
-    /// appended to touchingPairs, waking the sleeping bodies they reach.
-    void testPairs(WorldState &world, real dt, std::size_t first, std::size_t last);
-    /// Hands out the anchor numbers of the merges of stepPairs_[first, last), in order.
-    void countAnchors(WorldState &world, std::size_t first, std::size_t last);
+    void listPairsOf(const BodyStore &bodies, const JointSet &joints, std::uint32_t index);
+    /// Tests stepPairs_[first, last): manifolds kept, or found into finds_ and
+    /// chunkFinds_ for countAnchors and mergePairs.
+    void testPairs(const PairTest &test, std::size_t first, std::size_t last);
+    /// Hands out the anchor numbers of the merges of stepPairs_[first, last), in order;
+    /// counts the pairs tested and reused.
+    void countAnchors(StepStats &stats, std::size_t first, std::size_t last);
     /// Merges the finds of stepPairs_[first, last) into their pairs.
-    void mergePairs(WorldState &world, std::size_t first, std::size_t last);
+    void mergePairs(const BodyStore &bodies, Workers &workers, std::size_t first, std::size_t last);
     /// Lists the touching pairs of stepPairs_[first, last) and wakes what they reach.
-    void wakeTouched(WorldState &world, std::size_t first, std::size_t last);
-    /// Drops the simulated and moving bodies' pairs that this step did not list.
-    void removeUnseenPairs(WorldState &world);
+    void wakeTouched(BodyTransitions transitions, std::size_t first, std::size_t last);
+    /// Drops the simulated and moving bodies' pairs that step `stepCount` did not list.
+    void removeUnseenPairs(BodyStore &bodies, Workers &workers, std::uint64_t stepCount);
     /// Refreshes pair p's manifolds from their anchors when its bodies hardly moved
     /// relative to each other since it was last tested; false: it must be tested.
-    bool reuseManifolds(const WorldState &world, std::uint32_t p);
+    bool reuseManifolds(const WorldSettings &settings, const BodyStore &bodies, std::uint32_t p);
     /// Runs the narrowphase on pair p and appends the manifolds it finds to `out`;
     /// returns how many. Changes nothing else but `memo`, the pair's end normal if it has
     /// one (pairs are detected on several threads).
-    std::size_t detect(const WorldState &world, std::uint32_t p, real dt, std::vector<Manifold> &out,
-                       NormalMemo *memo) const;
+    std::size_t detect(const PairTest &test, std::uint32_t p, std::vector<Manifold> &out, NormalMemo *memo) const;
     /// Pair p's end normal kept in step `step`, or null.
     NormalMemo *endNormal(std::uint32_t p, std::uint64_t step);
     /// A compound pair's manifolds before its merge, and which a fresh one took.
@@ -108,10 +123,10 @@ private:
         std::vector<char> used;
     };
     /// How many anchor numbers mergeFinds issues for pair p with `n` manifolds found.
-    std::uint64_t anchorsIssuedBy(const WorldState &world, std::uint32_t p, std::size_t n) const;
+    std::uint64_t anchorsIssuedBy(const BodyStore &bodies, std::uint32_t p, std::size_t n) const;
     /// Merges the `n` manifolds `found` for pair p into its manifolds, numbering new
     /// anchors from issued + 1 on; writes only pair p (pairs are merged on several threads).
-    void mergeFinds(const WorldState &world, std::uint32_t p, const Manifold *found, std::size_t n,
+    void mergeFinds(const BodyStore &bodies, std::uint32_t p, const Manifold *found, std::size_t n,
                     std::uint64_t issued, MergeScratch &scratch);
     /// Merges `found` into a pair with a compound, each manifold with the old one of its
     /// children.

@@ -46,12 +46,18 @@ void WorldState::step(real dt, const World &queries) {
         KinematicBodies::beginStep(bodies, contacts.pairs, BodyTransitions(*this));
         joints.beginStep(bodies, BodyTransitions(*this), context);
     }
-    { const StageTimer t(ms.broadphase); contacts.findCandidates(*this, dt); }
-    { const StageTimer t(ms.narrowphase); contacts.updateContacts(*this, dt); }
+    {
+        const StageTimer t(ms.broadphase);
+        contacts.findCandidates(settings, bodies, broadphase, workers, stats, dt);
+    }
+    {
+        const StageTimer t(ms.narrowphase);
+        contacts.updateContacts(settings, bodies, joints, workers, BodyTransitions(*this), stepCount, stats, dt);
+    }
     // The step's bodies are final: those woken by its contacts, joints and springs are in.
     integration.closeAdmission(settings, bodies);
     KinematicBodies::number(bodies);
-    { const StageTimer t(ms.events); contacts.reportContactEvents(*this); }
+    { const StageTimer t(ms.events); contacts.reportContactEvents(bodies, workers, events.events); }
     if (bodies.sensorCount > 0) {
         const StageTimer t(ms.sensors);
         sensors.update(bodies, broadphase, contacts.sensorCandidates(), stepCount, *events.sink, stats);
