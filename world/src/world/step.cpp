@@ -26,6 +26,36 @@ void report(const StepContext &context, const BodyStore &bodies, const Workers &
     ms.shared = workers.shared();
 }
 
+// One sub-step of h s: its forces, the velocities solved, integration, penetration
+// recovered, the locked axes held.
+void runSubstep(WorldState &world, real h, bool first) {
+    StageTimes &ms = world.stats.ms;
+    const BodyTransitions transitions(world);
+    {
+        const StageTimer t(ms.forces);
+        world.integration.addSubstepForces(world.settings, world.bodies, world.springs, world.context, h, first);
+    }
+    {
+        // The velocity part is the solve less the carrier pass, which times itself.
+        const double carrierBefore = ms.solveParts.carrier;
+        const StageTimer t(ms.solve);
+        world.solver.solveVelocities(world.settings, world.bodies, world.joints, world.workers, transitions,
+                                     world.context, world.stepCount, world.stats, h, first);
+        ms.solveParts.velocity += t.elapsed() - (ms.solveParts.carrier - carrierBefore);
+    }
+    {
+        const StageTimer t(ms.integrate);
+        world.integration.integrate(world.bodies, world.workers, transitions, h);
+        KinematicBodies::integrate(world.bodies, h);
+    }
+    {
+        const StageTimer t(ms.solve);  // recoverPenetration times itself into solveParts.position
+        world.solver.recoverPenetration(world.settings, world.bodies, world.joints, world.workers, transitions,
+                                        world.context, world.stats, h);
+    }
+    { const StageTimer t(ms.integrate); world.axisLocks.hold(world.bodies); }
+}
+
 }  // namespace
 
 void WorldState::step(real dt, const World &queries) {
@@ -76,28 +106,7 @@ void WorldState::step(real dt, const World &queries) {
         solver.prepare(settings, bodies, workers, context, stats, h);
     }
     ms.solve += ms.solveParts.setup;
-    for (int substep = 0; substep < plan.substeps; ++substep) {
-        const bool first = substep == 0;
-        { const StageTimer t(ms.forces); integration.addSubstepForces(settings, bodies, springs, context, h, first); }
-        {
-            // The velocity part is the solve less the carrier pass, which times itself.
-            const double carrierBefore = ms.solveParts.carrier;
-            const StageTimer t(ms.solve);
-            solver.solveVelocities(settings, bodies, joints, workers, BodyTransitions(*this), context, stepCount, stats,
-                                   h, first);
-            ms.solveParts.velocity += t.elapsed() - (ms.solveParts.carrier - carrierBefore);
-        }
-        {
-            const StageTimer t(ms.integrate);
-            integration.integrate(bodies, workers, BodyTransitions(*this), h);
-            KinematicBodies::integrate(bodies, h);
-        }
-        {
-            const StageTimer t(ms.solve);  // recoverPenetration times itself into solveParts.position
-            solver.recoverPenetration(settings, bodies, joints, workers, BodyTransitions(*this), context, stats, h);
-        }
-        { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
-    }
+    for (int substep = 0; substep < plan.substeps; ++substep) runSubstep(*this, h, substep == 0);
     {
         const StageTimer t(ms.solve);
         solver.storeImpulses(bodies, contacts.pairs, workers, context, *events.sink);
