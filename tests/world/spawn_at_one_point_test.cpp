@@ -40,17 +40,17 @@ Shape floorShape(Floor floor) {
                        {{0, 2, 1}, {0, 3, 2}});
 }
 
-std::vector<real> heightsAfterSpawn(int kind, int count, Floor floor = Floor::Box) {
+std::vector<real> heightsAfterSpawn(int kind, int count, Floor floor = Floor::Box, real shift = 0,
+                                    int steps = kSanitized ? 120 : 300) {
     World world(noSleep());
     addStatic(world, floorShape(floor), floor == Floor::Box ? Vector3(0, -0.1, 0) : Vector3::Zero());
     std::vector<BodyId> bodies;
     for (int i = 0; i < count; ++i) {
         BodySettings s;
         s.shape = spawnShape(kind);
-        s.position = Vector3(0, 0.5, 0);
+        s.position = Vector3(shift, 0.5, 0);
         bodies.push_back(world.addBody(s));
     }
-    const int steps = kSanitized ? 120 : 300;
     for (int step = 0; step < steps; ++step) world.step(kDt);
     std::vector<real> heights;
     for (BodyId id : bodies) heights.push_back(world.body(id).getPosition().y());
@@ -62,21 +62,36 @@ TEST(SpawnAtOnePoint, ThreeCapsulesStayOnAThinBoxFloor) {
 }
 
 // The same spawns on a plane. Under the sanitizers the capsules only: the other kinds go
-// through the same contact code, which the box floor's test runs under them too. (A mesh
-// floor is not asserted: with the sanitized build's rounding one capsule of 100 went
-// through it, docs/hostile_input.md.)
+// through the same contact code, which the box floor's test runs under them too.
 TEST(SpawnAtOnePoint, AHundredBodiesStayOnAPlane) {
-    for (const Floor floor : {Floor::Plane}) {
-        for (int kind = 0; kind < (kSanitized ? 1 : 3); ++kind) {
+    for (int kind = 0; kind < (kSanitized ? 1 : 3); ++kind) {
+        int below = 0;
+        for (real y : heightsAfterSpawn(kind, 100, Floor::Plane)) below += y <= 0;
+        EXPECT_EQ(below, 0) << "kind " << kind;
+    }
+}
+
+// On a two-sided mesh a body whose centre is pushed below the surface is pushed out
+// below, so a body must never be taken through it. The spawn point moved by 0.1 mm steps
+// (a pile's first steps are chaotic): capsules moved 0.4 and 0.6 mm and cylinders moved
+// 0.1 mm each lost one body within the first two steps when the landing correction's
+// pushes were bounded per round only (four rounds of a quarter of the bounding radius took
+// a capsule 0.33 m down, past its broadphase box, onto the floor). One second each: a body
+// taken through is by then below y = 0 for good.
+TEST(SpawnAtOnePoint, AHundredBodiesStayOnAMesh) {
+    for (int kind = 0; kind < (kSanitized ? 2 : 3); ++kind) {
+        for (int k = 0; k < 8; ++k) {
+            if (kSanitized && !(kind == 0 ? k == 4 || k == 6 : k == 1)) continue;
             int below = 0;
-            for (real y : heightsAfterSpawn(kind, 100, floor)) below += y <= 0;
-            EXPECT_EQ(below, 0) << "floor " << static_cast<int>(floor) << " kind " << kind;
+            for (real y : heightsAfterSpawn(kind, 100, Floor::Mesh, k * 1e-4, 60)) below += y <= 0;
+            EXPECT_EQ(below, 0) << "kind " << kind << ", spawn moved " << k * 0.1 << " mm";
         }
     }
 }
 
+// Under the sanitizers the capsules only (53 s for the three kinds), as on the plane.
 TEST(SpawnAtOnePoint, AHundredBodiesStayOnAThinBoxFloor) {
-    for (int kind = 0; kind < 3; ++kind) {
+    for (int kind = 0; kind < (kSanitized ? 1 : 3); ++kind) {
         int below = 0;
         for (real y : heightsAfterSpawn(kind, 100)) below += y <= 0;
         EXPECT_EQ(below, 0) << "kind " << kind;

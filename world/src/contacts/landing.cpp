@@ -28,12 +28,12 @@ constexpr int kRounds = 4;
 // may show; at the tolerance itself a resting pile would be pushed every step and sleep
 // later (docs/contacts_and_sleep.md, "Deep contacts in a falling pile").
 constexpr real kRestingFactor = 1.6;
-// How far a round's pushes between two movable bodies may move one of them down (along
-// gravity), times its bounding radius: a body overlapping many others (bodies spawned at
-// one point) was pushed by all of them at once through the static floor under it, whose
-// pair with the body the round had not tested. The next round tests that pair while it
-// is shallow. Pushes across or up are not bounded: coincident spheres are parted along x.
-constexpr real kRoundReach = 0.25;
+// How far the step's pushes between two movable bodies may take one of them down (along
+// gravity) in all, times its bounding radius: a body overlapping many others (bodies
+// spawned at one point) was pushed by all of them at once through the static floor under
+// it, whose pair with the body no round had tested (its broadphase box did not reach the
+// floor). Pushes across or up are not bounded: coincident spheres are parted along x.
+constexpr real kStepReach = 0.25;
 // Nonlinear Gauss-Seidel passes a round makes over its points.
 constexpr int kPasses = 8;
 // A round in which at least 1 / kWalkShare of the awake bodies moved takes its pairs from
@@ -177,6 +177,7 @@ void LandingCorrection::translate(BodyStore &bodies, std::uint32_t index, const 
         RigidBody &body = bodies[index].body;
         body.setPosition(body.getPosition() + delta);
         noteMove(index, length);
+        lowered_[index] -= delta.dot(up_);
         return;
     }
     for (std::int32_t m = firstMember_[static_cast<std::size_t>(group_[index])]; m >= 0;
@@ -189,6 +190,7 @@ void LandingCorrection::translate(BodyStore &bodies, std::uint32_t index, const 
 
 void LandingCorrection::correct(WorldState &world) {
     if (!world.settings.debug.landingCorrection) return;
+    up_ = upward(world.settings.gravity);
     markFastBodies(world);
     world.contacts.clearEndNormals();
     if (activeBodies_.empty()) return;
@@ -213,7 +215,7 @@ void LandingCorrection::correct(WorldState &world) {
         world.stats.landingPushes += push(world, round);
     }
 
-    for (std::uint32_t index : activeBodies_) movedRound_[index] = -1, sunk_[index] = 0;
+    for (std::uint32_t index : activeBodies_) movedRound_[index] = -1, sunk_[index] = 0, lowered_[index] = 0;
     activeBodies_.clear();
 }
 
@@ -231,6 +233,7 @@ void LandingCorrection::markFastBodies(WorldState &world) {
     if (movedRound_.size() < bodies.size()) {
         movedRound_.resize(bodies.size(), -1);
         sunk_.resize(bodies.size(), 0);
+        lowered_.resize(bodies.size(), 0);
     }
     // Each test below is made on the threads, and the bodies it picks are marked after,
     // in order.
@@ -507,8 +510,8 @@ int LandingCorrection::push(WorldState &world, int round) {
             if (massA > 0 && massB > 0) {
                 // Only a push down is bounded: A moves along -normal, B along normal.
                 const real down = normal.dot(up);
-                if (down > 0) lambda = std::min(lambda, roundBudget(bodies, point.a) / massA);
-                if (down < 0) lambda = std::min(lambda, roundBudget(bodies, point.b) / massB);
+                if (down > 0) lambda = std::min(lambda, reachLeft(bodies, point.a, down) / massA);
+                if (down < 0) lambda = std::min(lambda, reachLeft(bodies, point.b, -down) / massB);
                 if (!(lambda > 0)) continue;
             }
             if (massA > 0) translate(bodies, point.a, -lambda * massA * normal, lambda * massA);
@@ -551,11 +554,12 @@ bool LandingCorrection::liftAbove(const BodyStore &bodies, const Point &point, b
     return true;
 }
 
-real LandingCorrection::roundBudget(const BodyStore &bodies, std::uint32_t index) const {
+real LandingCorrection::reachLeft(const BodyStore &bodies, std::uint32_t index, real down) const {
     if (!group_.empty() && group_[index] >= 0) return std::numeric_limits<real>::infinity();  // joints hold it
-    const real limit = kRoundReach * bodies[index].boundingRadius;
-    if (moveSlot_.size() <= index || moveSlot_[index] < 0) return limit;
-    return limit - moved_[static_cast<std::size_t>(moveSlot_[index])].length;
+    const real limit = kStepReach * bodies[index].boundingRadius;
+    const real step = (limit - std::max<real>(lowered_[index], 0)) / down;
+    if (moveSlot_.size() <= index || moveSlot_[index] < 0) return std::min(limit, step);
+    return std::min(limit - moved_[static_cast<std::size_t>(moveSlot_[index])].length, step);
 }
 
 void LandingCorrection::noteMove(std::uint32_t body, real length) {

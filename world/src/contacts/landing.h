@@ -95,9 +95,13 @@ private:
     /// Nonlinear Gauss-Seidel passes over points_; marks each body moved as moved in
     /// `round`. Returns how many points were pushed.
     int push(WorldState &world, int round);
-    /// How much farther pushes between two movable bodies may move body `index` this round
-    /// (kRoundReach; unbounded for a member of a joint group), m.
-    real roundBudget(const BodyStore &bodies, std::uint32_t index) const;
+    /// How much farther a push between two movable bodies may move body `index`, `down`
+    /// being the cosine of its direction with gravity: a round's pushes kStepReach of the
+    /// body's size in all, the step's kStepReach down (unbounded in a joint group), m.
+    real reachLeft(const BodyStore &bodies, std::uint32_t index, real down) const;
+    /// Per body index: how far down (along gravity) this step's pushes moved it in all, m.
+    std::vector<real> lowered_;
+    Vector3 up_ = Vector3::UnitY();  ///< Against gravity (zero without it).
 
     /// Per body index: the last round that moved it (0: it moved fast in the step; -1: none).
     std::vector<int> movedRound_;
