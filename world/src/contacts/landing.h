@@ -16,7 +16,8 @@
 // Translation only: two convex shapes moved apart by d along a normal along which they
 // overlap by p overlap by at most p - d, so a push never leaves a pair deeper elsewhere,
 // which a turn (splitting by the inertias too) does on round sides. Velocities are left
-// as they are (the next step's contacts, now touching, stop the bodies).
+// as they are (the next step's contacts, now touching, stop the bodies), but for a body
+// in an island of its own lifted against gravity, which pays the lift (payForLift).
 // Only the fast bodies move: every pair of theirs is tested, so a push meets every
 // neighbour it can reach. A body that hardly moved made none of the overlap, and its
 // pairs with third bodies are not tested: pushed, it would go unseen into the ground
@@ -99,8 +100,10 @@ private:
     /// being the cosine of its direction with gravity: a round's pushes kStepReach of the
     /// body's size in all, the step's kStepReach down (unbounded in a joint group), m.
     real reachLeft(const BodyStore &bodies, std::uint32_t index, real down) const;
-    /// Per body index: how far down (along gravity) this step's pushes moved it in all, m.
-    std::vector<real> lowered_;
+    /// Per body index: the translation this step's pushes gave it outside joint groups, m.
+    std::vector<Vector3> shifts_;
+    /// Takes from the body's speed against its pushes the potential energy they gave it.
+    void payForLift(WorldState &world, std::uint32_t index);
     Vector3 up_ = Vector3::UnitY();  ///< Against gravity (zero without it).
 
     /// Per body index: the last round that moved it (0: it moved fast in the step; -1: none).
