@@ -7,7 +7,11 @@
 
 #include "collision/time_of_impact.h"
 #include "dynamics/union_find.h"
-#include "world/world_impl.h"
+#include "contacts/contact_manager.h"
+#include "contacts/pre_solve.h"
+#include "dynamics/islands.h"
+#include "joints/joint_set.h"
+#include "world/workers.h"
 
 namespace cyclone::detail {
 namespace {
@@ -113,8 +117,7 @@ void LandingCorrection::markFast(std::uint32_t index) {
 // move (static, kinematic, asleep) holds the group still, as the world does. A group none of
 // whose members moved fast does not move either (its members' pairs are not tested); one
 // that has such a member has all its members marked fast, so that all their pairs are.
-void LandingCorrection::buildJointGroups(const WorldState &world) {
-    const BodyStore &bodies = world.bodies;
+void LandingCorrection::buildJointGroups(const BodyStore &bodies, const JointSet &joints) {
     const std::size_t n = bodies.size();
     group_.assign(n, -1);
     groupMovable_.assign(n, 0);
@@ -126,7 +129,7 @@ void LandingCorrection::buildJointGroups(const WorldState &world) {
     const auto join = [&](std::uint32_t index) {
         if (group_[index] < 0) group_[index] = static_cast<int>(index);
     };
-    for (const JointRecord &joint : world.joints.records) {
+    for (const JointRecord &joint : joints.records) {
         if (!joint.alive) continue;
         join(joint.settings.a.index);
         if (!joint.settings.b) continue;
@@ -151,7 +154,7 @@ void LandingCorrection::buildJointGroups(const WorldState &world) {
         if (!r.simulated || r.isolated || !r.object || !(r.body.getInverseMass() > 0)) groupMovable_[g] = 0;
         else groupInverseMass_[g] += r.body.getMass();
     }
-    for (const JointRecord &joint : world.joints.records)
+    for (const JointRecord &joint : joints.records)
         if (joint.alive && !joint.settings.b) groupMovable_[static_cast<std::size_t>(group_[joint.settings.a.index])] = 0;
     for (std::size_t g = 0; g < n; ++g) {
         if (!groupMovable_[g]) continue;
@@ -189,35 +192,37 @@ void LandingCorrection::translate(BodyStore &bodies, std::uint32_t index, const 
     }
 }
 
-void LandingCorrection::correct(WorldState &world) {
-    if (!world.settings.debug.landingCorrection) return;
-    up_ = upward(world.settings.gravity);
-    markFastBodies(world);
-    world.contacts.clearEndNormals();
+void LandingCorrection::correct(const WorldSettings &settings, BodyStore &bodies, ContactManager &contacts,
+                                const PreSolve &preSolve, const JointSet &joints, const Islands &islands,
+                                Workers &workers, real deepest, std::uint64_t stepCount, StepStats &stats) {
+    if (!settings.debug.landingCorrection) return;
+    up_ = upward(settings.gravity);
+    markFastBodies(settings, bodies, contacts, preSolve, workers, deepest);
+    contacts.clearEndNormals();
     if (activeBodies_.empty()) return;
     group_.clear();
-    if (!world.joints.empty()) buildJointGroups(world);
+    if (!joints.empty()) buildJointGroups(bodies, joints);
 
     points_.clear();
     nextOrder_ = 0;
     for (int round = 1; round <= kRounds; ++round) {
         const int last = round - 1;
-        listRoundPairs(world, last);
+        listRoundPairs(bodies, contacts, preSolve, workers, last);
         if (pairs_.empty()) break;
         const auto retested = [&](const Point &x) { return movedIn(x.a, last) || movedIn(x.b, last); };
         points_.erase(std::remove_if(points_.begin(), points_.end(), retested), points_.end());
-        world.stats.landingPairs += static_cast<int>(pairs_.size());
+        stats.landingPairs += static_cast<int>(pairs_.size());
         const std::size_t before = points_.size();
-        const bool deep = detect(world);
+        const bool deep = detect(settings, bodies, contacts, workers, stepCount);
         // The first round acts only where some point is deeper than its tolerance; a later
         // one wherever its fresh points lie deeper than their targets.
         if (round == 1 ? !deep : points_.size() == before) break;
         orderPoints(before);
-        world.stats.landingPushes += push(world, round);
+        stats.landingPushes += push(settings, bodies, round);
     }
 
     for (std::uint32_t index : activeBodies_) {
-        payForLift(world, index);
+        payForLift(bodies, islands, settings.gravity, index);
         movedRound_[index] = -1;
         sunk_[index] = 0;
         shifts_[index].setZero();
@@ -232,9 +237,10 @@ bool LandingCorrection::movedIn(std::uint32_t index, int round) const {
 // The fast bodies: those that moved (their collision object still holds the step's start)
 // more than half their own tolerance, and the bodies of deep resting pairs. They count as
 // moved in round 0 (activeBodies_, movedRound_, sunk_).
-void LandingCorrection::markFastBodies(WorldState &world) {
-    BodyStore &bodies = world.bodies;
-    const real slop = world.settings.penetrationSlop;
+void LandingCorrection::markFastBodies(const WorldSettings &settings, const BodyStore &bodies,
+                                       const ContactManager &contacts, const PreSolve &preSolve, Workers &workers,
+                                       real deepest) {
+    const real slop = settings.penetrationSlop;
     activeBodies_.clear();
     if (movedRound_.size() < bodies.size()) {
         movedRound_.resize(bodies.size(), -1);
@@ -252,15 +258,14 @@ void LandingCorrection::markFastBodies(WorldState &world) {
         if (travelWithin(from, to, r.boundingRadius, 0.5 * tolerance)) return false;
         return travel(from, to, r.boundingRadius) > 0.5 * tolerance;
     };
-    world.workers.forFlagged(bodies.simulated.size(), flags_, movedFast,
+    workers.forFlagged(bodies.simulated.size(), flags_, movedFast,
                              [&](std::size_t k) { markFast(bodies.simulated[k]); });
     // The bodies of a pair the step began deeper in than kRestingFactor times its
     // tolerance (a body sunk under a pile's load, which the solver does not carry).
-    const std::vector<std::uint32_t> &touching = world.contacts.touchingPairs;
-    const PreSolve &preSolve = world.preSolve;
+    const std::vector<std::uint32_t> &touching = contacts.touchingPairs;
     const auto deepPair = [&](std::size_t k) {
         if (preSolve.anyDisabled() && preSolve.disabled(touching[k])) return false;  // passing through, as asked
-        const PairState &pair = world.contacts.pairs[touching[k]];
+        const PairState &pair = contacts.pairs[touching[k]];
         const real deepest = kRestingFactor * pairTolerance(bodies[pair.a], bodies[pair.b], slop);
         for (const ManifoldState &m : pair.manifolds)
             for (int i = 0; i < m.count; ++i)
@@ -270,9 +275,9 @@ void LandingCorrection::markFastBodies(WorldState &world) {
     // None can be when no contact point of the step is deeper than that at the least
     // tolerance (StepStats::maxPenetration: the deepest point the step solved), as in a
     // resting stack: the pairs' points are then not read again.
-    const bool anyDeep = world.context.deepest > kRestingFactor * toleranceFor(0, slop);
-    if (anyDeep) world.workers.forFlagged(touching.size(), flags_, deepPair, [&](std::size_t k) {
-        const PairState &pair = world.contacts.pairs[touching[k]];
+    const bool anyDeep = deepest > kRestingFactor * toleranceFor(0, slop);
+    if (anyDeep) workers.forFlagged(touching.size(), flags_, deepPair, [&](std::size_t k) {
+        const PairState &pair = contacts.pairs[touching[k]];
         for (const std::uint32_t index : {pair.a, pair.b}) {
             const BodyRecord &r = bodies[index];
             if (r.simulated && !r.isolated && r.object) {
@@ -288,10 +293,8 @@ void LandingCorrection::markFastBodies(WorldState &world) {
 // are taken in the step's order (ContactManager::stepPairs): from a walk over that list
 // when many bodies moved, else from those bodies' own pairs (a pair of two such bodies
 // once), sorted. Pairs the pre-solve stage disabled are left out.
-void LandingCorrection::listRoundPairs(WorldState &world, int last) {
-    const BodyStore &bodies = world.bodies;
-    const ContactManager &contacts = world.contacts;
-    const PreSolve &preSolve = world.preSolve;
+void LandingCorrection::listRoundPairs(const BodyStore &bodies, const ContactManager &contacts,
+                                       const PreSolve &preSolve, Workers &workers, int last) {
     pairs_.clear();
     const std::size_t movers = static_cast<std::size_t>(std::count_if(
         activeBodies_.begin(), activeBodies_.end(), [&](std::uint32_t i) { return movedRound_[i] == last; }));
@@ -305,7 +308,7 @@ void LandingCorrection::listRoundPairs(WorldState &world, int last) {
             return (movedIn(pair.a, last) || movedIn(pair.b, last)) &&
                    (movable(bodies, pair.a) || movable(bodies, pair.b));
         };
-        world.workers.forFlagged(step.size(), flags_, picked, [&](std::size_t k) { pairs_.push_back(step[k]); });
+        workers.forFlagged(step.size(), flags_, picked, [&](std::size_t k) { pairs_.push_back(step[k]); });
     } else {
         for (const std::uint32_t index : activeBodies_) {
             if (movedRound_[index] != last) continue;
@@ -413,16 +416,16 @@ void LandingCorrection::appendAnchored(const PairState &pair, const Matrix4 &pos
     }
 }
 
-bool LandingCorrection::detect(WorldState &world) {
-    const BodyStore &bodies = world.bodies;
-    const PairCache &pairs = world.contacts.pairs;
-    const real slop = world.settings.penetrationSlop;
+bool LandingCorrection::detect(const WorldSettings &settings, const BodyStore &bodies, ContactManager &contacts,
+                               Workers &workers, std::uint64_t stepCount) {
+    const PairCache &pairs = contacts.pairs;
+    const real slop = settings.penetrationSlop;
     NarrowphaseSettings narrowphase;
-    narrowphase.speculativeDistance = world.settings.speculativeDistance;
+    narrowphase.speculativeDistance = settings.speculativeDistance;
     // Shapes a hair apart (a box just above the ground) get points too, so that a push
     // towards them is held; only the pairs with a test of their own give them, at no cost.
-    narrowphase.touchMargin = world.settings.speculativeDistance;
-    const Vector3 up = upward(world.settings.gravity);
+    narrowphase.touchMargin = settings.speculativeDistance;
+    const Vector3 up = upward(settings.gravity);
     // Each pair on its own, in chunks shared between the threads, each chunk's points in
     // a list of its own; the lists are then joined in the pairs' order, so that the points
     // do not depend on the thread count.
@@ -432,7 +435,7 @@ bool LandingCorrection::detect(WorldState &world) {
     while (chunkMemos_.size() < chunks) chunkMemos_.emplace_back();
     while (chunkPoints_.size() < chunks) chunkPoints_.emplace_back();
     chunkDeep_.resize(chunks);
-    world.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];
         std::vector<Memo> &memos = chunkMemos_[chunk];
         std::vector<Point> &found = chunkPoints_[chunk];
@@ -472,7 +475,7 @@ bool LandingCorrection::detect(WorldState &world) {
             const BodyRecord &b = bodies[pair.b];
             NormalMemo memo;
             memo.keep(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), m.touching, m.normal);
-            world.contacts.keepEndNormal(pairs_[m.k], memo, world.stepCount);
+            contacts.keepEndNormal(pairs_[m.k], memo, stepCount);
         }
     }
     bool deep = false;
@@ -486,9 +489,8 @@ bool LandingCorrection::detect(WorldState &world) {
     return deep;
 }
 
-int LandingCorrection::push(WorldState &world, int round) {
-    BodyStore &bodies = world.bodies;
-    const Vector3 up = upward(world.settings.gravity);
+int LandingCorrection::push(const WorldSettings &settings, BodyStore &bodies, int round) {
+    const Vector3 up = upward(settings.gravity);
     int pushed = 0;
     moved_.clear();
     for (int pass = 0; pass < kPasses; ++pass) {
@@ -529,7 +531,7 @@ int LandingCorrection::push(WorldState &world, int round) {
     }
     // A body pushed farther than a quarter of its tolerance in all has its pairs tested
     // again in the next round (it moved fast, so it is in activeBodies_ already).
-    const real slop = world.settings.penetrationSlop;
+    const real slop = settings.penetrationSlop;
     for (const Move &move : moved_)
         if (move.length > 0.25 * toleranceFor(bodies[move.body].boundingRadius, slop)) movedRound_[move.body] = round;
     for (const Move &move : moved_) moveSlot_[move.body] = -1;
@@ -578,13 +580,14 @@ real LandingCorrection::reachLeft(const BodyStore &bodies, std::uint32_t index, 
 // of its own): in a pile the lifts are the passes' answer to the solver's load, which
 // the next step's contacts carry, and paying for them there left piles deeper and awake
 // (docs/experiments.md). Members of joint groups and bodies with locked axes are left.
-void LandingCorrection::payForLift(WorldState &world, std::uint32_t index) {
-    BodyRecord &r = world.bodies[index];
+void LandingCorrection::payForLift(BodyStore &bodies, const Islands &islands, const Vector3 &gravity,
+                                   std::uint32_t index) {
+    BodyRecord &r = bodies[index];
     const Vector3 &shift = shifts_[index];
     const real length = shift.norm();
-    if (!(length > 0) || r.island < 0 || world.islands.size(r.island) != 1 || r.locked.any()) return;
+    if (!(length > 0) || r.island < 0 || islands.size(r.island) != 1 || r.locked.any()) return;
     if (!group_.empty() && group_[index] >= 0) return;
-    const real lift = -(r.gravityScale * world.settings.gravity).dot(shift);  // |g| h, J/kg
+    const real lift = -(r.gravityScale * gravity).dot(shift);  // |g| h, J/kg
     if (!(lift > 0)) return;
     const Vector3 along = shift / length;
     const Vector3 velocity = r.body.getVelocity();

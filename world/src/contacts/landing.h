@@ -50,17 +50,25 @@
 
 #include "collision/narrowphase.h"
 #include "contacts/pair_cache.h"
+#include "cyclone/world/stats.h"
+#include "cyclone/world/settings.h"
 #include "world/body_store.h"
 
 namespace cyclone::detail {
 
-struct WorldState;
+class ContactManager;
+class Islands;
+class JointSet;
+class PreSolve;
+class Workers;
 
 class LandingCorrection {
 public:
     /// Tests again the step's candidate pairs with a fast body at the bodies' poses now,
     /// and pushes apart by position the points deeper than the tolerance.
-    void correct(WorldState &world);
+    void correct(const WorldSettings &settings, BodyStore &bodies, ContactManager &contacts, const PreSolve &preSolve,
+                 const JointSet &joints, const Islands &islands, Workers &workers, real deepest,
+                 std::uint64_t stepCount, StepStats &stats);
 
 private:
     /// A point of a manifold found at the end of the step, held by anchors on both bodies
@@ -77,9 +85,11 @@ private:
 
     /// Marks the bodies round 0 moves: those that moved fast this step and those of the
     /// pairs the step began deep in.
-    void markFastBodies(WorldState &world);
+    void markFastBodies(const WorldSettings &settings, const BodyStore &bodies, const ContactManager &contacts,
+                        const PreSolve &preSolve, Workers &workers, real deepest);
     /// Lists in pairs_ the pairs a round tests: those with a body moved in round `last`.
-    void listRoundPairs(WorldState &world, int last);
+    void listRoundPairs(const BodyStore &bodies, const ContactManager &contacts, const PreSolve &preSolve,
+                        Workers &workers, int last);
     /// Puts points_ lowest first (ties in the pair walks' order); its first `kept` points
     /// are in that order already.
     void orderPoints(std::size_t kept);
@@ -92,10 +102,11 @@ private:
                                const Vector3 &up, std::vector<Point> &found);
     /// Tests the pairs in pairs_ at the bodies' poses now and appends their manifolds'
     /// points; returns whether one of them is deeper than its pair's tolerance.
-    bool detect(WorldState &world);
+    bool detect(const WorldSettings &settings, const BodyStore &bodies, ContactManager &contacts, Workers &workers,
+                std::uint64_t stepCount);
     /// Nonlinear Gauss-Seidel passes over points_; marks each body moved as moved in
     /// `round`. Returns how many points were pushed.
-    int push(WorldState &world, int round);
+    int push(const WorldSettings &settings, BodyStore &bodies, int round);
     /// How much farther a push between two movable bodies may move body `index`, `down`
     /// being the cosine of its direction with gravity: a round's pushes kStepReach of the
     /// body's size in all, the step's kStepReach down (unbounded in a joint group), m.
@@ -103,7 +114,7 @@ private:
     /// Per body index: the translation this step's pushes gave it outside joint groups, m.
     std::vector<Vector3> shifts_;
     /// Takes from the body's speed against its pushes the potential energy they gave it.
-    void payForLift(WorldState &world, std::uint32_t index);
+    void payForLift(BodyStore &bodies, const Islands &islands, const Vector3 &gravity, std::uint32_t index);
     Vector3 up_ = Vector3::UnitY();  ///< Against gravity (zero without it).
 
     /// Per body index: the last round that moved it (0: it moved fast in the step; -1: none).
@@ -125,7 +136,7 @@ private:
     std::vector<std::int32_t> nextMember_;
     /// Builds group_ and the per-group lists from the world's joints; marks every member
     /// of a movable group with a fast member fast too (its pairs are then all tested).
-    void buildJointGroups(const WorldState &world);
+    void buildJointGroups(const BodyStore &bodies, const JointSet &joints);
     /// Counts the body as moved fast in the step (round 0).
     void markFast(std::uint32_t index);
     /// The inverse mass a push of the body moves: its group's, or its own outside joints.

@@ -113,7 +113,10 @@ void WorldState::step(real dt, const World &queries) {
         joints.finishStep(bodies, context, *events.sink, BodyTransitions(*this), dt);
     }
     { const StageTimer t(ms.ccd); ccd.sweep(settings, bodies, broadphase, contacts.pairs, stepCount, stats); }
-    { const StageTimer t(ms.landing); landing.correct(*this); }
+    {
+        const StageTimer t(ms.landing);
+        landing.correct(settings, bodies, contacts, preSolve, joints, islands, workers, context.deepest, stepCount, stats);
+    }
     { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
     {
         const StageTimer t(ms.sleep);
