@@ -23,6 +23,7 @@
 #include "dynamics/step_plan.h"
 #include "dynamics/springs.h"
 #include "joints/joint_set.h"
+#include "queries/queries.h"
 #include "solver/constraint_solver.h"
 #include "world/body_store.h"
 #include "world/event_log.h"
@@ -89,8 +90,8 @@ struct WorldState {
     /// sensor flag go.
     void leaveFilters(std::uint32_t index);
 
-    /// Whether a query considers the body (queries/queries.cpp).
-    bool accepts(std::uint32_t index, const QueryFilter &filter) const;
+    /// What the queries read (queries/queries.h).
+    QueryScene queries() const { return {bodies, broadphase, changingCalls}; }
 };
 
 }  // namespace detail
