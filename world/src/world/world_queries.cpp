@@ -1,4 +1,6 @@
-// The World's queries: each passes what it reads to queries/queries.cpp.
+// The World's queries and debug drawing: each passes what it reads to queries/queries.cpp
+// or queries/debug_draw.cpp.
+#include "queries/debug_draw.h"
 #include "queries/queries.h"
 #include "world/world_impl.h"
 
@@ -33,6 +35,12 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
     // Without a turn, the straight cast (its refusals and its answer).
     if (motion.angle == 0) return shapeCast(shape, position, orientation, translation, filter);
     return detail::turningCast(impl_->queries(), shape, position, orientation, motion, filter);
+}
+
+void World::debugDraw(DebugDraw &draw, const DebugDrawOptions &options) const {
+    detail::validateDrawOptions(options);  // before the state is reached
+    const Impl &w = *impl_;
+    detail::debugDraw({w.bodies, w.joints, w.contacts.pairs, w.changingCalls}, draw, options);
 }
 
 }  // namespace cyclone
