@@ -32,7 +32,7 @@ void shareMomentum(WorldState &world, const World &queries, CharacterRecord &c, 
     const Vector3 up = characterUp(world.settings.gravity);
     const Quaternion upright = uprightFor(up);
     const Vector3 centre = capsuleCentre(c, up, c.feet);
-    QueryFilter filter = characterFilter(world, c);
+    QueryFilter filter = characterFilter(world.bodies, c);
     filter.staticBodies = false;
     filter.kinematicBodies = false;
     queries.overlap(Shape::capsule(c.settings.radius + kReach, c.capsule.length), centre, upright, near, filter);

@@ -39,6 +39,6 @@ inline Vector3 capsuleCentre(const CharacterRecord &c, const Vector3 &up, const 
 }
 /// What a character's casts consider: the layers of its mask whose bodies' masks hold its
 /// layer, its own capsule and sensors left out.
-QueryFilter characterFilter(const WorldState &world, const CharacterRecord &c);
+QueryFilter characterFilter(const BodyStore &bodies, const CharacterRecord &c);
 
 }  // namespace cyclone::detail

@@ -11,6 +11,9 @@
 #include <vector>
 
 #include "cyclone/world/world.h"
+#include "queries/queries.h"
+#include "world/body_store.h"
+#include "world/body_transitions.h"
 
 namespace cyclone::detail {
 
@@ -37,9 +40,11 @@ public:
     /// Before the solve: keeps the pose of each character's ground body, and shares the
     /// momentum of the dynamic bodies about to run into a character (character_pushes.cpp).
     void beginStep(WorldState &world, const World &queries, real dt);
-    /// After the bodies moved: moves each character, in index order, and its capsule
-    /// (character_motion.cpp).
-    void update(WorldState &world, const World &queries, real dt);
+    /// After the bodies moved: moves each character, in index order, and its capsule,
+    /// casting through `queries` (on `bodies`); wakes the bodies it pushes or stands on
+    /// and refits its capsule's box through `transitions` (character_motion.cpp).
+    void update(const Vector3 &gravity, BodyStore &bodies, const QueryScene &queries, BodyTransitions transitions,
+                real dt);
 
 private:
     std::vector<BodyId> near_;  ///< Scratch of beginStep: the bodies near a character.

@@ -38,12 +38,12 @@ Vector3 characterUp(const Vector3 &gravity) {
 
 Quaternion uprightFor(const Vector3 &up) { return Quaternion::FromTwoVectors(Vector3::UnitZ(), up); }
 
-QueryFilter characterFilter(const WorldState &world, const CharacterRecord &c) {
+QueryFilter characterFilter(const BodyStore &bodies, const CharacterRecord &c) {
     QueryFilter filter;
     filter.layers = c.settings.collidesWith;
     filter.ignore = c.body;
     const int layer = c.settings.layer;
-    filter.accept = [&world, layer](BodyId id) { return (world.bodies[id.index].collidesWith >> layer & 1u) != 0; };
+    filter.accept = [&bodies, layer](BodyId id) { return (bodies[id.index].collidesWith >> layer & 1u) != 0; };
     return filter;
 }
 

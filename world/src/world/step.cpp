@@ -119,7 +119,10 @@ void WorldState::step(real dt, const World &queries) {
         const StageTimer t(ms.sleep);
         for (const int island : islands.still(settings, bodies)) sleepIsland(islands.members(island), islands.size(island));
     }
-    if (!characters.empty()) { const StageTimer t(ms.characters); characters.update(*this, queries, dt); }
+    if (!characters.empty()) {
+        const StageTimer t(ms.characters);
+        characters.update(settings.gravity, bodies, queryScene(), BodyTransitions(*this), dt);
+    }
     events.closeStep();
     report(context, bodies, workers, stats);
 }

@@ -91,7 +91,7 @@ struct WorldState {
     void leaveFilters(std::uint32_t index);
 
     /// What the queries read (queries/queries.h).
-    QueryScene queries() const { return {bodies, broadphase, changingCalls}; }
+    QueryScene queryScene() const { return {bodies, broadphase, changingCalls}; }
 };
 
 }  // namespace detail

@@ -8,23 +8,23 @@ namespace cyclone {
 
 std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direction, real maxDistance,
                                      const QueryFilter &filter) const {
-    return detail::rayCast(impl_->queries(), origin, direction, maxDistance, filter);
+    return detail::rayCast(impl_->queryScene(), origin, direction, maxDistance, filter);
 }
 
 std::size_t World::rayCastAll(const Vector3 &origin, const Vector3 &direction, std::vector<RayHit> &out,
                               real maxDistance, const QueryFilter &filter) const {
-    return detail::rayCastAll(impl_->queries(), origin, direction, out, maxDistance, filter);
+    return detail::rayCastAll(impl_->queryScene(), origin, direction, out, maxDistance, filter);
 }
 
 std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Quaternion &orientation,
                            std::vector<BodyId> &out, const QueryFilter &filter) const {
-    return detail::overlap(impl_->queries(), shape, position, orientation, out, filter);
+    return detail::overlap(impl_->queryScene(), shape, position, orientation, out, filter);
 }
 
 std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &position,
                                              const Quaternion &orientation, const Vector3 &translation,
                                              const QueryFilter &filter) const {
-    return detail::shapeCast(impl_->queries(), shape, position, orientation, translation, filter);
+    return detail::shapeCast(impl_->queryScene(), shape, position, orientation, translation, filter);
 }
 
 std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &position,
@@ -34,7 +34,7 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
     const detail::CastMotion motion = detail::checkedTurn(position, orientation, translation, endOrientation);
     // Without a turn, the straight cast (its refusals and its answer).
     if (motion.angle == 0) return shapeCast(shape, position, orientation, translation, filter);
-    return detail::turningCast(impl_->queries(), shape, position, orientation, motion, filter);
+    return detail::turningCast(impl_->queryScene(), shape, position, orientation, motion, filter);
 }
 
 void World::debugDraw(DebugDraw &draw, const DebugDrawOptions &options) const {
