@@ -64,9 +64,8 @@ struct WorldState {
 
     explicit WorldState(const WorldSettings &s) : settings(s) {}
 
-    /// One step of dt seconds, stage by stage (world/step.cpp); the characters cast
-    /// through `queries`, the World this state belongs to.
-    void step(real dt, const World &queries);
+    /// One step of dt seconds, stage by stage (world/step.cpp).
+    void step(real dt);
 
     // How a body moves between awake, asleep and isolated (world/wake_and_sleep.cpp).
     /// Wakes the body and the rest of its sleeping island; static and isolated bodies
