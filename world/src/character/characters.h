@@ -32,6 +32,13 @@ public:
     /// The character `id` names; refused with `function`'s name when it names none.
     CharacterRecord &record(CharacterId id, const char *function);
     const CharacterRecord &record(CharacterId id, const char *function) const;
+    /// Stores a new live character in a free slot (the last freed first) and names it.
+    CharacterId add(CharacterRecord c);
+    /// Ends the character `id` names (refused with `function`'s name when it names none)
+    /// and gives its capsule, which the World then removes.
+    BodyId remove(CharacterId id, const char *function);
+    /// What World::character reports of the character `id` names.
+    CharacterState state(CharacterId id, const char *function) const;
     /// Whether `body` is the capsule of a live character.
     bool owns(BodyId body) const;
 
