@@ -1,13 +1,15 @@
 // Moving a character over one step, after the bodies moved: carried by its ground, walked
 // and slid (collide and slide: cast, stop short, slide along what stopped it, a few
 // rounds), stepped up, kept to the ground. Everything is done by casting its capsule
-// with World::shapeCast from where it stands, so it never overlaps what it meets and
-// keeps kSkin from it.
+// (queries/queries.h, World::shapeCast's cast) from where it stands, so it never overlaps
+// what it meets and keeps kSkin from it.
 #include <algorithm>
 #include <cmath>
 
 #include "character/character_record.h"
-#include "world/world_impl.h"
+#include "queries/queries.h"
+#include "world/body_store.h"
+#include "world/body_transitions.h"
 
 namespace cyclone::detail {
 namespace {
@@ -21,10 +23,11 @@ constexpr real kPushFriction = 1;   // a pushed character's slide slows at this 
 
 class CharacterMove {
 public:
-    CharacterMove(WorldState &world, const World &queries, CharacterRecord &c, real dt)
-        : world_(world), queries_(queries), c_(c), dt_(dt), up_(characterUp(world.settings.gravity)),
-          upright_(uprightFor(up_)), filter_(characterFilter(world, c)), cosMaxSlope_(std::cos(c.settings.maxSlope)),
-          weight_(c.settings.mass * world.settings.gravity.norm()) {}
+    CharacterMove(const Vector3 &gravity, BodyStore &bodies, const QueryScene &queries,
+                  BodyTransitions transitions, CharacterRecord &c, real dt)
+        : bodies_(bodies), queries_(queries), transitions_(transitions), c_(c), dt_(dt), gravity_(gravity),
+          up_(characterUp(gravity)), upright_(uprightFor(up_)), filter_(characterFilter(bodies, c)),
+          cosMaxSlope_(std::cos(c.settings.maxSlope)), weight_(c.settings.mass * gravity.norm()) {}
 
     void run() {
         const Vector3 start = c_.feet;
@@ -53,7 +56,7 @@ private:
     std::optional<ShapeCastHit> moveUntilHit(Vector3 &feet, const Vector3 &motion) const {
         const real length = motion.norm();
         if (!(length > kShortest)) return std::nullopt;
-        auto hit = queries_.shapeCast(c_.capsule, capsuleCentre(c_, up_, feet), upright_, motion, filter_);
+        auto hit = shapeCast(queries_, c_.capsule, capsuleCentre(c_, up_, feet), upright_, motion, filter_);
         if (!hit) {
             feet += motion;
             return hit;
@@ -67,8 +70,8 @@ private:
     // Follows the ground body's move over the step: up and down at once (the ground moved
     // as much), across by a cast (so that walls stop it).
     void carry() {
-        if (!c_.onGround || !c_.groundBody || !world_.bodies.contains(*c_.groundBody)) return;
-        const BodyRecord &ground = world_.bodies[c_.groundBody->index];
+        if (!c_.onGround || !c_.groundBody || !bodies_.contains(*c_.groundBody)) return;
+        const BodyRecord &ground = bodies_[c_.groundBody->index];
         if (ground.immovable && !ground.kinematic) return;
         const Vector3 shift = ground.body.getTransform() * (c_.groundStart.inverse() * c_.feet) - c_.feet;
         c_.feet += up_ * shift.dot(up_);
@@ -84,7 +87,7 @@ private:
             return;
         }
         const Vector3 before = jumps ? Vector3(up_ * c_.desired.dot(up_)) : c_.flight;
-        c_.flight = before + world_.settings.gravity * dt_;
+        c_.flight = before + gravity_ * dt_;
         slide(walkVelocity_ * dt_ + (before + c_.flight) / 2 * dt_, false);
     }
 
@@ -147,7 +150,7 @@ private:
         Vector3 out = across(hit.point - feet);
         if (!(out.norm() > kShortest)) return false;
         out.normalize();
-        const auto ground = queries_.rayCast(hit.point + (out + up_) * kEdgeProbe, -up_, 3 * kEdgeProbe, filter_);
+        const auto ground = rayCast(queries_, hit.point + (out + up_) * kEdgeProbe, -up_, 3 * kEdgeProbe, filter_);
         if (!ground || !walkable(ground->normal)) return false;
         normal = ground->normal;
         return true;
@@ -177,7 +180,7 @@ private:
     // weight, at its centre of mass (where along a face it touches is arbitrary; once per
     // body and step).
     void push(const ShapeCastHit &hit) {
-        BodyRecord &b = world_.bodies[hit.body.index];
+        BodyRecord &b = bodies_[hit.body.index];
         if (b.immovable || std::find(pushed_.begin(), pushed_.end(), hit.body.index) != pushed_.end()) return;
         pushed_.push_back(hit.body.index);
         const Vector3 into = -hit.normal;
@@ -188,40 +191,42 @@ private:
 
     // Its weight on a dynamic body it stands on.
     void press(BodyId ground, const Vector3 &point) {
-        if (world_.bodies[ground.index].immovable) return;
-        RigidBody &body = world_.bodies[ground.index].body;
-        world_.wake(ground.index);
+        if (bodies_[ground.index].immovable) return;
+        RigidBody &body = bodies_[ground.index].body;
+        transitions_.wake(ground.index);
         const Vector3 impulse = -up_ * (weight_ * dt_);
         body.addVelocity(impulse * body.getInverseMass());
         body.addRotation(body.getInverseInertiaTensorWorld() * (point - body.getPosition()).cross(impulse));
     }
 
     void applyImpulse(std::uint32_t index, const Vector3 &impulse) {
-        world_.wake(index);
-        world_.bodies[index].body.addVelocity(impulse * world_.bodies[index].body.getInverseMass());
+        transitions_.wake(index);
+        bodies_[index].body.addVelocity(impulse * bodies_[index].body.getInverseMass());
     }
 
     // A push given by a body that ran into it slows on the ground as by friction.
     void slowPush() {
         const real speed = c_.push.norm();
         if (!c_.onGround || !(speed > 0)) return;
-        const real loss = kPushFriction * world_.settings.gravity.norm() * dt_;
+        const real loss = kPushFriction * gravity_.norm() * dt_;
         c_.push *= speed > loss ? (speed - loss) / speed : 0;
     }
 
     void placeCapsule() {
-        BodyRecord &r = world_.bodies[c_.body.index];
+        BodyRecord &r = bodies_[c_.body.index];
         const Vector3 centre = capsuleCentre(c_, up_, c_.feet);
         if (r.body.getPosition() == centre && r.body.getOrientation().coeffs() == upright_.coeffs()) return;
         r.body.setPosition(centre);
         r.body.setOrientation(upright_);
-        world_.refreshCollisionObject(c_.body.index);
+        transitions_.refresh(c_.body.index);
     }
 
-    WorldState &world_;
-    const World &queries_;
+    BodyStore &bodies_;
+    const QueryScene &queries_;  ///< The same bodies, and the broadphase trees, for the casts.
+    const BodyTransitions transitions_;
     CharacterRecord &c_;
     const real dt_;
+    const Vector3 gravity_;
     const Vector3 up_;
     const Quaternion upright_;
     const QueryFilter filter_;
@@ -233,9 +238,10 @@ private:
 
 }  // namespace
 
-void Characters::update(WorldState &world, const World &queries, real dt) {
+void Characters::update(const Vector3 &gravity, BodyStore &bodies, const QueryScene &queries,
+                        BodyTransitions transitions, real dt) {
     for (CharacterRecord &c : records)
-        if (c.alive) CharacterMove(world, queries, c, dt).run();
+        if (c.alive) CharacterMove(gravity, bodies, queries, transitions, c, dt).run();
 }
 
 }  // namespace cyclone::detail

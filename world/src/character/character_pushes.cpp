@@ -10,16 +10,16 @@
 #include <cmath>
 
 #include "character/character_record.h"
-#include "world/world_impl.h"
+#include "queries/queries.h"
+#include "world/body_store.h"
 
 namespace cyclone::detail {
 namespace {
 
 constexpr real kReach = 1;  // bodies farther than this from the capsule are not looked at, m
 
-void keepGroundPose(const WorldState &world, CharacterRecord &c) {
-    if (c.groundBody && world.bodies.contains(*c.groundBody))
-        c.groundStart = world.bodies[c.groundBody->index].body.getTransform();
+void keepGroundPose(const BodyStore &bodies, CharacterRecord &c) {
+    if (c.groundBody && bodies.contains(*c.groundBody)) c.groundStart = bodies[c.groundBody->index].body.getTransform();
 }
 
 // The impulse that brings a body of inverse mass `bodyInverse` and the character to one
@@ -28,22 +28,23 @@ real sharedImpulse(real approach, real bodyInverse, real characterMass) {
     return approach / (bodyInverse + 1 / characterMass);
 }
 
-void shareMomentum(WorldState &world, const World &queries, CharacterRecord &c, real dt, std::vector<BodyId> &near) {
-    const Vector3 up = characterUp(world.settings.gravity);
+void shareMomentum(const Vector3 &gravity, BodyStore &bodies, const QueryScene &queries, CharacterRecord &c, real dt,
+                   std::vector<BodyId> &near) {
+    const Vector3 up = characterUp(gravity);
     const Quaternion upright = uprightFor(up);
     const Vector3 centre = capsuleCentre(c, up, c.feet);
-    QueryFilter filter = characterFilter(world, c);
+    QueryFilter filter = characterFilter(bodies, c);
     filter.staticBodies = false;
     filter.kinematicBodies = false;
-    queries.overlap(Shape::capsule(c.settings.radius + kReach, c.capsule.length), centre, upright, near, filter);
+    overlap(queries, Shape::capsule(c.settings.radius + kReach, c.capsule.length), centre, upright, near, filter);
     for (const BodyId id : near) {
-        BodyRecord &b = world.bodies[id.index];
+        BodyRecord &b = bodies[id.index];
         if (!b.body.getAwake()) continue;
         const Vector3 relative = b.body.getVelocity() - c.velocity;
         if (!(relative.norm() * dt > 1e-9)) continue;
         QueryFilter only = filter;
         only.accept = [id](BodyId other) { return other == id; };
-        const auto hit = queries.shapeCast(c.capsule, centre, upright, -relative * dt, only);
+        const auto hit = shapeCast(queries, c.capsule, centre, upright, -relative * dt, only);
         if (!hit) continue;
         Vector3 n = hit->normal - up * hit->normal.dot(up);
         if (n.norm() < 0.5) continue;
@@ -60,11 +61,11 @@ void shareMomentum(WorldState &world, const World &queries, CharacterRecord &c, 
 
 }  // namespace
 
-void Characters::beginStep(WorldState &world, const World &queries, real dt) {
+void Characters::beginStep(const Vector3 &gravity, BodyStore &bodies, const QueryScene &queries, real dt) {
     for (CharacterRecord &c : records) {
         if (!c.alive) continue;
-        keepGroundPose(world, c);
-        shareMomentum(world, queries, c, dt, near_);
+        keepGroundPose(bodies, c);
+        shareMomentum(gravity, bodies, queries, c, dt, near_);
     }
 }
 

@@ -39,6 +39,14 @@ inline Vector3 capsuleCentre(const CharacterRecord &c, const Vector3 &up, const 
 }
 /// What a character's casts consider: the layers of its mask whose bodies' masks hold its
 /// layer, its own capsule and sensors left out.
-QueryFilter characterFilter(const WorldState &world, const CharacterRecord &c);
+QueryFilter characterFilter(const BodyStore &bodies, const CharacterRecord &c);
+
+/// Refuses, with `function`'s name, settings out of their ranges (cyclone/world/character.h).
+void checkCharacter(const char *function, const CharacterSettings &settings);
+/// A character standing at its settings' position, its capsule not yet added.
+CharacterRecord newCharacter(const CharacterSettings &settings, const Vector3 &gravity);
+/// The kinematic body of a character's capsule, standing along up; refused, with
+/// `function`'s name, when its centre is beyond 1e12 m of the origin.
+BodySettings capsuleBody(const char *function, const CharacterRecord &c, const Vector3 &gravity);
 
 }  // namespace cyclone::detail

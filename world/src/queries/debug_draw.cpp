@@ -5,8 +5,8 @@
 #include <string>
 
 #include "collision/heightfield.h"
+#include "queries/debug_draw.h"
 #include "world/validation.h"
-#include "world/world_impl.h"
 
 namespace cyclone {
 
@@ -20,8 +20,8 @@ constexpr real kPi = 3.14159265358979323846;
 // being drawn from under the walk, so the walk stops before touching them again.
 class CheckedDraw final : public DebugDraw {
 public:
-    CheckedDraw(DebugDraw &draw, const detail::WorldState &world)
-        : draw_(draw), world_(world), calls_(world.changingCalls) {}
+    CheckedDraw(DebugDraw &draw, const std::uint64_t &changingCalls)
+        : draw_(draw), changingCalls_(changingCalls), calls_(changingCalls) {}
     void line(const Vector3 &from, const Vector3 &to, const DebugColor &color) override {
         draw_.line(from, to, color);
         check();
@@ -43,13 +43,13 @@ public:
 
 private:
     void check() const {
-        if (world_.changingCalls != calls_)
+        if (changingCalls_ != calls_)
             detail::refuse("World::debugDraw", "draw",
                            "changed the world while drawing (called a World member that changes it, such as "
                            "removeBody or step); a DebugDraw must only read");
     }
     DebugDraw &draw_;
-    const detail::WorldState &world_;
+    const std::uint64_t &changingCalls_;  ///< WorldState::changingCalls, read after each call.
     const std::uint64_t calls_;
 };
 
@@ -165,7 +165,9 @@ void drawShape(CheckedDraw &draw, const detail::CollisionShape &shape, const Mat
     }
 }
 
-void validate(const DebugDrawOptions &o) {
+}  // namespace
+
+void detail::validateDrawOptions(const DebugDrawOptions &o) {
     static const char *function = "World::debugDraw";
     detail::requirePositive(function, "options.normalLength", o.normalLength);
     detail::requirePositive(function, "options.planeHalfSize", o.planeHalfSize);
@@ -185,8 +187,6 @@ void validate(const DebugDrawOptions &o) {
             if (!(channel >= 0 && channel <= 1))
                 detail::refuse(function, field, "components must be in [0, 1], got " + detail::show(channel));
 }
-
-}  // namespace
 
 void DebugDraw::box(const Matrix4 &pose, const Vector3 &h, const DebugColor &color) {
     Vector3 corner[8];
@@ -214,12 +214,10 @@ void DebugDraw::contact(const Vector3 &point, const Vector3 &normal, real, real 
     line(point, point + normalLength * normal, normalColor);
 }
 
-void World::debugDraw(DebugDraw &game, const DebugDrawOptions &options) const {
-    validate(options);
-    const Impl &w = *impl_;
-    CheckedDraw draw(game, w);
-    for (std::uint32_t index : w.bodies.order) {
-        const BodyRecord &r = w.bodies[index];
+void detail::debugDraw(const DrawScene &scene, DebugDraw &game, const DebugDrawOptions &options) {
+    CheckedDraw draw(game, scene.changingCalls);
+    for (std::uint32_t index : scene.bodies.order) {
+        const BodyRecord &r = scene.bodies[index];
         const bool isStatic = r.immovable && !r.kinematic;  // a kinematic body is drawn awake while it moves
         const DebugColor &color = r.sensor && !r.isolated ? options.sensor
                                   : isStatic   ? options.staticBody
@@ -236,13 +234,13 @@ void World::debugDraw(DebugDraw &game, const DebugDrawOptions &options) const {
             draw.box(pose, 0.5 * (box.max_ - box.min_), options.boundingBox);
         }
     }
-    if (options.joints) w.joints.draw(w.bodies, draw, options);
+    if (options.joints) scene.joints.draw(scene.bodies, draw, options);
     if (!options.contacts) return;
-    for (std::uint32_t p = 0; p < w.contacts.pairs.slots(); ++p) {
-        const detail::PairState &pair = w.contacts.pairs[p];
+    for (std::uint32_t p = 0; p < scene.pairs.slots(); ++p) {
+        const detail::PairState &pair = scene.pairs[p];
         if (!pair.alive || !pair.touching()) continue;
-        const Matrix4 poseA = w.bodies[pair.a].body.getTransform();
-        const Matrix4 poseB = w.bodies[pair.b].body.getTransform();
+        const Matrix4 poseA = scene.bodies[pair.a].body.getTransform();
+        const Matrix4 poseB = scene.bodies[pair.b].body.getTransform();
         for (const detail::ManifoldState &m : pair.manifolds)
             for (int i = 0; i < m.count; ++i) {
                 const detail::PersistentPoint &point = m.points[i];

@@ -11,8 +11,8 @@
 #include "collision/narrowphase.h"
 #include "collision/ray_cast.h"
 #include "collision/shape_cast.h"
+#include "queries/queries.h"
 #include "world/validation.h"
-#include "world/world_impl.h"
 
 namespace cyclone {
 
@@ -135,12 +135,12 @@ struct OverlapWalk {
 // body is in the awake tree, a still one in the static tree; a sleeping tree holds only
 // dynamic bodies.
 template <class Visit, class Test>
-void visitTrees(const detail::WorldState &w, const QueryFilter &filter, const Visit &visit, const Test &test) {
-    if (filter.dynamicBodies || filter.kinematicBodies) visit(w.broadphase.root(detail::Tree::Awake));
-    if (filter.dynamicBodies) visit(w.broadphase.root(detail::Tree::Asleep));
-    if (filter.staticBodies || filter.kinematicBodies) visit(w.broadphase.root(detail::Tree::Static));
+void visitTrees(const detail::QueryScene &scene, const QueryFilter &filter, const Visit &visit, const Test &test) {
+    if (filter.dynamicBodies || filter.kinematicBodies) visit(scene.broadphase.root(detail::Tree::Awake));
+    if (filter.dynamicBodies) visit(scene.broadphase.root(detail::Tree::Asleep));
+    if (filter.staticBodies || filter.kinematicBodies) visit(scene.broadphase.root(detail::Tree::Static));
     if (filter.staticBodies)
-        for (std::uint32_t plane : w.bodies.planes) test(plane);
+        for (std::uint32_t plane : scene.bodies.planes) test(plane);
 }
 
 Quaternion unitOrIdentity(const Quaternion &q) {
@@ -175,7 +175,8 @@ PlacedShape placeQueryShape(const char *function, const Shape &shape, const Vect
 
 }  // namespace
 
-bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter) const {
+bool detail::accepts(const QueryScene &scene, std::uint32_t index, const QueryFilter &filter) {
+    const BodyStore &bodies = scene.bodies;
     const BodyRecord &r = bodies[index];
     if (!r.alive || r.isolated || (r.sensor && !filter.sensors)) return false;
     const bool considered = r.kinematic ? filter.kinematicBodies : r.immovable ? filter.staticBodies : filter.dynamicBodies;
@@ -185,10 +186,10 @@ bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter)
     if (!filter.accept) return true;
     // The query walks the broadphase trees and the body records: an accept() that adds,
     // removes or moves a body pulls them from under the walk (QueryFilter forbids it).
-    const std::uint64_t changes = broadphase.changes(), calls = changingCalls;
+    const std::uint64_t changes = scene.broadphase.changes(), calls = scene.changingCalls;
     const std::size_t records = bodies.size(), live = bodies.order.size();
     const bool accepted = filter.accept(id);
-    if (broadphase.changes() != changes || changingCalls != calls || bodies.size() != records ||
+    if (scene.broadphase.changes() != changes || scene.changingCalls != calls || bodies.size() != records ||
         bodies.order.size() != live)
         refuse("World query", "filter.accept", "changed the world during the query (called a World member that "
                                                "changes it, such as removeBody or step); a QueryFilter::accept must "
@@ -196,38 +197,39 @@ bool detail::WorldState::accepts(std::uint32_t index, const QueryFilter &filter)
     return accepted;
 }
 
-std::optional<RayHit> World::rayCast(const Vector3 &origin, const Vector3 &direction, real maxDistance,
-                                     const QueryFilter &filter) const {
-    const Impl &w = *impl_;
-    const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
-    RayWalk<decltype(accepts)> walk(w.bodies, accepts, checkedRay("World::rayCast", origin, direction, maxDistance));
-    visitTrees(w, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
+std::optional<RayHit> detail::rayCast(const QueryScene &scene, const Vector3 &origin, const Vector3 &direction,
+                                      real maxDistance, const QueryFilter &filter) {
+    const auto accepted = [&](std::uint32_t index) { return accepts(scene, index, filter); };
+    RayWalk<decltype(accepted)> walk(scene.bodies, accepted,
+                                     checkedRay("World::rayCast", origin, direction, maxDistance));
+    visitTrees(
+        scene, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
     if (!walk.found) return std::nullopt;
     RayHit hit;
-    hit.body = w.bodies.idOf(walk.body);
-    hit.userData = w.bodies[walk.body].userData;
+    hit.body = scene.bodies.idOf(walk.body);
+    hit.userData = scene.bodies[walk.body].userData;
     hit.distance = walk.hit.distance;
     hit.point = walk.ray.origin + walk.hit.distance * walk.ray.direction;
     hit.normal = walk.hit.normal;
     return hit;
 }
 
-std::size_t World::rayCastAll(const Vector3 &origin, const Vector3 &direction, std::vector<RayHit> &out,
-                              real maxDistance, const QueryFilter &filter) const {
-    const Impl &w = *impl_;
+std::size_t detail::rayCastAll(const QueryScene &scene, const Vector3 &origin, const Vector3 &direction,
+                               std::vector<RayHit> &out, real maxDistance, const QueryFilter &filter) {
     std::vector<std::pair<detail::RaySurfaceHit, std::uint32_t>> hits;
-    const auto accepts = [&](std::uint32_t index) { return w.accepts(index, filter); };
-    RayAllWalk<decltype(accepts)> walk(w.bodies, accepts,
-                                       checkedRay("World::rayCastAll", origin, direction, maxDistance), hits);
-    visitTrees(w, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
+    const auto accepted = [&](std::uint32_t index) { return accepts(scene, index, filter); };
+    RayAllWalk<decltype(accepted)> walk(scene.bodies, accepted,
+                                        checkedRay("World::rayCastAll", origin, direction, maxDistance), hits);
+    visitTrees(
+        scene, filter, [&](const Node *root) { walk.walk(root); }, [&](std::uint32_t plane) { walk.test(plane); });
     std::sort(hits.begin(), hits.end(), [](const auto &x, const auto &y) {
         return x.first.distance != y.first.distance ? x.first.distance < y.first.distance : x.second < y.second;
     });
     out.clear();
     for (const auto &[surface, index] : hits) {
         RayHit hit;
-        hit.body = w.bodies.idOf(index);
-        hit.userData = w.bodies[index].userData;
+        hit.body = scene.bodies.idOf(index);
+        hit.userData = scene.bodies[index].userData;
         hit.distance = surface.distance;
         hit.point = walk.ray.origin + surface.distance * walk.ray.direction;
         hit.normal = surface.normal;
@@ -236,10 +238,9 @@ std::size_t World::rayCastAll(const Vector3 &origin, const Vector3 &direction, s
     return out.size();
 }
 
-std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Quaternion &orientation,
-                           std::vector<BodyId> &out, const QueryFilter &filter) const {
+std::size_t detail::overlap(const QueryScene &scene, const Shape &shape, const Vector3 &position,
+                            const Quaternion &orientation, std::vector<BodyId> &out, const QueryFilter &filter) {
     static const char *function = "World::overlap";
-    const Impl &w = *impl_;
     detail::requirePlace(function, "position", position);
     detail::requireFinite(function, "orientation", orientation);
     if (shape.type == ShapeType::Plane || shape.type == ShapeType::Heightfield)
@@ -252,12 +253,13 @@ std::size_t World::overlap(const Shape &shape, const Vector3 &position, const Qu
 
     const fcl::CollisionObjectd query(compiled->geometry(), pose);
     const auto test = [&](std::uint32_t index) {
-        if (!w.accepts(index, filter)) return;
-        const BodyRecord &r = w.bodies[index];
-        if (detail::intersects(*compiled, pose, *r.shape, r.body.getTransform())) out.push_back(w.bodies.idOf(index));
+        if (!detail::accepts(scene, index, filter)) return;
+        const BodyRecord &r = scene.bodies[index];
+        if (detail::intersects(*compiled, pose, *r.shape, r.body.getTransform()))
+            out.push_back(scene.bodies.idOf(index));
     };
     OverlapWalk<decltype(test)> walk{query.getAABB(), test};
-    visitTrees(w, filter, [&](const Node *root) { walk.visit(root); }, test);
+    visitTrees(scene, filter, [&](const Node *root) { walk.visit(root); }, test);
     std::sort(out.begin(), out.end(), [](const BodyId &x, const BodyId &y) { return x.index < y.index; });
     return out.size();
 }
@@ -266,15 +268,15 @@ namespace {
 
 // The earliest hit of `shape` cast from `start` by `motion` among the bodies `filter`
 // accepts whose boxes meet `swept`; ties to the smaller index.
-std::optional<ShapeCastHit> castAmong(const detail::WorldState &w, const detail::CollisionShape &shape,
+std::optional<ShapeCastHit> castAmong(const detail::QueryScene &scene, const detail::CollisionShape &shape,
                                       const Matrix4 &start, const detail::CastMotion &motion, const fcl::AABBd &swept,
                                       const QueryFilter &filter) {
     bool found = false;
     std::uint32_t best = 0;
     detail::CastHit hit;
     const auto test = [&](std::uint32_t index) {
-        if (!w.accepts(index, filter)) return;
-        const BodyRecord &r = w.bodies[index];
+        if (!detail::accepts(scene, index, filter)) return;
+        const BodyRecord &r = scene.bodies[index];
         detail::CastHit candidate;
         const real limit = found ? hit.fraction : 1;
         if (!detail::castShape(shape, start, motion, *r.shape, r.body.getTransform(), limit, candidate)) return;
@@ -284,11 +286,11 @@ std::optional<ShapeCastHit> castAmong(const detail::WorldState &w, const detail:
         hit = candidate;
     };
     OverlapWalk<decltype(test)> walk{swept, test};
-    visitTrees(w, filter, [&](const Node *root) { walk.visit(root); }, test);
+    visitTrees(scene, filter, [&](const Node *root) { walk.visit(root); }, test);
     if (!found) return std::nullopt;
     ShapeCastHit result;
-    result.body = w.bodies.idOf(best);
-    result.userData = w.bodies[best].userData;
+    result.body = scene.bodies.idOf(best);
+    result.userData = scene.bodies[best].userData;
     result.fraction = hit.fraction;
     result.distance = hit.fraction * motion.translation.stableNorm();
     result.point = hit.point;
@@ -333,11 +335,10 @@ detail::CastMotion turningMotion(const Vector3 &translation, const Vector3 &pivo
 
 }  // namespace
 
-std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &position,
-                                             const Quaternion &orientation, const Vector3 &translation,
-                                             const QueryFilter &filter) const {
+std::optional<ShapeCastHit> detail::shapeCast(const QueryScene &scene, const Shape &shape, const Vector3 &position,
+                                              const Quaternion &orientation, const Vector3 &translation,
+                                              const QueryFilter &filter) {
     static const char *function = "World::shapeCast";
-    const Impl &w = *impl_;
     detail::requirePlace(function, "position", position);
     detail::requireFinite(function, "orientation", orientation);
     detail::requireFinite(function, "translation", translation);
@@ -356,21 +357,24 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
     detail::CastMotion motion;
     motion.translation = translation;
     motion.pivot = position;
-    return castAmong(w, *compiled, start, motion, swept, filter);
+    return castAmong(scene, *compiled, start, motion, swept, filter);
 }
 
-std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &position,
-                                             const Quaternion &orientation, const Vector3 &translation,
-                                             const Quaternion &endOrientation, const QueryFilter &filter) const {
+detail::CastMotion detail::checkedTurn(const Vector3 &position, const Quaternion &orientation,
+                                       const Vector3 &translation, const Quaternion &endOrientation) {
     static const char *function = "World::shapeCast";
     detail::requirePlace(function, "position", position);
     requireUnitQuaternion(function, "orientation", orientation);
     detail::requireFinite(function, "translation", translation);
     requireUnitQuaternion(function, "endOrientation", endOrientation);
-    const detail::CastMotion motion = turningMotion(translation, position, orientation, endOrientation);
-    // Without a turn, the straight cast (its refusals and its answer).
-    if (motion.angle == 0) return shapeCast(shape, position, orientation, translation, filter);
-    const Impl &w = *impl_;
+    return turningMotion(translation, position, orientation, endOrientation);
+}
+
+std::optional<ShapeCastHit> detail::turningCast(const QueryScene &scene, const Shape &shape, const Vector3 &position,
+                                                const Quaternion &orientation, const CastMotion &motion,
+                                                const QueryFilter &filter) {
+    static const char *function = "World::shapeCast";
+    const Vector3 &translation = motion.translation;
     requireCastable(function, shape);
     const PlacedShape placed = placeQueryShape(function, shape, position, orientation);
     const real radius = placed.shape->boundingRadius();
@@ -381,7 +385,7 @@ std::optional<ShapeCastHit> World::shapeCast(const Shape &shape, const Vector3 &
     const Vector3 widen = Vector3::Constant(reach);
     fcl::AABBd swept(position - widen, position + widen);
     swept += fcl::AABBd(position + translation - widen, position + translation + widen);
-    return castAmong(w, *placed.shape, placed.pose, motion, swept, filter);
+    return castAmong(scene, *placed.shape, placed.pose, motion, swept, filter);
 }
 
 }  // namespace cyclone

@@ -24,6 +24,9 @@ public:
     void isolate(std::uint32_t index) const;
     /// Moves the body's collision object to another broadphase tree (WorldState::setTree).
     void setTree(std::uint32_t index, Tree tree) const;
+    /// After a teleport: refits the body's box and wakes what it or its contacts concern
+    /// (WorldState::refreshCollisionObject).
+    void refresh(std::uint32_t index) const;
 
 private:
     WorldState *world_;

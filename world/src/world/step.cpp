@@ -58,7 +58,7 @@ void runSubstep(WorldState &world, real h, bool first) {
 
 }  // namespace
 
-void WorldState::step(real dt, const World &queries) {
+void WorldState::step(real dt) {
     stats = StepStats();
     context = StepContext();
     context.dt = dt;
@@ -68,7 +68,10 @@ void WorldState::step(real dt, const World &queries) {
     workers.match(settings.threads);  // the narrowphase and the solver share their work
     workers.resetTimes();
 
-    if (!characters.empty()) { const StageTimer t(ms.characters); characters.beginStep(*this, queries, dt); }
+    if (!characters.empty()) {
+        const StageTimer t(ms.characters);
+        characters.beginStep(settings.gravity, bodies, queryScene(), dt);
+    }
     {
         const StageTimer t(ms.forces);
         integration.beginStep(bodies, springs, BodyTransitions(*this), context, dt);
@@ -122,7 +125,10 @@ void WorldState::step(real dt, const World &queries) {
         const StageTimer t(ms.sleep);
         for (const int island : islands.still(settings, bodies)) sleepIsland(islands.members(island), islands.size(island));
     }
-    if (!characters.empty()) { const StageTimer t(ms.characters); characters.update(*this, queries, dt); }
+    if (!characters.empty()) {
+        const StageTimer t(ms.characters);
+        characters.update(settings.gravity, bodies, queryScene(), BodyTransitions(*this), dt);
+    }
     events.closeStep();
     report(context, bodies, workers, stats);
 }

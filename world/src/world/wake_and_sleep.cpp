@@ -104,4 +104,6 @@ void BodyTransitions::isolate(std::uint32_t index) const { world_->isolate(index
 
 void BodyTransitions::setTree(std::uint32_t index, Tree tree) const { world_->setTree(index, tree); }
 
+void BodyTransitions::refresh(std::uint32_t index) const { world_->refreshCollisionObject(index); }
+
 }  // namespace cyclone::detail

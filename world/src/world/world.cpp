@@ -651,7 +651,7 @@ void World::step(real dt) {
         detail::refuse("World::step", "dt",
                        "must be finite and in [1e-06, 1] s (kMinStep, kMaxStep; take a longer span as several "
                        "steps), got " + detail::show(dt));
-    impl_->step(dt, *this);
+    impl_->step(dt);
 }
 
 const StepStats &World::stats() const { return impl_->stats; }

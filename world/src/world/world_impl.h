@@ -23,6 +23,7 @@
 #include "dynamics/step_plan.h"
 #include "dynamics/springs.h"
 #include "joints/joint_set.h"
+#include "queries/queries.h"
 #include "solver/constraint_solver.h"
 #include "world/body_store.h"
 #include "world/event_log.h"
@@ -63,9 +64,8 @@ struct WorldState {
 
     explicit WorldState(const WorldSettings &s) : settings(s) {}
 
-    /// One step of dt seconds, stage by stage (world/step.cpp); the characters cast
-    /// through `queries`, the World this state belongs to.
-    void step(real dt, const World &queries);
+    /// One step of dt seconds, stage by stage (world/step.cpp).
+    void step(real dt);
 
     // How a body moves between awake, asleep and isolated (world/wake_and_sleep.cpp).
     /// Wakes the body and the rest of its sleeping island; static and isolated bodies
@@ -89,8 +89,8 @@ struct WorldState {
     /// sensor flag go.
     void leaveFilters(std::uint32_t index);
 
-    /// Whether a query considers the body (queries/queries.cpp).
-    bool accepts(std::uint32_t index, const QueryFilter &filter) const;
+    /// What the queries read (queries/queries.h).
+    QueryScene queryScene() const { return {bodies, broadphase, changingCalls}; }
 };
 
 }  // namespace detail
