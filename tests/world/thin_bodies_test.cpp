@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 #include "world_fixture.h"
 
@@ -48,14 +49,12 @@ BodyId addThinRod(World &world, real radius, real tilt) {
     return world.addBody(s);
 }
 
-// Nothing does work on the rod but gravity; contacts (inelastic, with friction) only take
-// energy away, so its energy never exceeds m g 0.6. The tolerance, 0.1 % of it, is for the
-// speculative contacts and position recovery at landing. Before the moment floor the
-// 1 mm rod standing reached 8e5 J in 5 s.
-TEST(ThinBodies, RodsDroppedOnAFloorNeverGainEnergy) {
+// Drops the rod of each radius at each tilt and expects its energy never to exceed what
+// it had at release, m g 0.6, by more than 0.1 %, and its centre to stay above the floor.
+void expectRodsNeverGainEnergy(std::initializer_list<real> tilts) {
     const real initial = kRodMass * kG * 0.6;
     for (real radius : {0.001, 0.002, 0.005, 0.01}) {
-        for (real tilt : {0.0, 0.05}) {
+        for (real tilt : tilts) {
             World world(noSleep());
             addThinBodyFloor(world);
             const BodyId rod = addThinRod(world, radius, tilt);
@@ -66,6 +65,14 @@ TEST(ThinBodies, RodsDroppedOnAFloorNeverGainEnergy) {
     }
 }
 
+// Nothing does work on the rod but gravity; contacts (inelastic, with friction) only take
+// energy away, so its energy never exceeds m g 0.6. The tolerance, 0.1 % of it, is for the
+// speculative contacts and position recovery at landing. Before the moment floor the
+// 1 mm rod standing reached 8e5 J in 5 s.
+TEST(ThinBodies, RodsDroppedOnAFloorNeverGainEnergy) {
+    expectRodsNeverGainEnergy({0.0, 0.05});
+}
+
 // The rod released tilted 0.5 to 1 rad (its centre at 0.6 m, its lowest rim 0.6 - 0.35
 // cos(tilt) - r sin(tilt) >= 0.41 m up) lands on its rim: its energy at release is again
 // m g 0.6 = 0.5886 J (at rest; y is the centre's height) and never grows. The step's
@@ -73,17 +80,7 @@ TEST(ThinBodies, RodsDroppedOnAFloorNeverGainEnergy) {
 // floor by up to 1.8 cm, and while it kept the rod's falling speed the rod ended 0.5-2 %
 // above m g 0.6.
 TEST(ThinBodies, RodsLandingTiltedOnTheirRimNeverGainEnergy) {
-    const real initial = kRodMass * kG * 0.6;
-    for (real radius : {0.001, 0.002, 0.005, 0.01}) {
-        for (real tilt : {0.5, 0.75, 1.0}) {
-            World world(noSleep());
-            addThinBodyFloor(world);
-            const BodyId rod = addThinRod(world, radius, tilt);
-            EXPECT_NEAR(thinBodyEnergy(world.body(rod)), initial, 1e-12);
-            EXPECT_LT(peakThinBodyEnergy(world, rod, 5.0), initial * 1.001) << "radius " << radius << " m, tilt " << tilt;
-            EXPECT_GT(world.body(rod).getPosition().y(), 0) << "radius " << radius << " m, tilt " << tilt;
-        }
-    }
+    expectRodsNeverGainEnergy({0.5, 0.75, 1.0});
 }
 
 // The needle: a box 0.2 mm square (half 0.1 mm) and 0.7 m long, 0.1 kg, released
