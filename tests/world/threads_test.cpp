@@ -163,9 +163,9 @@ TEST(CarrierThreads, RunsGoToTheirBodysHalfLevelByLevel) {
     std::vector<detail::SolverBody> bodies(7);
     detail::TaskPool pool(2);
     for (int pass = 0; pass < 100; ++pass) {
-        detail::beginCarrierPass(threads);
+        threads.finished.begin();
         pool.run(2, [&](int lane) { detail::solveCarrierShare(bodies, manifolds, runs, threads, lane, false); });
-        for (int r = 0; r < 6; ++r) ASSERT_EQ(threads.finished[r].load(), threads.pass) << "run " << r << ", pass " << pass;
+        for (int r = 0; r < 6; ++r) ASSERT_TRUE(threads.finished.finished(static_cast<std::size_t>(r))) << "run " << r << ", pass " << pass;
     }
 
     // Without halves every run is on lane 0, in order.
@@ -302,7 +302,7 @@ TEST(OrderedShares, TwoThreadsGiveTheOneThreadOrdersNumbers) {
     detail::TaskPool pool(2);
     for (int pass = 0; pass < 5; ++pass) {
         for (std::size_t k = 0; k < count; ++k) entries.solve(one, static_cast<int>(k));
-        detail::beginOrderedPass(shares);
+        shares.finished.begin();
         pool.run(2, [&](int share) {
             detail::solveOrderedShare(shares, share, [&](int k) { entries.solve(two, k); });
         });

@@ -238,7 +238,7 @@ void ConstraintSolver::storeVelocityPasses(Workers &workers) {
 void ConstraintSolver::solveCarrierPass(Workers &workers, StepStats &stats, bool reverse) {
     const std::vector<int> &uncarried = carrierRuns_.uncarried;
     if (orderedShares_ && uncarried.size() >= kMinSharedEntries) {
-        beginOrderedPass(uncarriedShares_);
+        uncarriedShares_.finished.begin();
         workers.forEachTask(2, [&](int share) {
             solveOrderedShare(uncarriedShares_, share,
                               [&](int k) { solveUncarriedManifold(bodies_, manifolds_[uncarried[k]], reverse); });
@@ -246,7 +246,7 @@ void ConstraintSolver::solveCarrierPass(Workers &workers, StepStats &stats, bool
     } else {
         solveUncarried(bodies_, manifolds_, uncarried, reverse);
     }
-    beginCarrierPass(carrierThreads_);
+    carrierThreads_.finished.begin();
     for (CarrierPassScratch &s : carrierThreads_.scratch) s.sweeps = 0;
     workers.forEachTask(carrierThreads_.share[1].empty() ? 1 : 2, [&](int share) {
         solveCarrierShare(bodies_, manifolds_, carrierRuns_, carrierThreads_, share, reverse);
@@ -261,7 +261,7 @@ void ConstraintSolver::solveResistancePass(Workers &workers) {
         solveResistance(bodies_, resistance_);
         return;
     }
-    beginOrderedPass(resistanceShares_);
+    resistanceShares_.finished.begin();
     workers.forEachTask(2, [&](int share) {
         solveOrderedShare(resistanceShares_, share, [&](int k) { solveResistanceRow(bodies_, resistance_[k]); });
     });

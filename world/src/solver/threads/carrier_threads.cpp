@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "world/task_pool.h"
-
 namespace cyclone::detail {
 namespace {
 
@@ -17,7 +15,7 @@ void awaitCarriers(const std::vector<SolverManifold> &manifolds, const CarrierRu
         const int carrier = carrierBody(manifolds[runs.manifolds[k]]);
         const int carrierRun = threads.runOf[carrier];
         if (carrierRun < 0) continue;
-        waitUntil([&] { return threads.finished[carrierRun].load(std::memory_order_acquire) == threads.pass; });
+        threads.finished.await(static_cast<std::size_t>(carrierRun));
     }
 }
 
@@ -94,18 +92,7 @@ void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifo
     const int levels = static_cast<int>(runs.levelStart.size()) - 1;
     threads.sortCount.reserve(static_cast<std::size_t>(std::max(carrierStop(levels).sweeps, levels)) + 2);
     for (std::vector<int> &list : threads.share) orderBySweeps(threads, list);
-    if (static_cast<std::size_t>(runCount) > threads.capacity) {
-        threads.capacity = static_cast<std::size_t>(runCount) * 2;
-        threads.finished = std::make_unique<std::atomic<std::uint32_t>[]>(threads.capacity);
-        threads.pass = 0;
-    }
-}
-
-void beginCarrierPass(CarrierThreads &threads) {
-    if (++threads.pass == 0) {  // wrapped: no flag may look finished in this pass
-        for (std::size_t r = 0; r < threads.capacity; ++r) threads.finished[r].store(0, std::memory_order_relaxed);
-        threads.pass = 1;
-    }
+    threads.finished.reserve(static_cast<std::size_t>(runCount));
 }
 
 void solveCarrierShare(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, CarrierRuns &runs,
@@ -124,7 +111,7 @@ void solveCarrierShare(std::vector<SolverBody> &bodies, std::vector<SolverManifo
         solveCarriedRuns(bodies, manifolds, runs, &list[k], static_cast<int>(end - k), reverse, threads.scratch[share]);
         for (std::size_t r = k; r < end; ++r) {
             threads.sweepsOf[threads.runBody[list[r]]] = threads.scratch[share].laneSweeps[r - k];
-            threads.finished[list[r]].store(threads.pass, std::memory_order_release);
+            threads.finished.finish(static_cast<std::size_t>(list[r]));
         }
     }
 }

@@ -10,13 +10,12 @@
 // would cost a hand-over per level and leave one thread idle on a stack's narrow top.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
-#include "solver/contact_solver.h"
 #include "solver/carrier_pass.h"
+#include "solver/contact_solver.h"
+#include "solver/threads/pass_flags.h"
 
 namespace cyclone::detail {
 
@@ -31,10 +30,7 @@ struct CarrierThreads {
     /// alike share a group; only the cost depends on it.
     std::vector<int> sweepsOf;
     std::vector<int> sortCount, sortScratch;  ///< Scratch of the runs' order, kept so that a step allocates nothing.
-    /// Per run: the pass (`pass`) in which it last finished.
-    std::unique_ptr<std::atomic<std::uint32_t>[]> finished;
-    std::size_t capacity = 0;  ///< Length of `finished`.
-    std::uint32_t pass = 0;
+    PassFlags finished;  ///< Per run: whether it finished in this pass.
     CarrierPassScratch scratch[2];  ///< Per share.
 };
 
@@ -42,9 +38,6 @@ struct CarrierThreads {
 /// halves) a run goes to its carried body's side, without it every run goes to share 0.
 void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifold> &manifolds,
                        const std::vector<signed char> *side, int bodyCount, CarrierThreads &threads);
-
-/// Opens a carrier pass: no run has finished in it yet.
-void beginCarrierPass(CarrierThreads &threads);
 
 /// Solves the runs of share `share` in order, each once its carriers' runs have finished (a
 /// carrier in the other share may still be running: this waits for it).

@@ -13,12 +13,10 @@
 // world (solver body 0) is read by both threads and written by neither.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
-#include "world/task_pool.h"
+#include "solver/threads/pass_flags.h"
 
 namespace cyclone::detail {
 
@@ -30,10 +28,7 @@ struct OrderedShares {
     std::vector<int> share[2];  ///< Each thread's entries, in the pass's order.
     /// Per entry, two places: the other thread's entries it waits for (-1: none).
     std::vector<int> waits;
-    /// Per entry: the pass (`pass`) in which it was last solved.
-    std::unique_ptr<std::atomic<std::uint32_t>[]> done;
-    std::size_t capacity = 0;  ///< Length of `done`.
-    std::uint32_t pass = 0;
+    PassFlags finished;  ///< Per entry: whether it is solved in this pass.
     std::vector<int> lastEntry;          ///< Scratch per solver body: the last entry met that touches it.
     std::vector<signed char> lastShare;  ///< Scratch per solver body: that entry's thread.
 };
@@ -65,28 +60,20 @@ void buildOrderedShares(std::size_t count, const BodyA &bodyA, const BodyB &body
             shares.lastShare[body] = mine;
         }
     }
-    if (count > shares.capacity) {
-        shares.capacity = count * 2;
-        shares.done = std::make_unique<std::atomic<std::uint32_t>[]>(shares.capacity);
-        shares.pass = 0;
-    }
+    shares.finished.reserve(count);
 }
-
-/// Opens a pass: no entry has been solved in it yet.
-void beginOrderedPass(OrderedShares &shares);
 
 /// Solves share `share`'s entries in order with solve(k), each once the other thread's
 /// entries it waits for are solved.
 template <class Solve>
 void solveOrderedShare(OrderedShares &shares, int share, const Solve &solve) {
-    const std::uint32_t pass = shares.pass;
     for (const int k : shares.share[share]) {
         for (int j = 0; j < 2; ++j) {
             const int wait = shares.waits[2 * static_cast<std::size_t>(k) + j];
-            if (wait >= 0) waitUntil([&] { return shares.done[wait].load(std::memory_order_acquire) == pass; });
+            if (wait >= 0) shares.finished.await(static_cast<std::size_t>(wait));
         }
         solve(k);
-        shares.done[k].store(pass, std::memory_order_release);
+        shares.finished.finish(static_cast<std::size_t>(k));
     }
 }
 
