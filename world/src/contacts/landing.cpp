@@ -196,7 +196,6 @@ void LandingCorrection::correct(const WorldSettings &settings, BodyStore &bodies
                                 const PreSolve &preSolve, const JointSet &joints, const Islands &islands,
                                 Workers &workers, real deepest, std::uint64_t stepCount, StepStats &stats) {
     if (!settings.debug.landingCorrection) return;
-    up_ = upward(settings.gravity);
     markFastBodies(settings, bodies, contacts, preSolve, workers, deepest);
     contacts.clearEndNormals();
     if (activeBodies_.empty()) return;
@@ -518,8 +517,8 @@ int LandingCorrection::push(const WorldSettings &settings, BodyStore &bodies, in
             if (massA > 0 && massB > 0) {
                 // Only a push down is bounded: A moves along -normal, B along normal.
                 const real down = normal.dot(up);
-                if (down > 0) lambda = std::min(lambda, reachLeft(bodies, point.a, down) / massA);
-                if (down < 0) lambda = std::min(lambda, reachLeft(bodies, point.b, -down) / massB);
+                if (down > 0) lambda = std::min(lambda, reachLeft(bodies, point.a, down, up) / massA);
+                if (down < 0) lambda = std::min(lambda, reachLeft(bodies, point.b, -down, up) / massB);
                 if (!(lambda > 0)) continue;
             }
             if (massA > 0) translate(bodies, point.a, -lambda * massA * normal, lambda * massA);
@@ -562,10 +561,10 @@ bool LandingCorrection::liftAbove(const BodyStore &bodies, const Point &point, b
     return true;
 }
 
-real LandingCorrection::reachLeft(const BodyStore &bodies, std::uint32_t index, real down) const {
+real LandingCorrection::reachLeft(const BodyStore &bodies, std::uint32_t index, real down, const Vector3 &up) const {
     if (!group_.empty() && group_[index] >= 0) return std::numeric_limits<real>::infinity();  // joints hold it
     const real limit = kStepReach * bodies[index].boundingRadius;
-    const real lowered = -shifts_[index].dot(up_);
+    const real lowered = -shifts_[index].dot(up);
     const real step = (limit - std::max<real>(lowered, 0)) / down;
     if (moveSlot_.size() <= index || moveSlot_[index] < 0) return std::min(limit, step);
     return std::min(limit - moved_[static_cast<std::size_t>(moveSlot_[index])].length, step);
@@ -573,7 +572,7 @@ real LandingCorrection::reachLeft(const BodyStore &bodies, std::uint32_t index, 
 
 // A push is a position change only: a body pushed up out of the floor it fell into keeps
 // the speed it hit the floor with and gains the push's height in potential energy (a rod
-// landing tilted on its rim, unseen by the step's contacts: 2-3 % of its energy). The
+// landing tilted on its rim, unseen by the step's contacts: up to 2 % of its energy). The
 // contact the step missed would have taken that speed: the push takes from the body's
 // speed against it the potential energy it gave (m |g| h), and no more, so that a bounce
 // keeps the rest. Only a body that touched no other movable body in the step (an island

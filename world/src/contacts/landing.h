@@ -108,14 +108,14 @@ private:
     /// `round`. Returns how many points were pushed.
     int push(const WorldSettings &settings, BodyStore &bodies, int round);
     /// How much farther a push between two movable bodies may move body `index`, `down`
-    /// being the cosine of its direction with gravity: a round's pushes kStepReach of the
-    /// body's size in all, the step's kStepReach down (unbounded in a joint group), m.
-    real reachLeft(const BodyStore &bodies, std::uint32_t index, real down) const;
+    /// being the cosine of its direction with gravity (`up` points against it): a round's
+    /// pushes kStepReach of the body's size in all, the step's kStepReach down (unbounded
+    /// in a joint group), m.
+    real reachLeft(const BodyStore &bodies, std::uint32_t index, real down, const Vector3 &up) const;
     /// Per body index: the translation this step's pushes gave it outside joint groups, m.
     std::vector<Vector3> shifts_;
     /// Takes from the body's speed against its pushes the potential energy they gave it.
     void payForLift(BodyStore &bodies, const Islands &islands, const Vector3 &gravity, std::uint32_t index);
-    Vector3 up_ = Vector3::UnitY();  ///< Against gravity (zero without it).
 
     /// Per body index: the last round that moved it (0: it moved fast in the step; -1: none).
     std::vector<int> movedRound_;
