@@ -6,6 +6,7 @@
 #include "collision/time_of_impact.h"
 #include "joints/joint_set.h"
 #include "world/body_transitions.h"
+#include "world/step_context.h"
 #include "world/workers.h"
 
 namespace cyclone::detail {
@@ -127,8 +128,11 @@ void forFlaggedBodies(const BodyStore &bodies, Workers &workers, std::vector<cha
 
 }  // namespace
 
-void ContactManager::findCandidates(const WorldSettings &settings, BodyStore &bodies, Broadphase &broadphase,
-                                    Workers &workers, StepStats &stats, real dt) {
+void ContactManager::findCandidates(const StepContext &context, BodyStore &bodies, Broadphase &broadphase,
+                                    StepStats &stats) {
+    const WorldSettings &settings = context.settings;
+    Workers &workers = context.workers;
+    const real dt = context.dt;
     movedObjects_.clear();
     // A body's box reaches as far as the body can move in the step, so that a pair that
     // can meet within it is a candidate (and gets a speculative contact).
@@ -202,9 +206,12 @@ void ContactManager::findCandidates(const WorldSettings &settings, BodyStore &bo
     stats.filteredPairs = found_.filtered;
 }
 
-void ContactManager::updateContacts(const WorldSettings &settings, BodyStore &bodies, const JointSet &joints,
-                                    Workers &workers, BodyTransitions transitions, std::uint64_t stepCount,
-                                    StepStats &stats, real dt) {
+void ContactManager::updateContacts(const StepContext &context, BodyStore &bodies, const JointSet &joints,
+                                    BodyTransitions transitions, StepStats &stats) {
+    const WorldSettings &settings = context.settings;
+    Workers &workers = context.workers;
+    const std::uint64_t stepCount = context.stepCount;
+    const real dt = context.dt;
     stepPairs_.clear();
     touchingPairs.clear();
     listCandidates(bodies, joints, workers, stats);
@@ -552,7 +559,8 @@ void ContactManager::removePairsOf(BodyStore &bodies, std::uint32_t index) {
 // it had at the end of the last step. The state is kept per pair slot together with the
 // two BodyIds it belonged to, so a slot reused by another pair, or a pair whose body was
 // removed (its generation moved on), ends the old contact before the new one begins.
-void ContactManager::reportContactEvents(const BodyStore &bodies, Workers &workers, WorldEvents &events) {
+void ContactManager::reportContactEvents(const StepContext &context, const BodyStore &bodies, WorldEvents &events) {
+    Workers &workers = context.workers;
     if (tracks_.size() < pairs.slots()) tracks_.resize(pairs.slots());
     // Only slots the narrowphase saw or that were removed can have changed. Those whose
     // state did change (few: a resting scene has none) are taken in slot order, so that

@@ -17,6 +17,7 @@
 namespace cyclone::detail {
 
 class JointSet;
+struct StepContext;
 class Workers;
 
 /// A pair slot's touching state at the end of the last step, for contact events.
@@ -35,20 +36,19 @@ public:
     std::vector<std::uint32_t> touchingPairs;
 
     /// The broadphase stage: places the awake bodies' collision objects and refits their
-    /// boxes in `broadphase`, each grown by how far the body can move in the step of `dt`
-    /// s, and lists the candidate pairs (planes tested apart); counts them, and a pair
-    /// budget exceeded, in `stats`.
-    void findCandidates(const WorldSettings &settings, BodyStore &bodies, Broadphase &broadphase,
-                        Workers &workers, StepStats &stats, real dt);
-    /// The narrowphase stage of step `stepCount`: each candidate's manifolds, kept or made
-    /// anew (speculative ones for shapes apart that can meet within `dt`), but for bodies
+    /// boxes in `broadphase`, each grown by how far the body can move in the step, and
+    /// lists the candidate pairs (planes tested apart); counts them, and a pair budget
+    /// exceeded, in `stats`.
+    void findCandidates(const StepContext &context, BodyStore &bodies, Broadphase &broadphase, StepStats &stats);
+    /// The narrowphase stage: each candidate's manifolds, kept or made anew (speculative
+    /// ones for shapes apart that can meet within the step), but for bodies
     /// whose joints exclude the contact; wakes the sleeping bodies a contact reaches
     /// (through `transitions`), which join this step with their island's pairs; drops the
     /// pairs that separated. Counts the pairs tested, reused and skipped in `stats`.
-    void updateContacts(const WorldSettings &settings, BodyStore &bodies, const JointSet &joints, Workers &workers,
-                        BodyTransitions transitions, std::uint64_t stepCount, StepStats &stats, real dt);
+    void updateContacts(const StepContext &context, BodyStore &bodies, const JointSet &joints,
+                        BodyTransitions transitions, StepStats &stats);
     /// Records the contacts that began or ended since the last call in `events`.
-    void reportContactEvents(const BodyStore &bodies, Workers &workers, WorldEvents &events);
+    void reportContactEvents(const StepContext &context, const BodyStore &bodies, WorldEvents &events);
 
     /// The step's pairs of a sensor and a body it sees (either order), for the sensors.
     const std::vector<CandidatePair> &sensorCandidates() const { return found_.sensors; }

@@ -11,6 +11,7 @@
 #include "contacts/pre_solve.h"
 #include "dynamics/islands.h"
 #include "joints/joint_set.h"
+#include "world/step_context.h"
 #include "world/workers.h"
 
 namespace cyclone::detail {
@@ -192,9 +193,13 @@ void LandingCorrection::translate(BodyStore &bodies, std::uint32_t index, const 
     }
 }
 
-void LandingCorrection::correct(const WorldSettings &settings, BodyStore &bodies, ContactManager &contacts,
+void LandingCorrection::correct(const StepContext &context, BodyStore &bodies, ContactManager &contacts,
                                 const PreSolve &preSolve, const JointSet &joints, const Islands &islands,
-                                Workers &workers, real deepest, std::uint64_t stepCount, StepStats &stats) {
+                                StepStats &stats) {
+    const WorldSettings &settings = context.settings;
+    Workers &workers = context.workers;
+    const real deepest = context.deepest;
+    const std::uint64_t stepCount = context.stepCount;
     if (!settings.debug.landingCorrection) return;
     markFastBodies(settings, bodies, contacts, preSolve, workers, deepest);
     contacts.clearEndNormals();

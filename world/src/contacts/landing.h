@@ -60,15 +60,15 @@ class ContactManager;
 class Islands;
 class JointSet;
 class PreSolve;
+struct StepContext;
 class Workers;
 
 class LandingCorrection {
 public:
     /// Tests again the step's candidate pairs with a fast body at the bodies' poses now,
     /// and pushes apart by position the points deeper than the tolerance.
-    void correct(const WorldSettings &settings, BodyStore &bodies, ContactManager &contacts, const PreSolve &preSolve,
-                 const JointSet &joints, const Islands &islands, Workers &workers, real deepest,
-                 std::uint64_t stepCount, StepStats &stats);
+    void correct(const StepContext &context, BodyStore &bodies, ContactManager &contacts, const PreSolve &preSolve,
+                 const JointSet &joints, const Islands &islands, StepStats &stats);
 
 private:
     /// A point of a manifold found at the end of the step, held by anchors on both bodies

@@ -4,6 +4,7 @@
 
 #include "collision/narrowphase.h"
 #include "world/body_store.h"
+#include "world/step_context.h"
 
 namespace cyclone::detail {
 namespace {
@@ -80,8 +81,9 @@ void Sensors::gatherAround(const BodyStore &bodies, Broadphase &broadphase, std:
     for (std::uint32_t plane : bodies.planes) consider(plane);
 }
 
-void Sensors::update(const BodyStore &bodies, Broadphase &broadphase, const std::vector<CandidatePair> &candidates,
-                     std::uint64_t step, WorldEvents &events, StepStats &stats) {
+void Sensors::update(const StepContext &context, const BodyStore &bodies, Broadphase &broadphase,
+                     const std::vector<CandidatePair> &candidates, WorldEvents &events, StepStats &stats) {
+    const std::uint64_t step = context.stepCount;
     const std::size_t beginsBefore = events.sensorBegins.size();
     const std::size_t endsBefore = events.sensorEnds.size();
 

@@ -23,6 +23,7 @@
 namespace cyclone::detail {
 
 struct BodyStore;
+struct StepContext;
 
 class Sensors {
 public:
@@ -39,12 +40,12 @@ public:
     /// Body `index`'s layers or pair rules changed: the overlaps they now forbid end now
     /// (end events in `events`), and the body is tested again in the next step.
     void filterChanged(const BodyStore &bodies, WorldEvents &events, std::uint32_t index);
-    /// The sensor stage of step `step` (run only while there are sensors): tests the
+    /// The sensor stage (run only while there are sensors): tests the
     /// broadphase's sensor pairs (`candidates`) and the rechecked bodies against what the
     /// broadphase finds around them, records the begin and end events in `events` and
     /// counts the tests in stats.sensorPairs.
-    void update(const BodyStore &bodies, Broadphase &broadphase, const std::vector<CandidatePair> &candidates,
-                std::uint64_t step, WorldEvents &events, StepStats &stats);
+    void update(const StepContext &context, const BodyStore &bodies, Broadphase &broadphase,
+                const std::vector<CandidatePair> &candidates, WorldEvents &events, StepStats &stats);
 
 private:
     /// Queues body `index` for a test against every body its box overlaps.

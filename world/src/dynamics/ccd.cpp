@@ -25,11 +25,14 @@
 #include "collision/broadphase.h"
 #include "contacts/pair_cache.h"
 #include "world/body_store.h"
+#include "world/step_context.h"
 
 namespace cyclone::detail {
 
-void ContinuousCollision::sweep(const WorldSettings &settings, BodyStore &bodies, Broadphase &broadphase,
-                                const PairCache &pairs, std::uint64_t stepCount, StepStats &stats) {
+void ContinuousCollision::sweep(const StepContext &context, BodyStore &bodies, Broadphase &broadphase,
+                                const PairCache &pairs, StepStats &stats) {
+    const WorldSettings &settings = context.settings;
+    const std::uint64_t stepCount = context.stepCount;
     // How deep a stopped body is left in what it hits: the slop, which the solver leaves
     // alone, and at least 0.1 mm.
     const real depth = std::max(settings.penetrationSlop, real(0.0001));

@@ -11,16 +11,17 @@ namespace cyclone::detail {
 class Broadphase;
 struct BodyStore;
 class PairCache;
+struct StepContext;
 
 class ContinuousCollision {
 public:
     /// Puts each ccd body that moved further than its inner radius back to where its
     /// motion first touched something (collision/time_of_impact.h), a slop deep
     /// (settings.penetrationSlop). Reads the bodies' collision objects (their poses at the
-    /// step's start), the pairs touching in step `stepCount` and the broadphase; writes the
+    /// step's start), the pairs touching in this step and the broadphase; writes the
     /// stopped bodies' poses and velocities, and stats.ccdSweeps and ccdHits.
-    void sweep(const WorldSettings &settings, BodyStore &bodies, Broadphase &broadphase, const PairCache &pairs,
-               std::uint64_t stepCount, StepStats &stats);
+    void sweep(const StepContext &context, BodyStore &bodies, Broadphase &broadphase, const PairCache &pairs,
+               StepStats &stats);
 
 private:
     /// Where a body's motion stops: a fraction of it (1: nowhere), and the body whose core

@@ -20,13 +20,13 @@ bool stateFinite(const RigidBody &body) {
 
 }  // namespace
 
-void Integration::beginStep(BodyStore &bodies, const SpringSet &springs, BodyTransitions transitions,
-                            StepContext &context, real dt) {
+void Integration::beginStep(StepContext &context, BodyStore &bodies, const SpringSet &springs,
+                            BodyTransitions transitions) {
     bodies.sortAwake();
     // `simulated` of the bodies simulated last step; the others are already false.
     for (std::uint32_t index : bodies.simulated) bodies[index].simulated = false;
     bodies.simulated.clear();
-    stepSeconds_ = dt;
+    stepSeconds_ = context.dt;
     admitting_ = true;
     for (std::size_t k = 0; k < bodies.awake.size(); ++k)
         if (!enter(bodies, transitions, bodies.awake[k])) --k;  // isolated: slot k now holds another body
@@ -68,9 +68,9 @@ bool Integration::enter(BodyStore &bodies, BodyTransitions transitions, std::uin
     return true;
 }
 
-void Integration::closeAdmission(const WorldSettings &settings, const BodyStore &bodies) {
+void Integration::closeAdmission(const StepContext &context, const BodyStore &bodies) {
     admitting_ = false;
-    if (settings.substeps <= 1) return;
+    if (context.settings.substeps <= 1) return;
     savedForces_.resize(bodies.simulated.size());
     savedTorques_.resize(bodies.simulated.size());
     for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
@@ -82,8 +82,8 @@ void Integration::closeAdmission(const WorldSettings &settings, const BodyStore 
 // Held for a whole step, an explicit spring force would gain energy at any stiffness once
 // there are sub-steps (the positions would move under a force that lags them): springs
 // act at each sub-step's start.
-void Integration::addSubstepForces(const WorldSettings &settings, BodyStore &bodies, SpringSet &springs,
-                                   const StepContext &context, real h, bool firstSubstep) {
+void Integration::addSubstepForces(const StepContext &context, BodyStore &bodies, SpringSet &springs,
+                                   bool firstSubstep) {
     if (!firstSubstep) {
         for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
             BodyRecord &r = bodies[bodies.simulated[k]];
@@ -94,14 +94,15 @@ void Integration::addSubstepForces(const WorldSettings &settings, BodyStore &bod
     }
     if (context.activeSprings == 0) return;
     // The explicit forces first: the implicit ones are solved with them in place.
-    const int implicitCount = springs.chooseForces(bodies, settings, h);
+    const int implicitCount = springs.chooseForces(bodies, context.settings, context.h);
     springs.addExplicitForces(bodies);
-    if (implicitCount > 0) springs.addImplicitForces(bodies, h);
+    if (implicitCount > 0) springs.addImplicitForces(bodies, context.h);
 }
 
-void Integration::integrate(BodyStore &bodies, Workers &workers, BodyTransitions transitions, real h) {
+void Integration::integrate(const StepContext &context, BodyStore &bodies, BodyTransitions transitions) {
+    const real h = context.h;
     nonFinite_.assign(bodies.simulated.size(), 0);
-    workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
+    context.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         RigidBody &body = bodies[bodies.simulated[k]].body;
         if (bodies[bodies.simulated[k]].isolated) return;
         body.integrate(h, false);

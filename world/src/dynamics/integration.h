@@ -20,22 +20,20 @@ public:
     /// when it starts), isolating any whose forces overflow its velocity; wakes the other
     /// end of a spring on a moving body and counts the active springs
     /// (context.activeSprings). Admission stays open until closeAdmission.
-    void beginStep(BodyStore &bodies, const SpringSet &springs, BodyTransitions transitions, StepContext &context,
-                   real dt);
+    void beginStep(StepContext &context, BodyStore &bodies, const SpringSet &springs, BodyTransitions transitions);
     /// Adds a body woken during the step (by a contact, joint, spring or kinematic body)
     /// to the bodies it moves, while admission is open; otherwise nothing.
     void admit(BodyStore &bodies, BodyTransitions transitions, std::uint32_t index);
     /// Ends admission once the contacts are known: the step's bodies are final. Keeps the
     /// user's forces for the later sub-steps (when settings.substeps > 1).
-    void closeAdmission(const WorldSettings &settings, const BodyStore &bodies);
-    /// Forces of one sub-step of h seconds: the user's forces again after the first
+    void closeAdmission(const StepContext &context, const BodyStore &bodies);
+    /// Forces of one sub-step (context.h s): the user's forces again after the first
     /// sub-step (integrate cleared them), then the springs at the sub-step's start (when
     /// context.activeSprings is not 0).
-    void addSubstepForces(const WorldSettings &settings, BodyStore &bodies, SpringSet &springs,
-                          const StepContext &context, real h, bool firstSubstep);
-    /// Moves every simulated body over h seconds (shared by the workers); isolates those
-    /// whose state is no longer finite.
-    void integrate(BodyStore &bodies, Workers &workers, BodyTransitions transitions, real h);
+    void addSubstepForces(const StepContext &context, BodyStore &bodies, SpringSet &springs, bool firstSubstep);
+    /// Moves every simulated body over a sub-step (context.h s, shared by the workers);
+    /// isolates those whose state is no longer finite.
+    void integrate(const StepContext &context, BodyStore &bodies, BodyTransitions transitions);
 
 private:
     /// Lists one awake body as simulated, or isolates it (false) if its forces overflow.

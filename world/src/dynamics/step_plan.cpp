@@ -39,8 +39,10 @@ StepPlan plan(int substeps, int iterations, const WorldSettings &settings) {
 
 }  // namespace
 
-StepPlan planStep(const WorldSettings &settings, const StepContext &context, const BodyStore &bodies,
-                  const PairCache &pairs, std::uint64_t stepCount, real dt) {
+StepPlan planStep(const StepContext &context, const BodyStore &bodies, const PairCache &pairs) {
+    const WorldSettings &settings = context.settings;
+    const std::uint64_t stepCount = context.stepCount;
+    const real dt = context.dt;
     const StepPlan full = plan(settings.substeps, settings.velocityIterations, settings);
     const int resting = settings.debug.restingSubsteps;
     if (resting <= 0 || resting >= settings.substeps) return full;

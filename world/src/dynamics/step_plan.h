@@ -39,11 +39,10 @@ struct StepPlan {
     real recovery = 0;
 };
 
-/// The plan of the step of `dt` (step number `stepCount`) about to be solved, from the
-/// settings, the step's active joints and springs (`context`), the bodies and their
-/// contact pairs: called after the narrowphase (it reads which bodies touch something)
-/// and before the solver's manifolds are built.
-StepPlan planStep(const WorldSettings &settings, const StepContext &context, const BodyStore &bodies,
-                  const PairCache &pairs, std::uint64_t stepCount, real dt);
+/// The plan of the step about to be solved, from the settings, the step's length and
+/// its active joints and springs (`context`), the bodies and their contact pairs: called
+/// after the narrowphase (it reads which bodies touch something) and before the solver's
+/// manifolds are built.
+StepPlan planStep(const StepContext &context, const BodyStore &bodies, const PairCache &pairs);
 
 }  // namespace cyclone::detail

@@ -34,7 +34,7 @@ namespace cyclone::detail {
 namespace {
 
 constexpr std::uint32_t kStateTag = 0x54535943;  // "CYST"
-constexpr std::uint32_t kStateVersion = 2;
+constexpr std::uint32_t kStateVersion = 3;
 /// Tag, version, payload length, checksum.
 constexpr std::size_t kHeaderSize = 4 + 4 + 8 + 8;
 
@@ -910,7 +910,7 @@ void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) 
     std::uint64_t fingerprint = shapesFingerprint(w.shapes, w.shapes.size());
     io(a, fingerprint);
     a.count(w.shapes.size());
-    io(a, w.stepCount, w.context.plan);
+    io(a, w.stepCount);
 
     BodyStore &bodies = w.bodies;
     a.count(bodies.size());
@@ -976,7 +976,7 @@ void StateFields::restore(WorldState &w, const std::uint8_t *data, std::size_t s
     const std::size_t shapes = a.count(0, 0);
     if (shapes > w.shapes.size() || shapesFingerprint(w.shapes, shapes) != fingerprint)
         throw UnreadableState{"is from another World: its bodies were added with other shapes"};
-    io(a, w.stepCount, w.context.plan);
+    io(a, w.stepCount);
 
     // The trees hold the objects of the bodies about to be replaced: emptied first.
     Broadphase &b = w.broadphase;

@@ -54,9 +54,11 @@ void stampBody(StampedBody &stamped, const BodyRecord &r) {
 
 }  // namespace
 
-void ConstraintSolver::build(const WorldSettings &settings, const BodyStore &bodies, ContactManager &contacts,
-                             PreSolve &preSolve, Workers &workers, std::uint64_t stepCount, StepContext &context,
-                             StepStats &stats) {
+void ConstraintSolver::build(StepContext &context, const BodyStore &bodies, ContactManager &contacts,
+                             PreSolve &preSolve, StepStats &stats) {
+    const WorldSettings &settings = context.settings;
+    Workers &workers = context.workers;
+    const std::uint64_t stepCount = context.stepCount;
     // The solve order is settled on small keys first and the solver manifolds are then
     // built in that order: sorting the built manifolds (~2 KB each) meant copying all of
     // them every step.
@@ -249,8 +251,10 @@ void ConstraintSolver::assignSlots(const PairCache &pairs, Workers &workers, std
     }
 }
 
-void ConstraintSolver::prepare(const WorldSettings &settings, const BodyStore &bodies, Workers &workers,
-                               const StepContext &context, StepStats &stats, real h) {
+void ConstraintSolver::prepare(const StepContext &context, const BodyStore &bodies, StepStats &stats) {
+    const WorldSettings &settings = context.settings;
+    Workers &workers = context.workers;
+    const real h = context.h;
     prepareBodies(bodies, workers, h);
     if (manifolds_.empty()) return;  // nothing below is read without contacts
     orderManifolds(settings, bodies, workers);

@@ -56,30 +56,27 @@ public:
     /// Orders the touching pairs' manifolds of `contacts` (lowest first along -gravity),
     /// runs the pre-solve stage over them, gives each a solver slot and fills it from the
     /// manifold (warm started at context.plan.warmScale); writes each manifold's slot and
-    /// step (`stepCount`), context.deepest and the stats' manifold and contact counts.
-    void build(const WorldSettings &settings, const BodyStore &bodies, ContactManager &contacts, PreSolve &preSolve,
-               Workers &workers, std::uint64_t stepCount, StepContext &context, StepStats &stats);
+    /// step (context.stepCount), context.deepest and the stats' manifold and contact counts.
+    void build(StepContext &context, const BodyStore &bodies, ContactManager &contacts, PreSolve &preSolve,
+               StepStats &stats);
     /// Sets up the solver bodies and, for every slot whose Jacobians do not still hold,
-    /// the Jacobians and effective masses (sub-steps of h s, context.plan.substeps of
-    /// them); orders the passes and the carrier pass; counts the rows in `stats`.
-    void prepare(const WorldSettings &settings, const BodyStore &bodies, Workers &workers, const StepContext &context,
-                 StepStats &stats, real h);
+    /// the Jacobians and effective masses (sub-steps of context.h s, context.plan.substeps
+    /// of them); orders the passes and the carrier pass; counts the rows in `stats`.
+    void prepare(const StepContext &context, const BodyStore &bodies, StepStats &stats);
     /// One sub-step's velocities: predicted without contacts, then corrected by the
     /// velocity passes, the joints (when context.activeJoints) and the carrier pass (its
-    /// direction from `stepCount`), and given to the bodies; a body whose velocity
+    /// direction from context.stepCount), and given to the bodies; a body whose velocity
     /// overflows is isolated through `transitions`. Counts its passes in `stats`.
-    void solveVelocities(const WorldSettings &settings, BodyStore &bodies, JointSet &joints, Workers &workers,
-                         BodyTransitions transitions, const StepContext &context, std::uint64_t stepCount,
-                         StepStats &stats, real h, bool firstSubstep);
+    void solveVelocities(const StepContext &context, BodyStore &bodies, JointSet &joints, BodyTransitions transitions,
+                         StepStats &stats, bool firstSubstep);
     /// Pushes bodies out of penetration beyond the slop without adding energy (a body whose
     /// pose overflows is isolated through `transitions`), then projects the joined bodies'
     /// positions onto their joints.
-    void recoverPenetration(const WorldSettings &settings, BodyStore &bodies, JointSet &joints, Workers &workers,
-                            BodyTransitions transitions, const StepContext &context, StepStats &stats, real h);
+    void recoverPenetration(const StepContext &context, BodyStore &bodies, JointSet &joints,
+                            BodyTransitions transitions, StepStats &stats);
     /// Hands the accumulated impulses back to the pairs' manifolds for warm starting, and
     /// reports each solved pair's normal impulse of the step in events.contactImpulses.
-    void storeImpulses(const BodyStore &bodies, PairCache &pairs, Workers &workers, const StepContext &context,
-                       WorldEvents &events);
+    void storeImpulses(const StepContext &context, const BodyStore &bodies, PairCache &pairs, WorldEvents &events);
 
 private:
     // Building (constraint_builder.cpp).
@@ -102,8 +99,7 @@ private:
     void predictVelocities(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
                            BodyTransitions transitions, int substeps, StepStats &stats, real h, bool firstSubstep);
     void refreshTargets(const BodyStore &bodies, Workers &workers, real restitutionThreshold, real h);
-    void solvePasses(const WorldSettings &settings, const BodyStore &bodies, JointSet &joints, Workers &workers,
-                     const StepContext &context, std::uint64_t stepCount, StepStats &stats, real h,
+    void solvePasses(const StepContext &context, const BodyStore &bodies, JointSet &joints, StepStats &stats,
                      bool firstSubstep);
     void giveVelocities(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
                         BodyTransitions transitions, bool firstSubstep);

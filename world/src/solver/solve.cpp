@@ -39,12 +39,13 @@ bool changeVelocities(RigidBody &body, const Vector3 &dv, const Vector3 &dw) {
 
 // One sub-step: the velocities each body reaches without contacts, the contacts' targets at
 // the sub-step's poses, the passes, and the change they made handed to the bodies.
-void ConstraintSolver::solveVelocities(const WorldSettings &settings, BodyStore &bodies, JointSet &joints,
-                                       Workers &workers, BodyTransitions transitions, const StepContext &context,
-                                       std::uint64_t stepCount, StepStats &stats, real h, bool firstSubstep) {
-    predictVelocities(settings, bodies, workers, transitions, context.plan.substeps, stats, h, firstSubstep);
-    if (!firstSubstep) refreshTargets(bodies, workers, settings.restitutionThreshold, h);
-    solvePasses(settings, bodies, joints, workers, context, stepCount, stats, h, firstSubstep);
+void ConstraintSolver::solveVelocities(const StepContext &context, BodyStore &bodies, JointSet &joints,
+                                       BodyTransitions transitions, StepStats &stats, bool firstSubstep) {
+    const WorldSettings &settings = context.settings;
+    Workers &workers = context.workers;
+    predictVelocities(settings, bodies, workers, transitions, context.plan.substeps, stats, context.h, firstSubstep);
+    if (!firstSubstep) refreshTargets(bodies, workers, settings.restitutionThreshold, context.h);
+    solvePasses(context, bodies, joints, stats, firstSubstep);
     giveVelocities(settings, bodies, workers, transitions, firstSubstep);
 }
 
@@ -126,14 +127,15 @@ void ConstraintSolver::refreshTargets(const BodyStore &bodies, Workers &workers,
 
 // The velocity passes, the resistance rows and the joints, then the carrier pass; each
 // slot's normal impulses are added to its step's total.
-void ConstraintSolver::solvePasses(const WorldSettings &settings, const BodyStore &bodies, JointSet &joints,
-                                   Workers &workers, const StepContext &context, std::uint64_t stepCount,
-                                   StepStats &stats, real h, bool firstSubstep) {
+void ConstraintSolver::solvePasses(const StepContext &context, const BodyStore &bodies, JointSet &joints,
+                                   StepStats &stats, bool firstSubstep) {
+    const WorldSettings &settings = context.settings;
+    Workers &workers = context.workers;
     // Joints: rows made at the sub-step's poses, warm-started, and solved in the same
     // passes as the contacts, after them (joints/joint_set.h).
     const bool joined = context.activeJoints > 0;
     if (joined) {
-        joints.prepare(bodies, settings.debug.warmStarting, context, stats, bodies_, h);
+        joints.prepare(bodies, settings.debug.warmStarting, context, stats, bodies_, context.h);
         joints.warmStart(bodies_);
     }
     if (!manifolds_.empty()) {
@@ -153,7 +155,7 @@ void ConstraintSolver::solvePasses(const WorldSettings &settings, const BodyStor
             const StageTimer timed(stats.ms.solveParts.carrier);
             // A run sweeps its points in one direction: the other one next step, so that
             // no point of a face takes the larger share step after step (carrier_pass.h).
-            solveCarrierPass(workers, stats, ((passes & 1) != 0) != ((stepCount & 1) != 0));
+            solveCarrierPass(workers, stats, ((passes & 1) != 0) != ((context.stepCount & 1) != 0));
             // The carrier pass moved joined bodies too: the joints have the last word.
             if (joined) joints.solveVelocities(bodies_);
         }
@@ -267,10 +269,10 @@ void ConstraintSolver::solveResistancePass(Workers &workers) {
     });
 }
 
-void ConstraintSolver::recoverPenetration(const WorldSettings &settings, BodyStore &bodies, JointSet &joints,
-                                          Workers &workers, BodyTransitions transitions, const StepContext &context,
-                                          StepStats &stats, real h) {
-    recoverContactPenetration(settings, bodies, workers, transitions, context.plan.recovery, stats, h);
+void ConstraintSolver::recoverPenetration(const StepContext &context, BodyStore &bodies, JointSet &joints,
+                                          BodyTransitions transitions, StepStats &stats) {
+    const WorldSettings &settings = context.settings;
+    recoverContactPenetration(settings, bodies, context.workers, transitions, context.plan.recovery, stats, context.h);
     if (context.activeJoints > 0)
         joints.correctPositions(bodies, settings.debug.warmStarting, context, bodies_, settings.positionIterations);
 }
@@ -330,10 +332,10 @@ void ConstraintSolver::recoverContactPenetration(const WorldSettings &settings, 
         if (overflowed_[k]) transitions.isolate(bodies.simulated[k]);
 }
 
-void ConstraintSolver::storeImpulses(const BodyStore &bodies, PairCache &pairs, Workers &workers,
-                                     const StepContext &context, WorldEvents &events) {
+void ConstraintSolver::storeImpulses(const StepContext &context, const BodyStore &bodies, PairCache &pairs,
+                                     WorldEvents &events) {
     const real scale = 1 / context.plan.warmScale;  // stored per default sub-step (step_plan.h)
-    workers.forEach(manifolds_.size(), [&](std::size_t s) {
+    context.workers.forEach(manifolds_.size(), [&](std::size_t s) {
         const SolverManifold &m = manifolds_[s];
         PairState &pair = pairs[sources_[s].pair];
         const std::size_t k = sources_[s].index;

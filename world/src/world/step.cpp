@@ -26,32 +26,30 @@ void report(const StepContext &context, const BodyStore &bodies, const Workers &
     ms.shared = workers.shared();
 }
 
-// One sub-step of h s: its forces, the velocities solved, integration, penetration
-// recovered, the locked axes held.
-void runSubstep(WorldState &world, real h, bool first) {
+// One sub-step (context.h s): its forces, the velocities solved, integration,
+// penetration recovered, the locked axes held.
+void runSubstep(WorldState &world, const StepContext &context, bool first) {
     StageTimes &ms = world.stats.ms;
     const BodyTransitions transitions(world);
     {
         const StageTimer t(ms.forces);
-        world.integration.addSubstepForces(world.settings, world.bodies, world.springs, world.context, h, first);
+        world.integration.addSubstepForces(context, world.bodies, world.springs, first);
     }
     {
         // The velocity part is the solve less the carrier pass, which times itself.
         const double carrierBefore = ms.solveParts.carrier;
         const StageTimer t(ms.solve);
-        world.solver.solveVelocities(world.settings, world.bodies, world.joints, world.workers, transitions,
-                                     world.context, world.stepCount, world.stats, h, first);
+        world.solver.solveVelocities(context, world.bodies, world.joints, transitions, world.stats, first);
         ms.solveParts.velocity += t.elapsed() - (ms.solveParts.carrier - carrierBefore);
     }
     {
         const StageTimer t(ms.integrate);
-        world.integration.integrate(world.bodies, world.workers, transitions, h);
-        KinematicBodies::integrate(world.bodies, h);
+        world.integration.integrate(context, world.bodies, transitions);
+        KinematicBodies::integrate(world.bodies, context.h);
     }
     {
         const StageTimer t(ms.solve);  // recoverPenetration times itself into solveParts.position
-        world.solver.recoverPenetration(world.settings, world.bodies, world.joints, world.workers, transitions,
-                                        world.context, world.stats, h);
+        world.solver.recoverPenetration(context, world.bodies, world.joints, transitions, world.stats);
     }
     { const StageTimer t(ms.integrate); world.axisLocks.hold(world.bodies); }
 }
@@ -60,13 +58,11 @@ void runSubstep(WorldState &world, real h, bool first) {
 
 void WorldState::step(real dt) {
     stats = StepStats();
-    context = StepContext();
-    context.dt = dt;
-    ++stepCount;
-    events.openStep();
-    StageTimes &ms = stats.ms;
     workers.match(settings.threads);  // the narrowphase and the solver share their work
     workers.resetTimes();
+    StepContext context(settings, workers, ++stepCount, dt);
+    events.openStep();
+    StageTimes &ms = stats.ms;
 
     if (!characters.empty()) {
         const StageTimer t(ms.characters);
@@ -74,51 +70,41 @@ void WorldState::step(real dt) {
     }
     {
         const StageTimer t(ms.forces);
-        integration.beginStep(bodies, springs, BodyTransitions(*this), context, dt);
+        integration.beginStep(context, bodies, springs, BodyTransitions(*this));
         axisLocks.beginStep(bodies);
         KinematicBodies::beginStep(bodies, contacts.pairs, BodyTransitions(*this));
         joints.beginStep(bodies, BodyTransitions(*this), context);
     }
-    {
-        const StageTimer t(ms.broadphase);
-        contacts.findCandidates(settings, bodies, broadphase, workers, stats, dt);
-    }
+    { const StageTimer t(ms.broadphase); contacts.findCandidates(context, bodies, broadphase, stats); }
     {
         const StageTimer t(ms.narrowphase);
-        contacts.updateContacts(settings, bodies, joints, workers, BodyTransitions(*this), stepCount, stats, dt);
+        contacts.updateContacts(context, bodies, joints, BodyTransitions(*this), stats);
     }
     // The step's bodies are final: those woken by its contacts, joints and springs are in.
-    integration.closeAdmission(settings, bodies);
+    integration.closeAdmission(context, bodies);
     KinematicBodies::number(bodies);
-    { const StageTimer t(ms.events); contacts.reportContactEvents(bodies, workers, events.events); }
+    { const StageTimer t(ms.events); contacts.reportContactEvents(context, bodies, events.events); }
     if (bodies.sensorCount > 0) {
         const StageTimer t(ms.sensors);
-        sensors.update(bodies, broadphase, contacts.sensorCandidates(), stepCount, *events.sink, stats);
+        sensors.update(context, bodies, broadphase, contacts.sensorCandidates(), *events.sink, stats);
     }
-    context.plan = planStep(settings, context, bodies, contacts.pairs, stepCount, dt);
-    const StepPlan &plan = context.plan;
-    {
-        const StageTimer t(ms.manifolds);
-        solver.build(settings, bodies, contacts, preSolve, workers, stepCount, context, stats);
-    }
+    context.plan = planStep(context, bodies, contacts.pairs);
+    context.h = dt / context.plan.substeps;
+    { const StageTimer t(ms.manifolds); solver.build(context, bodies, contacts, preSolve, stats); }
     { const StageTimer t(ms.islands); islands.build(bodies, solver.manifolds(), springs, joints, stats); }
 
-    const real h = dt / plan.substeps;
-    {
-        const StageTimer t(ms.solveParts.setup);
-        solver.prepare(settings, bodies, workers, context, stats, h);
-    }
+    { const StageTimer t(ms.solveParts.setup); solver.prepare(context, bodies, stats); }
     ms.solve += ms.solveParts.setup;
-    for (int substep = 0; substep < plan.substeps; ++substep) runSubstep(*this, h, substep == 0);
+    for (int substep = 0; substep < context.plan.substeps; ++substep) runSubstep(*this, context, substep == 0);
     {
         const StageTimer t(ms.solve);
-        solver.storeImpulses(bodies, contacts.pairs, workers, context, *events.sink);
+        solver.storeImpulses(context, bodies, contacts.pairs, *events.sink);
         joints.finishStep(bodies, context, *events.sink, BodyTransitions(*this), dt);
     }
-    { const StageTimer t(ms.ccd); ccd.sweep(settings, bodies, broadphase, contacts.pairs, stepCount, stats); }
+    { const StageTimer t(ms.ccd); ccd.sweep(context, bodies, broadphase, contacts.pairs, stats); }
     {
         const StageTimer t(ms.landing);
-        landing.correct(settings, bodies, contacts, preSolve, joints, islands, workers, context.deepest, stepCount, stats);
+        landing.correct(context, bodies, contacts, preSolve, joints, islands, stats);
     }
     { const StageTimer t(ms.integrate); axisLocks.hold(bodies); }
     {

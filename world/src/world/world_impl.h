@@ -54,7 +54,6 @@ struct WorldState {
     Workers workers;
     StepStats stats;
     std::uint64_t stepCount = 0;
-    StepContext context;  ///< What this step's stages share (world/step_context.h).
     /// Every shape a body was added with, in the order of the calls (kept after the body is
     /// removed): a saved state names its bodies' shapes by place in it (snapshot/world_state_io.cpp).
     std::vector<std::shared_ptr<const CollisionShape>> shapes;
