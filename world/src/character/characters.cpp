@@ -4,6 +4,7 @@
 #include <string>
 
 #include "character/character_record.h"
+#include "world/free_slots.h"
 #include "world/validation.h"
 
 namespace cyclone::detail {
@@ -29,14 +30,7 @@ const CharacterRecord &Characters::record(CharacterId id, const char *function) 
 }
 
 CharacterId Characters::add(CharacterRecord c) {
-    std::uint32_t index;
-    if (!free.empty()) {
-        index = free.back();
-        free.pop_back();
-    } else {
-        index = static_cast<std::uint32_t>(records.size());
-        records.emplace_back();
-    }
+    const std::uint32_t index = takeSlot(records, free);
     c.generation = records[index].generation;
     c.alive = true;
     records[index] = c;
@@ -44,11 +38,9 @@ CharacterId Characters::add(CharacterRecord c) {
 }
 
 BodyId Characters::remove(CharacterId id, const char *function) {
-    CharacterRecord &c = record(id, function);
-    c.alive = false;  // first, so that World::removeBody takes its capsule
-    ++c.generation;
-    free.push_back(id.index);
-    return c.body;
+    const BodyId capsule = record(id, function).body;
+    freeSlot(records, free, id.index);  // first, so that World::removeBody takes its capsule
+    return capsule;
 }
 
 CharacterState Characters::state(CharacterId id, const char *function) const {

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "world/body_store.h"
+#include "world/free_slots.h"
 #include "world/step_context.h"
 
 namespace cyclone::detail {
@@ -43,14 +44,7 @@ real coupling(const JointRow &ri, int si, const JointRow &rj, int sj) {
 }  // namespace
 
 JointId JointSet::add(const BodyStore &bodies, const JointSettings &s) {
-    std::uint32_t index;
-    if (!free.empty()) {
-        index = free.back();
-        free.pop_back();
-    } else {
-        index = static_cast<std::uint32_t>(records.size());
-        records.emplace_back();
-    }
+    const std::uint32_t index = takeSlot(records, free);
     JointRecord &j = records[index];
     const std::uint32_t generation = j.generation;
     j = JointRecord();
@@ -94,9 +88,7 @@ void JointSet::remove(std::uint32_t index) {
         const auto it = excluded_.find(pairKey(j.settings.a.index, j.settings.b->index));
         if (--it->second == 0) excluded_.erase(it);
     }
-    j.alive = false;
-    ++j.generation;
-    free.push_back(index);
+    freeSlot(records, free, index);
     --count;
 }
 

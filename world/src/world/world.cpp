@@ -8,6 +8,7 @@
 #include "collision/round_side.h"
 #include "collision/time_of_impact.h"
 #include "world/mass_range.h"
+#include "world/free_slots.h"
 #include "world/validation.h"
 #include "world/world_impl.h"
 
@@ -186,17 +187,6 @@ void checkFilterAndRules(const char *function, const BodySettings &settings) {
         detail::refuse(function, "oneWay", "must be finite and not zero, got " + detail::show(*settings.oneWay));
 }
 
-// A free slot of `bodies` (a new one when none is free).
-std::uint32_t takeSlot(detail::BodyStore &bodies) {
-    if (bodies.free.empty()) {
-        bodies.records.emplace_back();
-        return static_cast<std::uint32_t>(bodies.size() - 1);
-    }
-    const std::uint32_t index = bodies.free.back();
-    bodies.free.pop_back();
-    return index;
-}
-
 // Fills the record `r` of a new body of `settings` moving as `motion`, out of every tree.
 void fillRecord(detail::BodyRecord &r, const BodySettings &settings, Motion motion, const RigidBody &body,
                 const std::shared_ptr<const detail::CollisionShape> &shape) {
@@ -315,7 +305,7 @@ BodyId World::addBody(const BodySettings &settings) {
         detail::requireReach(function, "position", body.getPosition(), shape->boundingRadius());
 
     // Nothing below throws on user input: the world changes only from here on.
-    const std::uint32_t index = takeSlot(w.bodies);
+    const std::uint32_t index = detail::takeSlot(w.bodies.records, w.bodies.free);
     detail::BodyRecord &r = w.bodies[index];
     fillRecord(r, settings, motion, body, shape);
     r.shapeIndex = static_cast<std::uint32_t>(w.shapes.size());
@@ -613,14 +603,7 @@ SpringId World::addSpring(const SpringSettings &s) {
     if (s.force != SpringForce::Automatic && s.force != SpringForce::Explicit)
         detail::refuse(function, "force",
                        "must be Automatic or Explicit, got " + std::to_string(static_cast<int>(s.force)));
-    std::uint32_t index;
-    if (!w.springs.free.empty()) {
-        index = w.springs.free.back();
-        w.springs.free.pop_back();
-    } else {
-        index = static_cast<std::uint32_t>(w.springs.records.size());
-        w.springs.records.emplace_back();
-    }
+    const std::uint32_t index = detail::takeSlot(w.springs.records, w.springs.free);
     detail::SpringRecord &r = w.springs.records[index];
     r.settings = s;
     r.alive = true;
@@ -637,9 +620,7 @@ void World::removeSpring(SpringId id) {
     detail::SpringRecord &r = w.springs.records[id.index];
     const BodyId a = r.settings.a;
     const std::optional<BodyId> b = r.settings.b;
-    r.alive = false;
-    ++r.generation;
-    w.springs.free.push_back(id.index);
+    detail::freeSlot(w.springs.records, w.springs.free, id.index);
     if (contains(a) && !w.bodies[a.index].immovable) w.wake(a.index);
     if (b && contains(*b) && !w.bodies[b->index].immovable) w.wake(b->index);
 }
