@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cyclone/world/settings.h"
 #include "world/body_store.h"
 #include "world/free_slots.h"
 #include "world/step_context.h"
@@ -92,7 +93,7 @@ void JointSet::remove(std::uint32_t index) {
     --count;
 }
 
-void JointSet::beginStep(const BodyStore &bodies, BodyTransitions transitions, StepContext &context) {
+void JointSet::beginStep(StepContext &context, const BodyStore &bodies, BodyTransitions transitions) {
     if (empty()) return;
     stepTime_ = 0;
     for (JointRecord &j : records) {
@@ -110,8 +111,10 @@ void JointSet::beginStep(const BodyStore &bodies, BodyTransitions transitions, S
     }
 }
 
-void JointSet::prepare(const BodyStore &bodies, bool warmStarting, const StepContext &context, StepStats &stats,
-                       const std::vector<SolverBody> &solverBodies, real h) {
+void JointSet::prepare(const StepContext &context, const BodyStore &bodies,
+                       const std::vector<SolverBody> &solverBodies, StepStats &stats) {
+    const bool warmStarting = context.settings.debug.warmStarting;
+    const real h = context.h;
     if (context.activeJoints == 0) {
         rows_.clear();
         return;
@@ -391,8 +394,10 @@ void JointSet::applyMoves(BodyStore &bodies, real scale) const {
 // ends for the sub-step. A step that does not overshoot is taken whole. (The Newton step
 // lowers the sum of squares to first order, so a short enough part of it does too; the
 // largest error alone has no such guarantee.)
-void JointSet::correctPositions(BodyStore &bodies, bool warmStarting, const StepContext &context,
-                                const std::vector<SolverBody> &solverBodies, int iterations) {
+void JointSet::correctPositions(const StepContext &context, BodyStore &bodies,
+                                const std::vector<SolverBody> &solverBodies) {
+    const bool warmStarting = context.settings.debug.warmStarting;
+    const int iterations = context.settings.positionIterations;
     if (context.activeJoints == 0) return;
     const int projections = iterations > 0 ? std::max(iterations, kMaxProjections) : 0;
     if (projections == 0) {
@@ -450,10 +455,10 @@ void JointSet::correctPositions(BodyStore &bodies, bool warmStarting, const Step
     rows_.clear();
 }
 
-void JointSet::finishStep(const BodyStore &bodies, const StepContext &context, WorldEvents &events,
-                          BodyTransitions transitions, real dt) {
+void JointSet::finishStep(const StepContext &context, const BodyStore &bodies, BodyTransitions transitions,
+                          WorldEvents &events) {
     if (context.activeJoints == 0) return;
-    const real time = stepTime_ > 0 ? stepTime_ : dt;
+    const real time = stepTime_ > 0 ? stepTime_ : context.dt;
     broken_.clear();
     for (std::uint32_t index = 0; index < records.size(); ++index) {
         JointRecord &j = records[index];

@@ -129,12 +129,12 @@ public:
     /// Start of a step: a joint whose one end is simulated wakes the other (`transitions`;
     /// from the next step on, as springs do); counts the joints the step solves
     /// (context.activeJoints).
-    void beginStep(const BodyStore &bodies, BodyTransitions transitions, StepContext &context);
-    /// The sub-step's rows at the bodies' current poses (warm started or not), and the
-    /// direct block's factorisation; nothing when context.activeJoints is 0. Counts the
-    /// rows in stats.jointRows.
-    void prepare(const BodyStore &bodies, bool warmStarting, const StepContext &context, StepStats &stats,
-                 const std::vector<SolverBody> &solverBodies, real h);
+    void beginStep(StepContext &context, const BodyStore &bodies, BodyTransitions transitions);
+    /// The sub-step's rows at the bodies' current poses (warm started unless the settings'
+    /// debug.warmStarting is off), and the direct block's factorisation; nothing when
+    /// context.activeJoints is 0. Counts the rows in stats.jointRows.
+    void prepare(const StepContext &context, const BodyStore &bodies, const std::vector<SolverBody> &solverBodies,
+                 StepStats &stats);
     /// Applies the rows' warm-start impulses.
     void warmStart(std::vector<SolverBody> &solverBodies) const;
     /// One velocity pass: the equality rows at once (when there are bounded rows or
@@ -144,14 +144,13 @@ public:
     /// Keeps the sub-step's impulses for warm starting and for the step's force.
     void storeImpulses();
     /// After integration: projects the positions onto the joints (no projection when
-    /// `iterations`, WorldSettings::positionIterations, is 0).
-    void correctPositions(BodyStore &bodies, bool warmStarting, const StepContext &context,
-                          const std::vector<SolverBody> &solverBodies, int iterations);
-    /// End of a step of dt seconds: each joint's mean force and torque; the joints whose
-    /// force or torque exceeds their threshold are removed, their bodies woken
-    /// (`transitions`), and reported in `events`.
-    void finishStep(const BodyStore &bodies, const StepContext &context, WorldEvents &events,
-                    BodyTransitions transitions, real dt);
+    /// WorldSettings::positionIterations is 0).
+    void correctPositions(const StepContext &context, BodyStore &bodies, const std::vector<SolverBody> &solverBodies);
+    /// End of a step: each joint's mean force and torque; the joints whose force or
+    /// torque exceeds their threshold are removed, their bodies woken (`transitions`),
+    /// and reported in `events`.
+    void finishStep(const StepContext &context, const BodyStore &bodies, BodyTransitions transitions,
+                    WorldEvents &events);
     /// Removes the joints of body `id`, waking their other bodies (`transitions`).
     void removeJointsOf(const BodyStore &bodies, BodyTransitions transitions, BodyId id);
     /// Draws every joint's anchors, axis and limits (joint_drawing.cpp).

@@ -135,7 +135,7 @@ void ConstraintSolver::solvePasses(const StepContext &context, const BodyStore &
     // passes as the contacts, after them (joints/joint_set.h).
     const bool joined = context.activeJoints > 0;
     if (joined) {
-        joints.prepare(bodies, settings.debug.warmStarting, context, stats, bodies_, context.h);
+        joints.prepare(context, bodies, bodies_, stats);
         joints.warmStart(bodies_);
     }
     if (!manifolds_.empty()) {
@@ -271,10 +271,9 @@ void ConstraintSolver::solveResistancePass(Workers &workers) {
 
 void ConstraintSolver::recoverPenetration(const StepContext &context, BodyStore &bodies, JointSet &joints,
                                           BodyTransitions transitions, StepStats &stats) {
-    const WorldSettings &settings = context.settings;
-    recoverContactPenetration(settings, bodies, context.workers, transitions, context.plan.recovery, stats, context.h);
-    if (context.activeJoints > 0)
-        joints.correctPositions(bodies, settings.debug.warmStarting, context, bodies_, settings.positionIterations);
+    recoverContactPenetration(context.settings, bodies, context.workers, transitions, context.plan.recovery, stats,
+                              context.h);
+    if (context.activeJoints > 0) joints.correctPositions(context, bodies, bodies_);
 }
 
 void ConstraintSolver::recoverContactPenetration(const WorldSettings &settings, BodyStore &bodies, Workers &workers,

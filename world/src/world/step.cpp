@@ -73,7 +73,7 @@ void WorldState::step(real dt) {
         integration.beginStep(context, bodies, springs, BodyTransitions(*this));
         axisLocks.beginStep(bodies);
         KinematicBodies::beginStep(bodies, contacts.pairs, BodyTransitions(*this));
-        joints.beginStep(bodies, BodyTransitions(*this), context);
+        joints.beginStep(context, bodies, BodyTransitions(*this));
     }
     { const StageTimer t(ms.broadphase); contacts.findCandidates(context, bodies, broadphase, stats); }
     {
@@ -99,7 +99,7 @@ void WorldState::step(real dt) {
     {
         const StageTimer t(ms.solve);
         solver.storeImpulses(context, bodies, contacts.pairs, *events.sink);
-        joints.finishStep(bodies, context, *events.sink, BodyTransitions(*this), dt);
+        joints.finishStep(context, bodies, BodyTransitions(*this), *events.sink);
     }
     { const StageTimer t(ms.ccd); ccd.sweep(context, bodies, broadphase, contacts.pairs, stats); }
     {
