@@ -127,7 +127,7 @@ struct WideSweep {
 
 // A group's manifolds, padded with an empty one (lanes past the group's size, and points
 // past a manifold's count, read zeros).
-CYCLONE_INLINE void groupManifolds(const std::vector<SolverManifold> &manifolds, const SolverGroup &group,
+CYCLONE_INLINE void groupManifolds(const SolverManifolds &manifolds, const SolverGroup &group,
                                    const SolverManifold *m[kWideLanes]) {
     static const SolverManifold empty{};
     for (int k = 0; k < kWideLanes; ++k) m[k] = k < group.size ? &manifolds[group.manifold[k]] : &empty;
@@ -178,7 +178,7 @@ CYCLONE_INLINE void warmStartGroup(std::vector<SolverBody> &bodies, const Manifo
 }  // namespace
 
 CYCLONE_SIMD_CLONES
-void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+void loadBatches(std::vector<SolverBody> &bodies, const SolverManifolds &manifolds,
               const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide,
               std::vector<PenetrationBatch> *pseudo) {
     // The number of groups moves a little from step to step (the order of a layer's
@@ -237,7 +237,7 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
 }
 
 CYCLONE_SIMD_CLONES
-void reloadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+void reloadBatches(std::vector<SolverBody> &bodies, const SolverManifolds &manifolds,
                    const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide) {
     for (std::size_t g = 0; g < groups.size(); ++g) {
         ManifoldBatch &w = wide[g];
@@ -259,7 +259,7 @@ void solveVelocityBatches(std::vector<SolverBody> &bodies, std::vector<ManifoldB
 }
 
 void storeBatches(const std::vector<ManifoldBatch> &wide, const std::vector<SolverGroup> &groups,
-               std::vector<SolverManifold> &manifolds) {
+               SolverManifolds &manifolds) {
     for (std::size_t g = 0; g < groups.size(); ++g) {
         const ManifoldBatch &w = wide[g];
         for (int k = 0; k < w.size; ++k) {
