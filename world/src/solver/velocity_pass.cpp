@@ -182,13 +182,21 @@ void loadBatches(std::vector<SolverBody> &bodies, const SolverManifolds &manifol
               const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide,
               std::vector<PenetrationBatch> *pseudo) {
     // The number of groups moves a little from step to step (the order of a layer's
-    // contacts, equal in height but for rounding, changes how they group): room for half
-    // as many more, so that a steady scene does not allocate when it rises past what an
-    // earlier step needed (std::vector's first resize takes exactly the size asked).
-    if (wide.capacity() < groups.size()) wide.reserve(groups.size() + groups.size() / 2 + 4);
+    // contacts, equal in height but for rounding, changes how they group): room for an
+    // eighth more, so that a steady scene does not allocate when it rises past what an
+    // earlier step needed (std::vector's first resize takes exactly the size asked). Every
+    // batch is written below, so the old room is let go before the new is taken, not
+    // copied into it: a batch is 3.5 KB.
+    if (wide.capacity() < groups.size()) {
+        std::vector<ManifoldBatch>().swap(wide);
+        wide.reserve(groups.size() + groups.size() / 8 + 4);
+    }
     wide.resize(groups.size());
     if (pseudo) {
-        if (pseudo->capacity() < groups.size()) pseudo->reserve(wide.capacity());
+        if (pseudo->capacity() < groups.size()) {
+            std::vector<PenetrationBatch>().swap(*pseudo);
+            pseudo->reserve(wide.capacity());
+        }
         pseudo->resize(groups.size());
     }
     for (std::size_t g = 0; g < groups.size(); ++g) {
