@@ -145,7 +145,7 @@ private:
     std::vector<ChunkCount> chunkCounts_;  ///< Per chunk (Workers::kChunk) of slots.
     std::vector<std::uint32_t> keyOfSlot_;  ///< Entry of keys_ each slot holds.
     std::vector<real> heights_;             ///< Each slot's contact height (ManifoldKey::height), m.
-    std::vector<JacobianStamp> stamps_;     ///< What each slot's Jacobians were made from.
+    BlockArray<JacobianStamp> stamps_;      ///< What each slot's Jacobians were made from.
     SolverPartition partition_;             ///< The velocity passes' order on threads (threads/partition.h).
     PartitionScratch partitionScratch_;
     std::vector<ManifoldBatch> batches_[3];            ///< Each part's groups' rows during the velocity passes.

@@ -46,6 +46,11 @@ public:
         for (std::size_t i = size_; i < n; ++i) (*this)[i] = T{};
         size_ = n;
     }
+    /// Size n, every element `value`.
+    void assign(std::size_t n, const T &value) {
+        resize(n);
+        for (std::size_t i = 0; i < n; ++i) (*this)[i] = value;
+    }
     void push_back(const T &element) {
         resize(size_ + 1);
         (*this)[size_ - 1] = element;
