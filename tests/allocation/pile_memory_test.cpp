@@ -16,8 +16,8 @@ namespace {
 // touching pair holds at most (docs/hostile_input.md, "Bytes per pair"): its
 // SolverManifold (2,304), a ManifoldBatch (3,584) and a PenetrationBatch (1,120) of its
 // own when no other manifold can share its group (in a pile at one point few can), the
-// batches reserved 1.5 times over (loadBatches), its ManifoldState (408) and PairState
-// (112), and some 100 bytes of lists: 11,510 bytes. Vectors that grow by doubling hold
+// batches reserved 1.125 times over (loadBatches), its ManifoldState (408) and PairState
+// (112), and some 100 bytes of lists: less than 11,510 bytes. Vectors that grow by doubling hold
 // the old and the new array while they move, so up to twice that: 24 KB.
 constexpr int kBudget = 2000;
 constexpr long kBytesPerPair = 24 * 1024;

@@ -134,7 +134,7 @@ TEST(CarrierThreads, RunsGoToTheirBodysHalfLevelByLevel) {
     // Solver bodies: 0 the world; 1, 3 the left column; 2, 4 the right; 5 the bridge
     // on 3 and 4; 6 on 5.
     const int pairs[][2] = {{0, 1}, {0, 2}, {1, 3}, {2, 4}, {3, 5}, {4, 5}, {5, 6}};
-    std::vector<detail::SolverManifold> manifolds;
+    detail::SolverManifolds manifolds;
     for (const auto &pair : pairs) {
         detail::SolverManifold m;
         m.a = pair[0];
@@ -193,7 +193,7 @@ std::vector<std::vector<int>> members(const std::vector<detail::SolverGroup> &gr
 // with, and the static world (body 0) blocks no one. Scheduled again with other bodies,
 // the same scratch gives the new groups. The order comes back as the groups list it.
 TEST(SolverSchedule, ManifoldsJoinPastThoseSharingNoMovingBody) {
-    std::vector<detail::SolverManifold> manifolds = {between(1, 2), between(2, 3), between(4, 5), between(1, 6)};
+    detail::SolverManifolds manifolds = {between(1, 2), between(2, 3), between(4, 5), between(1, 6)};
     std::vector<int> order = {0, 1, 2, 3};
     std::vector<detail::SolverGroup> groups;
     detail::ScheduleScratch scratch;
@@ -225,7 +225,7 @@ TEST(SolverSchedule, ManifoldsJoinPastThoseSharingNoMovingBody) {
 // schedule never lets it. 3 shares nothing and joins. The order comes back as the groups
 // list it.
 TEST(SolverSchedule, AManifoldPassesAWaitingOneItSharesABodyWithOnlyWhenLevel) {
-    const std::vector<detail::SolverManifold> manifolds = {between(1, 2), between(2, 3), between(3, 4), between(5, 6)};
+    const detail::SolverManifolds manifolds = {between(1, 2), between(2, 3), between(3, 4), between(5, 6)};
     std::vector<int> order;
     std::vector<detail::SolverGroup> groups;
     detail::ScheduleScratch scratch;

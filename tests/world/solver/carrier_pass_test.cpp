@@ -12,13 +12,14 @@ namespace {
 
 using detail::SolverBody;
 using detail::SolverManifold;
+using detail::SolverManifolds;
 
 // A 1 kg unit cube (inertia 1/6 kg m^2 about each axis) whose centre is 1 m above its
 // carrier's, resting on it, frictionless, at two points of its lower face's edges:
 // (+-0.5, 0.5, 0) from the carrier's centre. With `cubeIsA` the manifold lists the cube
 // first and its normal points down, from the cube to the carrier; otherwise up, from the
 // carrier to the cube. Adds the manifold and returns its index.
-int addResting(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, int cube, int carrier,
+int addResting(std::vector<SolverBody> &bodies, SolverManifolds &manifolds, int cube, int carrier,
                const Vector3 &carrierCentre, bool cubeIsA) {
     SolverManifold m;
     m.a = cubeIsA ? cube : carrier;
@@ -71,7 +72,7 @@ constexpr real kLeft = 10 * detail::kCarrierTolerance;
 TEST(SupportPass, StopsACubeOnTheWorldAndKeepsItsImpulses) {
     for (bool cubeIsA : {false, true}) {
         std::vector<SolverBody> bodies(1);
-        std::vector<SolverManifold> manifolds;
+        SolverManifolds manifolds;
         const int cube = addBody(bodies, Vector3(0, -1, 0));
         addResting(bodies, manifolds, cube, 0, Vector3(0, -0.5, 0), cubeIsA);
         const detail::CarrierRuns runs = oneRunEach(1);
@@ -97,7 +98,7 @@ TEST(SupportPass, StopsACubeOnTheWorldAndKeepsItsImpulses) {
 TEST(SupportPass, CarriesACubeWithAMovingCarrierAndDropsItsImpulses) {
     for (bool cubeIsA : {false, true}) {
         std::vector<SolverBody> bodies(1);
-        std::vector<SolverManifold> manifolds;
+        SolverManifolds manifolds;
         const int carrier = addBody(bodies, Vector3(0, 0.5, 0));
         const int cube = addBody(bodies, Vector3::Zero());
         const int m = addResting(bodies, manifolds, cube, carrier, Vector3::Zero(), cubeIsA);
@@ -122,7 +123,7 @@ TEST(SupportPass, CarriesACubeWithAMovingCarrierAndDropsItsImpulses) {
 // own run had stopped, or that read another lane's rows, would differ.
 TEST(SupportPass, EachRunOfAGroupIsSolvedAsIfAlone) {
     const real speeds[] = {1, 2, 0.5, 3, 1.5};
-    const auto build = [&](std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
+    const auto build = [&](std::vector<SolverBody> &bodies, SolverManifolds &manifolds) {
         bodies.assign(1, SolverBody());
         manifolds.clear();
         for (int k = 0; k < 5; ++k) {
@@ -133,7 +134,7 @@ TEST(SupportPass, EachRunOfAGroupIsSolvedAsIfAlone) {
     const detail::CarrierRuns runs = oneRunEach(5);
     detail::CarrierPassScratch scratch;
     std::vector<SolverBody> together, alone;
-    std::vector<SolverManifold> togetherManifolds, aloneManifolds;
+    SolverManifolds togetherManifolds, aloneManifolds;
     build(together, togetherManifolds);
     build(alone, aloneManifolds);
     const int all[] = {0, 1, 2, 3, 4};
@@ -166,7 +167,7 @@ TEST(SupportPass, EachRunOfAGroupIsSolvedAsIfAlone) {
 TEST(SupportPass, SweepsInOneDirectionSettleWhereNoVelocityMeetsEveryCorner) {
     std::vector<SolverBody> bodies(1);
     const int body = addBody(bodies, Vector3(0, -0.1, 0));
-    std::vector<SolverManifold> manifolds;
+    SolverManifolds manifolds;
     const Vector3 centre(0, 0.5, 0);
     for (const real x : {-0.6, 0.6}) {
         SolverManifold m;
@@ -195,7 +196,7 @@ TEST(SupportPass, SweepsInOneDirectionSettleWhereNoVelocityMeetsEveryCorner) {
     const int run = 0;
     for (const bool reverse : {false, true}) {
         std::vector<SolverBody> fresh = bodies;
-        std::vector<SolverManifold> freshManifolds = manifolds;
+        SolverManifolds freshManifolds = manifolds;
         detail::CarrierPassScratch scratch;
         detail::solveCarriedRuns(fresh, freshManifolds, runs, &run, 1, reverse, scratch);
         EXPECT_LT(scratch.sweeps, detail::kCarrierSweeps) << "reverse " << reverse;

@@ -98,7 +98,7 @@ detail::SolverManifold contact(int a, int b, const Vector3 &normalFromAToB) {
     return m;
 }
 
-std::vector<detail::Carrier> carriersOf(std::vector<detail::SolverManifold> manifolds, int bodyCount) {
+std::vector<detail::Carrier> carriersOf(detail::SolverManifolds manifolds, int bodyCount) {
     std::vector<int> order(manifolds.size());
     std::iota(order.begin(), order.end(), 0);
     detail::CarrierScratch scratch;

@@ -19,17 +19,18 @@ namespace {
 
 using detail::SolverBody;
 using detail::SolverManifold;
+using detail::SolverManifolds;
 
 // A cube falling at `speed` m/s onto the immovable world (cube_contact.h). Adds the cube's
 // body and manifold.
-void addFallingCube(real speed, std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds) {
+void addFallingCube(real speed, std::vector<SolverBody> &bodies, SolverManifolds &manifolds) {
     manifolds.push_back(addCubeOn(0, Vector3(0, -speed, 0), bodies));
 }
 
 // One such cube at 1 m/s, solved alone.
 struct FallingCube {
     std::vector<SolverBody> bodies{1};
-    std::vector<SolverManifold> manifolds;
+    SolverManifolds manifolds;
     std::vector<detail::SolverGroup> groups{1};
     std::vector<detail::ManifoldBatch> wide;
 
@@ -164,7 +165,7 @@ TEST(ContactSolverPass, PassesConvergeToTheRestingSolution) {
 TEST(ContactSolverPass, EachLaneOfAGroupIsSolvedOnItsOwn) {
     const real speeds[4] = {1, 2, 0.5, 3};
     std::vector<SolverBody> bodies(1);
-    std::vector<SolverManifold> manifolds;
+    SolverManifolds manifolds;
     std::vector<detail::SolverGroup> groups(1);
     for (int k = 0; k < 4; ++k) {
         addFallingCube(speeds[k], bodies, manifolds);
@@ -211,7 +212,7 @@ bool sameBits(const detail::ManifoldBatch &x, const detail::ManifoldBatch &y) {
 void expectReloadGivesWhatAFullLoadGives(bool isolate) {
     // Six cubes in a column on the world, each manifold's A the cube below (0: the world).
     std::vector<SolverBody> bodies(1);
-    std::vector<SolverManifold> manifolds;
+    SolverManifolds manifolds;
     for (int k = 0; k < 6; ++k) manifolds.push_back(addCubeOn(k, Vector3(0.1 * k, -1 - k, 0.2), bodies));
     std::vector<detail::SolverGroup> groups(2);
     const int lanes[2][4] = {{3, 0, 5, 1}, {4, 2, 0, 0}};

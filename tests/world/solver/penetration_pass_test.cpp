@@ -17,6 +17,7 @@ namespace {
 
 using detail::SolverBody;
 using detail::SolverManifold;
+using detail::SolverManifolds;
 
 constexpr real kSlop = 0.005;
 constexpr real kRate = 12;  // penetrationRecovery 0.2 at 60 Hz, per second
@@ -24,7 +25,7 @@ constexpr real kRate = 12;  // penetrationRecovery 0.2 at 60 Hz, per second
 // The bodies, manifolds and frames of a scene, and one group of its manifolds.
 struct PenetrationScene {
     std::vector<SolverBody> bodies{1};
-    std::vector<SolverManifold> manifolds;
+    SolverManifolds manifolds;
     std::vector<detail::DepthFrame> frames;
     std::vector<detail::SolverGroup> groups{1};
     std::vector<detail::ManifoldBatch> wide;

@@ -299,9 +299,10 @@ void ContactManager::testPairs(const PairTest &test, std::size_t first, std::siz
     const std::size_t count = last - first;
     test.workers.forEach(count, [&](std::size_t k) { pairs[stepPairs_[first + k]].lastSeen = stepCount; });
     const std::size_t chunks = Workers::chunksOf(count);
-    // Room for one manifold per pair (convex pairs find at most one), so that a chunk's
-    // list is not grown by a few more touching pairs in a later step.
-    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
+    // Room for a quarter of a chunk's pairs to find a manifold (convex pairs find at most
+    // one): more than a landing pile's chunks find but for a few, which grow their lists
+    // once and keep them. Room for every pair held four times the bytes.
+    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk / 4);
     finds_.resize(last);
     test.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_[chunk];

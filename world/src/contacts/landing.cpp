@@ -373,16 +373,15 @@ void LandingCorrection::placeInOrder() {
     }
 }
 
-// The points of the manifolds out[first..] of `pair`, held by anchors on both bodies at
-// the poses they were found at, into `found`; whether one is deeper than `tolerance`.
-bool LandingCorrection::appendPoints(const std::vector<Manifold> &out, std::size_t first, const PairState &pair,
+// The points of the manifolds `out` of `pair`, held by anchors on both bodies at the
+// poses they were found at, into `found`; whether one is deeper than `tolerance`.
+bool LandingCorrection::appendPoints(const std::vector<Manifold> &out, const PairState &pair,
                                      const Matrix4 &poseA, const Matrix4 &poseB, real tolerance, const Vector3 &up,
                                      std::vector<Point> &found) {
     bool deep = false;
     const Matrix3 toA = poseA.linear().transpose();
     const Matrix3 toB = poseB.linear().transpose();
-    for (std::size_t f = first; f < out.size(); ++f) {
-        const Manifold &m = out[f];
+    for (const Manifold &m : out) {
         for (int i = 0; i < m.count; ++i) {
             const ContactPoint &c = m.points[static_cast<std::size_t>(i)];
             deep = deep || c.depth > tolerance;
@@ -435,7 +434,8 @@ bool LandingCorrection::detect(const WorldSettings &settings, const BodyStore &b
     // do not depend on the thread count.
     const std::size_t count = pairs_.size();
     const std::size_t chunks = Workers::chunksOf(count);
-    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk);
+    // A chunk's list holds one pair's manifolds at a time (a convex pair finds at most one).
+    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(1);
     while (chunkMemos_.size() < chunks) chunkMemos_.emplace_back();
     while (chunkPoints_.size() < chunks) chunkPoints_.emplace_back();
     chunkDeep_.resize(chunks);
@@ -443,7 +443,6 @@ bool LandingCorrection::detect(const WorldSettings &settings, const BodyStore &b
         std::vector<Manifold> &out = chunkFinds_[chunk];
         std::vector<Memo> &memos = chunkMemos_[chunk];
         std::vector<Point> &found = chunkPoints_[chunk];
-        out.clear();
         memos.clear();
         found.clear();
         bool deep = false;
@@ -462,11 +461,11 @@ bool LandingCorrection::detect(const WorldSettings &settings, const BodyStore &b
                 appendAnchored(pair, poseA, poseB, tolerance, up, found);
                 continue;
             }
-            const std::size_t first = out.size();
+            out.clear();
             NormalMemo memo;
             collide(*a.shape, poseA, *b.shape, poseB, narrowphase, out, &memo);
             if (memo.a) memos.push_back({static_cast<std::uint32_t>(k), memo.touching, memo.normal});
-            deep = appendPoints(out, first, pair, poseA, poseB, tolerance, up, found) || deep;
+            deep = appendPoints(out, pair, poseA, poseB, tolerance, up, found) || deep;
         }
         chunkDeep_[chunk] = deep ? 1 : 0;
     });

@@ -95,7 +95,7 @@ private:
     void orderPoints(std::size_t kept);
     /// Whether body `index` moved in `round`.
     bool movedIn(std::uint32_t index, int round) const;
-    static bool appendPoints(const std::vector<Manifold> &out, std::size_t first, const PairState &pair,
+    static bool appendPoints(const std::vector<Manifold> &out, const PairState &pair,
                              const Matrix4 &poseA, const Matrix4 &poseB, real tolerance, const Vector3 &up,
                              std::vector<Point> &found);
     static void appendAnchored(const PairState &pair, const Matrix4 &poseA, const Matrix4 &poseB, real tolerance,
@@ -152,7 +152,7 @@ private:
     std::vector<std::uint32_t> activeBodies_;  ///< Bodies whose movedRound_ is set (to clear it).
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
     std::vector<char> flags_;                   ///< Scratch: what a test on the threads picked.
-    std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found.
+    std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found for one pair.
     /// What FCL found for an entry of pairs_ (collide's memo, but for the shapes and poses:
     /// the pair's), for the next step's narrowphase.
     struct Memo {

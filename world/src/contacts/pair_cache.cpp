@@ -76,8 +76,8 @@ std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &creat
         free_.pop_back();
     } else {
         slot = static_cast<std::uint32_t>(pairs_.size());
-        pairs_.emplace_back();
-        relativePoses_.emplace_back();
+        pairs_.resize(slot + 1);
+        relativePoses_.resize(slot + 1);
     }
     PairState &p = pairs_[slot];
     p.a = std::min(i, j);

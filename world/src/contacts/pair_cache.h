@@ -9,6 +9,7 @@
 #include "cyclone/core.h"
 #include "collision/narrowphase.h"
 #include "contacts/pose_change.h"
+#include "world/block_array.h"
 
 namespace cyclone::detail {
 
@@ -108,8 +109,10 @@ private:
     void insert(std::uint64_t key, std::uint32_t slot);
     void erase(std::uint64_t key);
 
-    std::vector<PairState> pairs_;
-    std::vector<RelativePose> relativePoses_;  ///< By slot, as pairs_.
+    // In blocks: a pile's pairs are many (11 per body in a landing pile), and a
+    // std::vector that outgrows its room holds twice as many for good.
+    BlockArray<PairState> pairs_;
+    BlockArray<RelativePose> relativePoses_;  ///< By slot, as pairs_.
     std::vector<std::uint32_t> free_;
     // Pair slots by key, open addressing with linear probing: unlike a node-based map it
     // allocates only when it grows, so pairs that come and go cost no allocation.

@@ -11,7 +11,7 @@
 
 namespace cyclone::detail {
 
-void Islands::build(BodyStore &bodies, const std::vector<SolverManifold> &manifolds, const SpringSet &springs,
+void Islands::build(BodyStore &bodies, const SolverManifolds &manifolds, const SpringSet &springs,
                     const JointSet &joints, StepStats &stats) {
     const int n = static_cast<int>(bodies.simulated.size());
     parent_.resize(n);

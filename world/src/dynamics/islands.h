@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "cyclone/world/world.h"
+#include "solver/contact_solver.h"
 
 namespace cyclone::detail {
 
 struct BodyStore;
 class JointSet;
-struct SolverManifold;
 class SpringSet;
 
 class Islands {
@@ -24,7 +24,7 @@ public:
     /// The islands stage: joins the simulated bodies by the solver's manifolds, the
     /// springs and the joints; writes each simulated body's BodyRecord::island and
     /// stats.islands.
-    void build(BodyStore &bodies, const std::vector<SolverManifold> &manifolds, const SpringSet &springs,
+    void build(BodyStore &bodies, const SolverManifolds &manifolds, const SpringSet &springs,
                const JointSet &joints, StepStats &stats);
     /// This step's islands whose bodies are all still (RigidBody's sleep average below its
     /// sleep epsilon), in order; none when settings.sleep is off. The step puts each to

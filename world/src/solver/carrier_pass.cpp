@@ -29,7 +29,7 @@ CYCLONE_INLINE void exactDot(const WideVector &a, const WideVector &b, Lanes &ou
     out = (x + y) + z;
 }
 
-RunLanes laneRuns(const std::vector<SolverManifold> &manifolds, const CarrierRuns &runs, const int *run,
+RunLanes laneRuns(const SolverManifolds &manifolds, const CarrierRuns &runs, const int *run,
                   int count) {
     RunLanes lanes;
     lanes.count = count;
@@ -53,7 +53,7 @@ struct CarriedLanes {
     Lanes SolverRow::*carrierRxd[kWideLanes];  // the carrier's
     WideVector carrierV, carrierW;               // the carriers' velocities
 
-    CYCLONE_INLINE CarriedLanes(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+    CYCLONE_INLINE CarriedLanes(const std::vector<SolverBody> &bodies, const SolverManifolds &manifolds,
                                 const CarrierRuns &runs, const RunLanes &lanes, int slot) {
         static const SolverManifold none{};
         const SolverBody *carrier[kWideLanes];
@@ -161,7 +161,7 @@ CYCLONE_INLINE void loadFriction(const CarriedLanes &l, const CouplingOrder *ord
 // as a difference of vertical velocity, and a pyramid's layers hand such differences up
 // growing (docs/solver.md, "The carrier pass", tall stacks). Done for stacks of more than
 // kCarrierLevels levels only.
-CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const SolverManifolds &manifolds,
                                 const CarrierRuns &runs, const RunLanes &lanes, int slot, bool patchCentre,
                                 WideCarriedContact &c) {
     const CarriedLanes l(bodies, manifolds, runs, lanes, slot);
@@ -176,7 +176,7 @@ CYCLONE_INLINE void loadContact(const std::vector<SolverBody> &bodies, const std
 // Writes back the accumulated impulses of each lane's contact `slot` where the carrier is
 // immovable (the true problem there, kept as the next step's warm start).
 void storeContact(const CarrierRuns &runs, const RunLanes &lanes, int slot, const WideCarriedContact &c,
-                  std::vector<SolverManifold> &manifolds) {
+                  SolverManifolds &manifolds) {
     for (int k = 0; k < lanes.count; ++k) {
         if (slot >= lanes.size[k]) continue;
         SolverManifold &m = manifolds[runs.manifolds[lanes.first[k] + slot]];
@@ -284,7 +284,7 @@ CYCLONE_INLINE void movedBetween(const CarriedBodies &from, const CarriedBodies 
 }  // namespace
 
 CYCLONE_SIMD_CLONES
-void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+void solveCarriedRuns(std::vector<SolverBody> &bodies, SolverManifolds &manifolds,
                       const CarrierRuns &runs, const int *run, int count, bool reverse, CarrierPassScratch &scratch) {
     const RunLanes lanes = laneRuns(manifolds, runs, run, count);
     // Room for four carriers at least (a box on a 2 x 2 grid), so that a run with more

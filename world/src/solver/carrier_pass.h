@@ -72,7 +72,7 @@ struct CarrierPassScratch {
 /// Solves runs run[0 .. count) (count <= kWideLanes, all of one level, their carriers'
 /// runs finished) side by side, every sweep from the last point of each contact with
 /// `reverse`.
-void solveCarriedRuns(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+void solveCarriedRuns(std::vector<SolverBody> &bodies, SolverManifolds &manifolds,
                       const CarrierRuns &runs, const int *run, int count, bool reverse, CarrierPassScratch &scratch);
 
 }  // namespace cyclone::detail

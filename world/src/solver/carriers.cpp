@@ -15,7 +15,7 @@ constexpr int kUnreached = std::numeric_limits<int>::max();
 // `order`, each body's manifolds in `order`; and the manifolds without a carrier, in
 // `order`. Bucketed, not sorted: the bodies are met in the order of their first
 // manifolds, and a stable count by level keeps that order.
-void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<int> &order,
+void buildRuns(const SolverManifolds &manifolds, const std::vector<int> &order,
                const std::vector<int> *level, int bodyCount, CarrierScratch &scratch, CarrierRuns &runs) {
     const auto carried = [](const SolverManifold &m) { return m.carrier == Carrier::A ? m.b : m.a; };
     const auto levelOf = [&](int body) { return level ? (*level)[body] : 0; };
@@ -70,7 +70,7 @@ void buildRuns(const std::vector<SolverManifold> &manifolds, const std::vector<i
 // Adjacency of the contact graph (counting sort by body), each entry marked when the
 // neighbour stands on the body (the normal within 30 degrees of up `u`, the neighbour above):
 // scratch.start, adjacent, carries.
-void linkContacts(int bodyCount, const Vector3 &u, const std::vector<SolverManifold> &manifolds,
+void linkContacts(int bodyCount, const Vector3 &u, const SolverManifolds &manifolds,
                   CarrierScratch &scratch) {
     std::vector<int> &start = scratch.start;
     std::vector<int> &adjacent = scratch.adjacent;
@@ -146,7 +146,7 @@ void levelBodies(int bodyCount, int firstKinematic, CarrierScratch &scratch) {
 
 }  // namespace
 
-void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::vector<SolverManifold> &manifolds,
+void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, SolverManifolds &manifolds,
                    const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs) {
     // Entry 0 (static or asleep) and the moving kinematic bodies are immovable anyway.
     const auto immovable = [&](int body) { return body == 0 || body >= firstKinematic; };

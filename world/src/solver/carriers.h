@@ -34,7 +34,7 @@ struct CarrierScratch {
 /// Also lists the carrier pass's runs (CarrierRuns) bottom up; within a level, the
 /// bodies and each body's manifolds in the solve order `order` (manifold indices); and the
 /// manifolds without a carrier, in `order`.
-void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, std::vector<SolverManifold> &manifolds,
+void assignCarriers(int bodyCount, int firstKinematic, const Vector3 &up, SolverManifolds &manifolds,
                    const std::vector<int> &order, CarrierScratch &scratch, CarrierRuns &runs);
 
 }  // namespace cyclone::detail

@@ -51,7 +51,7 @@ class ConstraintSolver {
 public:
     friend struct StateFields;  ///< Saves and restores the kept Jacobians (snapshot/world_state_io.cpp).
     /// The step's solver manifolds, in their slots (solve order: solveOrder_).
-    const std::vector<SolverManifold> &manifolds() const { return manifolds_; }
+    const SolverManifolds &manifolds() const { return manifolds_; }
 
     /// Orders the touching pairs' manifolds of `contacts` (lowest first along -gravity),
     /// runs the pre-solve stage over them, gives each a solver slot and fills it from the
@@ -120,7 +120,7 @@ private:
     };
 
     std::vector<SolverBody> bodies_;  ///< Entry 0 is immovable; simulated body k is k + 1.
-    std::vector<SolverManifold> manifolds_;
+    SolverManifolds manifolds_;
     std::vector<ManifoldRef> sources_;  ///< The pair manifold each slot was made from.
     std::vector<SlotBodies> slotBodies_;
     std::vector<ManifoldKey> keys_;         ///< The manifolds to build, in solve order.
@@ -141,7 +141,7 @@ private:
     std::vector<ChunkCount> chunkCounts_;  ///< Per chunk (Workers::kChunk) of slots.
     std::vector<std::uint32_t> keyOfSlot_;  ///< Entry of keys_ each slot holds.
     std::vector<real> heights_;             ///< Each slot's contact height (ManifoldKey::height), m.
-    std::vector<JacobianStamp> stamps_;     ///< What each slot's Jacobians were made from.
+    BlockArray<JacobianStamp> stamps_;      ///< What each slot's Jacobians were made from.
     SolverPartition partition_;             ///< The velocity passes' order on threads (threads/partition.h).
     PartitionScratch partitionScratch_;
     std::vector<ManifoldBatch> batches_[3];            ///< Each part's groups' rows during the velocity passes.

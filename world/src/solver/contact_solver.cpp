@@ -420,7 +420,7 @@ void solveUncarriedManifold(std::vector<SolverBody> &bodies, SolverManifold &m, 
     vel.store(bodies, m);
 }
 
-void solveUncarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+void solveUncarried(std::vector<SolverBody> &bodies, SolverManifolds &manifolds,
                       const std::vector<int> &order, bool reverse) {
     for (int index : order) {
         SolverManifold &m = manifolds[index];

@@ -17,6 +17,7 @@
 #include "cyclone/body.h"
 #include "cyclone/core.h"
 #include "solver/simd/vector4.h"
+#include "world/block_array.h"
 
 namespace cyclone::detail {
 
@@ -173,6 +174,10 @@ struct alignas(64) SolverManifold {
     SolverPoint points[kMaxManifoldPoints];
 };
 
+/// The step's solver manifolds by slot: kept from step to step (their Jacobians may
+/// hold), and grown a block at a time, so that a few more manifolds move none.
+using SolverManifolds = BlockArray<SolverManifold>;
+
 /// The couplings of a manifold (its own or its carried ones) in its solve order: entry k
 /// is the k-th point's, lane l the l-th point's. The loaders pick each entry's lanes in
 /// registers as they copy it into a group's lanes, with no permuted copy of the couplings
@@ -269,7 +274,7 @@ void prepareCarriedMasses(const std::vector<SolverBody> &bodies, SolverManifold 
 /// lighter one). Its impulses change velocities only: the accumulated impulses stay those
 /// of the velocity passes. The runs of one level are independent: any of them may be
 /// solved at the same time.
-void solveUncarried(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds,
+void solveUncarried(std::vector<SolverBody> &bodies, SolverManifolds &manifolds,
                       const std::vector<int> &order, bool reverse);
 /// solveUncarried's pass for one manifold without a carrier (threads/ordered_shares.h
 /// shares that pass's manifolds between threads).

@@ -32,7 +32,7 @@ void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifo
     rows.push_back(row);
 }
 
-void beginResistance(const std::vector<SolverManifold> &manifolds, std::vector<ResistanceRow> &rows) {
+void beginResistance(const SolverManifolds &manifolds, std::vector<ResistanceRow> &rows) {
     for (ResistanceRow &row : rows) {
         const SolverManifold &m = manifolds[row.slot];
         real normal = 0;

@@ -39,7 +39,7 @@ void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifo
                        real spinning, std::vector<ResistanceRow> &rows);
 /// At a sub-step's start: each row's limit from its manifold's normal impulses, its
 /// accumulated impulse cleared.
-void beginResistance(const std::vector<SolverManifold> &manifolds, std::vector<ResistanceRow> &rows);
+void beginResistance(const SolverManifolds &manifolds, std::vector<ResistanceRow> &rows);
 /// Solves one row: its impulses within their limits, its bodies' spins changed.
 void solveResistanceRow(std::vector<SolverBody> &bodies, ResistanceRow &row);
 /// One pass over the rows, in order.

@@ -11,7 +11,7 @@ namespace {
 // allows it to pass that one: `lower` is the waiting manifold, `upper` the joining one.
 // Rewrites `order` as the groups list it.
 template <class Passes>
-void schedule(const std::vector<SolverManifold> &manifolds, std::vector<int> &order, std::vector<SolverGroup> &groups,
+void schedule(const SolverManifolds &manifolds, std::vector<int> &order, std::vector<SolverGroup> &groups,
               ScheduleScratch &scratch, const Passes &passes) {
     const int n = static_cast<int>(order.size());
     groups.clear();
@@ -70,12 +70,12 @@ void schedule(const std::vector<SolverManifold> &manifolds, std::vector<int> &or
 
 }  // namespace
 
-void buildSchedule(const std::vector<SolverManifold> &manifolds, std::vector<int> &order,
+void buildSchedule(const SolverManifolds &manifolds, std::vector<int> &order,
                    std::vector<SolverGroup> &groups, ScheduleScratch &scratch) {
     schedule(manifolds, order, groups, scratch, [](int, int) { return false; });
 }
 
-void buildLevelSchedule(const std::vector<SolverManifold> &manifolds, const std::vector<real> &heights,
+void buildLevelSchedule(const SolverManifolds &manifolds, const std::vector<real> &heights,
                         std::vector<int> &order, std::vector<SolverGroup> &groups, ScheduleScratch &scratch) {
     // A static body's side sits at -inf (contactHeight, constraint_builder.cpp): level
     // with nothing, as the difference is then infinite or NaN.

@@ -50,13 +50,13 @@ struct ScheduleScratch {
 
 /// Groups the manifolds listed in `order` (indices into `manifolds`), keeping that
 /// order's results, and lists them in `order` as the groups take them (the same results).
-void buildSchedule(const std::vector<SolverManifold> &manifolds, std::vector<int> &order,
+void buildSchedule(const SolverManifolds &manifolds, std::vector<int> &order,
                    std::vector<SolverGroup> &groups, ScheduleScratch &scratch);
 
 /// The same for `order` listed by height (`heights` of each manifold, lowest first), but a
 /// manifold may also move past one it shares a moving body with when the two are level
 /// (kLevelBand); `order` then lists the order whose results the groups keep.
-void buildLevelSchedule(const std::vector<SolverManifold> &manifolds, const std::vector<real> &heights,
+void buildLevelSchedule(const SolverManifolds &manifolds, const std::vector<real> &heights,
                         std::vector<int> &order, std::vector<SolverGroup> &groups, ScheduleScratch &scratch);
 
 }  // namespace cyclone::detail

@@ -127,7 +127,7 @@ struct WideSweep {
 
 // A group's manifolds, padded with an empty one (lanes past the group's size, and points
 // past a manifold's count, read zeros).
-CYCLONE_INLINE void groupManifolds(const std::vector<SolverManifold> &manifolds, const SolverGroup &group,
+CYCLONE_INLINE void groupManifolds(const SolverManifolds &manifolds, const SolverGroup &group,
                                    const SolverManifold *m[kWideLanes]) {
     static const SolverManifold empty{};
     for (int k = 0; k < kWideLanes; ++k) m[k] = k < group.size ? &manifolds[group.manifold[k]] : &empty;
@@ -178,17 +178,25 @@ CYCLONE_INLINE void warmStartGroup(std::vector<SolverBody> &bodies, const Manifo
 }  // namespace
 
 CYCLONE_SIMD_CLONES
-void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+void loadBatches(std::vector<SolverBody> &bodies, const SolverManifolds &manifolds,
               const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide,
               std::vector<PenetrationBatch> *pseudo) {
     // The number of groups moves a little from step to step (the order of a layer's
-    // contacts, equal in height but for rounding, changes how they group): room for half
-    // as many more, so that a steady scene does not allocate when it rises past what an
-    // earlier step needed (std::vector's first resize takes exactly the size asked).
-    if (wide.capacity() < groups.size()) wide.reserve(groups.size() + groups.size() / 2 + 4);
+    // contacts, equal in height but for rounding, changes how they group): room for an
+    // eighth more, so that a steady scene does not allocate when it rises past what an
+    // earlier step needed (std::vector's first resize takes exactly the size asked). Every
+    // batch is written below, so the old room is let go before the new is taken, not
+    // copied into it: a batch is 3.5 KB.
+    if (wide.capacity() < groups.size()) {
+        std::vector<ManifoldBatch>().swap(wide);
+        wide.reserve(groups.size() + groups.size() / 8 + 4);
+    }
     wide.resize(groups.size());
     if (pseudo) {
-        if (pseudo->capacity() < groups.size()) pseudo->reserve(wide.capacity());
+        if (pseudo->capacity() < groups.size()) {
+            std::vector<PenetrationBatch>().swap(*pseudo);
+            pseudo->reserve(wide.capacity());
+        }
         pseudo->resize(groups.size());
     }
     for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -237,7 +245,7 @@ void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifo
 }
 
 CYCLONE_SIMD_CLONES
-void reloadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+void reloadBatches(std::vector<SolverBody> &bodies, const SolverManifolds &manifolds,
                    const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide) {
     for (std::size_t g = 0; g < groups.size(); ++g) {
         ManifoldBatch &w = wide[g];
@@ -259,7 +267,7 @@ void solveVelocityBatches(std::vector<SolverBody> &bodies, std::vector<ManifoldB
 }
 
 void storeBatches(const std::vector<ManifoldBatch> &wide, const std::vector<SolverGroup> &groups,
-               std::vector<SolverManifold> &manifolds) {
+               SolverManifolds &manifolds) {
     for (std::size_t g = 0; g < groups.size(); ++g) {
         const ManifoldBatch &w = wide[g];
         for (int k = 0; k < w.size; ++k) {

@@ -76,14 +76,14 @@ struct PenetrationBatch;
 /// `warmStart` gives the bodies each group's accumulated impulses once it is copied, as
 /// warmStart (contact_solver.h) does for its manifolds. With `pseudo`, also copies what
 /// the penetration pass needs into it, one per group (loadPseudo).
-void loadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds, const std::vector<SolverGroup> &groups,
+void loadBatches(std::vector<SolverBody> &bodies, const SolverManifolds &manifolds, const std::vector<SolverGroup> &groups,
               bool warmStart, std::vector<ManifoldBatch> &wide, std::vector<PenetrationBatch> *pseudo = nullptr);
 /// What loadBatches copies that changes between the sub-steps of one step (the
 /// accumulated impulses, the targets, the bodies' inverse masses and inertias), copied
 /// again into `wide`, loaded by loadBatches from the same `groups` and manifolds earlier
 /// in the step, then the warm start as loadBatches makes it. The rows, made once a step,
 /// are left as they are, and so is what the penetration pass took (its anchors).
-void reloadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverManifold> &manifolds,
+void reloadBatches(std::vector<SolverBody> &bodies, const SolverManifolds &manifolds,
                    const std::vector<SolverGroup> &groups, bool warmStart, std::vector<ManifoldBatch> &wide);
 /// One velocity pass over the wide manifolds, in order: in each, friction and then the
 /// points' normal rows, from the last point with `reverse` (alternating passes keep the
@@ -92,6 +92,6 @@ void reloadBatches(std::vector<SolverBody> &bodies, const std::vector<SolverMani
 void solveVelocityBatches(std::vector<SolverBody> &bodies, std::vector<ManifoldBatch> &wide, bool reverse);
 /// Copies the accumulated impulses back to the manifolds of `groups`.
 void storeBatches(const std::vector<ManifoldBatch> &wide, const std::vector<SolverGroup> &groups,
-               std::vector<SolverManifold> &manifolds);
+               SolverManifolds &manifolds);
 
 }  // namespace cyclone::detail

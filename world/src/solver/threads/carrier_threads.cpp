@@ -9,7 +9,7 @@ int carriedBody(const SolverManifold &m) { return m.carrier == Carrier::A ? m.b 
 int carrierBody(const SolverManifold &m) { return m.carrier == Carrier::A ? m.a : m.b; }
 
 // Waits until every carrier of run r that has a run of its own has finished it.
-void awaitCarriers(const std::vector<SolverManifold> &manifolds, const CarrierRuns &runs, const CarrierThreads &threads,
+void awaitCarriers(const SolverManifolds &manifolds, const CarrierRuns &runs, const CarrierThreads &threads,
                    int r) {
     for (int k = runs.start[r]; k < runs.start[r + 1]; ++k) {
         const int carrier = carrierBody(manifolds[runs.manifolds[k]]);
@@ -31,7 +31,7 @@ std::size_t groupEnd(const std::vector<int> &list, const CarrierThreads &threads
 // nearly every line of them), so that they arrive while the group before them sweeps.
 // Inlined: GCC takes a function that only prefetches for one without effects, and drops
 // its calls.
-CYCLONE_INLINE void prefetchRuns(const std::vector<SolverManifold> &manifolds, const CarrierRuns &runs,
+CYCLONE_INLINE void prefetchRuns(const SolverManifolds &manifolds, const CarrierRuns &runs,
                                  const std::vector<int> &list, std::size_t k, std::size_t end) {
     constexpr std::size_t kLine = 64;
     for (; k < end; ++k) {
@@ -71,7 +71,7 @@ void orderBySweeps(CarrierThreads &threads, std::vector<int> &list) {
 
 }  // namespace
 
-void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifold> &manifolds,
+void buildCarrierThreads(const CarrierRuns &runs, const SolverManifolds &manifolds,
                        const std::vector<signed char> *side, int bodyCount, CarrierThreads &threads) {
     const int runCount = static_cast<int>(runs.start.size()) - 1;
     threads.runOf.assign(bodyCount, -1);
@@ -95,7 +95,7 @@ void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifo
     threads.finished.reserve(static_cast<std::size_t>(runCount));
 }
 
-void solveCarrierShare(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, CarrierRuns &runs,
+void solveCarrierShare(std::vector<SolverBody> &bodies, SolverManifolds &manifolds, CarrierRuns &runs,
                       CarrierThreads &threads, int share, bool reverse) {
     const std::vector<int> &list = threads.share[share];
     // Alone, a share holds every run, level by level: each run's carriers have finished

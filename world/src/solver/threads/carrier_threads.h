@@ -36,12 +36,12 @@ struct CarrierThreads {
 
 /// Lists the runs of each thread's share: with `side` (per solver body, 0 or 1; the partition's
 /// halves) a run goes to its carried body's side, without it every run goes to share 0.
-void buildCarrierThreads(const CarrierRuns &runs, const std::vector<SolverManifold> &manifolds,
+void buildCarrierThreads(const CarrierRuns &runs, const SolverManifolds &manifolds,
                        const std::vector<signed char> *side, int bodyCount, CarrierThreads &threads);
 
 /// Solves the runs of share `share` in order, each once its carriers' runs have finished (a
 /// carrier in the other share may still be running: this waits for it).
-void solveCarrierShare(std::vector<SolverBody> &bodies, std::vector<SolverManifold> &manifolds, CarrierRuns &runs,
+void solveCarrierShare(std::vector<SolverBody> &bodies, SolverManifolds &manifolds, CarrierRuns &runs,
                       CarrierThreads &threads, int share, bool reverse);
 
 }  // namespace cyclone::detail

@@ -21,7 +21,7 @@ int widestAxis(const std::vector<Vector3> &positions) {
 
 }  // namespace
 
-void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<real> &heights,
+void partitionManifolds(const SolverManifolds &manifolds, const std::vector<real> &heights,
                         const std::vector<int> &solveOrder, const std::vector<Vector3> &positions, bool twoThreads,
                         PartitionScratch &scratch, SolverPartition &partition) {
     const int n = static_cast<int>(solveOrder.size());

@@ -43,7 +43,7 @@ struct PartitionScratch {
 /// `positions` of the solver bodies (entry 0, the immovable world, is ignored) and
 /// schedules each part (buildLevelSchedule), each half's groups apart only for
 /// `twoThreads`. The orders, and so the numbers, do not depend on it.
-void partitionManifolds(const std::vector<SolverManifold> &manifolds, const std::vector<real> &heights,
+void partitionManifolds(const SolverManifolds &manifolds, const std::vector<real> &heights,
                         const std::vector<int> &order, const std::vector<Vector3> &positions, bool twoThreads,
                         PartitionScratch &scratch, SolverPartition &partition);
 
