@@ -16,10 +16,29 @@
 #include "collision/contact_building.h"
 #include "collision/cylinder_pairs.h"
 #include "collision/gjk.h"
-#include "collision/separation.h"
 
 namespace cyclone::detail {
 namespace {
+
+// The radius a sphere or capsule adds around its core (its centre, its axis segment); 0
+// for other shapes, which are their own core.
+real coreRadius(const CollisionShape &shape) {
+    const ShapeType type = shape.shape().type;
+    return type == ShapeType::Sphere || type == ShapeType::Capsule ? shape.shape().radius : 0;
+}
+
+// The support point of the shape's core along d (supportPoint less the radius along d).
+Vector3 coreSupport(const CollisionShape &shape, const Matrix4 &pose, const Vector3 &d, int triangle) {
+    switch (shape.shape().type) {
+        case ShapeType::Sphere: return pose.translation();
+        case ShapeType::Capsule: {
+            const Vector3 axis = pose.linear().col(2);
+            const real half = shape.shape().length / 2;
+            return pose.translation() + (axis.dot(d) >= 0 ? half : -half) * axis;
+        }
+        default: return shape.supportPoint(pose, d, triangle);
+    }
+}
 
 // Improves the normal n (unit, A to B; overlap f along it) the way a separating pair
 // finds its normal: A moved back along n by f plus a margin no longer touches B, and

@@ -20,7 +20,6 @@
 #include "collision/cylinder_pairs.h"
 #include "collision/mesh_contacts.h"
 #include "collision/round_pairs.h"
-#include "collision/separation.h"
 #include "collision/shape_contact.h"
 #include "collision/sphere_pairs.h"
 
@@ -74,28 +73,8 @@ int roundPairManifold(const Pair &pair, const Vector3 &normal, std::vector<Manif
     return appendReduced(points, normal, out);
 }
 
-// The distance between two convex shapes apart and the unit line from A's nearest point
-// to B's: by GJK on their cores (separation.cpp), or FCL's distance query for a plane
-// (a half-space has no support point to walk).
-bool apartBy(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
-             real &distance, Vector3 &normal) {
-    if (a.shape().type != ShapeType::Plane && b.shape().type != ShapeType::Plane)
-        return separation(a, poseA, b, poseB, distance, normal);
-    static const fcl::DistanceRequestd request = [] {
-        fcl::DistanceRequestd r(true);
-        r.gjk_solver_type = fcl::GST_LIBCCD;
-        return r;
-    }();
-    fcl::DistanceResultd result;
-    distance = distanceShapes(a.geometry().get(), poseA, b.geometry().get(), poseB, request, result);
-    const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
-    if (!(distance > 0) || !(between.norm() > kMinNormalLength)) return false;
-    normal = between.normalized();
-    return true;
-}
-
 // Convex shapes FCL found apart: a speculative manifold when they are closer than
-// `reach`, along the line between their nearest points (apartBy), clipped from the
+// `reach`, along the line between their nearest points (fcl::distance), clipped from the
 // features that face each other along it.
 int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
                  real reach, std::vector<Manifold> &out, bool roundPair = false) {
@@ -107,9 +86,17 @@ int apartContact(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     // rounding).
     constexpr real kApartNormalError = 1e-4;
     if (!(reach >= kMinDistanceReach)) return 0;
-    real distance = 0;
-    Vector3 normal;
-    if (!apartBy(a, poseA, b, poseB, distance, normal) || !(distance < reach)) return 0;
+    static const fcl::DistanceRequestd request = [] {
+        fcl::DistanceRequestd r(true);
+        r.gjk_solver_type = fcl::GST_LIBCCD;
+        return r;
+    }();
+    fcl::DistanceResultd result;
+    const real distance = distanceShapes(a.geometry().get(), poseA, b.geometry().get(), poseB, request, result);
+    if (!(distance > 0 && distance < reach)) return 0;
+    const Vector3 between = result.nearest_points[1] - result.nearest_points[0];
+    if (!(between.norm() > kMinNormalLength)) return 0;
+    Vector3 normal = between.normalized();
     const Pair pair{a, poseA, -1, b, poseB, -1, reach, reach};
     // Nearest points a hair apart give no direction: along the line between them the
     // shapes may overlap deeply, and the clipped points would claim that depth. The
