@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <charconv>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "collision/broadphase.h"
@@ -121,6 +121,30 @@ public:
 private:
     fcl::AABBd bounds_;
 };
+
+// Radius of the ball about a compiled solid's origin that it holds: the nearest of a
+// hull's face planes, a box's or cylinder's smallest half size; -1 for the others and
+// for a hull whose origin lies outside it or on its surface.
+real solidInnerRadius(const CollisionShape &c) {
+    const Shape &shape = c.shape();
+    switch (shape.type) {
+        case ShapeType::Box: return shape.halfExtents.minCoeff();
+        case ShapeType::Sphere:
+        case ShapeType::Capsule: return shape.radius;
+        case ShapeType::Cylinder: return std::min(shape.radius, shape.length / 2);
+        case ShapeType::Convex: {
+            real r = std::numeric_limits<real>::infinity();
+            for (std::size_t f = 0; f < c.faces().size(); ++f) {
+                const Vector3 &normal = c.faceNormals()[f];
+                real offset = -std::numeric_limits<real>::infinity();
+                for (const Vector3 &v : c.vertices()) offset = std::max(offset, normal.dot(v));
+                r = std::min(r, offset);
+            }
+            return r > 0 ? r : -1;
+        }
+        default: return -1;
+    }
+}
 
 // Farthest point of a compiled solid (or mesh) from its origin; 0 for a plane.
 real solidBoundingRadius(const CollisionShape &c) {
@@ -498,6 +522,7 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
     c.geometry_->computeLocalAABB();
     c.shape_ = shape;
     c.boundingRadius_ = solidBoundingRadius(c);
+    c.innerRadius_ = solidInnerRadius(c);
     return compiled;
 }
 

@@ -54,6 +54,10 @@ public:
     const Vector3 &centroid() const { return centroid_; }
     /// Farthest point of a solid shape from its frame origin, m (0 for planes).
     real boundingRadius() const { return boundingRadius_; }
+    /// Radius of a ball about the frame origin that lies inside a solid shape, m, so that
+    /// its support along any unit direction reaches at least that far; -1 where none is
+    /// known (planes, meshes, height fields, compounds, a hull that misses its origin).
+    real innerRadius() const { return innerRadius_; }
     /// Hull vertices (convex) or mesh vertices, shape frame.
     const std::vector<Vector3> &vertices() const { return vertices_; }
     /// Hull faces as vertex-index loops, counter-clockwise seen from outside (convex),
@@ -124,6 +128,7 @@ private:
     real volume_ = 0;
     Vector3 centroid_ = Vector3::Zero();
     real boundingRadius_ = 0;
+    real innerRadius_ = -1;
 };
 
 /// The world pose of child `k` of a compound placed at `pose`.

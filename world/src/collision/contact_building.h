@@ -86,6 +86,19 @@ struct Pair {
     real overlap(const Vector3 &n) const {
         return (a.supportPoint(poseA, n, triangleA) - b.supportPoint(poseB, -n, triangleB)).dot(n);
     }
+
+    // Whether the overlap along n (unit) surely exceeds `level`, from the balls inside
+    // the two shapes alone: A reaches along n at least its inner radius beyond its origin,
+    // B back along -n as far, so the overlap is at least (originA - originB).n plus both
+    // radii. False when unsure (a shape without an inner ball, a triangle). The margin
+    // covers the rounding of both sides: a candidate it rules out is one the exact test
+    // would have refused too.
+    bool overlapExceeds(const Vector3 &n, real level) const {
+        constexpr real kMargin = 1e-9;  // m
+        const real ra = a.innerRadius(), rb = b.innerRadius();
+        if (triangleA >= 0 || triangleB >= 0 || ra < 0 || rb < 0) return false;
+        return (poseA.translation() - poseB.translation()).dot(n) + ra + rb > level + kMargin;
+    }
 };
 
 // Unit normal of a counter-clockwise polygon (Newell), relative to its first point so

@@ -69,7 +69,7 @@ Vector3 refineNormal(const Pair &pair, const NormalRule &rule, Vector3 n, real &
         bool improved = false;
         for (int halving = 0; halving <= kRefineHalvings && !improved; ++halving) {
             if (halving > 0) candidate = (candidate + n).normalized();
-            if (!rule.allows(candidate)) continue;
+            if (!rule.allows(candidate) || pair.overlapExceeds(candidate, f - kPointTolerance * kPointTolerance)) continue;
             value = pair.overlap(candidate);
             improved = value < f - kPointTolerance * kPointTolerance;
         }
@@ -95,7 +95,7 @@ public:
     Vector3 featureDirection = Vector3::Zero();  ///< The direction fa and fb were taken along.
 
     void consider(const Vector3 &candidate, real preference, bool flat) {
-        if (!rule_.allows(candidate)) return;
+        if (!rule_.allows(candidate) || pair_.overlapExceeds(candidate, bestOverlap + preference)) return;
         const real o = pair_.overlap(candidate);
         if (o <= bestOverlap + preference) {
             best = candidate;
