@@ -133,13 +133,10 @@ real solidInnerRadius(const CollisionShape &c) {
         case ShapeType::Capsule: return shape.radius;
         case ShapeType::Cylinder: return std::min(shape.radius, shape.length / 2);
         case ShapeType::Convex: {
+            // The nearest face plane, each at its first vertex's offset.
             real r = std::numeric_limits<real>::infinity();
-            for (std::size_t f = 0; f < c.faces().size(); ++f) {
-                const Vector3 &normal = c.faceNormals()[f];
-                real offset = -std::numeric_limits<real>::infinity();
-                for (const Vector3 &v : c.vertices()) offset = std::max(offset, normal.dot(v));
-                r = std::min(r, offset);
-            }
+            for (std::size_t f = 0; f < c.faces().size(); ++f)
+                r = std::min(r, c.faceNormals()[f].dot(c.vertices()[c.faces()[f][0]]));
             return r > 0 ? r : -1;
         }
         default: return -1;

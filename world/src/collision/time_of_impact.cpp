@@ -62,30 +62,14 @@ bool overlap(const SweptShape &a, const Matrix4 &poseA, const SweptShape &b, con
     });
 }
 
+// A ball about the shape's origin that it holds, m (0 where none is known): a solid's own
+// (CollisionShape::innerRadius), a compound's largest child's less that child's offset.
 real innerRadius(const CollisionShape &c) {
-    const Shape &shape = c.shape();
-    switch (shape.type) {
-        case ShapeType::Box: return shape.halfExtents.minCoeff();
-        case ShapeType::Sphere:
-        case ShapeType::Capsule: return shape.radius;
-        case ShapeType::Cylinder: return std::min(shape.radius, shape.length / 2);
-        case ShapeType::Convex: {
-            real inner = std::numeric_limits<real>::infinity();
-            for (std::size_t f = 0; f < c.faces().size(); ++f)
-                inner = std::min(inner, c.faceNormals()[f].dot(c.vertices()[c.faces()[f][0]]));
-            return std::max(inner, real(0));
-        }
-        case ShapeType::Compound: {
-            real inner = 0;
-            for (const CompoundPart &part : c.children())
-                inner = std::max(inner, innerRadius(*part.shape) - part.pose.translation().norm());
-            return inner;
-        }
-        case ShapeType::Plane:
-        case ShapeType::Mesh:
-        case ShapeType::Heightfield: break;
-    }
-    return 0;
+    if (c.shape().type != ShapeType::Compound) return std::max(c.innerRadius(), real(0));
+    real inner = 0;
+    for (const CompoundPart &part : c.children())
+        inner = std::max(inner, innerRadius(*part.shape) - part.pose.translation().norm());
+    return inner;
 }
 
 real boundingRadius(const fcl::CollisionGeometryd &geometry) {
