@@ -51,14 +51,20 @@ Vector3 coreSupport(const CollisionShape &shape, const Matrix4 &pose, const Vect
 // round surface it creeps towards the answer (25-50 iterations in a mixed pile).
 Vector3 refineNormal(const Pair &pair, const NormalRule &rule, Vector3 n, real &f) {
     const real radii = coreRadius(pair.a) + coreRadius(pair.b);
+    // The vertices a round's search ended with, in the unshifted cores' difference: the
+    // next round starts from them, moved by its own shift (a round's set is the last
+    // one's moved a little), and takes a few iterations where a fresh search takes 20-30.
+    GjkSimplex simplex;
     for (int round = 0; round < kRefineRounds && f > 0; ++round) {
         const Vector3 shift = (f + kRefineMargin) * n;
         auto support = [&](const Vector3 &d) {
             return Vector3(coreSupport(pair.a, pair.poseA, d, pair.triangleA) - shift -
                            coreSupport(pair.b, pair.poseB, -d, pair.triangleB));
         };
+        for (int k = 0; k < simplex.count; ++k) simplex.points[k] -= shift;
         Vector3 closest;
-        if (!closestToOrigin(support, -n, closest)) break;
+        if (!closestToOrigin(support, -n, closest, &simplex)) break;
+        for (int k = 0; k < simplex.count; ++k) simplex.points[k] += shift;
         const real distance = closest.norm();
         if (!(distance - radii > kPointTolerance * kRefineMargin)) break;
         // At a ridge of A - B (a cylinder's rim, a box's edge) the nearest points may

@@ -111,22 +111,47 @@ inline bool closestOnSimplex(Vector3 *s, int &count, Vector3 &closest) {
 
 }  // namespace gjk
 
+/// The vertices GJK ended with (at most three: the face, edge or vertex nearest the
+/// origin), to start a later search of a nearby set from.
+struct GjkSimplex {
+    Vector3 points[4];
+    int count = 0;
+};
+
 /// The point of a convex set nearest the origin. `support(d)` gives the set's point
 /// furthest along the unit direction d; `start` is any direction. Returns false when the
-/// origin is inside the set (or on its boundary, within the tolerance).
+/// origin is inside the set (or on its boundary, within the tolerance). With `warm`, the
+/// search starts from its points when it has any (they must lie in the set), instead of
+/// from the support along `start`, and `warm` gets the vertices it ended with.
 template <typename Support>
-bool closestToOrigin(const Support &support, const Vector3 &start, Vector3 &closest) {
+bool closestToOrigin(const Support &support, const Vector3 &start, Vector3 &closest, GjkSimplex *warm = nullptr) {
     constexpr int kMaxIterations = 64;
     // Relative gap between the distance |v| and its lower bound v.w / |v| at which v is
     // the answer; curved sets approach it only asymptotically.
     constexpr real kRelativeTolerance = 1e-10;
     // v always lies in the simplex's hull, so each step can only bring it nearer.
-    Vector3 v = support(start);
-    Vector3 simplex[4] = {v};
+    Vector3 simplex[4];
     int count = 1;
+    Vector3 v;
+    if (warm && warm->count > 0) {
+        count = warm->count;
+        for (int k = 0; k < count; ++k) simplex[k] = warm->points[k];
+        gjk::closestOnSimplex(simplex, count, v);
+    } else {
+        v = support(start);
+        simplex[0] = v;
+    }
+    const auto keep = [&] {
+        if (!warm) return;
+        warm->count = count;
+        for (int k = 0; k < count; ++k) warm->points[k] = simplex[k];
+    };
     for (int i = 0; i < kMaxIterations; ++i) {
         const real vv = v.squaredNorm();
-        if (vv < 1e-24) return false;
+        if (vv < 1e-24) {
+            if (warm) warm->count = 0;
+            return false;
+        }
         const Vector3 w = support(-v / std::sqrt(vv));
         if (vv - v.dot(w) <= kRelativeTolerance * vv) break;
         bool known = false;
@@ -134,7 +159,10 @@ bool closestToOrigin(const Support &support, const Vector3 &start, Vector3 &clos
         if (known) break;
         simplex[count++] = w;
         Vector3 next;
-        if (!gjk::closestOnSimplex(simplex, count, next)) return false;
+        if (!gjk::closestOnSimplex(simplex, count, next)) {
+            if (warm) warm->count = 0;
+            return false;
+        }
         // Stop when a step no longer brings v nearer.
         if (next.squaredNorm() >= vv * (1 - kRelativeTolerance)) {
             if (next.squaredNorm() < vv) v = next;
@@ -142,6 +170,7 @@ bool closestToOrigin(const Support &support, const Vector3 &start, Vector3 &clos
         }
         v = next;
     }
+    keep();
     closest = v;
     return true;
 }
