@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -164,7 +167,7 @@ TEST(CarrierThreads, RunsGoToTheirBodysHalfLevelByLevel) {
     detail::TaskPool pool(2);
     for (int pass = 0; pass < 100; ++pass) {
         threads.finished.begin();
-        pool.run(2, [&](int lane) { detail::solveCarrierShare(bodies, manifolds, runs, threads, lane, false); });
+        pool.run(2, [&](int lane, int) { detail::solveCarrierShare(bodies, manifolds, runs, threads, lane, false); });
         for (int r = 0; r < 6; ++r) ASSERT_TRUE(threads.finished.finished(static_cast<std::size_t>(r))) << "run " << r << ", pass " << pass;
     }
 
@@ -303,7 +306,7 @@ TEST(OrderedShares, TwoThreadsGiveTheOneThreadOrdersNumbers) {
     for (int pass = 0; pass < 5; ++pass) {
         for (std::size_t k = 0; k < count; ++k) entries.solve(one, static_cast<int>(k));
         shares.finished.begin();
-        pool.run(2, [&](int share) {
+        pool.run(2, [&](int share, int) {
             detail::solveOrderedShare(shares, share, [&](int k) { entries.solve(two, k); });
         });
         for (std::size_t body = 0; body < one.size(); ++body)
@@ -390,9 +393,35 @@ TEST(TaskPool, RunsEveryTaskOnce) {
     EXPECT_EQ(pool.threads(), 3);
     for (int count : {0, 1, 2, 3, 7, 100, 1000}) {
         std::vector<std::atomic<int>> runs(static_cast<std::size_t>(count));
-        for (int job = 0; job < 20; ++job) pool.run(count, [&](int i) { runs[static_cast<std::size_t>(i)]++; });
+        for (int job = 0; job < 20; ++job) pool.run(count, [&](int i, int) { runs[static_cast<std::size_t>(i)]++; });
         for (int i = 0; i < count; ++i) EXPECT_EQ(runs[static_cast<std::size_t>(i)].load(), 20) << "task " << i;
     }
+}
+
+// A task is told which thread runs it: the caller is thread 0, each worker keeps its own
+// number from job to job, and no two threads share one.
+TEST(TaskPool, NamesTheThreadThatRunsATask) {
+    detail::TaskPool pool(3);
+    std::mutex mutex;
+    std::map<int, std::set<std::thread::id>> seen;  // thread number -> OS threads seen with it
+    const std::thread::id caller = std::this_thread::get_id();
+    for (int job = 0; job < 50; ++job) {
+        pool.run(64, [&](int, int thread) {
+            std::this_thread::sleep_for(std::chrono::microseconds(20));
+            std::lock_guard<std::mutex> lock(mutex);
+            seen[thread].insert(std::this_thread::get_id());
+        });
+    }
+    std::set<std::thread::id> all;
+    for (const auto &[thread, ids] : seen) {
+        EXPECT_GE(thread, 0);
+        EXPECT_LT(thread, 3);
+        EXPECT_EQ(ids.size(), 1u) << "thread " << thread;
+        all.insert(ids.begin(), ids.end());
+    }
+    EXPECT_EQ(all.size(), seen.size());  // one number per OS thread
+    ASSERT_TRUE(seen.count(0));
+    EXPECT_EQ(*seen[0].begin(), caller);
 }
 
 TEST(TaskPool, RunsJobsAfterTheWorkersBlocked) {
@@ -400,7 +429,7 @@ TEST(TaskPool, RunsJobsAfterTheWorkersBlocked) {
     std::atomic<int> sum{0};
     for (int job = 0; job < 3; ++job) {
         std::this_thread::sleep_for(std::chrono::milliseconds(5));  // past the workers' polling time
-        pool.run(4, [&](int i) { sum += i + 1; });
+        pool.run(4, [&](int i, int) { sum += i + 1; });
     }
     EXPECT_EQ(sum.load(), 3 * (1 + 2 + 3 + 4));
 }
@@ -410,7 +439,8 @@ TEST(TaskPool, OneThreadRunsTasksInOrderOnTheCaller) {
     std::vector<int> order;
     const std::thread::id caller = std::this_thread::get_id();
     bool onCaller = true;
-    pool.run(5, [&](int i) {
+    pool.run(5, [&](int i, int thread) {
+        EXPECT_EQ(thread, 0);
         order.push_back(i);
         onCaller = onCaller && std::this_thread::get_id() == caller;
     });

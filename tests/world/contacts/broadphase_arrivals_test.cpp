@@ -148,7 +148,7 @@ TEST(BroadphaseWalk, PiecesOnAnyThreadsGiveOneWalksPairsInItsOrder) {
     grid.broadphase.invalidate();
     detail::BroadphasePairs threaded;
     EXPECT_TRUE(grid.broadphase.findPairs(threaded, nullptr, 1u << 20,
-                                          [&](int count, const auto &task) { pool.run(count, task); }));
+                                          [&](int count, const auto &task) { pool.run(count, [&](int i, int) { task(i); }); }));
     EXPECT_TRUE(samePairs(threaded.contacts, inOrder.contacts));
 }
 
@@ -162,7 +162,7 @@ TEST(BroadphaseWalk, PastTheLimitTheFirstPairsOfTheOrderAreKept) {
     grid.broadphase.invalidate();
     detail::BroadphasePairs first;
     EXPECT_FALSE(grid.broadphase.findPairs(first, nullptr, 1000,
-                                           [&](int count, const auto &task) { pool.run(count, task); }));
+                                           [&](int count, const auto &task) { pool.run(count, [&](int i, int) { task(i); }); }));
     ASSERT_EQ(first.contacts.size(), 1000u);
     EXPECT_TRUE(samePairs(first.contacts, {all.contacts.begin(), all.contacts.begin() + 1000}));
 }

@@ -289,8 +289,8 @@ void ContactManager::listPairsOf(const BodyStore &bodies, const JointSet &joints
 }
 
 // Each pair on its own, in chunks shared between the threads: pairs that hardly moved
-// keep their manifolds, the others go through the narrowphase, which writes what it finds
-// into its chunk's list. The finds are then merged into the pairs one after another in
+// keep their manifolds, the others go through the narrowphase, which appends what it finds
+// to its thread's list (ChunkLists). The finds are then merged into the pairs one after another in
 // the pairs' order (anchors are numbered in that order), so the results do not depend on
 // the thread count (countAnchors, mergePairs). Pairs that touch after it are listed, and
 // wake their sleeping bodies (wakeTouched).
@@ -298,27 +298,25 @@ void ContactManager::testPairs(const PairTest &test, std::size_t first, std::siz
     const std::uint64_t stepCount = test.stepCount;
     const std::size_t count = last - first;
     test.workers.forEach(count, [&](std::size_t k) { pairs[stepPairs_[first + k]].lastSeen = stepCount; });
-    const std::size_t chunks = Workers::chunksOf(count);
-    // Room for a quarter of a chunk's pairs to find a manifold (convex pairs find at most
-    // one): more than a landing pile's chunks find but for a few, which grow their lists
-    // once and keep them. Room for every pair held four times the bytes.
-    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(Workers::kChunk / 4);
+    chunkFinds_.start(test.workers.threads(), Workers::chunksOf(count));
     finds_.resize(last);
-    test.workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        std::vector<Manifold> &out = chunkFinds_[chunk];
-        out.clear();
+    test.workers.forEachChunkOnThreads(count, [&](int thread, std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<Manifold> &out = chunkFinds_.open(chunk, thread);
+        const std::size_t base = out.size();
         for (std::size_t k = first + begin; k < first + end; ++k) {
             pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
             find = Find();
             find.reused = reuseManifolds(test.settings, test.bodies, stepPairs_[k]);
             if (find.reused) continue;
-            find.first = static_cast<std::uint32_t>(out.size());
+            find.first = static_cast<std::uint32_t>(out.size() - base);
             NormalMemo *memo = endNormal(stepPairs_[k], stepCount - 1);
             find.count = static_cast<std::uint32_t>(detect(test, stepPairs_[k], out, memo));
             find.anchors = static_cast<std::uint32_t>(anchorsIssuedBy(test.bodies, stepPairs_[k], find.count));
         }
+        chunkFinds_.close(chunk);
     });
+    chunkFinds_.finish();
 }
 
 // The anchor numbers each merge issues, counted with the tests, are handed out first, in
@@ -344,13 +342,13 @@ void ContactManager::mergePairs(const BodyStore &bodies, Workers &workers, std::
     const std::size_t count = last - first;
     while (mergeScratch_.size() < Workers::chunksOf(count)) mergeScratch_.emplace_back();
     workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        const std::vector<Manifold> &out = chunkFinds_[chunk];
+        const Manifold *out = chunkFinds_.items(chunk).begin();
         for (std::size_t k = first + begin; k < first + end; ++k) {
             pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
             if (!find.reused)
-                mergeFinds(bodies, p, out.data() + find.first, find.count, find.issuedBefore, mergeScratch_[chunk]);
+                mergeFinds(bodies, p, out + find.first, find.count, find.issuedBefore, mergeScratch_[chunk]);
             const PairState &pair = pairs[p];
             find.touching = pair.touching();
             if (!find.touching) continue;

@@ -13,6 +13,7 @@
 #include "cyclone/world/world.h"
 #include "world/body_store.h"
 #include "world/body_transitions.h"
+#include "world/chunk_lists.h"
 
 namespace cyclone::detail {
 
@@ -163,7 +164,7 @@ private:
     /// Pair slot of each candidate when it was last looked up (kNoSlot: none), by position.
     std::vector<std::uint32_t> candidateSlots_;
     /// What the narrowphase stage did with each entry of stepPairs_: kept its manifolds,
-    /// or found `count` manifolds from `first` on in its chunk's list of chunkFinds_.
+    /// or found `count` manifolds from its chunk's `first` on in chunkFinds_.
     /// issuedBefore: anchor numbers issued before its merge; touching, wakeA, wakeB:
     /// whether the pair touches after it and wakes body A or B.
     struct Find {
@@ -177,7 +178,7 @@ private:
         std::uint64_t issuedBefore = 0;
     };
     std::vector<Find> finds_;
-    std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of Workers::kChunk step pairs.
+    ChunkLists<Manifold> chunkFinds_;  ///< By chunk of Workers::kChunk step pairs.
     std::vector<MergeScratch> mergeScratch_;         ///< Per chunk.
     std::vector<std::uint32_t> stepPairs_;  ///< Pair slots the broadphase reported this step.
     /// An end normal, of pair slot `pair`, kept in step `step`.

@@ -429,22 +429,21 @@ bool LandingCorrection::detect(const WorldSettings &settings, const BodyStore &b
     // towards them is held; only the pairs with a test of their own give them, at no cost.
     narrowphase.touchMargin = settings.speculativeDistance;
     const Vector3 up = upward(settings.gravity);
-    // Each pair on its own, in chunks shared between the threads, each chunk's points in
-    // a list of its own; the lists are then joined in the pairs' order, so that the points
-    // do not depend on the thread count.
+    // Each pair on its own, in chunks shared between the threads, each thread's points in
+    // a list of its own; the chunks' points are then joined in the pairs' order, so that
+    // the points do not depend on the thread count.
     const std::size_t count = pairs_.size();
     const std::size_t chunks = Workers::chunksOf(count);
-    // A chunk's list holds one pair's manifolds at a time (a convex pair finds at most one).
-    while (chunkFinds_.size() < chunks) chunkFinds_.emplace_back().reserve(1);
-    while (chunkMemos_.size() < chunks) chunkMemos_.emplace_back();
-    while (chunkPoints_.size() < chunks) chunkPoints_.emplace_back();
+    const int threads = workers.threads();
+    // A thread's list holds one pair's manifolds at a time (a convex pair finds at most one).
+    while (threadFinds_.size() < std::size_t(threads)) threadFinds_.emplace_back().reserve(1);
+    chunkMemos_.start(threads, chunks);
+    chunkPoints_.start(threads, chunks);
     chunkDeep_.resize(chunks);
-    workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        std::vector<Manifold> &out = chunkFinds_[chunk];
-        std::vector<Memo> &memos = chunkMemos_[chunk];
-        std::vector<Point> &found = chunkPoints_[chunk];
-        memos.clear();
-        found.clear();
+    workers.forEachChunkOnThreads(count, [&](int thread, std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<Manifold> &out = threadFinds_[std::size_t(thread)];
+        std::vector<Memo> &memos = chunkMemos_.open(chunk, thread);
+        std::vector<Point> &found = chunkPoints_.open(chunk, thread);
         bool deep = false;
         for (std::size_t k = begin; k < end; ++k) {
             // The pairs lie scattered in the pair cache: their states are asked for ahead.
@@ -468,11 +467,15 @@ bool LandingCorrection::detect(const WorldSettings &settings, const BodyStore &b
             deep = appendPoints(out, pair, poseA, poseB, tolerance, up, found) || deep;
         }
         chunkDeep_[chunk] = deep ? 1 : 0;
+        chunkMemos_.close(chunk);
+        chunkPoints_.close(chunk);
     });
+    chunkMemos_.finish();
+    chunkPoints_.finish();
     // What FCL found goes on to the next step's narrowphase (ContactManager's end normals),
     // with the poses it was found at: the bodies' own still.
     for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-        for (const Memo &m : chunkMemos_[chunk]) {
+        for (const Memo &m : chunkMemos_.items(chunk)) {
             const PairState &pair = pairs[pairs_[m.k]];
             const BodyRecord &a = bodies[pair.a];
             const BodyRecord &b = bodies[pair.b];
@@ -484,7 +487,7 @@ bool LandingCorrection::detect(const WorldSettings &settings, const BodyStore &b
     bool deep = false;
     for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
         deep = deep || chunkDeep_[chunk] != 0;
-        for (Point point : chunkPoints_[chunk]) {
+        for (Point point : chunkPoints_.items(chunk)) {
             point.order = nextOrder_++;
             points_.push_back(point);
         }

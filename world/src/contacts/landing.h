@@ -52,6 +52,7 @@
 #include "contacts/pair_cache.h"
 #include "cyclone/world/stats.h"
 #include "cyclone/world/settings.h"
+#include "world/chunk_lists.h"
 #include "world/body_store.h"
 
 namespace cyclone::detail {
@@ -152,7 +153,7 @@ private:
     std::vector<std::uint32_t> activeBodies_;  ///< Bodies whose movedRound_ is set (to clear it).
     std::vector<std::uint32_t> pairs_;          ///< The round's pair slots to test.
     std::vector<char> flags_;                   ///< Scratch: what a test on the threads picked.
-    std::vector<std::vector<Manifold>> chunkFinds_;  ///< Per chunk of pairs_, what the narrowphase found for one pair.
+    std::vector<std::vector<Manifold>> threadFinds_;  ///< Per thread, what the narrowphase found for one pair.
     /// What FCL found for an entry of pairs_ (collide's memo, but for the shapes and poses:
     /// the pair's), for the next step's narrowphase.
     struct Memo {
@@ -160,11 +161,11 @@ private:
         bool touching = false;
         Vector3 normal = Vector3::UnitY();
     };
-    std::vector<std::vector<Memo>> chunkMemos_;  ///< Per chunk of pairs_, what FCL's tests found.
+    ChunkLists<Memo> chunkMemos_;  ///< By chunk of pairs_, what FCL's tests found.
     std::vector<Point> points_;
-    /// Per chunk of pairs_: the points its finds gave (their order not yet set), and
+    /// By chunk of pairs_: the points its finds gave (their order not yet set), and
     /// whether one of them lies deeper than its pair's tolerance.
-    std::vector<std::vector<Point>> chunkPoints_;
+    ChunkLists<Point> chunkPoints_;
     std::vector<char> chunkDeep_;
     /// A point's place in the order the passes take points_ in.
     struct SortKey {

@@ -14,7 +14,7 @@ bool isOpen(std::uint64_t generation) { return (generation & 1) != 0; }
 }  // namespace
 
 TaskPool::TaskPool(int threads) {
-    for (int k = 1; k < threads; ++k) workers_.emplace_back([this] { workerLoop(); });
+    for (int k = 1; k < threads; ++k) workers_.emplace_back([this, k] { workerLoop(k); });
 }
 
 TaskPool::~TaskPool() {
@@ -41,22 +41,22 @@ void TaskPool::runJob(int count, Call call, const void *context) {
         generation_.fetch_add(1);                  // open
     }
     wakeUp_.notify_all();
-    takeTasks();
+    takeTasks(0);
     waitUntil([&] { return finished_.load() >= count; });
     generation_.fetch_add(1);  // closed
     waitUntil([&] { return joined_.load() == 0; });
 }
 
-void TaskPool::takeTasks() {
+void TaskPool::takeTasks(int thread) {
     for (;;) {
         const int i = next_.fetch_add(1);
         if (i >= count_) return;
-        call_(context_, i);
+        call_(context_, i, thread);
         finished_.fetch_add(1);
     }
 }
 
-void TaskPool::workerLoop() {
+void TaskPool::workerLoop(int thread) {
     std::uint64_t seen = 0;
     const auto fresh = [&](std::uint64_t g) { return isOpen(g) && g != seen; };
     for (;;) {
@@ -76,7 +76,7 @@ void TaskPool::workerLoop() {
         if (!isOpen(current)) continue;
         seen = current;
         joined_.fetch_add(1);
-        if (generation_.load() == seen) takeTasks();
+        if (generation_.load() == seen) takeTasks(thread);
         joined_.fetch_sub(1);
     }
 }

@@ -52,23 +52,25 @@ public:
     /// Threads that run a job, the caller's included.
     int threads() const { return static_cast<int>(workers_.size()) + 1; }
 
-    /// Runs task(i) for every i in [0, count) and returns when all have run. The caller
-    /// takes tasks too; with count <= 1 it runs them alone.
+    /// Runs task(i, thread) for every i in [0, count) and returns when all have run;
+    /// `thread` (0 to threads() - 1, the caller's 0) names the thread that runs it. The
+    /// caller takes tasks too; with count <= 1 it runs them alone.
     template <class Task>
     void run(int count, const Task &task) {
         if (count <= 1 || workers_.empty()) {
-            for (int i = 0; i < count; ++i) task(i);
+            for (int i = 0; i < count; ++i) task(i, 0);
             return;
         }
-        runJob(count, [](const void *context, int i) { (*static_cast<const Task *>(context))(i); }, &task);
+        runJob(count, [](const void *context, int i, int thread) { (*static_cast<const Task *>(context))(i, thread); },
+               &task);
     }
 
 private:
-    using Call = void (*)(const void *context, int index);
+    using Call = void (*)(const void *context, int index, int thread);
 
     void runJob(int count, Call call, const void *context);
-    void workerLoop();
-    void takeTasks();
+    void workerLoop(int thread);
+    void takeTasks(int thread);
 
     std::vector<std::thread> workers_;
     std::mutex mutex_;

@@ -20,19 +20,14 @@ public:
         else if (!pool_ || pool_->threads() != threads) pool_ = std::make_unique<TaskPool>(threads);
     }
     bool parallel() const { return pool_ != nullptr; }
+    /// Threads that run a job, the stepping thread's included.
+    int threads() const { return pool_ ? pool_->threads() : 1; }
 
     /// Runs task(i) for i in [0, count), on the pool's threads when there is one; the
     /// tasks must be independent. A job of more than one task adds its time to shared().
     template <class Task>
     void forEachTask(int count, const Task &task) {
-        if (count <= 1) {
-            if (count == 1) task(0);
-            return;
-        }
-        const auto start = std::chrono::steady_clock::now();
-        if (pool_) pool_->run(count, task);
-        else for (int i = 0; i < count; ++i) task(i);
-        shared_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        runTasks(count, [&](int i, int) { task(i); });
     }
 
     /// Milliseconds, since resetTimes(), in jobs of more than one task: the work that
@@ -56,6 +51,17 @@ public:
         });
     }
 
+    /// Runs task(thread, chunk, begin, end) for each chunk as forEachChunk does, telling
+    /// each which of threads() threads runs it: for work that appends to a list of its
+    /// thread's own (ChunkLists).
+    template <class Task>
+    void forEachChunkOnThreads(std::size_t count, const Task &task) {
+        runTasks(static_cast<int>(chunksOf(count)), [&](int chunk, int thread) {
+            const std::size_t begin = std::size_t(chunk) * kChunk;
+            task(thread, std::size_t(chunk), begin, std::min(count, begin + kChunk));
+        });
+    }
+
     /// Runs task(i) for every i in [0, count), in chunks of kChunk.
     template <class Task>
     void forEach(std::size_t count, const Task &task) {
@@ -76,6 +82,19 @@ public:
     }
 
 private:
+    /// Runs task(i, thread) for i in [0, count): forEachTask, telling each task its thread.
+    template <class Task>
+    void runTasks(int count, const Task &task) {
+        if (count <= 1) {
+            if (count == 1) task(0, 0);
+            return;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        if (pool_) pool_->run(count, task);
+        else for (int i = 0; i < count; ++i) task(i, 0);
+        shared_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+
     std::unique_ptr<TaskPool> pool_;
     double shared_ = 0;
 };
