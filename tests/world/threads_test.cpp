@@ -15,7 +15,9 @@
 #include "solver/carriers.h"
 #include "solver/threads/carrier_threads.h"
 #include "solver/threads/ordered_shares.h"
+#include "world/chunk_lists.h"
 #include "world/task_pool.h"
+#include "world/workers.h"
 #include "world_fixture.h"
 
 namespace cyclone::test {
@@ -422,6 +424,38 @@ TEST(TaskPool, NamesTheThreadThatRunsATask) {
     EXPECT_EQ(all.size(), seen.size());  // one number per OS thread
     ASSERT_TRUE(seen.count(0));
     EXPECT_EQ(*seen[0].begin(), caller);
+}
+
+// Chunks on three threads append to their threads' lists; read back chunk by chunk, the
+// items come in the one-thread order: chunk c of 64 items [64c, 64c + 64) appends item i
+// (i mod 3) times, so the job holds 0 + 1 + 2 of every three items, 1,000 in all.
+TEST(ChunkLists, ReadBackInTheChunksOrderWhateverThreadRanThem) {
+    detail::Workers workers;
+    workers.match(3);
+    ASSERT_EQ(workers.threads(), 3);
+    constexpr std::size_t kItems = 1000;
+    std::vector<int> expected;
+    for (int i = 0; i < int(kItems); ++i)
+        for (int copy = 0; copy < i % 3; ++copy) expected.push_back(i);
+    detail::ChunkLists<int> lists;
+    for (int job = 0; job < 20; ++job) {
+        const std::size_t chunks = detail::Workers::chunksOf(kItems);
+        lists.start(workers.threads(), chunks);
+        std::atomic<int> threadsSeen{0};
+        workers.forEachChunkOnThreads(kItems, [&](int thread, std::size_t chunk, std::size_t begin, std::size_t end) {
+            std::vector<int> &out = lists.open(chunk, thread);
+            for (std::size_t i = begin; i < end; ++i)
+                for (std::size_t copy = 0; copy < i % 3; ++copy) out.push_back(int(i));
+            lists.close(chunk);
+            threadsSeen |= 1 << thread;
+        });
+        lists.finish();
+        std::vector<int> read;
+        for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+            for (int item : lists.items(chunk)) read.push_back(item);
+        ASSERT_EQ(read, expected) << "job " << job;
+        EXPECT_EQ(threadsSeen.load() & ~7, 0);
+    }
 }
 
 TEST(TaskPool, RunsJobsAfterTheWorkersBlocked) {
