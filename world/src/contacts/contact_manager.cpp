@@ -281,6 +281,43 @@ void ContactManager::listPair(std::uint32_t p) {
     stepPairs_.push_back(p);
 }
 
+namespace {
+
+// A pair whose manifolds are all gone gives the room of its list to the pairs that begin
+// to touch, which take a room given before they allocate one: the rooms held are those
+// of the pairs touching at once, not of every pair that ever touched (in a landing pile,
+// pairs touch and part many times over; half of its rooms lay empty).
+void spareRoom(std::vector<ManifoldState> &manifolds, std::vector<std::vector<ManifoldState>> &rooms) {
+    if (!manifolds.empty() || manifolds.capacity() == 0) return;
+    rooms.emplace_back();
+    rooms.back().swap(manifolds);
+}
+
+void takeRoom(std::vector<ManifoldState> &manifolds, std::vector<std::vector<ManifoldState>> &rooms) {
+    if (manifolds.capacity() > 0 || rooms.empty()) return;
+    manifolds.swap(rooms.back());
+    rooms.pop_back();
+}
+
+}  // namespace
+
+void ContactManager::dealRooms(int threads) {
+    const std::size_t count = std::size_t(threads);
+    while (mergeScratch_.size() < count) mergeScratch_.emplace_back();
+    std::vector<std::vector<ManifoldState>> &pool = mergeScratch_[0].rooms;
+    for (std::size_t t = 1; t < mergeScratch_.size(); ++t) {
+        for (std::vector<ManifoldState> &room : mergeScratch_[t].rooms) pool.emplace_back().swap(room);
+        mergeScratch_[t].rooms.clear();
+    }
+    const std::size_t share = pool.size() / count;  // each thread's; the first keeps the rest
+    for (std::size_t t = 1; t < count; ++t) {
+        for (std::size_t k = 0; k < share; ++k) {
+            mergeScratch_[t].rooms.emplace_back().swap(pool.back());
+            pool.pop_back();
+        }
+    }
+}
+
 // A woken body's pairs kept from before it slept: with its island's other members (woken
 // with it) and with static bodies, each touching as it was when the island fell asleep.
 void ContactManager::listPairsOf(const BodyStore &bodies, const JointSet &joints, std::uint32_t index) {
@@ -340,15 +377,15 @@ void ContactManager::countAnchors(StepStats &stats, std::size_t first, std::size
 // (but the detection reads other pairs' manifolds, so it comes after all of them).
 void ContactManager::mergePairs(const BodyStore &bodies, Workers &workers, std::size_t first, std::size_t last) {
     const std::size_t count = last - first;
-    while (mergeScratch_.size() < Workers::chunksOf(count)) mergeScratch_.emplace_back();
-    workers.forEachChunk(count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    dealRooms(workers.threads());
+    workers.forEachChunkOnThreads(count, [&](int thread, std::size_t chunk, std::size_t begin, std::size_t end) {
         const Manifold *out = chunkFinds_.items(chunk).begin();
         for (std::size_t k = first + begin; k < first + end; ++k) {
             pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
             if (!find.reused)
-                mergeFinds(bodies, p, out + find.first, find.count, find.issuedBefore, mergeScratch_[chunk]);
+                mergeFinds(bodies, p, out + find.first, find.count, find.issuedBefore, mergeScratch_[std::size_t(thread)]);
             const PairState &pair = pairs[p];
             find.touching = pair.touching();
             if (!find.touching) continue;
@@ -471,6 +508,7 @@ void ContactManager::mergeFinds(const BodyStore &bodies, std::uint32_t p, const 
         // with its warm-start impulses and found again a step later. Keep its points as
         // speculative contacts while they stay close.
         keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance, issued);
+        spareRoom(pair.manifolds, scratch.rooms);
         return;
     }
     if (a.shape->isCompound() || b.shape->isCompound()) {
@@ -478,6 +516,7 @@ void ContactManager::mergeFinds(const BodyStore &bodies, std::uint32_t p, const 
         return;
     }
     const std::size_t kept = keptManifolds(n, false);
+    takeRoom(pair.manifolds, scratch.rooms);
     pair.manifolds.resize(kept);
     for (std::size_t k = 0; k < kept; ++k)
         mergeManifold(pair.manifolds[k], found[k], poseA, poseB, *a.shape, *b.shape, matchDistance, ++issued);
@@ -492,6 +531,7 @@ void ContactManager::mergeByChildren(PairState &pair, const Manifold *found, std
     std::vector<ManifoldState> &previous = scratch.previous;
     std::vector<char> &used = scratch.used;
     previous.swap(pair.manifolds);
+    takeRoom(pair.manifolds, scratch.rooms);
     used.assign(previous.size(), 0);
     const std::size_t kept = keptManifolds(n, true);
     pair.manifolds.resize(kept);
@@ -546,6 +586,8 @@ void ContactManager::removePair(BodyStore &bodies, std::uint32_t p) {
         }
     }
     pairs.remove(p);
+    if (mergeScratch_.empty()) mergeScratch_.emplace_back();
+    spareRoom(pairs[p].manifolds, mergeScratch_[0].rooms);
     if (p < endNormalOf_.size()) endNormalOf_[p] = kNoSlot;
     eventSlots_.push_back(p);
 }

@@ -118,11 +118,15 @@ private:
     std::size_t detect(const PairTest &test, std::uint32_t p, std::vector<Manifold> &out, NormalMemo *memo) const;
     /// Pair p's end normal kept in step `step`, or null.
     NormalMemo *endNormal(std::uint32_t p, std::uint64_t step);
-    /// A compound pair's manifolds before its merge, and which a fresh one took.
+    /// What a thread's merges keep: a compound pair's manifolds before its merge, and
+    /// which a fresh one took; the rooms of manifold lists emptied (spareRoom, takeRoom).
     struct MergeScratch {
         std::vector<ManifoldState> previous;
         std::vector<char> used;
+        std::vector<std::vector<ManifoldState>> rooms;
     };
+    /// Deals the threads' spare rooms out evenly among the first `threads` scratches.
+    void dealRooms(int threads);
     /// How many anchor numbers mergeFinds issues for pair p with `n` manifolds found.
     std::uint64_t anchorsIssuedBy(const BodyStore &bodies, std::uint32_t p, std::size_t n) const;
     /// Merges the `n` manifolds `found` for pair p into its manifolds, numbering new
@@ -179,7 +183,7 @@ private:
     };
     std::vector<Find> finds_;
     ChunkLists<Manifold> chunkFinds_;  ///< By chunk of Workers::kChunk step pairs.
-    std::vector<MergeScratch> mergeScratch_;         ///< Per chunk.
+    std::vector<MergeScratch> mergeScratch_;         ///< Per thread.
     std::vector<std::uint32_t> stepPairs_;  ///< Pair slots the broadphase reported this step.
     /// An end normal, of pair slot `pair`, kept in step `step`.
     struct EndNormal {
