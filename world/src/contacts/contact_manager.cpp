@@ -437,7 +437,7 @@ bool ContactManager::reuseManifolds(const WorldSettings &settings, const BodySto
     const Matrix4 poseA = a.body.getTransform();
     const Matrix4 poseB = b.body.getTransform();
     const RelativePose relative = relativePose(a.body, b.body);
-    const RelativePose &tested = pairs.relativePose(p);
+    const RelativePose &tested = pair.manifolds[0].tested;
     const real shift = (relative.position - tested.position).norm();
     const Quaternion turn = relative.orientation * tested.orientation.conjugate();
     const real radius = std::max(a.boundingRadius, b.boundingRadius);
@@ -499,27 +499,26 @@ void ContactManager::mergeFinds(const BodyStore &bodies, std::uint32_t p, const 
     const BodyRecord &b = bodies[pair.b];
     const Matrix4 poseA = a.body.getTransform();
     const Matrix4 poseB = b.body.getTransform();
-    pairs.relativePose(p) = relativePose(a.body, b.body);
     const real size = std::min(a.isPlane ? b.boundingRadius : a.boundingRadius,
                                b.isPlane ? a.boundingRadius : b.boundingRadius);
     const real matchDistance = std::clamp(0.1 * size, real(0.001), real(0.05));
-    if (n == 0 && !pair.manifolds.empty()) {
+    if (n == 0) {
         // FCL sees only overlap: a resting contact that opens by a hair would be lost
         // with its warm-start impulses and found again a step later. Keep its points as
         // speculative contacts while they stay close.
         keepNearPoints(pair.manifolds, poseA, poseB, kContactKeepDistance, issued);
         spareRoom(pair.manifolds, scratch.rooms);
-        return;
-    }
-    if (a.shape->isCompound() || b.shape->isCompound()) {
+    } else if (a.shape->isCompound() || b.shape->isCompound()) {
         mergeByChildren(pair, found, n, poseA, poseB, *a.shape, *b.shape, matchDistance, issued, scratch);
-        return;
+    } else {
+        const std::size_t kept = keptManifolds(n, false);
+        takeRoom(pair.manifolds, scratch.rooms);
+        pair.manifolds.resize(kept);
+        for (std::size_t k = 0; k < kept; ++k)
+            mergeManifold(pair.manifolds[k], found[k], poseA, poseB, *a.shape, *b.shape, matchDistance, ++issued);
     }
-    const std::size_t kept = keptManifolds(n, false);
-    takeRoom(pair.manifolds, scratch.rooms);
-    pair.manifolds.resize(kept);
-    for (std::size_t k = 0; k < kept; ++k)
-        mergeManifold(pair.manifolds[k], found[k], poseA, poseB, *a.shape, *b.shape, matchDistance, ++issued);
+    const RelativePose tested = relativePose(a.body, b.body);
+    for (ManifoldState &m : pair.manifolds) m.tested = tested;
 }
 
 // A compound's manifolds belong to pairs of children: each fresh one warm-starts from the

@@ -77,13 +77,11 @@ std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &creat
     } else {
         slot = static_cast<std::uint32_t>(pairs_.size());
         pairs_.resize(slot + 1);
-        relativePoses_.resize(slot + 1);
     }
     PairState &p = pairs_[slot];
     p.a = std::min(i, j);
     p.b = std::max(i, j);
     p.manifolds.clear();
-    relativePoses_[slot] = RelativePose();
     p.lastSeen = 0;
     p.alive = true;
     insert(k, slot);

@@ -43,6 +43,9 @@ struct ManifoldState {
     }
     int childA = 0;  ///< The child of A it touches when A is a compound, else 0.
     int childB = 0;  ///< The child of B it touches when B is a compound, else 0.
+    /// B seen from A when the pair was last tested (all of a pair's manifolds hold the
+    /// same): manifold reuse reads it, and only a touching pair has a manifold to hold it.
+    RelativePose tested;
 };
 
 /// Which manifold of which pair: a PairCache slot and an index in PairState::manifolds.
@@ -54,7 +57,7 @@ struct ManifoldRef {
 /// What the narrowphase reads of every candidate pair, in one cache line: a pile's pairs
 /// are visited in the broadphase's order, not the slots', and each visit missed the cache
 /// twice when the pair's relative pose (read only while it touches) sat between these
-/// fields (PairCache::relativePose holds it now).
+/// fields (its manifolds hold it now: ManifoldState::tested).
 struct alignas(64) PairState {
     std::uint32_t a = 0;  ///< Body index of A (the smaller index).
     std::uint32_t b = 0;  ///< Body index of B.
@@ -92,10 +95,6 @@ public:
     void prefetchAhead(const std::vector<std::uint32_t> &slots, std::size_t k, std::size_t end) const {
         if (k + kPrefetchAhead < end && slots[k + kPrefetchAhead] < pairs_.size()) prefetch(slots[k + kPrefetchAhead]);
     }
-    /// B seen from A at the last narrowphase that left the pair touching (manifold reuse
-    /// reads it only then).
-    RelativePose &relativePose(std::uint32_t pair) { return relativePoses_[pair]; }
-    const RelativePose &relativePose(std::uint32_t pair) const { return relativePoses_[pair]; }
     /// Every slot, alive or not (check PairState::alive).
     std::size_t slots() const { return pairs_.size(); }
 
@@ -112,7 +111,6 @@ private:
     // In blocks: a pile's pairs are many (11 per body in a landing pile), and a
     // std::vector that outgrows its room holds twice as many for good.
     BlockArray<PairState> pairs_;
-    BlockArray<RelativePose> relativePoses_;  ///< By slot, as pairs_.
     std::vector<std::uint32_t> free_;
     // Pair slots by key, open addressing with linear probing: unlike a node-based map it
     // allocates only when it grows, so pairs that come and go cost no allocation.

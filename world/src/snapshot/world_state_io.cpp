@@ -411,7 +411,6 @@ struct StateFields {
         std::size_t slots = a.count(cache.pairs_.size(), 1);
         if constexpr (A::kReading) {
             cache.pairs_.assign(slots, PairState());
-            cache.relativePoses_.assign(slots, RelativePose());
         }
         for (std::size_t p = 0; p < slots; ++p) {
             PairState &pair = cache.pairs_[p];
@@ -426,10 +425,13 @@ struct StateFields {
             const std::size_t n = tag - 1;
             if (n > 255) throw UnreadableState{"a pair has too many manifolds"};
             if (n == 0) continue;
-            RelativePose &pose = cache.relativePoses_[p];
-            io(a, pose.position, pose.orientation);
             if constexpr (A::kReading) pair.manifolds.resize(n);
-            for (ManifoldState &m : pair.manifolds) manifold(a, m, now);
+            RelativePose &pose = pair.manifolds[0].tested;
+            io(a, pose.position, pose.orientation);
+            for (ManifoldState &m : pair.manifolds) {
+                manifold(a, m, now);
+                if constexpr (A::kReading) m.tested = pose;
+            }
         }
         packed(a, cache.free_);
         if constexpr (A::kReading) {
