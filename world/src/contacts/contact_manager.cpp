@@ -601,7 +601,7 @@ void ContactManager::removePairsOf(BodyStore &bodies, std::uint32_t index) {
 // removed (its generation moved on), ends the old contact before the new one begins.
 void ContactManager::reportContactEvents(const StepContext &context, const BodyStore &bodies, WorldEvents &events) {
     Workers &workers = context.workers;
-    if (tracks_.size() < pairs.slots()) tracks_.resize(pairs.slots());
+    tracks_.cover(pairs.slots());
     // Only slots the narrowphase saw or that were removed can have changed. Those whose
     // state did change (few: a resting scene has none) are taken in slot order, so that
     // events come in the same order whichever way they were found.
@@ -614,7 +614,7 @@ void ContactManager::reportContactEvents(const StepContext &context, const BodyS
     // eventSlots_, in place: a list of their own would allocate the first time a late
     // step changes more than it ever held.
     const auto changedAt = [&](std::size_t k) {
-        const ContactTrack &track = tracks_[eventSlots_[k]];
+        const ContactTrack &track = tracks_.at(eventSlots_[k]);
         const ContactTrack now = stateOf(eventSlots_[k]);
         return track.touching != now.touching || (now.touching && (track.a != now.a || track.b != now.b));
     };
@@ -625,14 +625,14 @@ void ContactManager::reportContactEvents(const StepContext &context, const BodyS
     std::sort(eventSlots_.begin(), eventSlots_.end());
     eventSlots_.erase(std::unique(eventSlots_.begin(), eventSlots_.end()), eventSlots_.end());
     for (std::uint32_t p : eventSlots_) {
-        ContactTrack &track = tracks_[p];
-        const ContactTrack now = stateOf(p);
-        if (track.touching && (!now.touching || track.a != now.a || track.b != now.b)) {
+        const ContactTrack track = tracks_.at(p);
+        ContactTrack now = stateOf(p);
+        const bool ended = track.touching && (!now.touching || track.a != now.a || track.b != now.b);
+        if (ended) {
             events.contactEnds.push_back({track.a, track.b, track.userDataA, track.userDataB});
-            track.touching = false;
+            tracks_.end(p);
         }
-        if (!now.touching || track.touching) continue;
-        track = now;
+        if (!now.touching || (track.touching && !ended)) continue;
 
         // The deepest point stands for the contact.
         const PairState *pair = &pairs[p];
@@ -657,9 +657,10 @@ void ContactManager::reportContactEvents(const StepContext &context, const BodyS
         const Vector3 va = ra.body.getVelocity() + ra.body.getRotation().cross(begin.point - ra.body.getPosition());
         const Vector3 vb = rb.body.getVelocity() + rb.body.getRotation().cross(begin.point - rb.body.getPosition());
         begin.approachSpeed = (va - vb).dot(begin.normal);
-        begin.userDataA = track.userDataA = ra.userData;
-        begin.userDataB = track.userDataB = rb.userData;
+        begin.userDataA = now.userDataA = ra.userData;
+        begin.userDataB = now.userDataB = rb.userData;
         events.contactBegins.push_back(begin);
+        tracks_.begin(p, now);
     }
     eventSlots_.clear();
 }

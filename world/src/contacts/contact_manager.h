@@ -9,6 +9,7 @@
 
 #include "collision/broadphase.h"
 #include "collision/narrowphase.h"
+#include "contacts/contact_tracks.h"
 #include "contacts/pair_cache.h"
 #include "cyclone/world/world.h"
 #include "world/body_store.h"
@@ -20,14 +21,6 @@ namespace cyclone::detail {
 class JointSet;
 struct StepContext;
 class Workers;
-
-/// A pair slot's touching state at the end of the last step, for contact events.
-struct ContactTrack {
-    BodyId a;
-    BodyId b;
-    bool touching = false;
-    std::uint64_t userDataA = 0, userDataB = 0;  ///< The bodies' user data when it began (for the end event).
-};
 
 class ContactManager {
 public:
@@ -193,7 +186,7 @@ private:
     };
     std::vector<EndNormal> endNormals_;
     std::vector<std::uint32_t> endNormalOf_;  ///< By pair slot: its entry in endNormals_ (if that names it).
-    std::vector<ContactTrack> tracks_;      ///< By pair slot.
+    ContactTracks tracks_;
     /// Pair slots whose touching state may have changed since the last contact events:
     /// seen by the narrowphase or removed (reportContactEvents looks at these only).
     std::vector<std::uint32_t> eventSlots_;

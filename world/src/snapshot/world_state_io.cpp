@@ -448,24 +448,24 @@ struct StateFields {
     /// The contact events' tracks: their count, then the touching ones (a track that does
     /// not touch is read only for that).
     template <class A>
-    static void tracks(A &a, std::vector<ContactTrack> &tracks, std::size_t pairSlots) {
-        const std::size_t n = a.count(tracks.size(), 0);
-        if (n > std::max(pairSlots, tracks.size())) throw UnreadableState{"the contact tracks outnumber the pairs"};
+    static void tracks(A &a, ContactTracks &tracks, std::size_t pairSlots) {
+        const std::size_t n = a.count(tracks.slots(), 0);
+        if (n > std::max(pairSlots, tracks.slots())) throw UnreadableState{"the contact tracks outnumber the pairs"};
         std::uint32_t touching = 0;
         if constexpr (A::kReading) {
-            tracks.assign(n, ContactTrack());
+            tracks.reset(n);
         } else {
-            for (const ContactTrack &t : tracks) touching += t.touching;
+            for (std::uint32_t slot = 0; slot < n; ++slot) touching += tracks.at(slot).touching;
         }
         packed(a, touching);
         std::uint32_t slot = 0;
         for (std::uint32_t k = 0; k < touching; ++k) {
             if constexpr (!A::kReading) {
-                while (!tracks[slot].touching) ++slot;
+                while (!tracks.at(slot).touching) ++slot;
             }
             packed(a, slot);
             if (slot >= n) throw UnreadableState{"a contact track is out of range"};
-            ContactTrack &t = tracks[slot++];
+            ContactTrack t = tracks.at(slot);
             packed(a, t.a.index);
             packed(a, t.a.generation);
             packed(a, t.b.index);
@@ -473,6 +473,8 @@ struct StateFields {
             packed(a, t.userDataA);
             packed(a, t.userDataB);
             t.touching = true;
+            if constexpr (A::kReading) tracks.begin(slot, t);
+            ++slot;
         }
     }
 
