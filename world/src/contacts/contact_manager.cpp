@@ -8,6 +8,7 @@
 #include "world/body_transitions.h"
 #include "world/step_context.h"
 #include "world/workers.h"
+#include "world/room.h"
 
 namespace cyclone::detail {
 namespace {
@@ -556,6 +557,7 @@ void ContactManager::keepEndNormal(std::uint32_t p, const NormalMemo &memo, std:
         return;
     }
     endNormalOf_[p] = static_cast<std::uint32_t>(endNormals_.size());
+    makeRoom(endNormals_);
     endNormals_.push_back({p, step, memo});
 }
 
@@ -629,6 +631,7 @@ void ContactManager::reportContactEvents(const StepContext &context, const BodyS
         ContactTrack now = stateOf(p);
         const bool ended = track.touching && (!now.touching || track.a != now.a || track.b != now.b);
         if (ended) {
+            makeRoom(events.contactEnds);
             events.contactEnds.push_back({track.a, track.b, track.userDataA, track.userDataB});
             tracks_.end(p);
         }
@@ -659,6 +662,7 @@ void ContactManager::reportContactEvents(const StepContext &context, const BodyS
         begin.approachSpeed = (va - vb).dot(begin.normal);
         begin.userDataA = now.userDataA = ra.userData;
         begin.userDataB = now.userDataB = rb.userData;
+        makeRoom(events.contactBegins);
         events.contactBegins.push_back(begin);
         tracks_.begin(p, now);
     }

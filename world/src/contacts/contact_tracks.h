@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cyclone/body.h"
+#include "world/room.h"
 
 namespace cyclone::detail {
 
@@ -41,6 +42,7 @@ public:
         if (of_[slot] == kNone) {
             if (free_.empty()) {
                 of_[slot] = static_cast<std::uint32_t>(tracks_.size());
+                makeRoom(tracks_);
                 tracks_.push_back(track);
                 free_.reserve(tracks_.capacity());  // an end never allocates
                 return;

@@ -13,6 +13,7 @@
 #include "joints/joint_set.h"
 #include "world/step_context.h"
 #include "world/workers.h"
+#include "world/room.h"
 
 namespace cyclone::detail {
 namespace {
@@ -339,6 +340,7 @@ void LandingCorrection::listRoundPairs(const BodyStore &bodies, const ContactMan
 // Keys differ in `order`, so any sort gives the one order.
 void LandingCorrection::orderPoints(std::size_t kept) {
     sortKeys_.clear();
+    makeRoom(sortKeys_, points_.size());
     for (std::size_t i = 0; i < points_.size(); ++i)
         sortKeys_.push_back({points_[i].height, points_[i].order, static_cast<std::uint32_t>(i)});
     const auto lower = [](const SortKey &x, const SortKey &y) {
@@ -485,6 +487,7 @@ bool LandingCorrection::detect(const WorldSettings &settings, const BodyStore &b
         }
     }
     bool deep = false;
+    makeRoom(points_, chunkPoints_.found());
     for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
         deep = deep || chunkDeep_[chunk] != 0;
         for (Point point : chunkPoints_.items(chunk)) {

@@ -13,6 +13,7 @@
 #include "world/stage_timer.h"
 #include "world/step_context.h"
 #include "world/workers.h"
+#include "world/room.h"
 
 namespace cyclone::detail {
 namespace {
@@ -353,6 +354,7 @@ void ConstraintSolver::storeImpulses(const StepContext &context, const BodyStore
 void ConstraintSolver::reportImpulses(const BodyStore &bodies, const PairCache &pairs,
                                       std::vector<ContactImpulse> &out) {
     const std::size_t first = out.size();
+    makeRoom(out, manifolds_.size());
     for (std::size_t s = 0; s < manifolds_.size(); ++s) {
         if (!pairs[sources_[s].pair].alive) continue;  // a body was isolated
         const SlotBodies pair = slotBodies_[s];

@@ -52,10 +52,13 @@ public:
     }
 
     /// After the job: remembers how many items it found, for start's room.
-    void finish() {
-        std::size_t found = 0;
-        for (const Span &span : spans_) found += span.end - span.begin;
-        most_ = std::max(most_, found);
+    void finish() { most_ = std::max(most_, found()); }
+
+    /// How many items the job found.
+    std::size_t found() const {
+        std::size_t count = 0;
+        for (const Span &span : spans_) count += span.end - span.begin;
+        return count;
     }
 
     /// Chunk `chunk`'s items, in the order it appended them.

@@ -1,0 +1,31 @@
+// makeRoom: a short list's room grows by an eighth (plus 16), or to what is asked if that
+// is more; a list with room enough is left alone.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "world/room.h"
+
+namespace cyclone::test {
+namespace {
+
+TEST(MakeRoom, GrowsAShortListByAnEighth) {
+    std::vector<int> list;
+    list.reserve(800);
+    list.resize(800);
+    detail::makeRoom(list);
+    EXPECT_EQ(list.capacity(), 800u + 100u + 16u);
+    EXPECT_EQ(list.size(), 800u);  // the items stay
+    const int *data = list.data();
+    detail::makeRoom(list, 116);  // 916 fit: nothing moves
+    EXPECT_EQ(list.data(), data);
+    EXPECT_EQ(list.capacity(), 916u);
+    detail::makeRoom(list, 500);  // 1,300 asked: more than an eighth
+    EXPECT_EQ(list.capacity(), 1300u);
+    std::vector<int> empty;
+    detail::makeRoom(empty);
+    EXPECT_EQ(empty.capacity(), 16u);
+}
+
+}  // namespace
+}  // namespace cyclone::test
