@@ -13,6 +13,7 @@
 #include "dynamics/axis_locks.h"
 #include "world/step_context.h"
 #include "world/workers.h"
+#include "world/room.h"
 
 namespace cyclone::detail {
 namespace {
@@ -358,6 +359,7 @@ void ConstraintSolver::prepareManifolds(const WorldSettings &settings, const Bod
 void ConstraintSolver::prepareResistanceAndShares(const WorldSettings &settings, const BodyStore &bodies,
                                                   Workers &workers, StepStats &stats) {
     const bool carriers = settings.debug.carrierPass;
+    makeRoom(resistance_, solveOrder_.size());  // a row per manifold at most
     for (const int s : solveOrder_) {
         const Material &ma = bodies[slotBodies_[s].a].material;
         const Material &mb = bodies[slotBodies_[s].b].material;

@@ -1,5 +1,4 @@
 #include "solver/rolling_resistance.h"
-#include "world/room.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +29,6 @@ void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifo
         row.mass[k] = used && k11 > 0 ? 1 / k11 : 0;
     }
     if (row.mass[0] == 0 && row.mass[1] == 0 && row.mass[2] == 0) return;
-    makeRoom(rows);
     rows.push_back(row);
 }
 

@@ -13,12 +13,14 @@
 // bodies (BodyStore::roundCount, a box pile) does not look.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "collision/round_side.h"
 #include "contacts/pair_cache.h"
 #include "solver/penetration_pass.h"
+#include "world/room.h"
 
 namespace cyclone::detail {
 
@@ -34,8 +36,9 @@ public:
     }
     /// Makes room for `slots` solver slots, none of them round yet.
     void reset(std::size_t slots) {
-        entries_.resize(slots);
-        round_.assign(slots, 0);
+        resizeAnew(entries_, slots);
+        resizeAnew(round_, slots);
+        std::fill(round_.begin(), round_.end(), 0);
         any_ = false;
     }
     /// Notes slot `slot` if its manifold has a round side: `a` and `b` its bodies at the

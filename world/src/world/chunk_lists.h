@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "world/room.h"
 #include "world/workers.h"
 
 namespace cyclone::detail {
@@ -31,16 +32,16 @@ public:
         if (lists_.size() < std::size_t(threads)) lists_.resize(std::size_t(threads));
         for (std::vector<T> &list : lists_) {
             list.clear();
-            if (list.capacity() < most_) list.reserve(most_);
+            if (list.capacity() < most_) makeRoom(list, most_);
         }
         spans_.assign(chunks, Span());
     }
 
     /// The list chunk `chunk`, run on thread `thread`, appends its items to. It has room
-    /// for kRoom more items; a list short of that grows by an eighth, not twofold.
+    /// for kRoom more items (makeRoom).
     std::vector<T> &open(std::size_t chunk, int thread) {
         std::vector<T> &list = lists_[std::size_t(thread)];
-        if (list.capacity() - list.size() < kRoom) list.reserve(list.size() + std::max(kRoom, list.size() / 8));
+        makeRoom(list, kRoom);
         spans_[chunk] = {thread, list.size(), list.size()};
         return list;
     }
