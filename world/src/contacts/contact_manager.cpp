@@ -6,9 +6,9 @@
 #include "collision/time_of_impact.h"
 #include "joints/joint_set.h"
 #include "world/body_transitions.h"
+#include "world/room.h"
 #include "world/step_context.h"
 #include "world/workers.h"
-#include "world/room.h"
 
 namespace cyclone::detail {
 namespace {
@@ -337,6 +337,7 @@ void ContactManager::testPairs(const PairTest &test, std::size_t first, std::siz
     const std::size_t count = last - first;
     test.workers.forEach(count, [&](std::size_t k) { pairs[stepPairs_[first + k]].lastSeen = stepCount; });
     chunkFinds_.start(test.workers.threads(), Workers::chunksOf(count));
+    makeRoom(finds_, last > finds_.size() ? last - finds_.size() : 0);
     finds_.resize(last);
     test.workers.forEachChunkOnThreads(count, [&](int thread, std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<Manifold> &out = chunkFinds_.open(chunk, thread);

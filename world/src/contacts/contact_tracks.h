@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cyclone/body.h"
+#include "cyclone/world/settings.h"
 #include "world/room.h"
 
 namespace cyclone::detail {

@@ -6,14 +6,14 @@
 #include <limits>
 
 #include "collision/time_of_impact.h"
-#include "dynamics/union_find.h"
 #include "contacts/contact_manager.h"
 #include "contacts/pre_solve.h"
 #include "dynamics/islands.h"
+#include "dynamics/union_find.h"
 #include "joints/joint_set.h"
+#include "world/room.h"
 #include "world/step_context.h"
 #include "world/workers.h"
-#include "world/room.h"
 
 namespace cyclone::detail {
 namespace {

@@ -5,15 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
-#include "contacts/pose_change.h"
-#include "solver/constraint_solver.h"
 #include "contacts/contact_manager.h"
+#include "contacts/pose_change.h"
 #include "contacts/pre_solve.h"
 #include "dynamics/axis_locks.h"
+#include "solver/constraint_solver.h"
+#include "world/room.h"
 #include "world/step_context.h"
 #include "world/workers.h"
-#include "world/room.h"
 
 namespace cyclone::detail {
 namespace {
@@ -359,12 +360,23 @@ void ConstraintSolver::prepareManifolds(const WorldSettings &settings, const Bod
 void ConstraintSolver::prepareResistanceAndShares(const WorldSettings &settings, const BodyStore &bodies,
                                                   Workers &workers, StepStats &stats) {
     const bool carriers = settings.debug.carrierPass;
-    makeRoom(resistance_, solveOrder_.size());  // a row per manifold at most
-    for (const int s : solveOrder_) {
+    const auto lengths = [&](int s) {
         const Material &ma = bodies[slotBodies_[s].a].material;
         const Material &mb = bodies[slotBodies_[s].b].material;
-        addResistanceRows(bodies_, manifolds_[s], s, std::max(ma.rollingFriction, mb.rollingFriction),
-                          std::max(ma.spinningFriction, mb.spinningFriction), resistance_);
+        return std::pair(std::max(ma.rollingFriction, mb.rollingFriction),
+                         std::max(ma.spinningFriction, mb.spinningFriction));
+    };
+    // The room for the rows is taken before they are made: the list is empty, and lets
+    // its old room go first (makeRoom).
+    std::size_t most = 0;
+    for (const int s : solveOrder_) {
+        const auto [rolling, spinning] = lengths(s);
+        most += needsResistance(manifolds_[s], rolling, spinning);
+    }
+    makeRoom(resistance_, most);
+    for (const int s : solveOrder_) {
+        const auto [rolling, spinning] = lengths(s);
+        addResistanceRows(bodies_, manifolds_[s], s, rolling, spinning, resistance_);
     }
     for (const ResistanceRow &row : resistance_)
         stats.resistanceRows += (row.mass[0] > 0) + (row.mass[1] > 0) + (row.mass[2] > 0);

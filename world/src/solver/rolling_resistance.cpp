@@ -7,9 +7,9 @@ namespace cyclone::detail {
 
 void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifold &m, int slot, real rolling,
                        real spinning, std::vector<ResistanceRow> &rows) {
+    if (!needsResistance(m, rolling, spinning)) return;
     const bool rolls = rolling > 0 && m.count <= 2;
     const bool spins = spinning > 0 && m.twistRadius == 0;
-    if (!rolls && !spins) return;
     const SolverBody &a = bodies[m.a];
     const SolverBody &b = bodies[m.b];
     ResistanceRow row;

@@ -33,6 +33,12 @@ struct ResistanceRow {
     Vector3 impulse = Vector3::Zero();  ///< Accumulated along the axes, N m s.
 };
 
+/// Whether manifold `m` may need rows: rolling friction on a contact of one or two points
+/// (a face rests on its own), spinning friction where there is no twist row.
+inline bool needsResistance(const SolverManifold &m, real rolling, real spinning) {
+    return (rolling > 0 && m.count <= 2) || (spinning > 0 && m.twistRadius == 0);
+}
+
 /// Makes the rows of manifold `slot` (after its Jacobians) into `rows` when it needs any;
 /// `rolling` and `spinning` are the pair's lengths, m.
 void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifold &m, int slot, real rolling,

@@ -6,14 +6,14 @@
 #include <atomic>
 #include <cmath>
 
-#include "solver/constraint_solver.h"
 #include "dynamics/axis_locks.h"
 #include "joints/joint_set.h"
+#include "solver/constraint_solver.h"
 #include "world/body_transitions.h"
+#include "world/room.h"
 #include "world/stage_timer.h"
 #include "world/step_context.h"
 #include "world/workers.h"
-#include "world/room.h"
 
 namespace cyclone::detail {
 namespace {
