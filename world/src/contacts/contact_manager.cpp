@@ -327,11 +327,11 @@ void ContactManager::listPairsOf(const BodyStore &bodies, const JointSet &joints
 }
 
 // Each pair on its own, in chunks shared between the threads: pairs that hardly moved
-// keep their manifolds, the others go through the narrowphase, which appends what it finds
-// to its thread's list (ChunkLists). The finds are then merged into the pairs one after another in
-// the pairs' order (anchors are numbered in that order), so the results do not depend on
-// the thread count (countAnchors, mergePairs). Pairs that touch after it are listed, and
-// wake their sleeping bodies (wakeTouched).
+// keep their manifolds, the others go through the narrowphase, which appends what it
+// finds to its thread's list (ChunkLists). The finds are then merged into the pairs one
+// after another in the pairs' order (anchors are numbered in that order), so the results
+// do not depend on the thread count (countAnchors, mergePairs). Pairs that touch after it
+// are listed, and wake their sleeping bodies (wakeTouched).
 void ContactManager::testPairs(const PairTest &test, std::size_t first, std::size_t last) {
     const std::uint64_t stepCount = test.stepCount;
     const std::size_t count = last - first;
@@ -386,8 +386,10 @@ void ContactManager::mergePairs(const BodyStore &bodies, Workers &workers, std::
             pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
-            if (!find.reused)
-                mergeFinds(bodies, p, out + find.first, find.count, find.issuedBefore, mergeScratch_[std::size_t(thread)]);
+            if (!find.reused) {
+                mergeFinds(bodies, p, out + find.first, find.count, find.issuedBefore,
+                           mergeScratch_[std::size_t(thread)]);
+            }
             const PairState &pair = pairs[p];
             find.touching = pair.touching();
             if (!find.touching) continue;
