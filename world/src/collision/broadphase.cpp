@@ -1,7 +1,5 @@
 #include "collision/broadphase.h"
 
-#include "world/room.h"
-
 namespace cyclone::detail {
 namespace {
 
@@ -32,12 +30,11 @@ struct PairWalk {
         const CandidatePair pair{bodyIndexOf(static_cast<const fcl::CollisionObjectd *>(first->data)),
                                  bodyIndexOf(static_cast<const fcl::CollisionObjectd *>(second->data))};
         if (!filter) {
-            makeRoom(out->contacts);
             out->contacts.push_back(pair);
             return false;
         }
         switch (filter->classify(pair.a, pair.b)) {
-            case PairKind::Contact: makeRoom(out->contacts), out->contacts.push_back(pair); break;
+            case PairKind::Contact: out->contacts.push_back(pair); break;
             case PairKind::Sensor: out->sensors.push_back(pair); break;
             case PairKind::Filtered: ++out->filtered; break;
         }

@@ -287,7 +287,7 @@ namespace {
 // A pair whose manifolds are all gone gives the room of its list to the pairs that begin
 // to touch, which take a room given before they allocate one: the rooms held are those
 // of the pairs touching at once, not of every pair that ever touched (in a landing pile,
-// pairs touch and part many times over; half of its rooms lay empty).
+// pairs touch and part many times over, and about half the rooms would lie empty).
 void spareRoom(std::vector<ManifoldState> &manifolds, std::vector<std::vector<ManifoldState>> &rooms) {
     if (!manifolds.empty() || manifolds.capacity() == 0) return;
     rooms.emplace_back();
@@ -302,19 +302,27 @@ void takeRoom(std::vector<ManifoldState> &manifolds, std::vector<std::vector<Man
 
 }  // namespace
 
+// Only rooms past a thread's share move (and those of threads no longer run), so that
+// a steady step moves none.
 void ContactManager::dealRooms(int threads) {
     const std::size_t count = std::size_t(threads);
     while (mergeScratch_.size() < count) mergeScratch_.emplace_back();
-    std::vector<std::vector<ManifoldState>> &pool = mergeScratch_[0].rooms;
-    for (std::size_t t = 1; t < mergeScratch_.size(); ++t) {
-        for (std::vector<ManifoldState> &room : mergeScratch_[t].rooms) pool.emplace_back().swap(room);
-        mergeScratch_[t].rooms.clear();
+    for (std::size_t from = count; from < mergeScratch_.size(); ++from) {
+        for (std::vector<ManifoldState> &room : mergeScratch_[from].rooms)
+            mergeScratch_[0].rooms.emplace_back().swap(room);
+        mergeScratch_[from].rooms.clear();
     }
-    const std::size_t share = pool.size() / count;  // each thread's; the first keeps the rest
-    for (std::size_t t = 1; t < count; ++t) {
-        for (std::size_t k = 0; k < share; ++k) {
-            mergeScratch_[t].rooms.emplace_back().swap(pool.back());
-            pool.pop_back();
+    std::size_t total = 0;
+    for (std::size_t t = 0; t < count; ++t) total += mergeScratch_[t].rooms.size();
+    const std::size_t share = total / count;
+    std::size_t to = 0;  // the next thread short of its share
+    for (std::size_t from = 0; from < count; ++from) {
+        std::vector<std::vector<ManifoldState>> &rooms = mergeScratch_[from].rooms;
+        while (rooms.size() > share) {
+            while (to < count && mergeScratch_[to].rooms.size() >= share) ++to;
+            if (to == count) break;  // every thread has its share
+            mergeScratch_[to].rooms.emplace_back().swap(rooms.back());
+            rooms.pop_back();
         }
     }
 }

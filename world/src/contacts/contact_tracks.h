@@ -1,8 +1,8 @@
 // Each pair slot's contact as the contact events last reported it.
 //
 // Design note. The events compare a slot's touching state with the one it had at the
-// end of the last step. A record per slot held it for every pair the broadphase ever
-// reported, though a landing pile's slots are mostly pairs that never touch (11,400
+// end of the last step. A record per slot would hold it for every pair the broadphase
+// ever reported, though a landing pile's slots are mostly pairs that never touch (11,400
 // slots, about 2,300 touching, in mixed1000): here a slot holds only an index, and the
 // records are kept for the contacts that are on.
 #pragma once

@@ -4,8 +4,8 @@
 // (Workers::forEachChunkOnThreads), and what they find is read afterwards in the chunks'
 // order, so that results do not depend on which thread ran which chunk. A list per chunk
 // would do, but each chunk's list keeps the room of the most that chunk ever found: on a
-// landing pile, whose pairs move from chunk to chunk, that added up to three times what
-// any one step found. Here each thread appends to its own list, and each chunk records
+// landing pile, whose pairs move from chunk to chunk, that adds up to three times what
+// any one step finds. Here each thread appends to its own list, and each chunk records
 // where its items lie; the room held is what a whole job found, once per thread.
 #pragma once
 
@@ -52,15 +52,16 @@ public:
         span.end = lists_[std::size_t(span.thread)].size();
     }
 
-    /// After the job: remembers how many items it found, for start's room.
-    void finish() { most_ = std::max(most_, found()); }
-
-    /// How many items the job found.
-    std::size_t found() const {
-        std::size_t count = 0;
-        for (const Span &span : spans_) count += span.end - span.begin;
-        return count;
+    /// After the job: counts the items it found (found()), and remembers the most for
+    /// start's room.
+    void finish() {
+        found_ = 0;
+        for (const Span &span : spans_) found_ += span.end - span.begin;
+        most_ = std::max(most_, found_);
     }
+
+    /// How many items the last finished job found.
+    std::size_t found() const { return found_; }
 
     /// Chunk `chunk`'s items, in the order it appended them.
     struct Items {
@@ -83,6 +84,7 @@ private:
     };
     std::vector<std::vector<T>> lists_;  ///< Per thread.
     std::vector<Span> spans_;            ///< Per chunk of the job.
+    std::size_t found_ = 0;              ///< Items the last finished job found.
     std::size_t most_ = 0;               ///< Most items a job has found.
 };
 

@@ -2,7 +2,7 @@
 //
 // Design note. The lists a step fills (rows, points, impulses) keep the room of their
 // longest step, so that a steady step allocates nothing. std::vector doubles its room
-// when it is short, which left up to half of each list's room unused at a landing pile's
+// when it is short, which leaves up to half of each list's room unused at a landing pile's
 // peak; growing by an eighth leaves at most an eighth, for a few more (cheap) copies while
 // the lists grow.
 #pragma once
