@@ -49,12 +49,13 @@ Vector3 coreSupport(const CollisionShape &shape, const Matrix4 &pose, const Vect
 // capsule's nearest points lie a radius out from its core's along the same line, so GJK
 // runs on the cores: on a point or a segment it ends in a few iterations, where on the
 // round surface it creeps towards the answer (25-50 iterations in a mixed pile).
-Vector3 refineNormal(const Pair &pair, const NormalRule &rule, Vector3 n, real &f) {
+//
+// `simplex` holds vertices in the unshifted cores' difference (any such point, moved by
+// a round's shift, lies in that round's set): a round starts from the vertices the last
+// search ended with and leaves its own there. A round so started takes a few iterations
+// where a fresh search takes 20-30.
+Vector3 refineNormal(const Pair &pair, const NormalRule &rule, Vector3 n, real &f, GjkSimplex &simplex) {
     const real radii = coreRadius(pair.a) + coreRadius(pair.b);
-    // The vertices a round's search ended with, in the unshifted cores' difference: the
-    // next round starts from them, moved by its own shift (a round's set is the last
-    // one's moved a little), and takes a few iterations where a fresh search takes 20-30.
-    GjkSimplex simplex;
     for (int round = 0; round < kRefineRounds && f > 0; ++round) {
         const Vector3 shift = (f + kRefineMargin) * n;
         auto support = [&](const Vector3 &d) {
@@ -249,10 +250,11 @@ Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, const NormalRul
     Vector3 best = search.best;
     real bestOverlap = search.bestOverlap;
     if (refine && !search.bestFlat) {
-        best = refineNormal(pair, rule, best, bestOverlap);
+        GjkSimplex simplex;
+        best = refineNormal(pair, rule, best, bestOverlap, simplex);
         if (start != best) {
             real otherOverlap = pair.overlap(start);
-            const Vector3 other = refineNormal(pair, rule, start, otherOverlap);
+            const Vector3 other = refineNormal(pair, rule, start, otherOverlap, simplex);
             if (otherOverlap < bestOverlap) best = other, bestOverlap = otherOverlap;
         }
     }
