@@ -97,6 +97,30 @@ TEST(LandingCorrection, BoxLandingOnALandingBoxIsNeverLeftDeeperThanTheTolerance
     EXPECT_GT(deepest[false], 0.09);  // what the test would see without the correction
 }
 
+// The same with boxes of half extent 0.1 m: bounding radius 0.173 m, tolerance still
+// 5 mm, and a body's pushes in a round may move it at most a quarter of its radius,
+// 43 mm, before it may be pushed down no more. The step takes the lower box 108 mm into
+// the ground and the upper 107 mm into the lower; the first pass pushes the lower box
+// 106 mm up, past that budget, so the upper pair, then 213 mm deep, is the upper box's
+// alone to undo (given only the lower box's share, nothing, it was left 0.3 m into the
+// lower box). After every step both overlaps are within the tolerance.
+TEST(LandingCorrection, UpperBoxTakesThePushALowerBoxCanNoLongerTake) {
+    WorldFixture f(withoutSpeculative(true));
+    f.ground();
+    const Vector3 half(0.1, 0.1, 0.1);
+    const BodyId lower = f.box(Vector3(0, 0.11, 0), half);
+    const BodyId upper = f.box(Vector3(0, 0.32, 0), half);
+    f.world.setVelocity(lower, Vector3(0, -7, 0));
+    f.world.setVelocity(upper, Vector3(0, -14, 0));
+    for (int i = 0; i < 60; ++i) {
+        f.world.step(kDt);
+        const real intoGround = 0.1 - f.position(lower).y();
+        const real intoLower = (f.position(lower).y() + 0.1) - (f.position(upper).y() - 0.1);
+        ASSERT_LE(intoGround, kTolerance) << "after step " << i + 1;
+        ASSERT_LE(intoLower, kTolerance) << "after step " << i + 1;
+    }
+}
+
 // A box lands at 14 m/s on a box resting on the ground, 1 cm above it: the step takes
 // it 233 - 10 = 223 mm into the resting box, which hardly moved in the step (it rests)
 // and so made none of the overlap. The correction pushes the landing box alone back to

@@ -54,6 +54,13 @@ Vector3 upward(const Vector3 &gravity) {
     return gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());
 }
 
+// Caps `lower`'s share of a push at `cap` and gives the rest to `upper`.
+void moveShare(real cap, real &lower, real &upper) {
+    if (!(lower > cap)) return;
+    upper += lower - cap;
+    lower = cap;
+}
+
 real toleranceFor(real radius, real slop) {
     return std::max(std::min(kLandingDepth, kLandingFraction * radius), 2 * slop);
 }
@@ -523,16 +530,20 @@ int LandingCorrection::push(const WorldSettings &settings, BodyStore &bodies, in
             const real massB = moveB ? pushedInverseMass(bodies, point.b) : 0;
             const real k = massA + massB;
             if (!(k > 0)) continue;
-            real lambda = (depth - point.target) / k;
+            // How far each moves along the normal: A back along it, B forward.
+            const real lambda = (depth - point.target) / k;
+            real shareA = lambda * massA;
+            real shareB = lambda * massB;
             if (massA > 0 && massB > 0) {
-                // Only a push down is bounded: A moves along -normal, B along normal.
+                // Only a push down is bounded, and what the lower body may no longer take
+                // the upper one does (a body landing on one that has gone its reach down
+                // was otherwise left 45 mm in it).
                 const real down = normal.dot(up);
-                if (down > 0) lambda = std::min(lambda, reachLeft(bodies, point.a, down, up) / massA);
-                if (down < 0) lambda = std::min(lambda, reachLeft(bodies, point.b, -down, up) / massB);
-                if (!(lambda > 0)) continue;
+                if (down > 0) moveShare(std::max<real>(reachLeft(bodies, point.a, down, up), 0), shareA, shareB);
+                if (down < 0) moveShare(std::max<real>(reachLeft(bodies, point.b, -down, up), 0), shareB, shareA);
             }
-            if (massA > 0) translate(bodies, point.a, -lambda * massA * normal, lambda * massA);
-            if (massB > 0) translate(bodies, point.b, lambda * massB * normal, lambda * massB);
+            if (shareA > 0) translate(bodies, point.a, -shareA * normal, shareA);
+            if (shareB > 0) translate(bodies, point.b, shareB * normal, shareB);
             if (pass == 0) ++pushed;
             any = true;
         }
