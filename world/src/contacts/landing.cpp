@@ -54,8 +54,10 @@ Vector3 upward(const Vector3 &gravity) {
     return gravity.squaredNorm() > 0 ? Vector3(-gravity.normalized()) : Vector3(Vector3::Zero());
 }
 
-// Caps `lower`'s share of a push at `cap` and gives the rest to `upper`.
-void moveShare(real cap, real &lower, real &upper) {
+// Caps `lower`'s share of a push at `reach` (none when it is negative) and gives the rest
+// to `upper`.
+void moveShare(real reach, real &lower, real &upper) {
+    const real cap = std::max<real>(reach, 0);
     if (!(lower > cap)) return;
     upper += lower - cap;
     lower = cap;
@@ -540,8 +542,8 @@ int LandingCorrection::push(const WorldSettings &settings, BodyStore &bodies, in
                 // had used up its reach stayed 45 mm in it through the first round's
                 // passes and 11.7 mm after the last round).
                 const real down = normal.dot(up);
-                if (down > 0) moveShare(std::max<real>(reachLeft(bodies, point.a, down, up), 0), shareA, shareB);
-                if (down < 0) moveShare(std::max<real>(reachLeft(bodies, point.b, -down, up), 0), shareB, shareA);
+                if (down > 0) moveShare(reachLeft(bodies, point.a, down, up), shareA, shareB);
+                if (down < 0) moveShare(reachLeft(bodies, point.b, -down, up), shareB, shareA);
             }
             if (shareA > 0) translate(bodies, point.a, -shareA * normal, shareA);
             if (shareB > 0) translate(bodies, point.b, shareB * normal, shareB);
