@@ -16,6 +16,7 @@
 #include "collision/contact_building.h"
 #include "collision/cylinder_pairs.h"
 #include "collision/gjk.h"
+#include "collision/round_normal.h"
 
 namespace cyclone::detail {
 namespace {
@@ -85,6 +86,16 @@ Vector3 refineNormal(const Pair &pair, const NormalRule &rule, Vector3 n, real &
         f = value;
     }
     return n;
+}
+
+// Descends from n (overlap f) to the nearest normal of less overlap: by Newton's method
+// on the support functions for round pairs with a cylinder, by GJK for the others and
+// where Newton's method meets an overlap deeper than the surfaces' curvature.
+Vector3 descend(const Pair &pair, const NormalRule &rule, Vector3 n, real &f, GjkSimplex &simplex) {
+    if (f > 0 && !rule.oneSided && roundNormalPair(pair.a.shape().type, pair.b.shape().type) &&
+        roundNormal(pair, n, f))
+        return n;
+    return refineNormal(pair, rule, n, f, simplex);
 }
 
 // The search for the normal of least overlap: candidates are offered one at a time and
@@ -251,10 +262,10 @@ Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, const NormalRul
     real bestOverlap = search.bestOverlap;
     if (refine && !search.bestFlat) {
         GjkSimplex simplex;
-        best = refineNormal(pair, rule, best, bestOverlap, simplex);
+        best = descend(pair, rule, best, bestOverlap, simplex);
         if (start != best) {
             real otherOverlap = pair.overlap(start);
-            const Vector3 other = refineNormal(pair, rule, start, otherOverlap, simplex);
+            const Vector3 other = descend(pair, rule, start, otherOverlap, simplex);
             if (otherOverlap < bestOverlap) best = other, bestOverlap = otherOverlap;
         }
     }
