@@ -153,15 +153,15 @@ struct Descent {
     real f;
 };
 
-// Moves n to `to` (overlap `value`): a term stays on its crease only if `to` lies on
-// it, and takes its side off the crease from `to`.
+// Moves n to `to` (overlap `value`): a term is on its crease where `to` lies on it, and
+// takes its side off the crease from `to`.
 void moveTo(Descent &d, const Vector3 &to, real value) {
     d.n = to;
     d.f = value;
     for (int k = 0; k < 2; ++k) {
         const real along = d.terms[k].axis.dot(to);
-        if (std::abs(along) >= kOnCrease) d.crease[k] = false;
-        if (!d.crease[k] && along != 0) d.side[k] = along > 0 ? 1 : -1;
+        d.crease[k] = d.terms[k].half > 0 && std::abs(along) < kOnCrease;
+        if (along != 0) d.side[k] = along > 0 ? 1 : -1;
     }
 }
 
@@ -235,7 +235,6 @@ Move lineSearch(Descent &d, const Vector3 &step) {
         const real value = overlapOf(d.terms, candidate);
         if (!(value < d.f)) continue;
         const real moved = (candidate - d.n).norm();
-        if (hit >= 0) d.crease[hit] = true;
         moveTo(d, candidate, value);
         return moved < kMinNewtonStep ? Move::Settled : Move::Moved;
     }
@@ -291,8 +290,7 @@ bool roundNormalPair(ShapeType a, ShapeType b) {
 
 bool roundNormal(const Pair &pair, Vector3 &normal, real &overlap) {
     Descent d{{roundTerm(pair.a, pair.poseA, 1), roundTerm(pair.b, pair.poseB, -1)}, {false, false}, {1, 1}, normal, 0};
-    for (int k = 0; k < 2; ++k) d.side[k] = d.terms[k].axis.dot(d.n) >= 0 ? 1 : -1;
-    d.f = overlapOf(d.terms, d.n);
+    moveTo(d, normal, overlapOf(d.terms, normal));
     Move move = Move::Moved;
     for (int iteration = 0; iteration < kMaxNewtonSteps && move == Move::Moved; ++iteration) move = stepOnce(d);
     const real exact = pair.overlap(d.n);
