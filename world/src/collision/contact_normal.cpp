@@ -7,8 +7,9 @@
 // bounds the penetration from above (separating axes). Ties go to a face, so resting
 // contacts get the exact face normal. Where FCL used MPR, the winner is then refined:
 // the pair moved apart along it no longer touches, and GJK's nearest points give the
-// surfaces' common normal. A cylinder with a cylinder or a capsule also has the line
-// between their cores as a candidate.
+// surfaces' common normal (for a cylinder with a sphere, capsule or cylinder, Newton's
+// method on their closed-form support functions does it). A cylinder with a cylinder or
+// a capsule also has the line between their cores as a candidate.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -89,8 +90,8 @@ Vector3 refineNormal(const Pair &pair, const NormalRule &rule, Vector3 n, real &
 }
 
 // Descends from n (overlap f) to the nearest normal of less overlap: by Newton's method
-// on the support functions for round pairs with a cylinder, by GJK for the others and
-// where Newton's method meets an overlap deeper than the surfaces' curvature.
+// on the support functions for round pairs with a cylinder (round_normal.cpp), by GJK
+// for the others and where Newton's method does not settle.
 Vector3 descend(const Pair &pair, const NormalRule &rule, Vector3 n, real &f, GjkSimplex &simplex) {
     if (f > 0 && !rule.oneSided && roundNormalPair(pair.a.shape().type, pair.b.shape().type) &&
         roundNormal(pair, n, f))

@@ -12,12 +12,17 @@
 // normals, a minimum has the support points' difference along n, and Newton's step solves
 // (B'HB - f I) u = -B'x in a basis B of the tangent plane (f the overlap, x its gradient).
 //
+// The Hessian is not positive where the overlap exceeds the surfaces' curvature; there
+// Levenberg's damping makes the step one of descent, and each step is halved until the
+// overlap falls.
+//
 // Where a.n changes sign, |a.n| has a crease: the normals across a capsule's or a
 // cylinder's side. Many minima lie on it (a rim on a side), so a step that would cross
 // it stops on it, and the descent goes on along the crease (its tangent the one basis
-// vector) until the pull off it, the other terms' gradient along a, exceeds half.
-// Where Pn vanishes (n along a cylinder's axis: its cap) the descent stops: a cap is a
-// face, whose normal the candidates already hold exactly.
+// vector) until the crease's multiplier (what half |a.n| must add along a to make the
+// gradient lie along n) exceeds half. Where Pn vanishes (n along a cylinder's axis: its
+// cap) r |Pn| is a cone: n is a minimum unless the other terms' gradient across the axis
+// is steeper than r.
 #include "collision/round_normal.h"
 
 #include <cmath>
@@ -25,7 +30,7 @@
 namespace cyclone::detail {
 namespace {
 
-// Newton steps at most: from a candidate's normal, 3-6 reach rounding.
+// Newton steps at most: from a candidate's normal 2.9 on average (mixed1000).
 constexpr int kMaxNewtonSteps = 12;
 // Halvings of a step that does not lower the overlap.
 constexpr int kMaxNewtonHalvings = 8;

@@ -13,9 +13,9 @@ bool roundNormalPair(ShapeType a, ShapeType b);
 
 /// Descends from `normal` (unit, A to B; `overlap` along it) to the nearest normal of
 /// least overlap of the pair's shapes, which roundNormalPair must take, and leaves it and
-/// its overlap there (unchanged when no step lowers the overlap). Stops at a cap's normal
-/// (a face: the candidates hold it exactly). Returns false when it stopped because the
-/// overlap is not convex around the normal reached (deeper than the surfaces' curvature).
+/// its overlap there (unchanged when no step lowers the overlap). Returns false when the
+/// descent did not settle within its steps (118 of 75,034 descents in mixed1000's first
+/// 300 steps): the caller goes on from there another way.
 bool roundNormal(const Pair &pair, Vector3 &normal, real &overlap);
 
 }  // namespace cyclone::detail
