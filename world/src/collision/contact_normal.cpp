@@ -250,8 +250,10 @@ Vector3 chooseNormal(const Pair &pair, const Vector3 &fclNormal, const NormalRul
     // 2. Against a triangle, the shape's face that lies on it may not be the one FCL's
     //    normal points at: look along the triangle's normal too.
     if (rule.oneSided && start != rule.front) search.probe(rule.front);
-    // 3. A cylinder's rim point moves with the direction: look again from the new best.
-    const bool cylinder = pair.a.shape().type == ShapeType::Cylinder || pair.b.shape().type == ShapeType::Cylinder;
+    // 3. A cylinder's rim point moves with the direction: look again from the new best
+    //    (not for round pairs, whose Newton descent follows the rim itself).
+    const bool cylinder = (pair.a.shape().type == ShapeType::Cylinder || pair.b.shape().type == ShapeType::Cylinder) &&
+                          !(refine && roundNormalPair(pair.a.shape().type, pair.b.shape().type));
     for (int again = 0; again < 2 && cylinder && search.best != search.featureDirection && !search.bestFlat; ++again)
         search.probe(search.best);
 
