@@ -76,6 +76,45 @@ TEST(RoundNormal, SphereOverACapApproachesTheCapsNormal) {
     EXPECT_LT((d.normal - motion.linear() * Vector3::UnitZ()).norm(), 1e-5);
 }
 
+TEST(RoundNormal, ParallelSidesReachTheLineBetweenTheAxes) {
+    // A and B (radius 0.25, length 1) stand side by side along z, 0.4 apart along x: their
+    // sides overlap by 0.5 - 0.4 = 0.1 along x (along y by 0.5, along z by 1). Both
+    // creases (normals across the axes) are one circle: the descent lands on it and goes
+    // on along it to x.
+    const Matrix4 motion = someMotion();
+    for (const Shape &b : {Shape::cylinder(0.25, 1), Shape::capsule(0.25, 1)}) {
+        const Descent d = descend(Shape::cylinder(0.25, 1), pose(Vector3::Zero()), b, pose(Vector3(0.4, 0, 0)),
+                                  motion, Vector3(1, 0.3, 0.2));
+        EXPECT_TRUE(d.convex);
+        EXPECT_NEAR(d.overlap, 0.1, 1e-12);
+        EXPECT_LT((d.normal - motion.linear() * Vector3::UnitX()).norm(), 1e-9);
+    }
+}
+
+TEST(RoundNormal, DegenerateStartsGiveAUnitNormalNoDeeperThanTheStart) {
+    // Coincident centres, a start along an axis, a start exactly across both axes: the
+    // normal stays a unit vector and the overlap finite and no more than at the start.
+    const Shape cylinder = Shape::cylinder(0.3, 0.8);
+    const Matrix4 tilted = pose(Vector3::Zero(), rotation(0.9, Vector3(1, 0, 0)));
+    for (const Matrix4 &poseB : {pose(Vector3::Zero()), tilted, pose(Vector3(0, 0, 0.5))}) {
+        for (const Vector3 &start : {Vector3(Vector3::UnitZ()), Vector3(Vector3::UnitX()), Vector3(1, 1, 0), Vector3(0, 1, 1)}) {
+            const auto sa = detail::compileShape(cylinder), sb = detail::compileShape(Shape::sphere(0.2));
+            for (const detail::CollisionShape *b : {sa.get(), sb.get()}) {
+                const Matrix4 poseA = pose(Vector3::Zero());
+                const detail::Pair pair{*sa, poseA, -1, *b, poseB, -1, 0.02, 0};
+                Vector3 n = start.normalized();
+                const real before = pair.overlap(n);
+                real f = before;
+                detail::roundNormal(pair, n, f);
+                EXPECT_NEAR(n.norm(), 1, 1e-12);
+                EXPECT_TRUE(std::isfinite(f));
+                EXPECT_LE(f, before);
+                EXPECT_NEAR(f, pair.overlap(n), 1e-12);
+            }
+        }
+    }
+}
+
 // Draws in a fixed order (a function's arguments are evaluated in any order).
 struct Draw {
     std::mt19937 random{11};

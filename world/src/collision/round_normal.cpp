@@ -20,7 +20,7 @@
 // cylinder's side. Many minima lie on it (a rim on a side), so a step that would cross
 // it stops on it, and the descent goes on along the crease (its tangent the one basis
 // vector) until the crease's multiplier (what half |a.n| must add along a to make the
-// gradient lie along n) exceeds half. Where Pn vanishes (n along a cylinder's axis: its
+// gradient lie along n) exceeds half; parallel axes share one crease. Where Pn vanishes (n along a cylinder's axis: its
 // cap) r |Pn| is a cone: n is a minimum unless the other terms' gradient across the axis
 // is steeper than r.
 #include "collision/round_normal.h"
@@ -176,6 +176,26 @@ enum class Move {
     Stuck     ///< No lower overlap along a step longer than rounding.
 };
 
+// Whether the two terms' axes are parallel (within about 3e-5 rad).
+bool parallelAxes(const Descent &d) {
+    const real c = d.terms[0].axis.dot(d.terms[1].axis);
+    return !(1 - c * c > kMinNewtonCurvature);
+}
+
+// Two parallel axes have one crease, whose multiplier the two halves share: both are
+// left together when it exceeds their sum. Returns 0 when they are left, or -1.
+int leaveParallelCreases(Descent &d, Slope &slope) {
+    const Vector3 &a = d.terms[0].axis;
+    const real lambda = -slope.gradient.dot(a);
+    if (!(std::abs(lambda) > d.terms[0].half + d.terms[1].half)) return -1;
+    for (int k = 0; k < 2; ++k) {
+        d.crease[k] = false;
+        d.side[k] = lambda * a.dot(d.terms[k].axis) > 0 ? 1 : -1;
+        slope.gradient += d.side[k] * d.terms[k].half * d.terms[k].axis;
+    }
+    return 0;
+}
+
 // Leaves a crease whose multiplier exceeds its half, towards the side the overlap falls,
 // adding that side's gradient. On its crease a term's half |a.n| adds lambda a to the
 // gradient, |lambda| <= half, and n is a minimum when those make the gradient lie along
@@ -185,8 +205,8 @@ enum class Move {
 int leaveCrease(Descent &d, Slope &slope) {
     real lambda[2] = {0, 0};
     if (d.crease[0] && d.crease[1]) {
+        if (parallelAxes(d)) return leaveParallelCreases(d, slope);
         const real c = d.terms[0].axis.dot(d.terms[1].axis), det = 1 - c * c;
-        if (!(det > kMinNewtonCurvature)) return -1;
         const real r0 = -slope.gradient.dot(d.terms[0].axis), r1 = -slope.gradient.dot(d.terms[1].axis);
         lambda[0] = (r0 - c * r1) / det;
         lambda[1] = (r1 - c * r0) / det;
@@ -269,7 +289,8 @@ Move stepOnce(Descent &d) {
     Slope slope = slopeAt(d.terms, d.crease, d.side, d.n);
     if (slope.cap >= 0) return leaveCap(d, slope);
     const int left = leaveCrease(d, slope);
-    if (d.crease[0] && d.crease[1]) return Move::Settled;
+    // Two creases meet in two normals, where n then is, unless the axes are parallel.
+    if (d.crease[0] && d.crease[1] && !parallelAxes(d)) return Move::Settled;
     const Vector3 creaseAxis = d.crease[0] ? d.terms[0].axis : d.crease[1] ? d.terms[1].axis : Vector3::Zero();
     const Model model(slope, d.f, d.n, creaseAxis);
     real mu = std::max<real>(0, kMinNewtonCurvature - model.leastEigenvalue());
