@@ -1,9 +1,10 @@
 // Newton's descent to the normal of least overlap for round pairs with a cylinder
 // (collision/round_normal.cpp): a sphere on a cylinder's rim (a smooth minimum), a
-// cylinder's and a capsule's side on a rim (a minimum on the side's crease), a sphere
-// over a cap (the descent approaches the cap's normal), each worked out by hand and
-// carried by one rigid motion of both shapes; over random overlapping cylinder pairs,
-// what it ends on is a local minimum of the overlap, which FCL's collide confirms.
+// cylinder's and a capsule's side on a rim (a minimum on the side's crease), parallel
+// sides (one crease for both), a sphere over a cap (the descent approaches the cap's
+// normal), each worked out by hand and carried by one rigid motion of both shapes;
+// degenerate starts; over random overlapping cylinder pairs, what it ends on is a local
+// minimum of the overlap, which FCL's collide confirms.
 #include <gtest/gtest.h>
 
 #include <cmath>
