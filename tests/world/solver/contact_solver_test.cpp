@@ -263,27 +263,5 @@ TEST(ContactSolverPass, ReloadingAfterABodyWasIsolatedGivesWhatAFullLoadGives) {
     expectReloadGivesWhatAFullLoadGives(true);
 }
 
-// Where the patch's friction acts between a point's two anchors (contact_solver.h,
-// frictionFraction): wB / (wA + wB), w = trace(I^-1) - n.I^-1 n, worked by hand.
-TEST(FrictionPoint, SitsNearerTheBodyItWouldTurnMore) {
-    const Vector3 up = Vector3::UnitY();
-    // Two unit cubes of 1 kg: I = 1/6 each, I^-1 = 6; w = 18 - 6 = 12 each: the midpoint.
-    const Matrix3 cube = 6 * Matrix3::Identity();
-    EXPECT_DOUBLE_EQ(detail::frictionFraction(cube, cube, up), 0.5);
-    // Against a static body (I^-1 = 0): at the cube's own surface, both ways round.
-    EXPECT_DOUBLE_EQ(detail::frictionFraction(cube, Matrix3::Zero(), up), 0);
-    EXPECT_DOUBLE_EQ(detail::frictionFraction(Matrix3::Zero(), cube, up), 1);
-    // A needle along x, its moment about x a thousandth of the others: I^-1 = diag(1000,
-    // 1, 1) (units of the cross moment). Lying on the cube (normal y): w = 1002 - 1 = 1001
-    // against 12, so the point lies 12 / 1013 of the way from the needle to the cube.
-    const Matrix3 needle = Vector3(1000, 1, 1).asDiagonal();
-    EXPECT_NEAR(detail::frictionFraction(needle, cube, up), 12.0 / 1013.0, 1e-15);
-    // Standing on it (normal x, its axis): w = 2, the axis's own turn not counted; the
-    // point lies 12 / 14 of the way towards the cube.
-    EXPECT_NEAR(detail::frictionFraction(needle, cube, Vector3::UnitX()), 12.0 / 14.0, 1e-15);
-    // Two static bodies (never solved): the midpoint.
-    EXPECT_DOUBLE_EQ(detail::frictionFraction(Matrix3::Zero(), Matrix3::Zero(), up), 0.5);
-}
-
 }  // namespace
 }  // namespace cyclone::test

@@ -359,12 +359,6 @@ void fillCouplings(const SolverManifold &m, Moving moving, real invMasses, RowCo
 
 }  // namespace
 
-real frictionFraction(const Matrix3 &invInertiaA, const Matrix3 &invInertiaB, const Vector3 &normal) {
-    const real wA = invInertiaA.trace() - normal.dot(invInertiaA * normal);
-    const real wB = invInertiaB.trace() - normal.dot(invInertiaB * normal);
-    return wA + wB > 0 ? wB / (wA + wB) : real(0.5);
-}
-
 void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &m) {
     fillCouplings(m, kBoth, a.invMass + b.invMass, m.couplings);
     m.carriedCouplings = m.couplings;
@@ -373,28 +367,14 @@ void prepareCouplings(const SolverBody &a, const SolverBody &b, SolverManifold &
 void prepareJacobians(const SolverBody &sa, const SolverBody &sb, const RigidBody &bodyA, const RigidBody &bodyB,
                       SolverManifold &m, const LeverTurns &turns) {
     prepareDirections(m);
-    const Vector3 normal = toVector3(m.direction[0]);
-    Vector3 onA[kMaxManifoldPoints], onB[kMaxManifoldPoints];
-    bool apart = m.count > 0;
+    Vector3 points[kMaxManifoldPoints];
     for (int i = 0; i < m.count; ++i) {
-        onA[i] = bodyA.getPointInWorldSpace(m.points[i].localA);
-        onB[i] = bodyB.getPointInWorldSpace(m.points[i].localB);
-        apart = apart && (onB[i] - onA[i]).dot(normal) > 0;
+        const SolverPoint &p = m.points[i];
+        points[i] = 0.5 * (bodyA.getPointInWorldSpace(p.localA) + bodyB.getPointInWorldSpace(p.localB));
+        prepareRows(sa, sb, turns.leverA(points[i] - bodyA.getPosition()), turns.leverB(points[i] - bodyB.getPosition()),
+                    m, m.points[i]);
     }
-    // A manifold whose anchors all lie apart (a speculative contact, up to the speculative
-    // distance apart) takes its friction where it turns the bodies least; a touching one
-    // at its anchors' midpoints (at the weighted point too, 9 of 88 mixed1000 piles stayed
-    // awake for 10 s against 4). Read from the anchors, as all of the Jacobians, so that a
-    // saved state makes them again (snapshot/solver_slots.h).
-    const real towardsB = apart ? frictionFraction(sa.invInertia, sb.invInertia, normal) : real(0.5);
-    Vector3 rubbing[kMaxManifoldPoints];
-    for (int i = 0; i < m.count; ++i) {
-        const Vector3 point = 0.5 * (onA[i] + onB[i]);
-        prepareRows(sa, sb, turns.leverA(point - bodyA.getPosition()), turns.leverB(point - bodyB.getPosition()), m,
-                    m.points[i]);
-        rubbing[i] = onA[i] + towardsB * (onB[i] - onA[i]);
-    }
-    prepareFrictionRows(sa, sb, rubbing, bodyA.getPosition(), bodyB.getPosition(), m, turns);
+    prepareFrictionRows(sa, sb, points, bodyA.getPosition(), bodyB.getPosition(), m, turns);
     prepareCouplings(sa, sb, m);
 }
 

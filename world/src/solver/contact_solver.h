@@ -242,22 +242,9 @@ struct LeverTurns {
     Vector3 leverB(const Vector3 &r) const { return any ? Vector3(b * r) : r; }
 };
 
-/// Where on the segment from a contact point's anchor on A (0) to its anchor on B (1) the
-/// patch's friction acts, on both bodies alike (so that it turns the pair as a whole
-/// about no axis), in a manifold whose anchors all lie apart (prepareJacobians; in the
-/// others, the midpoint): at wB / (wA + wB), w being a body's inverse inertia about the axes in
-/// the contact plane (`normal`'s), trace(I^-1) - n.I^-1 n. Off a body's surface by e, a
-/// tangent impulse j turns that body by e x j more than at its surface; this fraction
-/// gives that error the least energy over both bodies: the midpoint for like bodies, the
-/// movable body's surface against a static one. At the midpoint (half a speculative
-/// contact's gap, up to 1 cm, off each surface) a 0.2 mm needle, whose moment about its
-/// long axis is a thousandth of its others (kMinMomentRatio), spun up to 1,000 rad/s.
-real frictionFraction(const Matrix3 &invInertiaA, const Matrix3 &invInertiaB, const Vector3 &normal);
-
 /// Fills the manifold's patch friction from its contact points (world space, `count`
-/// of them; where friction acts, frictionFraction) and the bodies' centres of mass: the
-/// twist radius, the friction rows at the points' centre, the twist row and
-/// frictionInverse.
+/// of them) and the bodies' centres of mass: the twist radius, the friction rows at the
+/// points' centre, the twist row and frictionInverse.
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
                          const Vector3 &positionB, SolverManifold &m, const LeverTurns &turns = LeverTurns());
 
