@@ -98,7 +98,8 @@ TEST(RoundNormal, DegenerateStartsGiveAUnitNormalNoDeeperThanTheStart) {
     const Shape cylinder = Shape::cylinder(0.3, 0.8);
     const Matrix4 tilted = pose(Vector3::Zero(), rotation(0.9, Vector3(1, 0, 0)));
     for (const Matrix4 &poseB : {pose(Vector3::Zero()), tilted, pose(Vector3(0, 0, 0.5))}) {
-        for (const Vector3 &start : {Vector3(Vector3::UnitZ()), Vector3(Vector3::UnitX()), Vector3(1, 1, 0), Vector3(0, 1, 1)}) {
+        for (const Vector3 &start :
+             {Vector3(Vector3::UnitZ()), Vector3(Vector3::UnitX()), Vector3(1, 1, 0), Vector3(0, 1, 1)}) {
             const auto sa = detail::compileShape(cylinder), sb = detail::compileShape(Shape::sphere(0.2));
             for (const detail::CollisionShape *b : {sa.get(), sb.get()}) {
                 const Matrix4 poseA = pose(Vector3::Zero());

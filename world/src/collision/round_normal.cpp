@@ -20,9 +20,9 @@
 // cylinder's side. Many minima lie on it (a rim on a side), so a step that would cross
 // it stops on it, and the descent goes on along the crease (its tangent the one basis
 // vector) until the crease's multiplier (what half |a.n| must add along a to make the
-// gradient lie along n) exceeds half; parallel axes share one crease. Where Pn vanishes (n along a cylinder's axis: its
-// cap) r |Pn| is a cone: n is a minimum unless the other terms' gradient across the axis
-// is steeper than r.
+// gradient lie along n) exceeds half; parallel axes share one crease. Where Pn vanishes
+// (n along a cylinder's axis: its cap) r |Pn| is a cone: n is a minimum unless the other
+// terms' gradient across the axis is steeper than r.
 #include "collision/round_normal.h"
 
 #include <cmath>
