@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -261,6 +262,41 @@ TEST(ContactSolverPass, ReloadingForALaterSubStepGivesWhatAFullLoadGives) {
 
 TEST(ContactSolverPass, ReloadingAfterABodyWasIsolatedGivesWhatAFullLoadGives) {
     expectReloadGivesWhatAFullLoadGives(true);
+}
+
+}  // namespace
+}  // namespace cyclone::test
+
+namespace cyclone::test {
+namespace {
+
+// A rod's manifold on a face whose normal is (0, 1, 0) tilted 0.3 rad about z: two points
+// touching 3 mm and 1 mm deep at one end, two speculative ones 0.4 m apart at the other
+// (the rod turning down onto the face). Friction acts at the touching pair only, moved
+// along the normal into the plane through the deeper one (its midpoint's height along n).
+TEST(FrictionPoints, ThePointsNearTheDeepestInItsPlane) {
+    const Vector3 n(-std::sin(0.3), std::cos(0.3), 0);
+    const Vector3 t(std::cos(0.3), std::sin(0.3), 0);  // across the face, along the rod
+    const Vector3 z = Vector3::UnitZ();
+    const Vector3 points[4] = {0.1 * z, -0.001 * n - 0.1 * z, 0.7 * t + 0.2 * n + 0.1 * z, 0.7 * t + 0.2 * n - 0.1 * z};
+    const real depths[4] = {0.003, 0.001, -0.4, -0.4};
+    Vector3 out[4];
+    ASSERT_EQ(detail::frictionPoints(points, depths, 4, n, out), 2);
+    EXPECT_NEAR((out[0] - 0.1 * z).norm(), 0, 1e-15);
+    EXPECT_NEAR((out[1] + 0.1 * z).norm(), 0, 1e-15);  // lifted 1 mm along n, onto the deepest's plane
+}
+
+// Points apart by no more than kFrictionBand beyond the deepest all take part; a point
+// just beyond it does not. None at all for an empty manifold.
+TEST(FrictionPoints, TheBandIsMeasuredFromTheDeepest) {
+    const Vector3 n = Vector3::UnitY();
+    const Vector3 points[3] = {Vector3(0, 0, 0), Vector3(1, 0.01, 0), Vector3(0, 0.02, 1)};
+    const real band = detail::kFrictionBand;
+    const real depths[3] = {-0.005, -0.005 - band, -0.005 - band - 1e-6};
+    Vector3 out[3];
+    ASSERT_EQ(detail::frictionPoints(points, depths, 3, n, out), 2);
+    EXPECT_NEAR((out[1] - Vector3(1, 0, 0)).norm(), 0, 1e-15);
+    EXPECT_EQ(detail::frictionPoints(points, depths, 0, n, out), 0);
 }
 
 }  // namespace

@@ -368,27 +368,45 @@ void prepareJacobians(const SolverBody &sa, const SolverBody &sb, const RigidBod
                       SolverManifold &m, const LeverTurns &turns) {
     prepareDirections(m);
     Vector3 points[kMaxManifoldPoints];
+    real depths[kMaxManifoldPoints];
     for (int i = 0; i < m.count; ++i) {
         const SolverPoint &p = m.points[i];
-        points[i] = 0.5 * (bodyA.getPointInWorldSpace(p.localA) + bodyB.getPointInWorldSpace(p.localB));
+        const Vector3 pointA = bodyA.getPointInWorldSpace(p.localA);
+        const Vector3 pointB = bodyB.getPointInWorldSpace(p.localB);
+        points[i] = 0.5 * (pointA + pointB);
+        depths[i] = (pointA - pointB).dot(m.normal);
         prepareRows(sa, sb, turns.leverA(points[i] - bodyA.getPosition()), turns.leverB(points[i] - bodyB.getPosition()),
                     m, m.points[i]);
     }
-    prepareFrictionRows(sa, sb, points, bodyA.getPosition(), bodyB.getPosition(), m, turns);
+    Vector3 rubbing[kMaxManifoldPoints];
+    const int count = frictionPoints(points, depths, m.count, m.normal, rubbing);
+    prepareFrictionRows(sa, sb, rubbing, count, bodyA.getPosition(), bodyB.getPosition(), m, turns);
     prepareCouplings(sa, sb, m);
 }
 
+int frictionPoints(const Vector3 *points, const real *depths, int count, const Vector3 &normal, Vector3 *out) {
+    if (count == 0) return 0;
+    const int deepest = static_cast<int>(std::max_element(depths, depths + count) - depths);
+    const real plane = points[deepest].dot(normal);
+    int kept = 0;
+    for (int i = 0; i < count; ++i)
+        if (depths[i] >= depths[deepest] - kFrictionBand)
+            out[kept++] = points[i] + (plane - points[i].dot(normal)) * normal;
+    return kept;
+}
+
 CYCLONE_SIMD_CLONES
-void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
-                         const Vector3 &positionB, SolverManifold &m, const LeverTurns &turns) {
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, int count,
+                         const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
+                         const LeverTurns &turns) {
     Vector3 centre = Vector3::Zero();
-    for (int i = 0; i < m.count; ++i) centre += points[i];
-    if (m.count > 0) centre /= m.count;
+    for (int i = 0; i < count; ++i) centre += points[i];
+    if (count > 0) centre /= count;
     // The twist radius: the torque about the normal that friction at the points could
     // give at most, per unit of friction force.
     real radius = 0;
-    for (int i = 0; i < m.count; ++i) radius += (points[i] - centre).norm();
-    m.twistRadius = m.count > 1 ? radius / m.count : 0;
+    for (int i = 0; i < count; ++i) radius += (points[i] - centre).norm();
+    m.twistRadius = count > 1 ? radius / count : 0;
     const RowFrame frame(a, b, turns.leverA(centre - positionA), turns.leverB(centre - positionB));
     frame.fillJacobianOnly(m.direction[1], m.frictionRow[0]);
     frame.fillJacobianOnly(m.direction[2], m.frictionRow[1]);

@@ -242,11 +242,26 @@ struct LeverTurns {
     Vector3 leverB(const Vector3 &r) const { return any ? Vector3(b * r) : r; }
 };
 
-/// Fills the manifold's patch friction from its contact points (world space, `count`
-/// of them) and the bodies' centres of mass: the twist radius, the friction rows at the
-/// points' centre, the twist row and frictionInverse.
-void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &positionA,
-                         const Vector3 &positionB, SolverManifold &m, const LeverTurns &turns = LeverTurns());
+/// How much farther apart than the deepest point of its manifold a point may lie and
+/// still take part in the manifold's friction, m (frictionPoints; docs/solver.md,
+/// "Figures behind constants in the code").
+inline constexpr real kFrictionBand = 0.02;
+
+/// The points a manifold's friction acts at, into `out` (returns their count): of the
+/// points (midpoints between the anchors, world space, `count` of them, `depths` their
+/// depths along `normal`), those within kFrictionBand of the deepest one, moved along
+/// the normal into the plane through it. A point far apart (a turning rod's other end, up
+/// to the landing reach away) bears no load this step; friction at a centre lifted off
+/// the surfaces has a lever about the body's axes that no contact has: a needle, whose
+/// moment about its own axis is a thousandth of the others, spun up and gained energy.
+int frictionPoints(const Vector3 *points, const real *depths, int count, const Vector3 &normal, Vector3 *out);
+
+/// Fills the manifold's patch friction from the points it acts at (world space, `count`
+/// of them: frictionPoints) and the bodies' centres of mass: the twist radius, the
+/// friction rows at the points' centre, the twist row and frictionInverse.
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, int count,
+                         const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
+                         const LeverTurns &turns = LeverTurns());
 
 /// Fills the manifold's couplings from its rows (after prepareRows and
 /// prepareFrictionRows), and its carried couplings with the same.
