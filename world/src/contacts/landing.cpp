@@ -188,6 +188,7 @@ real LandingCorrection::pushedInverseMass(const BodyStore &bodies, std::uint32_t
 }
 
 void LandingCorrection::translate(BodyStore &bodies, std::uint32_t index, const Vector3 &delta, real length) {
+    ++pushes_;
     if (group_.empty() || group_[index] < 0) {
         RigidBody &body = bodies[index].body;
         body.setPosition(body.getPosition() + delta);
@@ -260,6 +261,7 @@ void LandingCorrection::markFastBodies(const WorldSettings &settings, const Body
         movedRound_.resize(bodies.size(), -1);
         sunk_.resize(bodies.size(), 0);
         shifts_.resize(bodies.size(), Vector3::Zero());
+        pushedAt_.resize(bodies.size(), 0);
     }
     // Each test below is made on the threads, and the bodies it picks are marked after,
     // in order.
@@ -513,14 +515,21 @@ int LandingCorrection::push(const WorldSettings &settings, BodyStore &bodies, in
     moved_.clear();
     for (int pass = 0; pass < kPasses; ++pass) {
         bool any = false;
-        for (const Point &point : points_) {
+        for (Point &point : points_) {
+            // Neither body pushed since the point was found shallow: it still is.
+            if (point.shallowAt != 0 && pushedAt_[point.a] <= point.shallowAt && pushedAt_[point.b] <= point.shallowAt)
+                continue;
             BodyRecord &a = bodies[point.a];
             BodyRecord &b = bodies[point.b];
             const Matrix4 &poseA = a.body.getTransform();
             const Matrix4 &poseB = b.body.getTransform();
             const Vector3 normal = poseA.linear() * point.localNormal;
             const real depth = (poseA * point.localA - poseB * point.localB).dot(normal);
-            if (!(depth > point.target)) continue;
+            if (!(depth > point.target)) {
+                point.shallowAt = pushes_;
+                continue;
+            }
+            point.shallowAt = 0;
             bool moveA = movable(bodies, point.a);
             bool moveB = movable(bodies, point.b);
             // Two members of one joint group move together: no push parts them.
@@ -621,6 +630,7 @@ void LandingCorrection::payForLift(BodyStore &bodies, const Islands &islands, co
 }
 
 void LandingCorrection::noteMove(std::uint32_t body, real length) {
+    pushedAt_[body] = pushes_;
     if (moveSlot_.size() <= body) moveSlot_.resize(movedRound_.size(), -1);
     int &slot = moveSlot_[body];
     if (slot < 0) {

@@ -82,6 +82,9 @@ private:
         real target = 0;                     ///< Depth the passes push it back to, m.
         real height = 0;                     ///< Along -gravity: the passes go lowest first.
         std::uint32_t order = 0;             ///< Place in the rounds' pair walks: breaks ties in height.
+        /// The push count (pushes_) when a pass last found it no deeper than its target;
+        /// 0 when none has, or a pass found it deeper.
+        std::uint64_t shallowAt = 0;
     };
 
     /// Marks the bodies round 0 moves: those that moved fast this step and those of the
@@ -186,6 +189,11 @@ private:
     };
     std::vector<Move> moved_;
     std::vector<int> moveSlot_;  ///< Per body index: its entry in moved_ (-1: none).
+    /// Pushes made so far (never reset), and per body index the count at its last push:
+    /// a point found no deeper than its target whose bodies no push has moved since is
+    /// not measured again (push).
+    std::uint64_t pushes_ = 1;
+    std::vector<std::uint64_t> pushedAt_;
     /// Adds a push of `length` to the body's entry in moved_.
     void noteMove(std::uint32_t body, real length);
 };
