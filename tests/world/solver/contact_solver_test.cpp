@@ -272,31 +272,32 @@ namespace {
 
 // A rod's manifold on a face whose normal is (0, 1, 0) tilted 0.3 rad about z: two points
 // touching 3 mm and 1 mm deep at one end, two speculative ones 0.4 m apart at the other
-// (the rod turning down onto the face). Friction acts at the touching pair only, moved
-// along the normal into the plane through the deeper one (its midpoint's height along n).
-TEST(FrictionPoints, ThePointsNearTheDeepestInItsPlane) {
+// (the rod turning down onto the face). All four are moved along the normal into the plane
+// through the deeper one (its midpoint's height along n is 0), and friction acts at the
+// centre of the touching pair: the origin.
+TEST(FrictionCentre, TheCentreOfThePointsNearTheDeepestInItsPlane) {
     const Vector3 n(-std::sin(0.3), std::cos(0.3), 0);
     const Vector3 t(std::cos(0.3), std::sin(0.3), 0);  // across the face, along the rod
     const Vector3 z = Vector3::UnitZ();
-    const Vector3 points[4] = {0.1 * z, -0.001 * n - 0.1 * z, 0.7 * t + 0.2 * n + 0.1 * z, 0.7 * t + 0.2 * n - 0.1 * z};
+    Vector3 points[4] = {0.1 * z, -0.001 * n - 0.1 * z, 0.7 * t + 0.2 * n + 0.1 * z, 0.7 * t + 0.2 * n - 0.1 * z};
     const real depths[4] = {0.003, 0.001, -0.4, -0.4};
-    Vector3 out[4];
-    ASSERT_EQ(detail::frictionPoints(points, depths, 4, n, out), 2);
-    EXPECT_NEAR((out[0] - 0.1 * z).norm(), 0, 1e-15);
-    EXPECT_NEAR((out[1] + 0.1 * z).norm(), 0, 1e-15);  // lifted 1 mm along n, onto the deepest's plane
+    EXPECT_NEAR(detail::frictionCentre(depths, 4, n, points).norm(), 0, 1e-15);
+    EXPECT_NEAR((points[0] - 0.1 * z).norm(), 0, 1e-15);
+    EXPECT_NEAR((points[1] + 0.1 * z).norm(), 0, 1e-15);  // lifted 1 mm along n
+    EXPECT_NEAR((points[2] - (0.7 * t + 0.1 * z)).norm(), 0, 1e-15);  // lowered 0.2 m along n
+    EXPECT_NEAR((points[3] - (0.7 * t - 0.1 * z)).norm(), 0, 1e-15);
 }
 
-// Points apart by no more than kFrictionBand beyond the deepest all take part; a point
-// just beyond it does not. None at all for an empty manifold.
-TEST(FrictionPoints, TheBandIsMeasuredFromTheDeepest) {
+// Points apart by no more than kFrictionBand beyond the deepest take part in the centre; a
+// point just beyond it does not. An empty manifold's centre is the origin.
+TEST(FrictionCentre, TheBandIsMeasuredFromTheDeepest) {
     const Vector3 n = Vector3::UnitY();
-    const Vector3 points[3] = {Vector3(0, 0, 0), Vector3(1, 0.01, 0), Vector3(0, 0.02, 1)};
+    Vector3 points[3] = {Vector3(0, 0, 0), Vector3(1, 0.01, 0), Vector3(0, 0.02, 1)};
     const real band = detail::kFrictionBand;
     const real depths[3] = {-0.005, -0.005 - band, -0.005 - band - 1e-6};
-    Vector3 out[3];
-    ASSERT_EQ(detail::frictionPoints(points, depths, 3, n, out), 2);
-    EXPECT_NEAR((out[1] - Vector3(1, 0, 0)).norm(), 0, 1e-15);
-    EXPECT_EQ(detail::frictionPoints(points, depths, 0, n, out), 0);
+    EXPECT_NEAR((detail::frictionCentre(depths, 3, n, points) - Vector3(0.5, 0, 0)).norm(), 0, 1e-15);
+    EXPECT_NEAR((points[2] - Vector3(0, 0, 1)).norm(), 0, 1e-15);
+    EXPECT_EQ(detail::frictionCentre(depths, 0, n, points), Vector3::Zero());
 }
 
 }  // namespace

@@ -378,30 +378,28 @@ void prepareJacobians(const SolverBody &sa, const SolverBody &sb, const RigidBod
         prepareRows(sa, sb, turns.leverA(points[i] - bodyA.getPosition()), turns.leverB(points[i] - bodyB.getPosition()),
                     m, m.points[i]);
     }
-    Vector3 rubbing[kMaxManifoldPoints];
-    const int count = frictionPoints(points, depths, m.count, m.normal, rubbing);
-    prepareFrictionRows(sa, sb, rubbing, count, bodyA.getPosition(), bodyB.getPosition(), m, turns);
+    const Vector3 centre = frictionCentre(depths, m.count, m.normal, points);
+    prepareFrictionRows(sa, sb, points, m.count, centre, bodyA.getPosition(), bodyB.getPosition(), m, turns);
     prepareCouplings(sa, sb, m);
 }
 
-int frictionPoints(const Vector3 *points, const real *depths, int count, const Vector3 &normal, Vector3 *out) {
-    if (count == 0) return 0;
+Vector3 frictionCentre(const real *depths, int count, const Vector3 &normal, Vector3 *points) {
+    if (count == 0) return Vector3::Zero();
     const int deepest = static_cast<int>(std::max_element(depths, depths + count) - depths);
     const real plane = points[deepest].dot(normal);
-    int kept = 0;
-    for (int i = 0; i < count; ++i)
-        if (depths[i] >= depths[deepest] - kFrictionBand)
-            out[kept++] = points[i] + (plane - points[i].dot(normal)) * normal;
-    return kept;
+    Vector3 centre = Vector3::Zero();
+    int near = 0;
+    for (int i = 0; i < count; ++i) {
+        points[i] += (plane - points[i].dot(normal)) * normal;
+        if (depths[i] >= depths[deepest] - kFrictionBand) centre += points[i], ++near;
+    }
+    return centre / near;
 }
 
 CYCLONE_SIMD_CLONES
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, int count,
-                         const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
+                         const Vector3 &centre, const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
                          const LeverTurns &turns) {
-    Vector3 centre = Vector3::Zero();
-    for (int i = 0; i < count; ++i) centre += points[i];
-    if (count > 0) centre /= count;
     // The twist radius: the torque about the normal that friction at the points could
     // give at most, per unit of friction force.
     real radius = 0;

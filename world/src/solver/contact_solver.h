@@ -243,24 +243,25 @@ struct LeverTurns {
 };
 
 /// How much farther apart than the deepest point of its manifold a point may lie and
-/// still take part in the manifold's friction, m (frictionPoints; docs/solver.md,
-/// "Figures behind constants in the code").
+/// still take part in the centre of the manifold's friction, m (frictionCentre;
+/// docs/solver.md, "Figures behind constants in the code").
 inline constexpr real kFrictionBand = 0.02;
 
-/// The points a manifold's friction acts at, into `out` (returns their count): of the
-/// points (midpoints between the anchors, world space, `count` of them, `depths` their
-/// depths along `normal`), those within kFrictionBand of the deepest one, moved along
-/// the normal into the plane through it. A point far apart (a turning rod's other end, up
-/// to the landing reach away) bears no load this step; friction at a centre lifted off
-/// the surfaces has a lever about the body's axes that no contact has: a needle, whose
-/// moment about its own axis is a thousandth of the others, spun up and gained energy.
-int frictionPoints(const Vector3 *points, const real *depths, int count, const Vector3 &normal, Vector3 *out);
+/// The centre a manifold's friction acts at. Moves its points (midpoints between the
+/// anchors, world space, `count` of them, `depths` their depths along `normal`) along the
+/// normal into the plane through the deepest one, and returns the centre of those within
+/// kFrictionBand of it. A point far apart (a turning rod's other end, up to the landing
+/// reach away) bears no load this step; friction at a centre lifted off the surfaces has
+/// a lever about the body's axes that no contact has: a needle, whose moment about its
+/// own axis is a thousandth of the others, spun up and gained energy.
+Vector3 frictionCentre(const real *depths, int count, const Vector3 &normal, Vector3 *points);
 
-/// Fills the manifold's patch friction from the points it acts at (world space, `count`
-/// of them: frictionPoints) and the bodies' centres of mass: the twist radius, the
-/// friction rows at the points' centre, the twist row and frictionInverse.
+/// Fills the manifold's patch friction from its points (world space, `count` of them, in
+/// the contact plane: frictionCentre), the centre friction acts at and the bodies'
+/// centres of mass: the twist radius (the points' mean distance from the centre), the
+/// friction rows at the centre, the twist row and frictionInverse.
 void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, int count,
-                         const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
+                         const Vector3 &centre, const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
                          const LeverTurns &turns = LeverTurns());
 
 /// Fills the manifold's couplings from its rows (after prepareRows and
