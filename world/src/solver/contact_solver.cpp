@@ -393,7 +393,7 @@ Vector3 frictionCentre(const real *depths, int count, const Vector3 &normal, Vec
         points[i] += (plane - points[i].dot(normal)) * normal;
         if (depths[i] >= depths[deepest] - kFrictionBand) centre += points[i], ++near;
     }
-    return centre / near;
+    return near > 0 ? Vector3(centre / near) : points[deepest];  // none near: a depth is NaN
 }
 
 CYCLONE_SIMD_CLONES
