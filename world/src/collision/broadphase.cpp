@@ -42,15 +42,23 @@ struct PairWalk {
     }
 };
 
+// FCL's AABB::overlap and AABB::size, the same arithmetic written here so that it
+// inlines: libfcl instantiates them out of line, two calls for each pair of nodes the walk
+// meets (6.3 million overlap calls in mixed1000's first 150 steps).
+bool boxesOverlap(const fcl::AABBd &x, const fcl::AABBd &y) {
+    return !(x.min_.array() > y.max_.array()).any() && !(x.max_.array() < y.min_.array()).any();
+}
+real boxSize(const fcl::AABBd &box) { return (box.max_ - box.min_).squaredNorm(); }
+
 // Whether the walk splits `first` (else `second`) at a pair of nodes that are not both
 // leaves: the one with the larger box, as FCL's walk does.
 bool splitsFirst(const Node *first, const Node *second) {
-    return second->isLeaf() || (!first->isLeaf() && first->bv.size() > second->bv.size());
+    return second->isLeaf() || (!first->isLeaf() && boxSize(first->bv) > boxSize(second->bv));
 }
 
 // The pairs between two subtrees, in FCL's order; true stops the walk.
 bool walkBetween(const Node *first, const Node *second, PairWalk &walk) {
-    if (!first->bv.overlap(second->bv)) return false;
+    if (!boxesOverlap(first->bv, second->bv)) return false;
     if (first->isLeaf() && second->isLeaf()) return walk.record(first, second);
     if (splitsFirst(first, second))
         return walkBetween(first->children[0], second, walk) || walkBetween(first->children[1], second, walk);
@@ -224,7 +232,7 @@ int Broadphase::cutWalk() {
                 next.push_back({first->children[0], nullptr});
                 next.push_back({first->children[1], nullptr});
                 next.push_back({first->children[0], first->children[1]});
-            } else if (!first->bv.overlap(second->bv)) {
+            } else if (!boxesOverlap(first->bv, second->bv)) {
                 split = true;
             } else if (first->isLeaf() && second->isLeaf()) {
                 next.push_back(piece);
