@@ -36,7 +36,7 @@ int addResting(std::vector<SolverBody> &bodies, SolverManifolds &manifolds, int 
     const SolverBody &a = bodies[m.a];
     const SolverBody &b = bodies[m.b];
     for (int i = 0; i < 2; ++i) detail::prepareRows(a, b, points[i] - centreA, points[i] - centreB, m, m.points[i]);
-    detail::prepareFrictionRows(a, b, points, m.count, carrierCentre + Vector3(0, 0.5, 0), centreA, centreB, m);
+    detail::prepareFrictionRows(a, b, points, carrierCentre + Vector3(0, 0.5, 0), centreA, centreB, m);
     detail::prepareCouplings(a, b, m);
     detail::prepareCarriedMasses(bodies, m);
     manifolds.push_back(m);
@@ -182,8 +182,7 @@ TEST(SupportPass, SweepsInOneDirectionSettleWhereNoVelocityMeetsEveryCorner) {
                                    Vector3(x + 0.4, 0, -0.5)};
         for (int i = 0; i < 4; ++i)
             detail::prepareRows(bodies[0], bodies[body], points[i], points[i] - centre, m, m.points[i]);
-        detail::prepareFrictionRows(bodies[0], bodies[body], points, m.count, Vector3(x, 0, 0), Vector3::Zero(), centre,
-                                    m);
+        detail::prepareFrictionRows(bodies[0], bodies[body], points, Vector3(x, 0, 0), Vector3::Zero(), centre, m);
         detail::prepareCouplings(bodies[0], bodies[body], m);
         m.friction = 0.5;
         detail::prepareCarriedMasses(bodies, m);

@@ -31,7 +31,7 @@ inline detail::SolverManifold addCubeOn(int carrier, const Vector3 &velocity, st
     const Vector3 points[2] = {Vector3(0.5, 0, 0), Vector3(-0.5, 0, 0)};
     const Vector3 centreA(0, -0.5, 0), centreB(0, 0.5, 0);
     for (int i = 0; i < 2; ++i) detail::prepareRows(bodies[carrier], cube, points[i] - centreA, points[i] - centreB, m, m.points[i]);
-    detail::prepareFrictionRows(bodies[carrier], cube, points, m.count, Vector3::Zero(), centreA, centreB, m);
+    detail::prepareFrictionRows(bodies[carrier], cube, points, Vector3::Zero(), centreA, centreB, m);
     detail::prepareCouplings(bodies[carrier], cube, m);
     bodies.push_back(cube);
     return m;

@@ -379,7 +379,7 @@ void prepareJacobians(const SolverBody &sa, const SolverBody &sb, const RigidBod
                     m, m.points[i]);
     }
     const Vector3 centre = frictionCentre(depths, m.count, m.normal, points);
-    prepareFrictionRows(sa, sb, points, m.count, centre, bodyA.getPosition(), bodyB.getPosition(), m, turns);
+    prepareFrictionRows(sa, sb, points, centre, bodyA.getPosition(), bodyB.getPosition(), m, turns);
     prepareCouplings(sa, sb, m);
 }
 
@@ -397,14 +397,14 @@ Vector3 frictionCentre(const real *depths, int count, const Vector3 &normal, Vec
 }
 
 CYCLONE_SIMD_CLONES
-void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, int count,
-                         const Vector3 &centre, const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &centre,
+                         const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
                          const LeverTurns &turns) {
     // The twist radius: the torque about the normal that friction at the points could
     // give at most, per unit of friction force.
     real radius = 0;
-    for (int i = 0; i < count; ++i) radius += (points[i] - centre).norm();
-    m.twistRadius = count > 1 ? radius / count : 0;
+    for (int i = 0; i < m.count; ++i) radius += (points[i] - centre).norm();
+    m.twistRadius = m.count > 1 ? radius / m.count : 0;
     const RowFrame frame(a, b, turns.leverA(centre - positionA), turns.leverB(centre - positionB));
     frame.fillJacobianOnly(m.direction[1], m.frictionRow[0]);
     frame.fillJacobianOnly(m.direction[2], m.frictionRow[1]);

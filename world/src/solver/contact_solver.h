@@ -256,12 +256,12 @@ inline constexpr real kFrictionBand = 0.02;
 /// own axis is a thousandth of the others, spun up and gained energy.
 Vector3 frictionCentre(const real *depths, int count, const Vector3 &normal, Vector3 *points);
 
-/// Fills the manifold's patch friction from its points (world space, `count` of them, in
+/// Fills the manifold's patch friction from its points (world space, m.count of them, in
 /// the contact plane: frictionCentre), the centre friction acts at and the bodies'
 /// centres of mass: the twist radius (the points' mean distance from the centre), the
 /// friction rows at the centre, the twist row and frictionInverse.
-void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, int count,
-                         const Vector3 &centre, const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
+void prepareFrictionRows(const SolverBody &a, const SolverBody &b, const Vector3 *points, const Vector3 &centre,
+                         const Vector3 &positionA, const Vector3 &positionB, SolverManifold &m,
                          const LeverTurns &turns = LeverTurns());
 
 /// Fills the manifold's couplings from its rows (after prepareRows and
