@@ -79,53 +79,56 @@ TEST(NormalMemo, TheNextTestAtTheSamePosesBuildsTheFullTestsManifold) {
     expectSameBits(full, fromMemo);
 }
 
-// A memo planted with a normal no test would choose (+x, across the cubes' stacking): it
-// is taken at exactly its poses, and at a pose a nanometre off the pair is tested afresh
-// and the memo replaced.
+// A memo planted with a normal no test would choose (+x, across the stacking): it is
+// taken at exactly its poses, and at a pose a nanometre off the pair is tested afresh and
+// the memo replaced. An upright cylinder (r = 0.4, 1 m long) stands on a convex unit cube
+// (a pair FCL tests: boxes and hulls have a test of their own).
 TEST(NormalMemo, IsTakenAtItsPosesOnlyAndReplacedElsewhere) {
     const auto cube = detail::compileShape(convexCube(0.5));
+    const auto cylinder = detail::compileShape(Shape::cylinder(0.4, 1));
     const Matrix4 below = pose(Vector3::Zero());
-    const Matrix4 above = pose(Vector3(0, 0.95, 0));  // 5 cm into the one below
+    const Matrix4 above = pose(Vector3(0, 0.95, 0), zUp());  // 5 cm into the cube
     NormalMemo memo;
-    memo.keep(*cube, above, *cube, below, true, Vector3::UnitX());
+    memo.keep(*cylinder, above, *cube, below, true, Vector3::UnitX());
 
     std::vector<Manifold> planted;
-    detail::collide(*cube, above, *cube, below, stepSettings(), planted, &memo);
+    detail::collide(*cylinder, above, *cube, below, stepSettings(), planted, &memo);
     ASSERT_EQ(planted.size(), 1u);
     EXPECT_EQ(planted[0].normal, Vector3::UnitX());
 
-    const Matrix4 moved = pose(Vector3(0, 0.95 + 1e-9, 0));
+    const Matrix4 moved = pose(Vector3(0, 0.95 + 1e-9, 0), zUp());
     std::vector<Manifold> fresh;
-    detail::collide(*cube, moved, *cube, below, stepSettings(), fresh, &memo);
+    detail::collide(*cylinder, moved, *cube, below, stepSettings(), fresh, &memo);
     ASSERT_EQ(fresh.size(), 1u);
     EXPECT_LT((fresh[0].normal - kDown).norm(), 1e-9);
     EXPECT_NEAR(deepestDepth(fresh[0]), 0.05, 1e-6);
-    EXPECT_TRUE(memo.holds(*cube, moved, *cube, below));
-    EXPECT_FALSE(memo.holds(*cube, above, *cube, below));
+    EXPECT_TRUE(memo.holds(*cylinder, moved, *cube, below));
+    EXPECT_FALSE(memo.holds(*cylinder, above, *cube, below));
     EXPECT_LT((memo.normal - kDown).norm(), 1e-9);
     // Another pair of shapes at the same poses is not the memo's either.
-    const auto other = detail::compileShape(convexCube(0.5));
+    const auto other = detail::compileShape(Shape::cylinder(0.4, 1));
     EXPECT_FALSE(memo.holds(*other, moved, *cube, below));
 }
 
-// Hulls 0.3 m apart (the faces of unit cubes 1.3 m apart along x): FCL finds no contact,
-// and the memo says so; taken from it, the speculative manifold within the reach is the
-// full test's.
+// A convex unit cube and an upright cylinder (r = 0.5) whose side lies 0.3 m beyond the
+// cube's +x face: FCL finds no contact, and the memo says so; taken from it, the
+// speculative manifold within the reach is the full test's.
 TEST(NormalMemo, RemembersShapesApartAndGivesTheSameSpeculativeManifold) {
     const auto cube = detail::compileShape(convexCube(0.5));
+    const auto cylinder = detail::compileShape(Shape::cylinder(0.5, 1));
     const Matrix4 poseA = pose(Vector3::Zero());
-    const Matrix4 poseB = pose(Vector3(1.3, 0, 0));
+    const Matrix4 poseB = pose(Vector3(1.3, 0, 0), zUp());
     NarrowphaseSettings reaching;
     reaching.reach = 0.31;
     NormalMemo memo;
     std::vector<Manifold> first, second;
-    detail::collide(*cube, poseA, *cube, poseB, reaching, first, &memo);
-    EXPECT_TRUE(memo.holds(*cube, poseA, *cube, poseB));
+    detail::collide(*cube, poseA, *cylinder, poseB, reaching, first, &memo);
+    EXPECT_TRUE(memo.holds(*cube, poseA, *cylinder, poseB));
     EXPECT_FALSE(memo.touching);
     ASSERT_EQ(first.size(), 1u);
     EXPECT_NEAR(first[0].normal.x(), 1, 1e-6);
     EXPECT_NEAR(deepestDepth(first[0]), -0.3, 1e-6);
-    detail::collide(*cube, poseA, *cube, poseB, reaching, second, &memo);
+    detail::collide(*cube, poseA, *cylinder, poseB, reaching, second, &memo);
     expectSameBits(first, second);
 }
 

@@ -18,18 +18,15 @@
 
 #include <cmath>
 
+#include "collision/contact_building.h"
+
 namespace cyclone::detail {
 namespace {
 
-// A face axis wins a tie within this overlap, m (as the general narrowphase's).
-constexpr real kFacePreference = 1e-9;
 // An edge axis replaces the best face axis only if its overlap is below
 // kEdgeRelative times the face's minus kEdgeAbsolute (m).
 constexpr real kEdgeRelative = 0.98;
 constexpr real kEdgeAbsolute = 1e-5;
-// Edges within this sine of parallel give no axis of their own (their cross product is
-// a face axis, or noise).
-constexpr real kParallelEdgeSine = 1e-6;
 
 }  // namespace
 

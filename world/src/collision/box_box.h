@@ -6,6 +6,10 @@
 
 namespace cyclone::detail {
 
+// Edges within this sine of parallel give no axis of their own (their cross product is
+// a face axis, or noise).
+inline constexpr real kParallelEdgeSine = 1e-6;
+
 /// The axis of least overlap between box A (half extents `halfA` at `poseA`) and box B
 /// (`halfB` at `poseB`), among the 15 candidate axes: A's 3 face normals, B's 3 and the
 /// 9 cross products of their edges. Returns false when some axis separates them by more

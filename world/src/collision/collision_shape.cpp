@@ -486,6 +486,7 @@ std::shared_ptr<const CollisionShape> compileShape(const Shape &shape) {
         case ShapeType::Convex:
             compileConvex(shape, c.vertices_, c.faces_, c.faceNormals_, c.unitInertia_, c.volume_, c.centroid_,
                           c.geometry_);
+            c.hullEdges_ = std::make_shared<const HullEdges>(makeHullEdges(c.vertices_, c.faces_, c.faceNormals_));
             break;
         case ShapeType::Plane: {
             requireFinite("shape.normal", shape.normal);
@@ -574,6 +575,11 @@ void CollisionShape::supportingFeature(const Matrix4 &pose, const Vector3 &direc
             break;
         }
     }
+}
+
+const HullEdges &CollisionShape::hullEdges() const {
+    static const HullEdges none;
+    return hullEdges_ ? *hullEdges_ : none;
 }
 
 Vector3 CollisionShape::supportPoint(const Matrix4 &pose, const Vector3 &direction, int triangle) const {

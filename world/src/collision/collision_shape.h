@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "collision/polytope.h"
 #include "cyclone/world/shape.h"
 
 namespace cyclone::detail {
@@ -85,6 +86,9 @@ public:
     MeshSides triangleSides() const {
         return shape_.type == ShapeType::Heightfield ? MeshSides::Front : shape_.sides;
     }
+    /// Convex hull: its face offsets and edges for the separating-axis test (polytope.h);
+    /// empty for other shapes.
+    const HullEdges &hullEdges() const;
     /// Plane: outward unit normal, shape frame (the solid is normal.x <= planeOffset()).
     const Vector3 &planeNormal() const { return planeNormal_; }
     /// Plane: distance of the surface from the frame origin along planeNormal(), m
@@ -120,6 +124,7 @@ private:
     std::vector<Vector3> vertices_;
     std::vector<std::vector<int>> faces_;
     std::vector<Vector3> faceNormals_;
+    std::shared_ptr<const HullEdges> hullEdges_;
     std::vector<std::uint8_t> activeFeatures_;
     Vector3 planeNormal_ = Vector3::UnitY();
     real planeOffset_ = 0;

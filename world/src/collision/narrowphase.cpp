@@ -1,8 +1,8 @@
 // Narrowphase: FCL says whether two shapes touch; the manifold is built here from the
 // normal of least overlap (contact_normal.cpp) and the features clipped along it
-// (manifold_clipping.cpp). Box-box, sphere pairs, capsule pairs (round_pairs.cpp),
-// cylinders against cylinders and capsules (cylinder_pairs.cpp) and planes have tests of
-// their own.
+// (manifold_clipping.cpp). Box-box, boxes and hulls of few edges (polytope.cpp), sphere
+// pairs, capsule pairs (round_pairs.cpp), cylinders against cylinders and capsules
+// (cylinder_pairs.cpp) and planes have tests of their own.
 //
 // Meshes give one FCL contact per triangle; mesh_contacts.cpp builds their manifolds.
 //
@@ -19,6 +19,7 @@
 #include "collision/contact_building.h"
 #include "collision/cylinder_pairs.h"
 #include "collision/mesh_contacts.h"
+#include "collision/polytope.h"
 #include "collision/round_pairs.h"
 #include "collision/shape_contact.h"
 #include "collision/sphere_pairs.h"
@@ -191,6 +192,19 @@ int capsulePairContact(const Pair &pair, bool capsuleIsA, real reach, std::vecto
     return clipAlong(pair, capsuleIsA ? normal : Vector3(-normal), out);
 }
 
+// Whether two solids (not planes or meshes) lie farther apart than `gap`, by their boxes
+// and by their extents along the line between their origins; false when unsure.
+bool solidsApart(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                 real gap) {
+    if (boxesApart(*a.geometry(), poseA, *b.geometry(), poseB, gap)) return true;
+    const Vector3 between = poseB.translation() - poseA.translation();
+    const real length = between.norm();
+    if (!(length > kMinNormalLength)) return false;
+    const Vector3 u = between / length;
+    // B's nearest extent along u beyond A's farthest one: a separating axis.
+    return (b.supportPoint(poseB, -u, -1) - a.supportPoint(poseA, u, -1)).dot(u) > gap;
+}
+
 // The pairs with a test of their own, which FCL would only have told touch: the
 // manifolds they append are the ones the FCL path builds (the same normal, by least
 // overlap, and the same clipping). Returns the number appended, or -1 for a pair that
@@ -210,6 +224,19 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
             return 0;
         return clipAlong(pair, normal, out);
     }
+    const auto polytope = [](ShapeType type) { return type == ShapeType::Box || type == ShapeType::Convex; };
+    if (polytope(typeA) && polytope(typeB)) {
+        BoxCorners roomA, roomB;
+        const Polytope polytopeA = polytopeOf(a, roomA), polytopeB = polytopeOf(b, roomB);
+        if (separatingAxesSuit(polytopeA, polytopeB)) {
+            if (solidsApart(a, poseA, b, poseB, reach)) return 0;
+            Vector3 normal;
+            real overlap = 0;
+            if (!polytopeAxis(polytopeA, poseA, polytopeB, poseB, normal, overlap, reach)) return 0;
+            return clipAlong(pair, normal, out);
+        }
+        return -1;
+    }
     if (typeA == ShapeType::Sphere || typeB == ShapeType::Sphere)
         return spherePairContact(pair, typeA == ShapeType::Sphere, reach, out);
     if (typeA == ShapeType::Cylinder || typeB == ShapeType::Cylinder)
@@ -217,19 +244,6 @@ int nativeContact(const CollisionShape &a, const Matrix4 &poseA, const Collision
     if (typeA == ShapeType::Capsule || typeB == ShapeType::Capsule)
         return capsulePairContact(pair, typeA == ShapeType::Capsule, reach, out);
     return -1;
-}
-
-// Whether two solids (not planes or meshes) lie farther apart than `gap`, by their boxes
-// and by their extents along the line between their origins; false when unsure.
-bool solidsApart(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
-                 real gap) {
-    if (boxesApart(*a.geometry(), poseA, *b.geometry(), poseB, gap)) return true;
-    const Vector3 between = poseB.translation() - poseA.translation();
-    const real length = between.norm();
-    if (!(length > kMinNormalLength)) return false;
-    const Vector3 u = between / length;
-    // B's nearest extent along u beyond A's farthest one: a separating axis.
-    return (b.supportPoint(poseB, -u, -1) - a.supportPoint(poseA, u, -1)).dot(u) > gap;
 }
 
 // Child pairs a compound pair tests at most in one call. A pair keeps at most 32
