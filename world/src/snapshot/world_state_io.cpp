@@ -485,8 +485,9 @@ struct StateFields {
         for (std::uint8_t side : {1, 2}) {
             const BodyRecord &r = w.bodies[side == 1 ? pair.a : pair.b];
             if (shape != r.shape.get()) continue;
+            // Both bodies may share the shape: the pose tells which one the memo tested.
             const Eigen::Matrix<real, 3, 4> now = r.body.getTransform().matrix().topRows<3>();
-            return std::memcmp(now.data(), pose.data(), sizeof pose) == 0 ? side : 0;
+            if (std::memcmp(now.data(), pose.data(), sizeof pose) == 0) return side;
         }
         return 0;
     }
@@ -911,7 +912,7 @@ void StateFields::save(const WorldState &state, std::vector<std::uint8_t> &out) 
     // Saving reads only; StateFields' functions take what they list by reference.
     WorldState &w = const_cast<WorldState &>(state);
     StateWriter a(out);
-    std::uint64_t fingerprint = shapesFingerprint(w.shapes, w.shapes.size());
+    std::uint64_t fingerprint = shapesFingerprint(w.shapes.all(), w.shapes.size());
     io(a, fingerprint);
     a.count(w.shapes.size());
     io(a, w.stepCount);
@@ -978,7 +979,7 @@ void StateFields::restore(WorldState &w, const std::uint8_t *data, std::size_t s
     std::uint64_t fingerprint = 0;
     io(a, fingerprint);
     const std::size_t shapes = a.count(0, 0);
-    if (shapes > w.shapes.size() || shapesFingerprint(w.shapes, shapes) != fingerprint)
+    if (shapes > w.shapes.size() || shapesFingerprint(w.shapes.all(), shapes) != fingerprint)
         throw UnreadableState{"is from another World: its bodies were added with other shapes"};
     io(a, w.stepCount);
 

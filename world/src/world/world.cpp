@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "collision/round_side.h"
@@ -297,7 +298,9 @@ BodyId World::addBody(const BodySettings &settings) {
     static const char *function = "World::addBody";
     Impl &w = *impl_;
     const Motion motion = checkedMotion(function, settings, w.bodies.names);
-    const std::shared_ptr<const detail::CollisionShape> shape = checkedShape(function, settings.shape);
+    const std::optional<std::uint32_t> known = w.shapes.find(settings.shape);
+    const std::shared_ptr<const detail::CollisionShape> shape =
+        known ? w.shapes[*known] : checkedShape(function, settings.shape);
     checkFilterAndRules(function, settings);
     RigidBody body = makeBody(function, settings, *shape, w.settings);
     if (shape->isCompound()) body.setPosition(body.getPosition() + detail::frameToCentre(body, *shape));
@@ -308,8 +311,7 @@ BodyId World::addBody(const BodySettings &settings) {
     const std::uint32_t index = detail::takeSlot(w.bodies.records, w.bodies.free);
     detail::BodyRecord &r = w.bodies[index];
     fillRecord(r, settings, motion, body, shape);
-    r.shapeIndex = static_cast<std::uint32_t>(w.shapes.size());
-    w.shapes.push_back(shape);
+    r.shapeIndex = known ? *known : w.shapes.add(shape);
     countBody(w.bodies, index);
     enterCollision(w, index);
     w.sensors.added(w.bodies, index);

@@ -10,6 +10,7 @@
 
 #include "character/characters.h"
 #include "collision/broadphase.h"
+#include "collision/shape_set.h"
 #include "contacts/contact_manager.h"
 #include "contacts/landing.h"
 #include "contacts/pre_solve.h"
@@ -54,9 +55,10 @@ struct WorldState {
     Workers workers;
     StepStats stats;
     std::uint64_t stepCount = 0;
-    /// Every shape a body was added with, in the order of the calls (kept after the body is
-    /// removed): a saved state names its bodies' shapes by place in it (snapshot/world_state_io.cpp).
-    std::vector<std::shared_ptr<const CollisionShape>> shapes;
+    /// Every distinct shape a body was added with, in the order first added (kept after the
+    /// body is removed): a saved state names its bodies' shapes by place in it
+    /// (snapshot/world_state_io.cpp).
+    ShapeSet shapes;
     /// Calls of the World's non-const members so far (World::State counts them): a
     /// callback that must only read is refused when this changed while it ran.
     std::uint64_t changingCalls = 0;
