@@ -1,6 +1,7 @@
 // GJK's nearest point to the origin (collision/gjk.h), cold and started from the vertices
-// of an earlier search: against a box and an upright cylinder placed by hand, whose
-// nearest points are worked out from their faces and side.
+// of an earlier search, and its proof that a set lies farther than a gap: against a box and
+// an upright cylinder placed by hand, whose nearest points are worked out from their faces
+// and side.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -96,6 +97,26 @@ TEST(Gjk, TheOriginInsideEndsTheSearchAndEmptiesTheWarmStart) {
     Vector3 closest;
     EXPECT_FALSE(detail::closestToOrigin(box, Vector3::UnitX(), closest, &simplex));
     EXPECT_EQ(simplex.count, 0);
+}
+
+TEST(Gjk, FartherThanHoldsJustBelowTheDistanceAndNotAbove) {
+    // Side at distance 3 from the origin (axis through (0, 4), radius 1).
+    const Cylinder cylinder{Vector3(0, 4, 0.5), 1, 1};
+    const Vector3 start = Vector3(0.3, 1, 0.2).normalized();
+    EXPECT_TRUE(detail::fartherThan(cylinder, start, 2.999));
+    EXPECT_FALSE(detail::fartherThan(cylinder, start, 3.001));
+    // Box faces at x = 4 .. 6: distance 4, seen along any start.
+    const Box box{Vector3(5, 0, 0), Vector3(1, 2, 3)};
+    for (const Vector3 &d : {Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(-1, 0, 0)}) {
+        EXPECT_TRUE(detail::fartherThan(box, d, 3.999));
+        EXPECT_FALSE(detail::fartherThan(box, d, 4.001));
+    }
+}
+
+TEST(Gjk, FartherThanIsFalseForASetAroundTheOrigin) {
+    const Box box{Vector3(0.2, 0, 0), Vector3(1, 1, 1)};
+    EXPECT_FALSE(detail::fartherThan(box, Vector3::UnitX(), 0));
+    EXPECT_FALSE(detail::fartherThan(box, Vector3::UnitY(), 0));
 }
 
 }  // namespace

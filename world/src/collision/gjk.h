@@ -175,4 +175,29 @@ bool closestToOrigin(const Support &support, const Vector3 &start, Vector3 &clos
     return true;
 }
 
+/// Whether the convex set given by `support` lies farther than `gap` (m, >= 0) from the
+/// origin, shown by a direction along which all of it does: GJK's lower bound v.w / |v|
+/// passes `gap`. False, unsure, when its upper bound |v| comes within `gap` first, when the
+/// origin is inside, or after kMaxIterations; `start` is any direction.
+template <typename Support>
+bool fartherThan(const Support &support, const Vector3 &start, real gap) {
+    // Sets apart by more than a millimetre show it within a few iterations; the pairs
+    // still unsure after these are near enough to be worth the full test.
+    constexpr int kMaxIterations = 12;
+    Vector3 simplex[4];
+    int count = 1;
+    Vector3 v = support(start);
+    simplex[0] = v;
+    for (int i = 0; i < kMaxIterations; ++i) {
+        const real vv = v.squaredNorm();
+        if (!(vv > gap * gap)) return false;
+        const Vector3 direction = -v / std::sqrt(vv);
+        const Vector3 w = support(direction);
+        if (-direction.dot(w) > gap) return true;
+        simplex[count++] = w;
+        if (!gjk::closestOnSimplex(simplex, count, v)) return false;
+    }
+    return false;
+}
+
 }  // namespace cyclone::detail

@@ -18,6 +18,7 @@
 #include "collision/broadphase.h"
 #include "collision/contact_building.h"
 #include "collision/cylinder_pairs.h"
+#include "collision/gjk.h"
 #include "collision/mesh_contacts.h"
 #include "collision/polytope.h"
 #include "collision/round_pairs.h"
@@ -203,6 +204,19 @@ bool solidsApart(const CollisionShape &a, const Matrix4 &poseA, const CollisionS
     const Vector3 u = between / length;
     // B's nearest extent along u beyond A's farthest one: a separating axis.
     return (b.supportPoint(poseB, -u, -1) - a.supportPoint(poseA, u, -1)).dot(u) > gap;
+}
+
+// Whether GJK on B - A shows the two solids farther apart than `gap`: the proof for a
+// pair whose boxes meet but whose solids do not (cylinders side by side in a pile); false
+// when unsure.
+bool supportsApart(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape &b, const Matrix4 &poseB,
+                   real gap) {
+    const auto support = [&](const Vector3 &d) {
+        return Vector3(b.supportPoint(poseB, d, -1) - a.supportPoint(poseA, -d, -1));
+    };
+    const Vector3 between = poseB.translation() - poseA.translation();
+    const real length = between.norm();
+    return fartherThan(support, length > kMinNormalLength ? Vector3(-between / length) : Vector3::UnitX(), gap);
 }
 
 // The pairs with a test of their own, which FCL would only have told touch: the
@@ -445,6 +459,7 @@ int collide(const CollisionShape &a, const Matrix4 &poseA, const CollisionShape 
     constexpr real kBoxesApartMargin = 0.001;  // m, far above libccd's 1e-6 tolerances
     if (!withMesh && !withPlane) {
         if (solidsApart(a, poseA, b, poseB, settings.reach + kBoxesApartMargin)) return 0;
+        if (settings.wasApart && supportsApart(a, poseA, b, poseB, settings.reach + kBoxesApartMargin)) return 0;
         return convexContact(a, poseA, b, poseB, settings, out, memo);
     }
 

@@ -44,6 +44,10 @@ struct NarrowphaseSettings {
     /// against a cylinder or a capsule, a plane against any solid shape); for comparing
     /// the two.
     bool forceFcl = false;
+    /// Whether the pair had no contact when last tested. A pair that goes to FCL then
+    /// first tries to show by GJK's lower bound on the distance that it is still farther
+    /// apart than the reach: a seventh of FCL's cost when it is, wasted when it touches.
+    bool wasApart = false;
 };
 
 /// What collide() learnt of two convex solids that FCL tested (not a plane, a mesh or a
@@ -75,7 +79,8 @@ struct NormalMemo {
 /// confirms the contact unless two round sides face each other) and a plane against any
 /// solid shape have tests of their own; every other pair goes through FCL's contact test
 /// (GST_LIBCCD, through collideShapes), and so does every pair with `settings.forceFcl`,
-/// unless a box or axis shows the two more than the reach apart (nothing appended).
+/// unless a box or an axis (or for a pair `settings.wasApart`, GJK's lower bound on their
+/// distance) shows the two more than the reach apart (nothing appended).
 /// Normals point from A to B whatever order FCL used internally; near-zero normals are
 /// dropped. A mesh pushes a shape out to the side of each triangle that Shape::sides
 /// allows (both sides: the side the shape's centre is on), and contacts on its inner

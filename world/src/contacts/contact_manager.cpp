@@ -475,6 +475,7 @@ std::size_t ContactManager::detect(const PairTest &test, std::uint32_t p, std::v
     const real reach = settings.debug.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;
+    narrowphase.wasApart = !pair.touching();
     const int n = collide(*a.shape, a.body.getTransform(), *b.shape, b.body.getTransform(), narrowphase, out, memo);
     if (narrowphase.reach > 0 && n > 0) {
         // Shapes apart that cannot close the gap along their normal in this step, or
