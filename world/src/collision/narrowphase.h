@@ -46,7 +46,7 @@ struct NarrowphaseSettings {
     bool forceFcl = false;
     /// Whether the pair had no contact when last tested. A pair that goes to FCL then
     /// first tries to show by GJK's lower bound on the distance that it is still farther
-    /// apart than the reach: a seventh of FCL's cost when it is, wasted when it touches.
+    /// apart than the reach: cheaper than FCL's tests when it is, wasted when it touches.
     bool wasApart = false;
 };
 

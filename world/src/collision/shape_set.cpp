@@ -1,6 +1,7 @@
 #include "collision/shape_set.h"
 
 #include <cstring>
+#include <iterator>
 #include <utility>
 
 namespace cyclone::detail {
@@ -27,19 +28,14 @@ Span spanOf(const std::vector<T> &values) {
 // lists of spans are equal span by span, sizes and bytes, only when the descriptions are.
 // The fields are plain values (no padding inside Eigen's vectors and quaternions).
 void appendSpans(const Shape &s, std::vector<Span> &out) {
-    out.push_back(spanOf(s.type));
-    out.push_back({s.halfExtents.data(), sizeof(real) * 3});
-    out.push_back(spanOf(s.radius));
-    out.push_back(spanOf(s.length));
-    out.push_back(spanOf(s.vertices));
-    out.push_back(spanOf(s.triangles));
-    out.push_back(spanOf(s.sides));
-    out.push_back({s.normal.data(), sizeof(real) * 3});
-    out.push_back(spanOf(s.offset));
-    out.push_back(spanOf(s.rows));
-    out.push_back(spanOf(s.columns));
-    out.push_back(spanOf(s.spacing));
-    out.push_back(spanOf(s.heights));
+    const Span fields[] = {spanOf(s.type),    {s.halfExtents.data(), sizeof(real) * 3},
+                           spanOf(s.radius),  spanOf(s.length),
+                           spanOf(s.vertices), spanOf(s.triangles),
+                           spanOf(s.sides),   {s.normal.data(), sizeof(real) * 3},
+                           spanOf(s.offset),  spanOf(s.rows),
+                           spanOf(s.columns), spanOf(s.spacing),
+                           spanOf(s.heights)};
+    out.insert(out.end(), std::begin(fields), std::end(fields));
     for (const CompoundChild &child : s.children) {
         out.push_back({child.position.data(), sizeof(real) * 3});
         out.push_back({child.orientation.coeffs().data(), sizeof(real) * 4});
