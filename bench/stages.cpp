@@ -4,11 +4,12 @@
 //
 //   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T] [--defaults]
 //                  [--substeps S] [--iterations N] [--positions N] [--landing on|off]
-//                  [--carrier on|off] [--slowest K]
+//                  [--carrier on|off] [--holding on|off] [--slowest K]
 // --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
 // benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
 // --landing off steps them without the landing correction (DebugSettings::landingCorrection),
-// --carrier off without the carrier pass (DebugSettings::carrierPass).
+// --carrier off without the carrier pass (DebugSettings::carrierPass), --holding off
+// solving every awake body (DebugSettings::holding).
 // --slowest K prints, instead of the medians, each stage's mean over the K slowest steps
 // after the first second (by total): the steps that make a benchmark's p95 (the 30
 // slowest of its 600 steps).
@@ -66,6 +67,7 @@ int run(int argc, char **argv) {
     int substeps = 0, iterations = 0, positions = -1;  // 0 / -1: the scene's own
     bool landing = true;  // DebugSettings::landingCorrection, for comparing
     bool carrier = true;  // DebugSettings::carrierPass, for comparing
+    bool holding = true;  // DebugSettings::holding, for comparing
     int slowest = 0;      // 0: medians; K: means over the K slowest steps
     for (int i = 1; i < argc; ++i) {
         std::string arg, value;
@@ -90,6 +92,8 @@ int run(int argc, char **argv) {
             landing = value == "on";
         } else if (arg == "--carrier" && (value == "on" || value == "off")) {
             carrier = value == "on";
+        } else if (arg == "--holding" && (value == "on" || value == "off")) {
+            holding = value == "on";
         } else if (arg == "--slowest") {
             slowest = std::atoi(value.c_str());
             if (slowest < 1) {
@@ -128,6 +132,7 @@ int run(int argc, char **argv) {
         if (positions >= 0) scene.world.positionIterations = positions;
         scene.world.debug.landingCorrection = landing;
         scene.world.debug.carrierPass = carrier;
+        scene.world.debug.holding = holding;
         World world(scene.world);
         for (const BodySettings &body : scene.bodies) world.addBody(body);
         std::vector<StageTimes> times;

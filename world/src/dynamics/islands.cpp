@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "dynamics/union_find.h"
+#include "contacts/pair_cache.h"
 #include "dynamics/springs.h"
 #include "joints/joint_set.h"
 #include "solver/contact_solver.h"
@@ -12,14 +13,27 @@
 namespace cyclone::detail {
 
 void Islands::build(BodyStore &bodies, const SolverManifolds &manifolds, const SpringSet &springs,
-                    const JointSet &joints, StepStats &stats) {
-    const int n = static_cast<int>(bodies.simulated.size());
+                    const JointSet &joints, const std::vector<std::uint32_t> &held, const PairCache &pairs,
+                    StepStats &stats) {
+    const int simulated = static_cast<int>(bodies.simulated.size());
+    const int n = simulated + static_cast<int>(held.size());
     parent_.resize(n);
     std::iota(parent_.begin(), parent_.end(), 0);
     const auto unite = [&](int x, int y) { uniteSets(parent_, x, y); };
     // Static and kinematic bodies (entry 0, entries past the simulated) join no island.
     for (const SolverManifold &m : manifolds)
-        if (m.a > 0 && m.b > 0 && m.a <= n && m.b <= n) unite(m.a - 1, m.b - 1);
+        if (m.a > 0 && m.b > 0 && m.a <= simulated && m.b <= simulated) unite(m.a - 1, m.b - 1);
+    // A held body joins the bodies it touches, held or simulated (entry simulated + its
+    // place in `held`, kept in BodyRecord::island until the islands are numbered).
+    for (std::size_t k = 0; k < held.size(); ++k) bodies[held[k]].island = simulated + static_cast<int>(k);
+    for (std::size_t k = 0; k < held.size(); ++k) {
+        for (std::uint32_t p : bodies[held[k]].pairs) {
+            if (!pairs[p].touching()) continue;
+            const BodyRecord &o = bodies[pairs[p].a == held[k] ? pairs[p].b : pairs[p].a];
+            if (o.simulated) unite(simulated + static_cast<int>(k), o.solverIndex - 1);
+            else if (o.held) unite(simulated + static_cast<int>(k), o.island);
+        }
+    }
     for (const SpringRecord &s : springs) {
         if (!s.alive || !s.settings.b) continue;
         const BodyRecord &a = bodies[s.settings.a.index];
@@ -43,14 +57,15 @@ void Islands::build(BodyStore &bodies, const SolverManifolds &manifolds, const S
     // Lay the members out island by island. start_ is the cursor, which leaves each
     // island's entry at the next island's start: shifted back at the end.
     start_.assign(islands + 1, 0);
+    const auto body = [&](int k) { return k < simulated ? bodies.simulated[k] : held[k - simulated]; };
     for (int k = 0; k < n; ++k) {
         const int island = ~parent_[k];
-        bodies[bodies.simulated[k]].island = island;
+        bodies[body(k)].island = island;
         ++start_[island + 1];
     }
     for (int i = 0; i < islands; ++i) start_[i + 1] += start_[i];
     members_.resize(n);
-    for (int k = 0; k < n; ++k) members_[start_[~parent_[k]]++] = bodies.simulated[k];
+    for (int k = 0; k < n; ++k) members_[start_[~parent_[k]]++] = body(k);
     for (int i = islands - 1; i > 0; --i) start_[i] = start_[i - 1];
     start_[0] = 0;
     stats.islands = islands;

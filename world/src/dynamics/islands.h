@@ -11,6 +11,7 @@
 namespace cyclone::detail {
 
 struct BodyStore;
+class PairCache;
 class JointSet;
 class SpringSet;
 
@@ -22,10 +23,12 @@ public:
     std::vector<int> freeSleeping;  ///< Entries of `sleeping` free for reuse.
 
     /// The islands stage: joins the simulated bodies by the solver's manifolds, the
-    /// springs and the joints; writes each simulated body's BodyRecord::island and
-    /// stats.islands.
+    /// springs and the joints, and the held bodies (Holding::held) by their touching
+    /// pairs with held or simulated bodies; writes each such body's BodyRecord::island
+    /// and stats.islands.
     void build(BodyStore &bodies, const SolverManifolds &manifolds, const SpringSet &springs,
-               const JointSet &joints, StepStats &stats);
+               const JointSet &joints, const std::vector<std::uint32_t> &held, const PairCache &pairs,
+               StepStats &stats);
     /// This step's islands whose bodies are all still (RigidBody's sleep average below its
     /// sleep epsilon), in order; none when settings.sleep is off. The step puts each to
     /// sleep (WorldState::sleepIsland).
@@ -35,7 +38,7 @@ public:
     int size(int island) const { return start_[island + 1] - start_[island]; }
 
 private:
-    std::vector<int> parent_;  ///< Union-find over the simulated bodies, by solver index - 1.
+    std::vector<int> parent_;  ///< Union-find over the simulated bodies, by solver index - 1, then the held ones.
     std::vector<int> start_;   ///< Island i's members are members_[start_[i], start_[i + 1]).
     std::vector<std::uint32_t> members_;
     std::vector<int> still_;  ///< What still() returned.

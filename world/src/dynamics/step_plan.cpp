@@ -39,6 +39,12 @@ StepPlan plan(int substeps, int iterations, const WorldSettings &settings) {
 
 }  // namespace
 
+bool rests(const BodyRecord &r, const PairCache &pairs, std::uint64_t stepCount, real dt) {
+    const RigidBody &body = r.body;
+    const real reach = (body.getVelocity().norm() + body.getRotation().norm() * r.boundingRadius) * dt;
+    return reach < kRestingReach && restsOnWarmContacts(r, pairs, stepCount);
+}
+
 StepPlan planStep(const StepContext &context, const BodyStore &bodies, const PairCache &pairs) {
     const WorldSettings &settings = context.settings;
     const std::uint64_t stepCount = context.stepCount;
@@ -55,10 +61,7 @@ StepPlan planStep(const StepContext &context, const BodyStore &bodies, const Pai
     if (settings.gravity.norm() * h * h > settings.speculativeDistance) return full;
     for (std::uint32_t index : bodies.simulated) {
         const BodyRecord &r = bodies[index];
-        if (r.isolated) continue;
-        const RigidBody &body = r.body;
-        const real reach = (body.getVelocity().norm() + body.getRotation().norm() * r.boundingRadius) * dt;
-        if (reach >= kRestingReach || !restsOnWarmContacts(r, pairs, stepCount)) return full;
+        if (!r.isolated && !rests(r, pairs, stepCount, dt)) return full;
     }
     // restingIterations passes per step, at most a full step's, shared by the sub-steps
     // (rounded up).

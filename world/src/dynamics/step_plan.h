@@ -16,6 +16,7 @@
 
 namespace cyclone::detail {
 
+struct BodyRecord;
 struct BodyStore;
 class PairCache;
 struct StepContext;
@@ -23,6 +24,12 @@ struct StepContext;
 /// How far (m) a body may move in a step, at its velocity and turn, and still count as
 /// resting: the reach below which its contacts count it as still (contact_manager.cpp).
 inline constexpr real kRestingReach = 0.001;
+
+/// Whether the body rests on warm contacts: it touches something (a manifold with any
+/// body, static ones too), each of its manifolds was solved last step and one at least
+/// carried a normal impulse, and at its velocity and turn it moves less than kRestingReach
+/// in a step of `dt`.
+bool rests(const BodyRecord &r, const PairCache &pairs, std::uint64_t stepCount, real dt);
 
 /// The sub-steps and velocity passes of one step.
 struct StepPlan {

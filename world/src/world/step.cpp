@@ -1,5 +1,5 @@
-// World::step: (characters' pushes) -> forces -> broadphase -> narrowphase -> contact events ->
-// sensors -> constraints -> islands -> per sub-step (forces, solve, integrate, penetration,
+// World::step: (characters' pushes) -> forces -> broadphase -> narrowphase -> held bodies ->
+// contact events -> sensors -> constraints -> islands -> per sub-step (forces, solve, integrate, penetration,
 // locked axes) -> continuous collision -> landing correction -> locked axes -> sleep ->
 // characters. Each stage adds its time to stats().ms.
 #include "world/body_transitions.h"
@@ -80,7 +80,9 @@ void WorldState::step(real dt) {
         const StageTimer t(ms.narrowphase);
         contacts.updateContacts(context, bodies, joints, BodyTransitions(*this), stats);
     }
-    // The step's bodies are final: those woken by its contacts, joints and springs are in.
+    // The step's bodies are final: those woken by its contacts, joints and springs are in,
+    // the held ones out.
+    { const StageTimer t(ms.sleep); holding.choose(context, bodies, contacts.pairs, stats); }
     integration.closeAdmission(context, bodies);
     KinematicBodies::number(bodies);
     { const StageTimer t(ms.events); contacts.reportContactEvents(context, bodies, events.events); }
@@ -91,7 +93,7 @@ void WorldState::step(real dt) {
     context.plan = planStep(context, bodies, contacts.pairs);
     context.h = dt / context.plan.substeps;
     { const StageTimer t(ms.manifolds); solver.build(context, bodies, contacts, preSolve, stats); }
-    { const StageTimer t(ms.islands); islands.build(bodies, solver.manifolds(), springs, joints, stats); }
+    { const StageTimer t(ms.islands); islands.build(bodies, solver.manifolds(), springs, joints, holding.held(), contacts.pairs, stats); }
 
     { const StageTimer t(ms.solveParts.setup); solver.prepare(context, bodies, stats); }
     ms.solve += ms.solveParts.setup;

@@ -18,6 +18,7 @@
 #include "cyclone/world/world.h"
 #include "dynamics/axis_locks.h"
 #include "dynamics/ccd.h"
+#include "dynamics/holding.h"
 #include "dynamics/integration.h"
 #include "dynamics/islands.h"
 #include "dynamics/kinematic_bodies.h"
@@ -45,6 +46,7 @@ struct WorldState {
     PreSolve preSolve;
     Sensors sensors;
     ConstraintSolver solver;
+    Holding holding;
     Integration integration;
     AxisLocks axisLocks;
     Islands islands;

@@ -110,6 +110,13 @@ struct DebugSettings {
     /// Stacks then hold at any mass ratio and do not lean; off, every pass is plain
     /// Gauss-Seidel.
     bool carrierPass = true;
+    /// Held bodies: a step leaves out of the solve each awake body that could sleep
+    /// (sleep average below its threshold), rests on warm contacts as in a resting step,
+    /// and has only such bodies, static or sleeping ones within two pairs of it; its
+    /// velocity is zeroed and the bodies it touches are solved against it as immovable.
+    /// Its island still sleeps as a whole. Only with sleep on and no joints or springs in
+    /// the step. Off, every awake body is solved (docs/contacts_and_sleep.md, "Held bodies").
+    bool holding = true;
 };
 
 /// Settings of a World. Every field has a documented default; World validates them.

@@ -29,7 +29,7 @@ struct StageTimes {
     double integrate = 0;    ///< RigidBody::integrate and position correction.
     double ccd = 0;          ///< Continuous collision of fast bodies with BodySettings::ccd.
     double landing = 0;      ///< The landing correction (DebugSettings::landingCorrection).
-    double sleep = 0;        ///< Island sleep decisions.
+    double sleep = 0;        ///< Held bodies (DebugSettings::holding) and island sleep decisions.
     double characters = 0;   ///< Moving the characters, and the bodies that run into them (0 without characters).
     double total = 0;        ///< The whole step.
     /// Of the total, the time in work shared between threads (WorldSettings::threads): on
@@ -69,6 +69,7 @@ struct StepStats {
     int resistanceRows = 0;     ///< Rolling and spinning resistance rows (2 rolling per point or line contact, 1 spinning per point contact, where the pair's lengths are > 0).
     int restitutionContacts = 0;///< Points that bounce this step.
     int islands = 0;            ///< Islands of awake dynamic bodies.
+    int heldBodies = 0;         ///< Awake bodies held still this step, left out of the solve (DebugSettings::holding).
     int substeps = 0;           ///< Sub-steps taken: WorldSettings::substeps, or DebugSettings::restingSubsteps in a step where every awake body rests.
     int velocityIterations = 0; ///< Velocity iterations run (summed over sub-steps).
     int positionIterations = 0; ///< Position iterations run (summed over sub-steps).
