@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <numeric>
 
-#include "dynamics/union_find.h"
 #include "contacts/pair_cache.h"
 #include "dynamics/springs.h"
+#include "dynamics/union_find.h"
 #include "joints/joint_set.h"
 #include "solver/contact_solver.h"
 #include "world/body_store.h"

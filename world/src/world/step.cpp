@@ -1,7 +1,7 @@
 // World::step: (characters' pushes) -> forces -> broadphase -> narrowphase -> held bodies ->
-// contact events -> sensors -> constraints -> islands -> per sub-step (forces, solve, integrate, penetration,
-// locked axes) -> continuous collision -> landing correction -> locked axes -> sleep ->
-// characters. Each stage adds its time to stats().ms.
+// contact events -> sensors -> constraints -> islands -> per sub-step (forces, solve,
+// integrate, penetration, locked axes) -> continuous collision -> landing correction ->
+// locked axes -> sleep -> characters. Each stage adds its time to stats().ms.
 #include "world/body_transitions.h"
 #include "world/stage_timer.h"
 #include "world/world_impl.h"

@@ -16,8 +16,8 @@ void WorldState::wake(std::uint32_t index) {
             r.body.setAwake(true);
             events.sink->wokeUp.push_back(bodies.idOf(index));
         } else if (r.held) {
-            // Held last step, it wakes as a sleeping body does: its sleep average at twice
-            // the threshold, so it is solved for about a second (dynamics/holding.h).
+            // A held body wakes as a sleeping one does: its sleep average at twice the
+            // threshold, so that it is solved for about a second (dynamics/holding.h).
             r.body.setAwake(true);
         }
         bodies.updateAwakeList(index);
