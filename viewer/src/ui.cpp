@@ -83,7 +83,8 @@ void Overlay::drawStats(const Session &session, double frameMs) {
                 static_cast<unsigned long long>(session.stepper().totalSteps()),
                 static_cast<double>(session.stepper().totalSteps()) * static_cast<double>(session.stepSeconds()));
     ImGui::Text("frame %.1f ms (%.0f fps)", frameMs, frameMs > 0 ? 1000.0 / frameMs : 0.0);
-    ImGui::Text("bodies %d  awake %d  islands %d", stats.bodies, stats.awakeBodies, stats.islands);
+    ImGui::Text("bodies %d  awake %d (held %d)  islands %d", stats.bodies, stats.awakeBodies, stats.heldBodies,
+                stats.islands);
     ImGui::Text("contacts %d  manifolds %d", stats.contacts, stats.manifolds);
     ImGui::Text("deepest contact %.2f mm", static_cast<double>(stats.maxPenetration) * 1000);
     if (stats.isolatedBodies > 0) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "isolated bodies %d", stats.isolatedBodies);

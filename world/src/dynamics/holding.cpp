@@ -10,12 +10,29 @@
 namespace cyclone::detail {
 namespace {
 
-// Rings of still bodies around a held one. With one, the bodies next to a moving one
-// were held and let go step after step, and mixed1000's pile woke in bursts (20-110 bodies
-// above their sleep threshold at a time); docs/contacts_and_sleep.md, "Held bodies".
-constexpr int kRings = 2;
+// Rings of bodies that could be held around a held one: with one, no held body touches a
+// moving one (docs/contacts_and_sleep.md, "Held bodies", measures two).
+constexpr int kRings = 1;
+
+// Closing speed at a contact point between two awake bodies above which the contact is a
+// hit, m/s: a hit reaches through touching bodies within the step it lands in, so no body
+// of what it touches is held then (held, the third box of a row struck end on stood as a
+// wall and threw the ball back). Above resting contacts' g dt (0.16 m/s at 60 Hz).
+constexpr real kHitSpeed = 0.5;
 
 std::uint32_t other(const PairState &pair, std::uint32_t index) { return pair.a == index ? pair.b : pair.a; }
+
+// How fast the points of manifold m close, B's surface towards A's along the normal, m/s.
+real closingSpeed(const ManifoldState &m, const RigidBody &a, const RigidBody &b) {
+    real fastest = 0;
+    for (int i = 0; i < m.count; ++i) {
+        const Vector3 p = a.getPointInWorldSpace(m.points[i].localA);
+        const Vector3 va = a.getVelocity() + a.getRotation().cross(p - a.getPosition());
+        const Vector3 vb = b.getVelocity() + b.getRotation().cross(p - b.getPosition());
+        fastest = std::max(fastest, (va - vb).dot(m.normal));
+    }
+    return fastest;
+}
 
 // Whether the body could be held on its own: it could sleep now, nothing but gravity
 // acts on it, and it rests on warm contacts.
@@ -58,6 +75,7 @@ bool Holding::markStill(const StepContext &context, const BodyStore &bodies, con
     if (first == bodies.simulated.end()) return false;
     still_.assign(bodies.size(), 0);
     for (auto it = first; it != bodies.simulated.end(); ++it) still_[*it] = could(*it);
+    clearHit(bodies, pairs);
     // Each ring keeps the bodies whose every pair's other body the last one kept: a
     // moving kinematic body never, a static or sleeping one always.
     for (int ring = 0; ring < kRings; ++ring) {
@@ -75,6 +93,40 @@ bool Holding::markStill(const StepContext &context, const BodyStore &bodies, con
         still_.swap(ring_);
     }
     return true;
+}
+
+void Holding::clearHit(const BodyStore &bodies, const PairCache &pairs) {
+    // The bodies of each hit, then everything that touches them, body by body.
+    walk_.clear();
+    // No point of a body moves faster than |v| + |w| r (r: its bounding radius): one body
+    // of a hit at least moves faster than kHitSpeed / 2 so, and its pairs are all looked at.
+    for (std::uint32_t index : bodies.simulated) {
+        const RigidBody &body = bodies[index].body;
+        const real fastest = body.getVelocity().norm() + body.getRotation().norm() * bodies[index].boundingRadius;
+        if (fastest <= kHitSpeed / 2) continue;
+        for (std::uint32_t p : bodies[index].pairs) {
+            const PairState &pair = pairs[p];
+            if (!bodies[pair.a].simulated || !bodies[pair.b].simulated) continue;
+            for (const ManifoldState &m : pair.manifolds) {
+                if (closingSpeed(m, bodies[pair.a].body, bodies[pair.b].body) <= kHitSpeed) continue;
+                walk_.push_back(pair.a);
+                walk_.push_back(pair.b);
+            }
+        }
+    }
+    if (walk_.empty()) return;
+    reached_.assign(bodies.size(), 0);
+    while (!walk_.empty()) {
+        const std::uint32_t index = walk_.back();
+        walk_.pop_back();
+        if (reached_[index]) continue;
+        reached_[index] = 1;
+        still_[index] = 0;
+        for (std::uint32_t p : bodies[index].pairs) {
+            const std::uint32_t o = other(pairs[p], index);
+            if (pairs[p].touching() && bodies[o].simulated && !reached_[o]) walk_.push_back(o);
+        }
+    }
 }
 
 void Holding::takeOut(BodyStore &bodies) {

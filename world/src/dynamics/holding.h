@@ -6,8 +6,10 @@
 // A body is held for the step when it could sleep (its sleep average below its sleep
 // epsilon, sleep allowed, no force or torque of the user's), it rests (as in a resting
 // step: it touches something, on contacts solved last step, one carrying a load, and
-// moves less than kRestingReach), and every body it shares a pair with, two rings out,
-// could too or is static or asleep. A held body is left out of the solve as a sleeping
+// moves less than kRestingReach), every body it shares a pair with could too or is static
+// or asleep, and no hit reaches it: a contact closing faster than kHitSpeed frees the two
+// bodies and all the awake bodies that touch them, in turn, as a hit wakes a sleeping
+// island whole. A held body is left out of the solve as a sleeping
 // body is: its velocity zeroed, the bodies it touches solved against it as immovable, its
 // manifolds with held or immovable bodies counted as solved with their impulses kept. It
 // stays awake and in its island, which sleeps as before once all of it is still; what
@@ -42,11 +44,16 @@ private:
     /// Marks in still_ the simulated bodies that may be held, rings and all; false when
     /// none could be held on its own (still_ is then left as it was).
     bool markStill(const StepContext &context, const BodyStore &bodies, const PairCache &pairs);
+    /// Clears the marks of every body a hit reaches: the two bodies of a contact closing
+    /// faster than kHitSpeed and all the awake bodies that touch them, in turn.
+    void clearHit(const BodyStore &bodies, const PairCache &pairs);
     /// Moves the marked bodies from `bodies.simulated` to held_ (see choose).
     void takeOut(BodyStore &bodies);
 
     std::vector<char> still_;  ///< By body index: could be held on its own, then ring by ring.
     std::vector<char> ring_;   ///< The next ring's marks.
+    std::vector<char> reached_;  ///< By body index: reached from a hit.
+    std::vector<std::uint32_t> walk_;
     std::vector<std::uint32_t> held_;
 };
 

@@ -112,7 +112,8 @@ struct DebugSettings {
     bool carrierPass = true;
     /// Held bodies: a step leaves out of the solve each awake body that could sleep
     /// (sleep average below its threshold), rests on warm contacts as in a resting step,
-    /// and has only such bodies, static or sleeping ones within two pairs of it; its
+    /// shares pairs only with such bodies, static or sleeping ones, and is not reached by
+    /// a hit (a contact closing faster than 0.5 m/s, through the bodies that touch it); its
     /// velocity is zeroed and the bodies it touches are solved against it as immovable.
     /// Its island still sleeps as a whole. Only with sleep on and no joints or springs in
     /// the step. Off, every awake body is solved (docs/contacts_and_sleep.md, "Held bodies").
