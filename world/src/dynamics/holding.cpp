@@ -11,13 +11,13 @@ namespace cyclone::detail {
 namespace {
 
 // Rings of bodies that could be held around a held one: with one, no held body touches a
-// moving one (docs/contacts_and_sleep.md, "Held bodies", measures two).
+// moving one (two are measured in docs/experiments.md).
 constexpr int kRings = 1;
 
 // Closing speed at a contact point between two awake bodies above which the contact is a
 // hit, m/s: a hit reaches through touching bodies within the step it lands in, so no body
-// of what it touches is held then (held, the third box of a row struck end on stood as a
-// wall and threw the ball back). Above resting contacts' g dt (0.16 m/s at 60 Hz).
+// of what it touches is held then (held, a box of a row struck end on stood as a wall and
+// threw the ball back). Above resting contacts' g dt (0.16 m/s at 60 Hz).
 constexpr real kHitSpeed = 0.5;
 
 std::uint32_t other(const PairState &pair, std::uint32_t index) { return pair.a == index ? pair.b : pair.a; }
