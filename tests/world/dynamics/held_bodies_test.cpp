@@ -27,11 +27,17 @@ struct Row {
     BodyId ball;
 };
 
-void buildRow(Row &row) {
+// The ground plane y = 0.
+void addGround(World &world, real friction) {
     BodySettings ground;
     ground.motion = Motion::Static;
     ground.shape = Shape::plane(Vector3::UnitY(), 0);
-    row.world.addBody(ground);
+    ground.material.friction = friction;
+    world.addBody(ground);
+}
+
+void buildRow(Row &row) {
+    addGround(row.world, 0.6);
     for (int i = 0; i < kBoxes; ++i) {
         BodySettings b;
         b.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
@@ -122,11 +128,7 @@ TEST(HeldBodies, ABallIntoAHeldRowMovesTheWholeRowAndKeepsMomentum) {
     // (the small box, frictionless, stays where it was), and every box of the row is
     // pushed along -x. A held box that stood as a wall threw the ball back (+4.7 kg m/s).
     World world(withHolding(true));
-    BodySettings ground;
-    ground.motion = Motion::Static;
-    ground.shape = Shape::plane(Vector3::UnitY(), 0);
-    ground.material.friction = 0;
-    world.addBody(ground);
+    addGround(world, 0);
     std::vector<BodyId> boxes;
     for (int i = 0; i < kBoxes; ++i) {
         BodySettings b;
