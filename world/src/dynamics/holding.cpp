@@ -46,9 +46,9 @@ bool couldHold(const BodyRecord &r, const PairCache &pairs, const StepContext &c
 }  // namespace
 
 void Holding::choose(const StepContext &context, BodyStore &bodies, PairCache &pairs, StepStats &stats) {
-    // Last step's marks go first: a body held then may since sleep, wake or be removed.
-    for (std::uint32_t index : held_)
-        if (index < bodies.size()) bodies[index].held = false;
+    // Last step's marks go first. A body held then is awake and simulated now, or has
+    // slept or been removed since, which cleared its mark; a restored state brings its own.
+    for (std::uint32_t index : bodies.simulated) bodies[index].held = false;
     held_.clear();
     const WorldSettings &settings = context.settings;
     if (!settings.sleep || !settings.debug.holding || context.activeJoints > 0 || context.activeSprings > 0) return;

@@ -34,7 +34,7 @@ namespace cyclone::detail {
 namespace {
 
 constexpr std::uint32_t kStateTag = 0x54535943;  // "CYST"
-constexpr std::uint32_t kStateVersion = 3;
+constexpr std::uint32_t kStateVersion = 4;
 /// Tag, version, payload length, checksum.
 constexpr std::size_t kHeaderSize = 4 + 4 + 8 + 8;
 
@@ -350,7 +350,7 @@ struct StateFields {
     template <class A>
     static void record(A &a, BodyRecord &r, LastBody &last) {
         packed(a, r.shapeIndex);
-        io(a, r.name, r.moving, r.isolated, r.simulated, r.tree);
+        io(a, r.name, r.moving, r.isolated, r.simulated, r.held, r.tree);
         likeLast(a, r, last.kind, last.scratch, [](auto &archive, BodyRecord &record) { kind(archive, record); });
         likeLast(a, r, last.mass, last.scratch, [](auto &archive, BodyRecord &record) { mass(archive, record); });
         packedIndex(a, r.sleepingIsland);

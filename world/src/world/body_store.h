@@ -33,7 +33,7 @@ struct BodyRecord {
     std::shared_ptr<fcl::CollisionGeometryd> core;  ///< ccd bodies: the sphere swept when already touching.
     bool isolated = false;      ///< State went non-finite: out of collision and solve.
     bool simulated = false;     ///< Awake dynamic body at the start of this step.
-    bool held = false;          ///< Held in the last step chosen (dynamics/holding.h): Islands::build and WorldState::wake read it; not in a saved state.
+    bool held = false;          ///< Held in the last step chosen (dynamics/holding.h): Islands::build and WorldState::wake read it; saved with the state.
     Tree tree = Tree::None;
     int sleepingIsland = -1;    ///< Index in Islands::sleeping while asleep.
     int island = -1;            ///< Island of the last step (-1: none).

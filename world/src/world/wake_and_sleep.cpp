@@ -55,6 +55,7 @@ void WorldState::sleepIsland(const std::uint32_t *members, int count, bool repor
         if (!r.alive || r.immovable || r.sleepingIsland >= 0) continue;
         list.push_back(members[i]);
         r.body.setAwake(false);
+        r.held = false;
         r.sleepingIsland = island;
         r.island = -1;
         setTree(members[i], Tree::Asleep);
@@ -69,6 +70,7 @@ void WorldState::isolate(std::uint32_t index) {
     if (!r.isolated) ++bodies.isolatedCount;
     r.isolated = true;
     r.simulated = false;
+    r.held = false;
     bodies.updateAwakeList(index);
     setTree(index, Tree::None);
     contacts.removePairsOf(bodies, index);

@@ -374,6 +374,7 @@ void World::removeBody(BodyId id) {
     r.shape.reset();
     r.core.reset();
     r.alive = false;
+    r.held = false;
     w.bodies.updateAwakeList(index);
     if (r.isolated) --w.bodies.isolatedCount;
     ++r.generation;
