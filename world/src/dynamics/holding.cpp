@@ -6,6 +6,7 @@
 #include "dynamics/step_plan.h"
 #include "world/body_store.h"
 #include "world/step_context.h"
+#include "world/workers.h"
 
 namespace cyclone::detail {
 namespace {
@@ -56,64 +57,79 @@ void Holding::choose(const StepContext &context, BodyStore &bodies, PairCache &p
     takeOut(bodies);
     // Manifolds between held and immovable bodies stay as the last solve left them; as
     // solved, they keep the bodies resting next step (a manifold solved afresh takes a
-    // new solver slot, whose Jacobians are made again).
-    for (std::uint32_t index : held_) {
+    // new solver slot, whose Jacobians are made again). A pair of two held bodies is
+    // stamped by the one of lower index.
+    context.workers.forEach(held_.size(), [&](std::size_t k) {
+        const std::uint32_t index = held_[k];
         for (std::uint32_t p : bodies[index].pairs) {
-            if (bodies[other(pairs[p], index)].simulated) continue;
+            const std::uint32_t o = other(pairs[p], index);
+            if (bodies[o].simulated || (bodies[o].held && o < index)) continue;
             for (ManifoldState &m : pairs[p].manifolds) {
                 m.solverStep = context.stepCount;
                 m.solverSlot = UINT32_MAX;
             }
         }
-    }
+    });
     stats.heldBodies = static_cast<int>(held_.size());
 }
 
 bool Holding::markStill(const StepContext &context, const BodyStore &bodies, const PairCache &pairs) {
-    const auto could = [&](std::uint32_t index) { return couldHold(bodies[index], pairs, context); };
-    const auto first = std::find_if(bodies.simulated.begin(), bodies.simulated.end(), could);
-    if (first == bodies.simulated.end()) return false;
+    // Each body's marks are its own, made on the threads: only the hit walk is one
+    // thread's.
+    Workers &workers = context.workers;
+    const std::vector<std::uint32_t> &simulated = bodies.simulated;
     still_.assign(bodies.size(), 0);
-    for (auto it = first; it != bodies.simulated.end(); ++it) still_[*it] = could(*it);
-    clearHit(bodies, pairs);
+    workers.forEach(simulated.size(), [&](std::size_t k) {
+        still_[simulated[k]] = couldHold(bodies[simulated[k]], pairs, context) ? 1 : 0;
+    });
+    if (std::none_of(simulated.begin(), simulated.end(), [&](std::uint32_t index) { return still_[index] != 0; }))
+        return false;
+    clearHit(workers, bodies, pairs);
     // Each ring keeps the bodies whose every pair's other body the last one kept: a
     // moving kinematic body never, a static or sleeping one always.
     for (int ring = 0; ring < kRings; ++ring) {
-        ring_ = still_;
-        for (std::uint32_t index : bodies.simulated) {
-            if (!ring_[index]) continue;
+        ring_.assign(still_.size(), 0);
+        workers.forEach(simulated.size(), [&](std::size_t k) {
+            const std::uint32_t index = simulated[k];
+            if (!still_[index]) return;
             for (std::uint32_t p : bodies[index].pairs) {
                 const std::uint32_t o = other(pairs[p], index);
-                if (bodies[o].moving || (bodies[o].simulated && !still_[o])) {
-                    ring_[index] = 0;
-                    break;
-                }
+                if (bodies[o].moving || (bodies[o].simulated && !still_[o])) return;
             }
-        }
+            ring_[index] = 1;
+        });
         still_.swap(ring_);
     }
     return true;
 }
 
-void Holding::clearHit(const BodyStore &bodies, const PairCache &pairs) {
-    // The bodies of each hit, then everything that touches them, body by body.
-    walk_.clear();
+void Holding::clearHit(Workers &workers, const BodyStore &bodies, const PairCache &pairs) {
+    // The bodies of each hit, found on the threads, then everything that touches them,
+    // body by body.
+    const auto hit = [&](const PairState &pair) {
+        if (!bodies[pair.a].simulated || !bodies[pair.b].simulated) return false;
+        for (const ManifoldState &m : pair.manifolds)
+            if (closingSpeed(m, bodies[pair.a].body, bodies[pair.b].body) > kHitSpeed) return true;
+        return false;
+    };
     // No point of a body moves faster than |v| + |w| r (r: its bounding radius): one body
     // of a hit at least moves faster than kHitSpeed / 2 so, and its pairs are all looked at.
-    for (std::uint32_t index : bodies.simulated) {
+    const auto struck = [&](std::uint32_t index) {
         const RigidBody &body = bodies[index].body;
         const real fastest = body.getVelocity().norm() + body.getRotation().norm() * bodies[index].boundingRadius;
-        if (fastest <= kHitSpeed / 2) continue;
-        for (std::uint32_t p : bodies[index].pairs) {
-            const PairState &pair = pairs[p];
-            if (!bodies[pair.a].simulated || !bodies[pair.b].simulated) continue;
-            for (const ManifoldState &m : pair.manifolds) {
-                if (closingSpeed(m, bodies[pair.a].body, bodies[pair.b].body) <= kHitSpeed) continue;
-                walk_.push_back(pair.a);
-                walk_.push_back(pair.b);
-            }
-        }
-    }
+        if (fastest <= kHitSpeed / 2) return false;
+        return std::any_of(bodies[index].pairs.begin(), bodies[index].pairs.end(),
+                           [&](std::uint32_t p) { return hit(pairs[p]); });
+    };
+    walk_.clear();
+    const std::vector<std::uint32_t> &simulated = bodies.simulated;
+    workers.forFlagged(simulated.size(), flags_, [&](std::size_t k) { return struck(simulated[k]); },
+                       [&](std::size_t k) {
+                           const std::uint32_t index = simulated[k];
+                           walk_.push_back(index);
+                           for (std::uint32_t p : bodies[index].pairs)
+                               if (hit(pairs[p])) walk_.push_back(other(pairs[p], index));
+                       });
     if (walk_.empty()) return;
     reached_.assign(bodies.size(), 0);
     while (!walk_.empty()) {

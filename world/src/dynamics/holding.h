@@ -27,6 +27,7 @@ namespace cyclone::detail {
 struct BodyStore;
 class PairCache;
 struct StepContext;
+class Workers;
 
 class Holding {
 public:
@@ -46,13 +47,14 @@ private:
     bool markStill(const StepContext &context, const BodyStore &bodies, const PairCache &pairs);
     /// Clears the marks of every body a hit reaches: the two bodies of a contact closing
     /// faster than kHitSpeed and all the awake bodies that touch them, in turn.
-    void clearHit(const BodyStore &bodies, const PairCache &pairs);
+    void clearHit(Workers &workers, const BodyStore &bodies, const PairCache &pairs);
     /// Moves the marked bodies from `bodies.simulated` to held_ (see choose).
     void takeOut(BodyStore &bodies);
 
     std::vector<char> still_;  ///< By body index: could be held on its own, then ring by ring.
     std::vector<char> ring_;   ///< The next ring's marks.
     std::vector<char> reached_;  ///< By body index: reached from a hit.
+    std::vector<char> flags_;    ///< By place in `simulated`: struck by a hit (scratch).
     std::vector<std::uint32_t> walk_;
     std::vector<std::uint32_t> held_;
 };
