@@ -57,6 +57,19 @@ bool fallsFreelyNow(const BodyRecord &r, const BodyStore &bodies, const PairCach
     return true;
 }
 
+// The speed gravity adds over the step that counts between the pair's bodies: only
+// between a dynamic body that falls freely now and an immovable one.
+Vector3 pairFall(const BodyRecord &a, const BodyRecord &b, const BodyStore &bodies, const PairCache &pairs,
+                 const WorldSettings &settings, real dt, std::uint64_t stepCount) {
+    if (a.immovable == b.immovable) return Vector3::Zero();
+    const Vector3 fall = stepFall(settings, dt);
+    if (fall.squaredNorm() > 0 && !fallsFreelyNow(a.immovable ? b : a, bodies, pairs, stepCount)) return Vector3::Zero();
+    return fall;
+}
+
+// Whether a body stands still: no velocity, no rotation.
+bool standsStill(const RigidBody &body) { return body.getVelocity().isZero(0) && body.getRotation().isZero(0); }
+
 // The velocity a body reaches with over the step: its own, plus `fall` if dynamic (the
 // caller passes zero for a body that does not fall freely).
 Vector3 reachVelocity(const BodyRecord &r, const Vector3 &fall) {
@@ -143,6 +156,7 @@ void ContactManager::findCandidates(const StepContext &context, BodyStore &bodie
     // after, in the bodies' order.
     const auto place = [&](std::uint32_t index) {
         BodyRecord &r = bodies[index];
+        r.seen.look(r.body, context.stepCount);
         if (!r.object) return false;
         const bool falls = counted && fallsFreely(r, pairs);
         const real reach = settings.debug.speculativeContacts ? stepReach(r, dt, falls ? fall : Vector3(Vector3::Zero())) : 0;
@@ -356,9 +370,13 @@ void ContactManager::testPairs(const PairTest &test, std::size_t first, std::siz
             find = Find();
             find.reused = reuseManifolds(test.settings, test.bodies, stepPairs_[k]);
             if (find.reused) continue;
+            find.still = test.settings.debug.unchangedPairs && standStill(test, stepPairs_[k]);
+            find.unchanged = find.still && unchanged(stepPairs_[k], test.bodies);
+            if (find.unchanged) continue;
             find.first = static_cast<std::uint32_t>(out.size() - base);
             NormalMemo *memo = endNormal(stepPairs_[k], stepCount - 1);
             find.count = static_cast<std::uint32_t>(detect(test, stepPairs_[k], out, memo));
+            pairs[stepPairs_[k]].testedStep = stepCount;
             find.anchors = static_cast<std::uint32_t>(anchorsIssuedBy(test.bodies, stepPairs_[k], find.count));
         }
         chunkFinds_.close(chunk);
@@ -374,6 +392,10 @@ void ContactManager::countAnchors(StepStats &stats, std::size_t first, std::size
         Find &find = finds_[k];
         if (find.reused) {
             ++stats.pairsReused;
+            continue;
+        }
+        if (find.unchanged) {
+            ++stats.pairsUnchanged;
             continue;
         }
         ++stats.pairsTested;
@@ -394,9 +416,10 @@ void ContactManager::mergePairs(const BodyStore &bodies, Workers &workers, std::
             pairs.prefetchAhead(stepPairs_, k, first + end);
             Find &find = finds_[k];
             const std::uint32_t p = stepPairs_[k];
-            if (!find.reused) {
+            if (!find.reused && !find.unchanged) {
                 mergeFinds(bodies, p, out + find.first, find.count, find.issuedBefore,
                            mergeScratch_[std::size_t(thread)]);
+                pairs[p].testedStill = find.still && !pairs[p].touching();
             }
             const PairState &pair = pairs[p];
             find.touching = pair.touching();
@@ -438,6 +461,25 @@ void ContactManager::removeUnseenPairs(BodyStore &bodies, Workers &workers, std:
         });
 }
 
+// Unchanged pairs: a test's answer depends only on the two bodies' shapes, poses and
+// velocities, the fall between them and the settings. A pair that found no contact with
+// both bodies standing still (no velocity, no fall), neither of whose states has changed
+// since (SeenState: a body's state is looked at before each narrowphase that may test it,
+// and when it sleeps or the game moves it; setSettings and restoreState renew them all),
+// would find none again.
+bool ContactManager::standStill(const PairTest &test, std::uint32_t p) const {
+    const PairState &pair = pairs[p];
+    const BodyRecord &a = test.bodies[pair.a];
+    const BodyRecord &b = test.bodies[pair.b];
+    return standsStill(a.body) && standsStill(b.body) &&
+           pairFall(a, b, test.bodies, pairs, test.settings, test.dt, test.stepCount).isZero(0);
+}
+
+bool ContactManager::unchanged(std::uint32_t p, const BodyStore &bodies) const {
+    const PairState &pair = pairs[p];
+    return pair.testedStill && bodies[pair.a].seen.since <= pair.testedStep && bodies[pair.b].seen.since <= pair.testedStep;
+}
+
 // Only a touching pair is reused: one with no manifold may come into contact within the
 // tolerance, and FCL does not see contacts that are apart by a hair. A pair touches only
 // through a merge, which kept its relative pose.
@@ -470,8 +512,7 @@ std::size_t ContactManager::detect(const PairTest &test, std::uint32_t p, std::v
     NarrowphaseSettings narrowphase;
     narrowphase.speculativeDistance = settings.speculativeDistance;
     // The fall counts against a body that does not fall: two dynamic bodies fall together.
-    Vector3 fall = a.immovable != b.immovable ? stepFall(settings, dt) : Vector3(Vector3::Zero());
-    if (fall.squaredNorm() > 0 && !fallsFreelyNow(a.immovable ? b : a, bodies, pairs, test.stepCount)) fall.setZero();
+    const Vector3 fall = pairFall(a, b, bodies, pairs, settings, dt, test.stepCount);
     const real reach = settings.debug.speculativeContacts ? relativeReach(a, b, dt, fall) : 0;
     narrowphase.reach = reach >= kMinReach ? reach : 0;
     narrowphase.touchMargin = settings.penetrationSlop;

@@ -93,6 +93,11 @@ private:
     /// Tests stepPairs_[first, last): manifolds kept, or found into finds_ and
     /// chunkFinds_ for countAnchors and mergePairs.
     void testPairs(const PairTest &test, std::size_t first, std::size_t last);
+    /// Whether both bodies of pair `p` stand still: no velocity, no fall between them.
+    bool standStill(const PairTest &test, std::uint32_t p) const;
+    /// Whether pair `p` found no contact at its last test, its bodies standing still, and
+    /// neither body's state has changed since (SeenState).
+    bool unchanged(std::uint32_t p, const BodyStore &bodies) const;
     /// Hands out the anchor numbers of the merges of stepPairs_[first, last), in order;
     /// counts the pairs tested and reused.
     void countAnchors(StepStats &stats, std::size_t first, std::size_t last);
@@ -166,6 +171,8 @@ private:
     /// whether the pair touches after it and wakes body A or B.
     struct Find {
         bool reused = false;
+        bool still = false;      ///< Both bodies stand still (standStill).
+        bool unchanged = false;  ///< Apart, as at its last test: not tested (unchanged).
         bool touching = false;
         bool wakeA = false;
         bool wakeB = false;

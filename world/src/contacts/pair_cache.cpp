@@ -83,6 +83,8 @@ std::uint32_t PairCache::findOrAdd(std::uint32_t i, std::uint32_t j, bool &creat
     p.b = std::max(i, j);
     p.manifolds.clear();
     p.lastSeen = 0;
+    p.testedStill = false;
+    p.testedStep = 0;
     p.alive = true;
     insert(k, slot);
     return slot;

@@ -953,6 +953,7 @@ void StateFields::restoreBody(StateReader &a, WorldState &w, std::uint32_t index
         return;
     }
     record(a, r, last);
+    r.seen.renew(r.body, w.stepCount + 1);  // not saved: every pair is tested afresh
     if (r.shapeIndex >= w.shapes.size()) throw UnreadableState{"names a shape this World does not have"};
     // A body that kept its slot and shape keeps its collision object (and ccd core).
     const bool same = wasAlive && oldShape == r.shapeIndex && r.shape == w.shapes[r.shapeIndex];

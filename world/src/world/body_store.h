@@ -5,6 +5,8 @@
 #include <fcl/fcl.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -15,6 +17,41 @@
 #include "cyclone/world/world.h"
 
 namespace cyclone::detail {
+
+/// A body's pose and velocities as the narrowphase last saw them, and the step since
+/// which every narrowphase has seen them so: a pair apart at its last test whose bodies
+/// are unchanged since keeps its result untested (ContactManager, "unchanged pairs").
+struct SeenState {
+    Vector3 position = Vector3::Zero();
+    Quaternion orientation = Quaternion::Identity();
+    Vector3 velocity = Vector3::Zero();
+    Vector3 rotation = Vector3::Zero();
+    std::uint64_t since = UINT64_MAX;  ///< UINT64_MAX: not seen yet.
+
+    /// Takes the body's state as seen by step `step`'s narrowphase: `since` moves to
+    /// `step` when it differs, bit for bit, from the last one seen.
+    void look(const RigidBody &body, std::uint64_t step) {
+        const bool same = since != UINT64_MAX && bitsEqual(position, body.getPosition()) &&
+                          bitsEqual(orientation.coeffs(), body.getOrientation().coeffs()) &&
+                          bitsEqual(velocity, body.getVelocity()) && bitsEqual(rotation, body.getRotation());
+        if (same) return;
+        renew(body, step);
+    }
+    /// Takes the body's state as new from step `step` on, whatever was seen before.
+    void renew(const RigidBody &body, std::uint64_t step) {
+        position = body.getPosition();
+        orientation = body.getOrientation();
+        velocity = body.getVelocity();
+        rotation = body.getRotation();
+        since = step;
+    }
+
+private:
+    template <class V>
+    static bool bitsEqual(const V &x, const V &y) {
+        return std::memcmp(x.data(), y.data(), sizeof(real) * V::SizeAtCompileTime) == 0;
+    }
+};
 
 struct BodyRecord {
     RigidBody body;
@@ -33,6 +70,7 @@ struct BodyRecord {
     std::shared_ptr<fcl::CollisionGeometryd> core;  ///< ccd bodies: the sphere swept when already touching.
     bool isolated = false;      ///< State went non-finite: out of collision and solve.
     bool simulated = false;     ///< Awake dynamic body at the start of this step.
+    SeenState seen;             ///< Its state at the last narrowphase that looked, for unchanged pairs.
     bool held = false;          ///< Held in the last step chosen (dynamics/holding.h): Islands::build and WorldState::wake read it; saved with the state.
     Tree tree = Tree::None;
     int sleepingIsland = -1;    ///< Index in Islands::sleeping while asleep.

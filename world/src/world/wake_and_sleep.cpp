@@ -54,7 +54,8 @@ void WorldState::sleepIsland(const std::uint32_t *members, int count, bool repor
         BodyRecord &r = bodies[members[i]];
         if (!r.alive || r.immovable || r.sleepingIsland >= 0) continue;
         list.push_back(members[i]);
-        r.body.setAwake(false);
+        r.body.setAwake(false);  // its velocities zeroed
+        r.seen.look(r.body, stepCount + 1);
         r.held = false;
         r.sleepingIsland = island;
         r.island = -1;
@@ -89,6 +90,7 @@ void WorldState::setTree(std::uint32_t index, Tree tree) {
 
 void WorldState::refreshCollisionObject(std::uint32_t index) {
     BodyRecord &r = bodies[index];
+    r.seen.look(r.body, stepCount + 1);
     if (r.object && r.object->place(r.body.getTransform(), kBroadphaseMargin))
         broadphase.refit(r.object.get(), r.tree);
     sensors.moved(bodies, index);

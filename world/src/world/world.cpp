@@ -283,6 +283,7 @@ void World::setSettings(const WorldSettings &settings) {
     impl_->settings = settings;
     for (std::uint32_t index : impl_->bodies.order) {
         detail::BodyRecord &r = impl_->bodies[index];
+        r.seen.renew(r.body, impl_->stepCount + 1);  // a test's answer may change with the settings
         r.body.setSleepEpsilon(sleepEpsilonFor(settings.sleepEpsilon, r.boundingRadius));
         r.body.setMovingSleepAverageCap(movingMotionCap(settings.sleepDelay));
         if (r.immovable) continue;
@@ -311,6 +312,7 @@ BodyId World::addBody(const BodySettings &settings) {
     const std::uint32_t index = detail::takeSlot(w.bodies.records, w.bodies.free);
     detail::BodyRecord &r = w.bodies[index];
     fillRecord(r, settings, motion, body, shape);
+    r.seen.renew(r.body, w.stepCount + 1);
     r.shapeIndex = known ? *known : w.shapes.add(shape);
     countBody(w.bodies, index);
     enterCollision(w, index);
@@ -444,6 +446,7 @@ void World::setVelocity(BodyId id, const Vector3 &velocity) {
     detail::requireFinite(function, "velocity", velocity);
     impl_->wake(id.index);
     r.body.setVelocity(velocity);
+    r.seen.look(r.body, impl_->stepCount + 1);
     if (r.kinematic && detail::movesAt(velocity, r.body.getRotation()))
         detail::KinematicBodies::startMoving(impl_->bodies, impl_->contacts.pairs, detail::BodyTransitions(*impl_), id.index);
 }
@@ -454,6 +457,7 @@ void World::setRotation(BodyId id, const Vector3 &rotation) {
     detail::requireFinite(function, "rotation", rotation);
     impl_->wake(id.index);
     r.body.setRotation(rotation);
+    r.seen.look(r.body, impl_->stepCount + 1);
     if (r.kinematic && detail::movesAt(r.body.getVelocity(), rotation))
         detail::KinematicBodies::startMoving(impl_->bodies, impl_->contacts.pairs, detail::BodyTransitions(*impl_), id.index);
 }
@@ -479,6 +483,7 @@ void World::moveKinematic(BodyId id, const Vector3 &targetPosition, const Quater
         detail::refuse(function, "dt", "gives a non-finite velocity, got " + detail::show(dt));
     r.body.setVelocity(velocity);
     r.body.setRotation(rotation);
+    r.seen.look(r.body, w.stepCount + 1);
     if (detail::movesAt(velocity, rotation))
         detail::KinematicBodies::startMoving(w.bodies, w.contacts.pairs, detail::BodyTransitions(w), id.index);
 }

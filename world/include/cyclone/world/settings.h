@@ -118,6 +118,12 @@ struct DebugSettings {
     /// Its island still sleeps as a whole. Only with sleep on and no joints or springs in
     /// the step. Off, every awake body is solved (docs/contacts_and_sleep.md, "Held bodies").
     bool holding = true;
+    /// Unchanged pairs: a pair that found no contact at its last test, both bodies then
+    /// without velocity, is not tested again while neither body's pose or velocities
+    /// change (bit for bit) and nothing falls: the test would give the same answer. A
+    /// settled pile's held bodies keep most of its pairs so. Off, every pair the
+    /// broadphase lists is tested.
+    bool unchangedPairs = true;
 };
 
 /// Settings of a World. Every field has a documented default; World validates them.

@@ -61,6 +61,7 @@ struct StepStats {
     int sensorPairs = 0;        ///< Pairs of a sensor and a body tested for overlap (those the broadphase found, and those a call asked for).
     int pairsTested = 0;        ///< Pairs sent to the narrowphase (FCL or a test of its own).
     int pairsReused = 0;        ///< Pairs whose manifold was reused without narrowphase.
+    int pairsUnchanged = 0;     ///< Pairs apart at their last test, both bodies still and unchanged since: no contact, untested (DebugSettings::unchangedPairs).
     int manifolds = 0;          ///< Contact manifolds given to the solver.
     int preSolvedManifolds = 0; ///< Manifolds the pre-solve stage saw (ContactListener, one-way and surface-velocity bodies); 0 without them.
     int contacts = 0;           ///< Contact points given to the solver.
