@@ -4,12 +4,13 @@
 //
 //   cyclone-stages [--scene NAME[,NAME...]] [--steps N] [--threads T] [--defaults]
 //                  [--substeps S] [--iterations N] [--positions N] [--landing on|off]
-//                  [--carrier on|off] [--holding on|off] [--slowest K]
+//                  [--carrier on|off] [--holding on|off] [--unchanged on|off] [--slowest K]
 // --defaults steps the scenes at WorldSettings' default sub-steps and passes instead of the
 // benchmark's 1 x 10; --substeps, --iterations and --positions then set each one.
 // --landing off steps them without the landing correction (DebugSettings::landingCorrection),
 // --carrier off without the carrier pass (DebugSettings::carrierPass), --holding off
-// solving every awake body (DebugSettings::holding).
+// solving every awake body (DebugSettings::holding), --unchanged off testing every pair
+// (DebugSettings::unchangedPairs).
 // --slowest K prints, instead of the medians, each stage's mean over the K slowest steps
 // after the first second (by total): the steps that make a benchmark's p95 (the 30
 // slowest of its 600 steps).
@@ -68,6 +69,7 @@ int run(int argc, char **argv) {
     bool landing = true;  // DebugSettings::landingCorrection, for comparing
     bool carrier = true;  // DebugSettings::carrierPass, for comparing
     bool holding = true;  // DebugSettings::holding, for comparing
+    bool unchanged = true;  // DebugSettings::unchangedPairs, for comparing
     int slowest = 0;      // 0: medians; K: means over the K slowest steps
     for (int i = 1; i < argc; ++i) {
         std::string arg, value;
@@ -94,6 +96,8 @@ int run(int argc, char **argv) {
             carrier = value == "on";
         } else if (arg == "--holding" && (value == "on" || value == "off")) {
             holding = value == "on";
+        } else if (arg == "--unchanged" && (value == "on" || value == "off")) {
+            unchanged = value == "on";
         } else if (arg == "--slowest") {
             slowest = std::atoi(value.c_str());
             if (slowest < 1) {
@@ -133,6 +137,7 @@ int run(int argc, char **argv) {
         scene.world.debug.landingCorrection = landing;
         scene.world.debug.carrierPass = carrier;
         scene.world.debug.holding = holding;
+        scene.world.debug.unchangedPairs = unchanged;
         World world(scene.world);
         for (const BodySettings &body : scene.bodies) world.addBody(body);
         std::vector<StageTimes> times;
