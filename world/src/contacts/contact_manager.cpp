@@ -463,10 +463,10 @@ void ContactManager::removeUnseenPairs(BodyStore &bodies, Workers &workers, std:
 
 // Unchanged pairs: a test's answer depends only on the two bodies' shapes, poses and
 // velocities, the fall between them and the settings. A pair that found no contact with
-// both bodies standing still (no velocity, no fall), neither of whose states has changed
-// since (SeenState: a body's state is looked at before each narrowphase that may test it,
-// and when it sleeps or the game moves it; setSettings and restoreState renew them all),
-// would find none again.
+// both bodies standing still (no velocity, no fall), that stand still now and neither of
+// whose poses has changed since (SeenState: a body's pose is looked at before each
+// narrowphase that may test it, and when it sleeps or the game moves it; setSettings and
+// restoreState renew them all), would find none again.
 bool ContactManager::standStill(const PairTest &test, std::uint32_t p) const {
     const PairState &pair = pairs[p];
     const BodyRecord &a = test.bodies[pair.a];

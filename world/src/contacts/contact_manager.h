@@ -96,7 +96,8 @@ private:
     /// Whether both bodies of pair `p` stand still: no velocity, no fall between them.
     bool standStill(const PairTest &test, std::uint32_t p) const;
     /// Whether pair `p` found no contact at its last test, its bodies standing still, and
-    /// neither body's state has changed since (SeenState).
+    /// neither body's pose has changed since (SeenState); asked only of pairs that stand
+    /// still now.
     bool unchanged(std::uint32_t p, const BodyStore &bodies) const;
     /// Hands out the anchor numbers of the merges of stepPairs_[first, last), in order;
     /// counts the pairs tested and reused.

@@ -64,7 +64,7 @@ struct alignas(64) PairState {
     std::uint64_t lastSeen = 0;   ///< Step in which the broadphase last reported the pair.
     bool alive = false;
     /// At its last test both bodies stood still (no velocity, no fall) and it found no
-    /// contact: while neither body's state changes (SeenState), that result stands.
+    /// contact: while both stand still and neither pose changes (SeenState), it stands.
     bool testedStill = false;
     std::uint64_t testedStep = 0;  ///< Step of its last narrowphase test.
     std::vector<ManifoldState> manifolds;

@@ -18,31 +18,27 @@
 
 namespace cyclone::detail {
 
-/// A body's pose and velocities as the narrowphase last saw them, and the step since
-/// which every narrowphase has seen them so: a pair apart at its last test whose bodies
-/// are unchanged since keeps its result untested (ContactManager, "unchanged pairs").
+/// A body's pose as the narrowphase last saw it, and the step since which every
+/// narrowphase has seen it so: a pair apart at its last test, both bodies then and now
+/// without velocity, whose bodies' poses are unchanged since keeps its result untested
+/// (ContactManager, "unchanged pairs"). Velocities need no record: both zero then and now.
 struct SeenState {
     Vector3 position = Vector3::Zero();
     Quaternion orientation = Quaternion::Identity();
-    Vector3 velocity = Vector3::Zero();
-    Vector3 rotation = Vector3::Zero();
     std::uint64_t since = UINT64_MAX;  ///< UINT64_MAX: not seen yet.
 
-    /// Takes the body's state as seen by step `step`'s narrowphase: `since` moves to
+    /// Takes the body's pose as seen by step `step`'s narrowphase: `since` moves to
     /// `step` when it differs, bit for bit, from the last one seen.
     void look(const RigidBody &body, std::uint64_t step) {
         const bool same = since != UINT64_MAX && bitsEqual(position, body.getPosition()) &&
-                          bitsEqual(orientation.coeffs(), body.getOrientation().coeffs()) &&
-                          bitsEqual(velocity, body.getVelocity()) && bitsEqual(rotation, body.getRotation());
+                          bitsEqual(orientation.coeffs(), body.getOrientation().coeffs());
         if (same) return;
         renew(body, step);
     }
-    /// Takes the body's state as new from step `step` on, whatever was seen before.
+    /// Takes the body's pose as new from step `step` on, whatever was seen before.
     void renew(const RigidBody &body, std::uint64_t step) {
         position = body.getPosition();
         orientation = body.getOrientation();
-        velocity = body.getVelocity();
-        rotation = body.getRotation();
         since = step;
     }
 
@@ -70,7 +66,7 @@ struct BodyRecord {
     std::shared_ptr<fcl::CollisionGeometryd> core;  ///< ccd bodies: the sphere swept when already touching.
     bool isolated = false;      ///< State went non-finite: out of collision and solve.
     bool simulated = false;     ///< Awake dynamic body at the start of this step.
-    SeenState seen;             ///< Its state at the last narrowphase that looked, for unchanged pairs.
+    SeenState seen;             ///< Its pose at the last narrowphase that looked, for unchanged pairs.
     bool held = false;          ///< Held in the last step chosen (dynamics/holding.h): Islands::build and WorldState::wake read it; saved with the state.
     Tree tree = Tree::None;
     int sleepingIsland = -1;    ///< Index in Islands::sleeping while asleep.
