@@ -57,6 +57,30 @@ WorldSettings withHolding(bool on) {
     return settings;
 }
 
+// Steps the row from step `from` to `to` (counted from a save or a call) and keeps the
+// boxes' states after every 60th step.
+std::vector<std::vector<RigidBody>> stepRecording(Row &row, int from, int to) {
+    std::vector<std::vector<RigidBody>> kept;
+    for (int step = from; step < to; ++step) {
+        row.world.step(kDt);
+        if (step % 60 != 59) continue;
+        kept.emplace_back();
+        for (const BodyId &b : row.boxes) kept.back().push_back(row.world.body(b));
+    }
+    return kept;
+}
+
+// Steps the row `steps` times and expects the boxes' states stepRecording kept, bit for bit.
+void expectRepeats(Row &row, int steps, const std::vector<std::vector<RigidBody>> &first) {
+    for (int step = 0; step < steps; ++step) {
+        row.world.step(kDt);
+        if (step % 60 != 59) continue;
+        const std::vector<RigidBody> &then = first[std::size_t(step / 60)];
+        for (std::size_t i = 0; i < row.boxes.size(); ++i)
+            EXPECT_TRUE(sameBits(row.world.body(row.boxes[i]), then[i])) << "box " << i << ", step " << step;
+    }
+}
+
 TEST(HeldBodies, ASpinningBallOnARowLeavesTheFarBoxesStillAndSpinsDownAsWithoutThem) {
     Row held{World(withHolding(true)), {}, {}};
     Row solved{World(withHolding(false)), {}, {}};
@@ -193,24 +217,10 @@ TEST(HeldBodies, StepsAfterARestoreRepeatTheFirstRunWhileBodiesAreHeld) {
     for (int step = 0; step < 100; ++step) row.world.step(kDt);
     ASSERT_EQ(row.world.stats().heldBodies, kBoxes - 1);
     const std::vector<std::uint8_t> saved = row.world.saveState();
-    std::vector<std::vector<RigidBody>> first;
-    for (int step = 0; step < 240; ++step) {
-        row.world.step(kDt);
-        if (step % 60 == 59) {
-            first.emplace_back();
-            for (const BodyId &b : row.boxes) first.back().push_back(row.world.body(b));
-        }
-    }
+    const std::vector<std::vector<RigidBody>> first = stepRecording(row, 0, 240);
     row.world.restoreState(saved);
-    for (int step = 0; step < 240; ++step) {
-        row.world.step(kDt);
-        if (step % 60 != 59) continue;
-        const std::vector<RigidBody> &then = first[std::size_t(step / 60)];
-        for (std::size_t i = 0; i < row.boxes.size(); ++i)
-            EXPECT_TRUE(sameBits(row.world.body(row.boxes[i]), then[i])) << "box " << i << ", step " << step;
-    }
+    expectRepeats(row, 240, first);
 }
-
 
 TEST(HeldBodies, AWakeCallRightAfterARestoreActsAsAtTheSavedStep) {
     // setAwake on a held box gives it a sleeping body's waking sleep average (twice the
@@ -227,24 +237,11 @@ TEST(HeldBodies, AWakeCallRightAfterARestoreActsAsAtTheSavedStep) {
     row.world.step(kDt);
     // Box 5 is solved again, and so are boxes 4 and 6, which touch it: 1-3 and 7-9 held.
     EXPECT_EQ(row.world.stats().heldBodies, 6);
-    std::vector<std::vector<RigidBody>> first;
-    for (int step = 1; step < 480; ++step) {
-        row.world.step(kDt);
-        if (step % 60 == 59) {
-            first.emplace_back();
-            for (const BodyId &b : row.boxes) first.back().push_back(row.world.body(b));
-        }
-    }
+    const std::vector<std::vector<RigidBody>> first = stepRecording(row, 1, 480);
     ASSERT_FALSE(row.world.body(box).getAwake());  // slept, so no box is held now
     row.world.restoreState(saved);
     row.world.setAwake(box, true);
-    for (int step = 0; step < 480; ++step) {
-        row.world.step(kDt);
-        if (step % 60 != 59) continue;
-        const std::vector<RigidBody> &then = first[std::size_t(step / 60)];
-        for (std::size_t i = 0; i < row.boxes.size(); ++i)
-            EXPECT_TRUE(sameBits(row.world.body(row.boxes[i]), then[i])) << "box " << i << ", step " << step;
-    }
+    expectRepeats(row, 480, first);
 }
 
 }  // namespace
