@@ -131,17 +131,36 @@ void Holding::clearHit(Workers &workers, const BodyStore &bodies, const PairCach
                                if (hit(pairs[p])) walk_.push_back(other(pairs[p], index));
                        });
     if (walk_.empty()) return;
+    // Then the flood through touching pairs, ring by ring on the threads. Each body goes
+    // to the one test that marks it reached: what the flood decides is the set reached,
+    // the same whichever thread comes first.
     reached_.assign(bodies.size(), 0);
-    while (!walk_.empty()) {
-        const std::uint32_t index = walk_.back();
-        walk_.pop_back();
-        if (reached_[index]) continue;
-        reached_[index] = 1;
-        still_[index] = 0;
-        for (std::uint32_t p : bodies[index].pairs) {
-            const std::uint32_t o = other(pairs[p], index);
-            if (pairs[p].touching() && bodies[o].simulated && !reached_[o]) walk_.push_back(o);
-        }
+    const auto reach = [&](std::uint32_t index) {
+        return __atomic_exchange_n(&reached_[index], char(1), __ATOMIC_RELAXED) == 0;
+    };
+    front_.clear();
+    for (std::uint32_t index : walk_)
+        if (reach(index)) front_.push_back(index);
+    while (!front_.empty()) {
+        const std::size_t count = front_.size();
+        const std::size_t chunks = Workers::chunksOf(count);
+        next_.start(workers.threads(), chunks);
+        workers.forEachChunkOnThreads(count, [&](int thread, std::size_t chunk, std::size_t begin, std::size_t end) {
+            std::vector<std::uint32_t> &found = next_.open(chunk, thread);
+            for (std::size_t k = begin; k < end; ++k) {
+                const std::uint32_t index = front_[k];
+                still_[index] = 0;
+                for (std::uint32_t p : bodies[index].pairs) {
+                    const std::uint32_t o = other(pairs[p], index);
+                    if (pairs[p].touching() && bodies[o].simulated && reach(o)) found.push_back(o);
+                }
+            }
+            next_.close(chunk);
+        });
+        next_.finish();
+        front_.clear();
+        for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+            for (std::uint32_t index : next_.items(chunk)) front_.push_back(index);
     }
 }
 

@@ -21,13 +21,13 @@
 #include <vector>
 
 #include "cyclone/world/world.h"
+#include "world/chunk_lists.h"
 
 namespace cyclone::detail {
 
 struct BodyStore;
 class PairCache;
 struct StepContext;
-class Workers;
 
 class Holding {
 public:
@@ -55,7 +55,9 @@ private:
     std::vector<char> ring_;   ///< The next ring's marks.
     std::vector<char> reached_;  ///< By body index: reached from a hit.
     std::vector<char> flags_;    ///< By place in `simulated`: struck by a hit (scratch).
-    std::vector<std::uint32_t> walk_;
+    std::vector<std::uint32_t> walk_;   ///< The bodies of the hits.
+    std::vector<std::uint32_t> front_;  ///< The flood's last ring.
+    ChunkLists<std::uint32_t> next_;    ///< The flood's next ring, as its chunks found it.
     std::vector<std::uint32_t> held_;
 };
 

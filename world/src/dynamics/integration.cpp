@@ -73,10 +73,10 @@ void Integration::closeAdmission(const StepContext &context, const BodyStore &bo
     if (context.settings.substeps <= 1) return;
     savedForces_.resize(bodies.simulated.size());
     savedTorques_.resize(bodies.simulated.size());
-    for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+    context.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
         savedForces_[k] = bodies[bodies.simulated[k]].body.getAccumulatedForce();
         savedTorques_[k] = bodies[bodies.simulated[k]].body.getAccumulatedTorque();
-    }
+    });
 }
 
 // Held for a whole step, an explicit spring force would gain energy at any stiffness once
@@ -85,12 +85,12 @@ void Integration::closeAdmission(const StepContext &context, const BodyStore &bo
 void Integration::addSubstepForces(const StepContext &context, BodyStore &bodies, SpringSet &springs,
                                    bool firstSubstep) {
     if (!firstSubstep) {
-        for (std::size_t k = 0; k < bodies.simulated.size(); ++k) {
+        context.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
             BodyRecord &r = bodies[bodies.simulated[k]];
-            if (r.isolated) continue;
+            if (r.isolated) return;
             r.body.addForce(savedForces_[k]);
             r.body.addTorque(savedTorques_[k]);
-        }
+        });
     }
     if (context.activeSprings == 0) return;
     // The explicit forces first: the implicit ones are solved with them in place.

@@ -1,11 +1,13 @@
 #include "dynamics/step_plan.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "contacts/pair_cache.h"
 #include "world/body_store.h"
 #include "world/step_context.h"
+#include "world/workers.h"
 
 namespace cyclone::detail {
 namespace {
@@ -59,10 +61,14 @@ StepPlan planStep(const StepContext &context, const BodyStore &bodies, const Pai
     // sub-step (|g| h^2 beyond speculativeDistance): its sub-steps stay.
     const real h = dt / resting;
     if (settings.gravity.norm() * h * h > settings.speculativeDistance) return full;
-    for (std::uint32_t index : bodies.simulated) {
-        const BodyRecord &r = bodies[index];
-        if (!r.isolated && !rests(r, pairs, stepCount, dt)) return full;
-    }
+    // On the threads: a body that does not rest settles the answer; the others then skip.
+    std::atomic<bool> moves{false};
+    context.workers.forEach(bodies.simulated.size(), [&](std::size_t k) {
+        if (moves.load(std::memory_order_relaxed)) return;
+        const BodyRecord &r = bodies[bodies.simulated[k]];
+        if (!r.isolated && !rests(r, pairs, stepCount, dt)) moves.store(true, std::memory_order_relaxed);
+    });
+    if (moves.load()) return full;
     // restingIterations passes per step, at most a full step's, shared by the sub-steps
     // (rounded up).
     const int passes = std::min(settings.debug.restingIterations, settings.velocityIterations * settings.substeps);

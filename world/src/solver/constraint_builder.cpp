@@ -366,18 +366,31 @@ void ConstraintSolver::prepareResistanceAndShares(const WorldSettings &settings,
         return std::pair(std::max(ma.rollingFriction, mb.rollingFriction),
                          std::max(ma.spinningFriction, mb.spinningFriction));
     };
-    // The room for the rows is taken before they are made: the list is empty, and lets
-    // its old room go first (makeRoom).
-    std::size_t most = 0;
-    for (const int s : solveOrder_) {
+    // Which manifolds need rows and their rows are made on the threads, one row each in
+    // solve order; the rows whose masses are all zero then go. The list is emptied first,
+    // and lets its old room go before it takes the new (makeRoom).
+    resistanceLengths_.resize(solveOrder_.size());
+    workers.forEach(solveOrder_.size(), [&](std::size_t k) {
+        const int s = solveOrder_[k];
         const auto [rolling, spinning] = lengths(s);
-        most += needsResistance(manifolds_[s], rolling, spinning);
-    }
-    makeRoom(resistance_, most);
-    for (const int s : solveOrder_) {
-        const auto [rolling, spinning] = lengths(s);
-        addResistanceRows(bodies_, manifolds_[s], s, rolling, spinning, resistance_);
-    }
+        resistanceLengths_[k] = needsResistance(manifolds_[s], rolling, spinning) ? std::pair(rolling, spinning)
+                                                                                   : std::pair(real(0), real(0));
+    });
+    resistancePlaces_.clear();
+    for (std::size_t k = 0; k < solveOrder_.size(); ++k)
+        if (resistanceLengths_[k].first > 0 || resistanceLengths_[k].second > 0)
+            resistancePlaces_.push_back(static_cast<int>(k));
+    makeRoom(resistance_, resistancePlaces_.size());
+    resistance_.resize(resistancePlaces_.size());
+    workers.forEach(resistancePlaces_.size(), [&](std::size_t j) {
+        const int k = resistancePlaces_[j];
+        const auto [rolling, spinning] = resistanceLengths_[k];
+        const int s = solveOrder_[k];
+        if (!makeResistanceRows(bodies_, manifolds_[s], s, rolling, spinning, resistance_[j])) resistance_[j].slot = -1;
+    });
+    resistance_.erase(std::remove_if(resistance_.begin(), resistance_.end(),
+                                     [](const ResistanceRow &row) { return row.slot < 0; }),
+                      resistance_.end());
     for (const ResistanceRow &row : resistance_)
         stats.resistanceRows += (row.mass[0] > 0) + (row.mass[1] > 0) + (row.mass[2] > 0);
     // Two threads share the resistance rows and the manifolds without a carrier by the

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "contacts/pair_cache.h"
@@ -111,7 +112,7 @@ private:
     void solveResistancePass(Workers &workers);
     void recoverContactPenetration(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
                                    BodyTransitions transitions, real recovery, StepStats &stats, real h);
-    void reportImpulses(const BodyStore &bodies, const PairCache &pairs, std::vector<ContactImpulse> &out);
+    void reportImpulses(Workers &workers, const BodyStore &bodies, const PairCache &pairs, std::vector<ContactImpulse> &out);
 
     /// The body records of a slot's A and B: the passes over the slots read them here,
     /// not from the pair, whose record is a cache miss away.
@@ -125,6 +126,10 @@ private:
     std::vector<SlotBodies> slotBodies_;
     std::vector<ManifoldKey> keys_;         ///< The manifolds to build, in solve order.
     std::vector<ManifoldKey> keysScratch_;  ///< Scratch of sortByHeight.
+    /// By place in the solve order: the rolling and spinning lengths (m) of a manifold that
+    /// needs resistance rows, zeros for one that does not.
+    std::vector<std::pair<real, real>> resistanceLengths_;
+    std::vector<int> resistancePlaces_;  ///< The places in the solve order whose manifolds need rows.
     /// Solver slot of each entry of keys_: the solve order (Gauss-Seidel's) of the slots,
     /// which the manifolds keep from step to step (assignSlots).
     std::vector<int> solveOrder_;

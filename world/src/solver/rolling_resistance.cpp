@@ -5,14 +5,14 @@
 
 namespace cyclone::detail {
 
-void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifold &m, int slot, real rolling,
-                       real spinning, std::vector<ResistanceRow> &rows) {
-    if (!needsResistance(m, rolling, spinning)) return;
+bool makeResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifold &m, int slot, real rolling,
+                        real spinning, ResistanceRow &row) {
+    if (!needsResistance(m, rolling, spinning)) return false;
     const bool rolls = rolling > 0 && m.count <= 2;
     const bool spins = spinning > 0 && m.twistRadius == 0;
     const SolverBody &a = bodies[m.a];
     const SolverBody &b = bodies[m.b];
-    ResistanceRow row;
+    row = ResistanceRow();
     row.slot = slot;
     row.a = m.a;
     row.b = m.b;
@@ -28,18 +28,15 @@ void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifo
         const real k11 = row.axis[k].dot(row.angA[k] + row.angB[k]);
         row.mass[k] = used && k11 > 0 ? 1 / k11 : 0;
     }
-    if (row.mass[0] == 0 && row.mass[1] == 0 && row.mass[2] == 0) return;
-    rows.push_back(row);
+    return row.mass[0] > 0 || row.mass[1] > 0 || row.mass[2] > 0;
 }
 
-void beginResistance(const SolverManifolds &manifolds, std::vector<ResistanceRow> &rows) {
-    for (ResistanceRow &row : rows) {
-        const SolverManifold &m = manifolds[row.slot];
-        real normal = 0;
-        for (int i = 0; i < m.count; ++i) normal += m.points[i].normal.impulse;
-        row.limit = std::max(normal, real(0));
-        row.impulse.setZero();
-    }
+void beginResistance(const SolverManifolds &manifolds, ResistanceRow &row) {
+    const SolverManifold &m = manifolds[row.slot];
+    real normal = 0;
+    for (int i = 0; i < m.count; ++i) normal += m.points[i].normal.impulse;
+    row.limit = std::max(normal, real(0));
+    row.impulse.setZero();
 }
 
 void solveResistanceRow(std::vector<SolverBody> &bodies, ResistanceRow &row) {

@@ -39,13 +39,14 @@ inline bool needsResistance(const SolverManifold &m, real rolling, real spinning
     return (rolling > 0 && m.count <= 2) || (spinning > 0 && m.twistRadius == 0);
 }
 
-/// Makes the rows of manifold `slot` (after its Jacobians) into `rows` when it needs any;
-/// `rolling` and `spinning` are the pair's lengths, m.
-void addResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifold &m, int slot, real rolling,
-                       real spinning, std::vector<ResistanceRow> &rows);
-/// At a sub-step's start: each row's limit from its manifold's normal impulses, its
+/// Makes the rows of manifold `slot` (after its Jacobians) into `row`; false when it needs
+/// none (`row` is then not to be solved). `rolling` and `spinning` are the pair's
+/// lengths, m.
+bool makeResistanceRows(const std::vector<SolverBody> &bodies, const SolverManifold &m, int slot, real rolling,
+                        real spinning, ResistanceRow &row);
+/// At a sub-step's start: the row's limit from its manifold's normal impulses, its
 /// accumulated impulse cleared.
-void beginResistance(const SolverManifolds &manifolds, std::vector<ResistanceRow> &rows);
+void beginResistance(const SolverManifolds &manifolds, ResistanceRow &row);
 /// Solves one row: its impulses within their limits, its bodies' spins changed.
 void solveResistanceRow(std::vector<SolverBody> &bodies, ResistanceRow &row);
 /// One pass over the rows, in order.

@@ -141,7 +141,7 @@ void ConstraintSolver::solvePasses(const StepContext &context, const BodyStore &
     }
     if (!manifolds_.empty()) {
         loadVelocityPasses(workers, settings, firstSubstep);
-        beginResistance(manifolds_, resistance_);
+        workers.forEach(resistance_.size(), [&](std::size_t k) { beginResistance(manifolds_, resistance_[k]); });
         const int passes = context.plan.velocityIterations;
         for (int it = 0; it < passes; ++it) {
             solveVelocityPass(workers, (it & 1) != 0);
@@ -165,10 +165,10 @@ void ConstraintSolver::solvePasses(const StepContext &context, const BodyStore &
     }
     if (joined) joints.storeImpulses();
     // What the sub-step's contacts gave: each point's accumulated impulse, warm start included.
-    for (std::size_t s = 0; s < manifolds_.size(); ++s) {
+    workers.forEach(manifolds_.size(), [&](std::size_t s) {
         const SolverManifold &m = manifolds_[s];
         for (int i = 0; i < m.count; ++i) stepImpulse_[s] += m.points[i].normal.impulse;
-    }
+    });
 }
 
 void ConstraintSolver::giveVelocities(const WorldSettings &settings, BodyStore &bodies, Workers &workers,
@@ -345,23 +345,32 @@ void ConstraintSolver::storeImpulses(const StepContext &context, const BodyStore
         state.frictionImpulse = (m.frictionRow[0].impulse * m.tangent[0] + m.frictionRow[1].impulse * m.tangent[1]) * scale;
         state.twistImpulse = m.twist.impulse * scale;
     });
-    reportImpulses(bodies, pairs, events.contactImpulses);
+    reportImpulses(context.workers, bodies, pairs, events.contactImpulses);
 }
 
 // One entry per solved pair, summed over its manifolds, in the order of the bodies'
 // indices (the slots' order changes with the heights); in place, so that a steady step
 // allocates nothing.
-void ConstraintSolver::reportImpulses(const BodyStore &bodies, const PairCache &pairs,
+void ConstraintSolver::reportImpulses(Workers &workers, const BodyStore &bodies, const PairCache &pairs,
                                       std::vector<ContactImpulse> &out) {
+    // Written on the threads, slot by slot; a slot whose body was isolated keeps no-body
+    // handles and goes before the sort.
     const std::size_t first = out.size();
     makeRoom(out, manifolds_.size());
-    for (std::size_t s = 0; s < manifolds_.size(); ++s) {
-        if (!pairs[sources_[s].pair].alive) continue;  // a body was isolated
+    out.resize(first + manifolds_.size());
+    workers.forEach(manifolds_.size(), [&](std::size_t s) {
+        ContactImpulse &entry = out[first + s];
+        if (!pairs[sources_[s].pair].alive) {
+            entry = ContactImpulse();
+            return;
+        }
         const SlotBodies pair = slotBodies_[s];
-        out.push_back({bodies.idOf(pair.a), bodies.idOf(pair.b), bodies[pair.a].userData, bodies[pair.b].userData,
-                       stepImpulse_[s]});
-    }
+        entry = {bodies.idOf(pair.a), bodies.idOf(pair.b), bodies[pair.a].userData, bodies[pair.b].userData,
+                 stepImpulse_[s]};
+    });
     const auto begin = out.begin() + static_cast<std::ptrdiff_t>(first);
+    out.erase(std::remove_if(begin, out.end(), [](const ContactImpulse &x) { return x.a.index == UINT32_MAX; }),
+              out.end());
     std::sort(begin, out.end(), [](const ContactImpulse &x, const ContactImpulse &y) {
         return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
     });
