@@ -64,19 +64,30 @@ void ConstraintSolver::build(StepContext &context, const BodyStore &bodies, Cont
     // The solve order is settled on small keys first and the solver manifolds are then
     // built in that order: sorting the built manifolds (~2 KB each) meant copying all of
     // them every step.
-    keys_.clear();
+    // The keys are made on the threads, chunk by chunk of the touching pairs, and read
+    // back in the chunks' order: the pairs' order.
     const Vector3 up = -settings.gravity;
-    for (std::uint32_t p : contacts.touchingPairs) {
-        const PairState &pair = contacts.pairs[p];
-        const BodyRecord &a = bodies[pair.a];
-        const BodyRecord &b = bodies[pair.b];
-        if (!a.simulated && !b.simulated) continue;
-        const real height = contactHeight(a, b, up);
-        for (std::size_t k = 0; k < pair.manifolds.size(); ++k) {
-            if (pair.manifolds[k].count == 0) continue;
-            keys_.push_back({height, {p, static_cast<std::uint32_t>(k)}});
+    const std::vector<std::uint32_t> &touching = contacts.touchingPairs;
+    const std::size_t chunks = Workers::chunksOf(touching.size());
+    chunkKeys_.start(workers.threads(), chunks);
+    workers.forEachChunkOnThreads(touching.size(), [&](int thread, std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<ManifoldKey> &found = chunkKeys_.open(chunk, thread);
+        for (std::size_t t = begin; t < end; ++t) {
+            const PairState &pair = contacts.pairs[touching[t]];
+            const BodyRecord &a = bodies[pair.a];
+            const BodyRecord &b = bodies[pair.b];
+            if (!a.simulated && !b.simulated) continue;
+            const real height = contactHeight(a, b, up);
+            for (std::size_t k = 0; k < pair.manifolds.size(); ++k)
+                if (pair.manifolds[k].count > 0) found.push_back({height, {touching[t], static_cast<std::uint32_t>(k)}});
         }
-    }
+        chunkKeys_.close(chunk);
+    });
+    chunkKeys_.finish();
+    keys_.clear();
+    makeRoom(keys_, chunkKeys_.found());
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+        for (const ManifoldKey &key : chunkKeys_.items(chunk)) keys_.push_back(key);
     // Gauss-Seidel carries a stack's weight down in one pass when the contacts nearest
     // the ground come first; the order must not depend on the broadphase's. Equal heights
     // keep the order of the pair walk: the radix sort is stable. A comparison sort on

@@ -23,6 +23,7 @@
 #include "solver/velocity_pass.h"
 #include "world/body_store.h"
 #include "world/body_transitions.h"
+#include "world/chunk_lists.h"
 
 namespace cyclone::detail {
 
@@ -125,6 +126,7 @@ private:
     std::vector<ManifoldRef> sources_;  ///< The pair manifold each slot was made from.
     std::vector<SlotBodies> slotBodies_;
     std::vector<ManifoldKey> keys_;         ///< The manifolds to build, in solve order.
+    ChunkLists<ManifoldKey> chunkKeys_;     ///< The keys as the chunks of touching pairs made them.
     std::vector<ManifoldKey> keysScratch_;  ///< Scratch of sortByHeight.
     /// By place in the solve order: the rolling and spinning lengths (m) of a manifold that
     /// needs resistance rows, zeros for one that does not.

@@ -90,8 +90,11 @@ void WorldState::step(real dt) {
         const StageTimer t(ms.sensors);
         sensors.update(context, bodies, broadphase, contacts.sensorCandidates(), *events.sink, stats);
     }
-    context.plan = planStep(context, bodies, contacts.pairs);
-    context.h = dt / context.plan.substeps;
+    {
+        const StageTimer t(ms.solveParts.setup);  // added to the solve below
+        context.plan = planStep(context, bodies, contacts.pairs);
+        context.h = dt / context.plan.substeps;
+    }
     { const StageTimer t(ms.manifolds); solver.build(context, bodies, contacts, preSolve, stats); }
     { const StageTimer t(ms.islands); islands.build(bodies, solver.manifolds(), springs, joints, holding.held(), contacts.pairs, stats); }
 

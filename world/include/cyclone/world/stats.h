@@ -10,7 +10,7 @@ namespace cyclone {
 /// Milliseconds of the solve stage's parts (each included in StageTimes::solve), to see
 /// what a solver setting costs.
 struct SolveTimes {
-    double setup = 0;     ///< Jacobians, effective masses, the passes' order (once per step).
+    double setup = 0;     ///< The sub-steps' plan, Jacobians, effective masses, the passes' order (once per step).
     double velocity = 0;  ///< Predicted velocities, warm start and the velocity passes.
     double carrier = 0;   ///< The carrier pass (DebugSettings::carrierPass; 0 when off or without contacts).
     double position = 0;  ///< Penetration recovery (positionIterations; 0 when 0 or without contacts).
