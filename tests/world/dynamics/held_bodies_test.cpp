@@ -10,6 +10,7 @@
 // A box is held when it and every body it shares a pair with could sleep and rest: the
 // ball moves, so box 0 (touching it) is solved, and boxes 1 to 9 are held once their
 // sleep averages fall below the threshold.
+#include <algorithm>
 #include <vector>
 
 #include "world_fixture.h"
@@ -184,6 +185,72 @@ TEST(HeldBodies, ABallIntoAHeldRowMovesTheWholeRowAndKeepsMomentum) {
     for (const BodyId &b : {hitter, small}) momentum += world.body(b).getMass() * world.body(b).getVelocity().x();
     EXPECT_NEAR(momentum, -12, 0.012);
     for (const BodyId &b : boxes) EXPECT_LT(world.body(b).getVelocity().x(), -0.1);
+}
+
+// A frictionless row of `count` 1 kg boxes with a small box that may not sleep on the
+// first, `threads` threads; after 90 steps (boxes 1 to count - 1 held) a 2 kg ball at
+// 6 m/s along -x comes into the far end. Keeps the held counts of the 30 steps after
+// the ball is added and the boxes' states at the end.
+struct LongRowHit {
+    std::vector<int> held;
+    std::vector<RigidBody> end;
+};
+
+LongRowHit hitLongRow(int count, int threads) {
+    WorldSettings settings = withHolding(true);
+    settings.threads = threads;
+    World world(settings);
+    addGround(world, 0);
+    std::vector<BodyId> bodies;
+    for (int i = 0; i < count; ++i) {
+        BodySettings b;
+        b.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
+        b.position = Vector3(i, 0.5, 0);
+        b.material.friction = 0;
+        bodies.push_back(world.addBody(b));
+    }
+    BodySettings awake;
+    awake.shape = Shape::box(Vector3(0.1, 0.1, 0.1));
+    awake.position = Vector3(0, 1.1, 0);
+    awake.mass = 0.1;
+    awake.canSleep = false;
+    awake.material.friction = 0;
+    bodies.push_back(world.addBody(awake));
+    for (int step = 0; step < 90; ++step) world.step(kDt);
+    LongRowHit out;
+    out.held.push_back(world.stats().heldBodies);
+    BodySettings ball;
+    ball.shape = Shape::sphere(0.5);
+    ball.mass = 2;
+    ball.position = Vector3(count + 0.5, 0.5, 0);
+    ball.velocity = Vector3(-6, 0, 0);
+    ball.material.friction = 0;
+    bodies.push_back(world.addBody(ball));
+    for (int step = 0; step < 30; ++step) {
+        world.step(kDt);
+        out.held.push_back(world.stats().heldBodies);
+    }
+    for (const BodyId &b : bodies) out.end.push_back(world.body(b));
+    return out;
+}
+
+TEST(HeldBodies, AHitOnALongHeldRowFreesItWholeInOneStepOnOneThreadOrTwo) {
+    // 300 boxes: the hit's flood goes 299 rings deep and its rings span several chunks
+    // of the threads' work (Workers::kChunk = 64). The ball's contact closes at 6 m/s,
+    // past kHitSpeed, in the step it first touches: every box touches the next, so all
+    // are freed in that one step. (Spread over the row, the ball's 12 kg m/s leaves the
+    // boxes at 4 cm/s, under the sleep threshold: they are held again later, as they
+    // would fall asleep.)
+    const int count = 300;
+    const LongRowHit one = hitLongRow(count, 1);
+    ASSERT_EQ(one.held.front(), count - 1);  // all but the first, which the small box keeps solved
+    const auto freed = std::find(one.held.begin(), one.held.end(), 0);
+    ASSERT_NE(freed, one.held.end()) << "the row was never freed";
+    for (auto it = one.held.begin(); it != freed; ++it) EXPECT_EQ(*it, count - 1) << "freed in part first";
+    const LongRowHit two = hitLongRow(count, 2);
+    EXPECT_EQ(one.held, two.held);
+    ASSERT_EQ(one.end.size(), two.end.size());
+    for (std::size_t k = 0; k < one.end.size(); ++k) EXPECT_TRUE(sameBits(one.end[k], two.end[k])) << "body " << k;
 }
 
 TEST(HeldBodies, APlankLeftOverAnEdgeWhenItsSupportIsRemovedFalls) {
