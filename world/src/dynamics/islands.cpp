@@ -9,31 +9,50 @@
 #include "joints/joint_set.h"
 #include "solver/contact_solver.h"
 #include "world/body_store.h"
+#include "world/workers.h"
 
 namespace cyclone::detail {
 
 void Islands::build(BodyStore &bodies, const SolverManifolds &manifolds, const SpringSet &springs,
                     const JointSet &joints, const std::vector<std::uint32_t> &held, const PairCache &pairs,
-                    StepStats &stats) {
+                    Workers &workers, StepStats &stats) {
     const int simulated = static_cast<int>(bodies.simulated.size());
     const int n = simulated + static_cast<int>(held.size());
     parent_.resize(n);
     std::iota(parent_.begin(), parent_.end(), 0);
     const auto unite = [&](int x, int y) { uniteSets(parent_, x, y); };
+    // What joins what is read on the threads (the manifolds' bodies, the held bodies'
+    // pairs: memory far apart), then joined in that order on this one.
     // Static and kinematic bodies (entry 0, entries past the simulated) join no island.
-    for (const SolverManifold &m : manifolds)
-        if (m.a > 0 && m.b > 0 && m.a <= simulated && m.b <= simulated) unite(m.a - 1, m.b - 1);
+    links_.resize(manifolds.size());
+    workers.forEach(manifolds.size(), [&](std::size_t s) {
+        const SolverManifold &m = manifolds[s];
+        const bool joins = m.a > 0 && m.b > 0 && m.a <= simulated && m.b <= simulated;
+        links_[s] = joins ? std::pair(m.a - 1, m.b - 1) : std::pair(-1, -1);
+    });
+    for (const auto &[x, y] : links_)
+        if (x >= 0) unite(x, y);
     // A held body joins the bodies it touches, held or simulated (entry simulated + its
     // place in `held`, kept in BodyRecord::island until the islands are numbered).
     for (std::size_t k = 0; k < held.size(); ++k) bodies[held[k]].island = simulated + static_cast<int>(k);
-    for (std::size_t k = 0; k < held.size(); ++k) {
-        for (std::uint32_t p : bodies[held[k]].pairs) {
-            if (!pairs[p].touching()) continue;
-            const BodyRecord &o = bodies[pairs[p].a == held[k] ? pairs[p].b : pairs[p].a];
-            if (o.simulated) unite(simulated + static_cast<int>(k), o.solverIndex - 1);
-            else if (o.held) unite(simulated + static_cast<int>(k), o.island);
+    const std::size_t chunks = Workers::chunksOf(held.size());
+    heldLinks_.start(workers.threads(), chunks);
+    workers.forEachChunkOnThreads(held.size(), [&](int thread, std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<std::pair<int, int>> &found = heldLinks_.open(chunk, thread);
+        for (std::size_t k = begin; k < end; ++k) {
+            const int entry = simulated + static_cast<int>(k);
+            for (std::uint32_t p : bodies[held[k]].pairs) {
+                if (!pairs[p].touching()) continue;
+                const BodyRecord &o = bodies[pairs[p].a == held[k] ? pairs[p].b : pairs[p].a];
+                if (o.simulated) found.emplace_back(entry, o.solverIndex - 1);
+                else if (o.held) found.emplace_back(entry, o.island);
+            }
         }
-    }
+        heldLinks_.close(chunk);
+    });
+    heldLinks_.finish();
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+        for (const auto &[x, y] : heldLinks_.items(chunk)) unite(x, y);
     for (const SpringRecord &s : springs) {
         if (!s.alive || !s.settings.b) continue;
         const BodyRecord &a = bodies[s.settings.a.index];

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "cyclone/world/world.h"
 #include "solver/contact_solver.h"
+#include "world/chunk_lists.h"
 
 namespace cyclone::detail {
 
@@ -28,7 +30,7 @@ public:
     /// and stats.islands.
     void build(BodyStore &bodies, const SolverManifolds &manifolds, const SpringSet &springs,
                const JointSet &joints, const std::vector<std::uint32_t> &held, const PairCache &pairs,
-               StepStats &stats);
+               Workers &workers, StepStats &stats);
     /// This step's islands whose bodies are all still (RigidBody's sleep average below its
     /// sleep epsilon), in order; none when settings.sleep is off. The step puts each to
     /// sleep (WorldState::sleepIsland).
@@ -38,6 +40,8 @@ public:
     int size(int island) const { return start_[island + 1] - start_[island]; }
 
 private:
+    std::vector<std::pair<int, int>> links_;          ///< By solver manifold: the entries it joins, or -1s.
+    ChunkLists<std::pair<int, int>> heldLinks_;       ///< The held bodies' links, as their chunks found them.
     std::vector<int> parent_;  ///< Union-find over the simulated bodies, by solver index - 1, then the held ones.
     std::vector<int> start_;   ///< Island i's members are members_[start_[i], start_[i + 1]).
     std::vector<std::uint32_t> members_;

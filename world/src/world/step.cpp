@@ -96,7 +96,10 @@ void WorldState::step(real dt) {
         context.h = dt / context.plan.substeps;
     }
     { const StageTimer t(ms.manifolds); solver.build(context, bodies, contacts, preSolve, stats); }
-    { const StageTimer t(ms.islands); islands.build(bodies, solver.manifolds(), springs, joints, holding.held(), contacts.pairs, stats); }
+    {
+        const StageTimer t(ms.islands);
+        islands.build(bodies, solver.manifolds(), springs, joints, holding.held(), contacts.pairs, workers, stats);
+    }
 
     { const StageTimer t(ms.solveParts.setup); solver.prepare(context, bodies, stats); }
     ms.solve += ms.solveParts.setup;
