@@ -146,60 +146,10 @@ TEST(HeldBodies, AHitOnAHeldBoxIsAHitOnABodyWithMass) {
     EXPECT_NEAR(row.world.body(row.boxes[kBoxes - 2]).getPosition().x(), kBoxes - 2, 1e-3);
 }
 
-TEST(HeldBodies, ABallIntoAHeldRowMovesTheWholeRowAndKeepsMomentum) {
-    // Everything frictionless: ten 1 kg boxes in a row, a small box that may not sleep
-    // on the first (it keeps the island awake), and a 2 kg ball at 6 m/s along -x into
-    // the far end. Nothing outside holds the bodies along x, so their momentum, 12 kg m/s,
-    // stays (the small box's share included: it may fall off the first box and meet it),
-    // and every box of the row is pushed along -x. A held box that stood as a wall threw
-    // the ball back (+1.5 kg m/s without the hit rule).
-    World world(withHolding(true));
-    addGround(world, 0);
-    std::vector<BodyId> boxes;
-    for (int i = 0; i < kBoxes; ++i) {
-        BodySettings b;
-        b.shape = Shape::box(Vector3(0.5, 0.5, 0.5));
-        b.position = Vector3(i, 0.5, 0);
-        b.material.friction = 0;
-        boxes.push_back(world.addBody(b));
-    }
-    BodySettings awake;
-    awake.shape = Shape::box(Vector3(0.1, 0.1, 0.1));
-    awake.position = Vector3(0, 1.1, 0);
-    awake.mass = 0.1;
-    awake.canSleep = false;
-    awake.material.friction = 0;
-    const BodyId small = world.addBody(awake);
-    for (int step = 0; step < 90; ++step) world.step(kDt);
-    EXPECT_EQ(world.stats().heldBodies, kBoxes - 1);  // boxes 1-9: box 0 touches the small box
-    BodySettings ball;
-    ball.shape = Shape::sphere(0.5);
-    ball.mass = 2;
-    ball.position = Vector3(kBoxes + 1, 0.5, 0);
-    ball.velocity = Vector3(-6, 0, 0);
-    ball.material.friction = 0;
-    const BodyId hitter = world.addBody(ball);
-    for (int step = 0; step < 30; ++step) world.step(kDt);  // it arrives after 1 / 6 s
-    real momentum = 0;
-    for (const BodyId &b : boxes) momentum += world.body(b).getMass() * world.body(b).getVelocity().x();
-    for (const BodyId &b : {hitter, small}) momentum += world.body(b).getMass() * world.body(b).getVelocity().x();
-    EXPECT_NEAR(momentum, -12, 0.012);
-    for (const BodyId &b : boxes) EXPECT_LT(world.body(b).getVelocity().x(), -0.1);
-}
-
-// A frictionless row of `count` 1 kg boxes with a small box that may not sleep on the
-// first, `threads` threads; after 90 steps (boxes 1 to count - 1 held) a 2 kg ball at
-// 6 m/s along -x comes into the far end. Keeps the held counts of the 30 steps after
-// the ball is added and the boxes' states at the end.
-struct LongRowHit {
-    std::vector<int> held;
-    std::vector<RigidBody> end;
-};
-
-LongRowHit hitLongRow(int count, int threads) {
-    WorldSettings settings = withHolding(true);
-    settings.threads = threads;
-    World world(settings);
+// A frictionless row of `count` 1 kg unit boxes along x from x = 0 on a frictionless
+// ground, and a 0.1 kg box that may not sleep on the first (it keeps the island awake):
+// the row's boxes, then the small box.
+std::vector<BodyId> addFrictionlessRow(World &world, int count) {
     addGround(world, 0);
     std::vector<BodyId> bodies;
     for (int i = 0; i < count; ++i) {
@@ -216,16 +166,55 @@ LongRowHit hitLongRow(int count, int threads) {
     awake.canSleep = false;
     awake.material.friction = 0;
     bodies.push_back(world.addBody(awake));
-    for (int step = 0; step < 90; ++step) world.step(kDt);
-    LongRowHit out;
-    out.held.push_back(world.stats().heldBodies);
+    return bodies;
+}
+
+// A frictionless 2 kg ball of radius 0.5 m on the ground at x, at 6 m/s along -x.
+BodyId throwBall(World &world, real x) {
     BodySettings ball;
     ball.shape = Shape::sphere(0.5);
     ball.mass = 2;
-    ball.position = Vector3(count + 0.5, 0.5, 0);
+    ball.position = Vector3(x, 0.5, 0);
     ball.velocity = Vector3(-6, 0, 0);
     ball.material.friction = 0;
-    bodies.push_back(world.addBody(ball));
+    return world.addBody(ball);
+}
+
+TEST(HeldBodies, ABallIntoAHeldRowMovesTheWholeRowAndKeepsMomentum) {
+    // Ten boxes in the row, and the ball into the far end. Nothing outside holds the
+    // bodies along x, so their momentum, 2 kg at 6 m/s, 12 kg m/s, stays (the small box's
+    // share included: it may fall off the first box and meet it), and every box of the
+    // row is pushed along -x. A held box that stood as a wall threw the ball back
+    // (+1.5 kg m/s without the hit rule).
+    World world(withHolding(true));
+    std::vector<BodyId> bodies = addFrictionlessRow(world, kBoxes);
+    for (int step = 0; step < 90; ++step) world.step(kDt);
+    EXPECT_EQ(world.stats().heldBodies, kBoxes - 1);  // boxes 1-9: box 0 touches the small box
+    bodies.push_back(throwBall(world, kBoxes + 1));
+    for (int step = 0; step < 30; ++step) world.step(kDt);  // it arrives after 1 / 6 s
+    real momentum = 0;
+    for (const BodyId &b : bodies) momentum += world.body(b).getMass() * world.body(b).getVelocity().x();
+    EXPECT_NEAR(momentum, -12, 0.012);
+    for (int i = 0; i < kBoxes; ++i) EXPECT_LT(world.body(bodies[i]).getVelocity().x(), -0.1);
+}
+
+// The frictionless row of `count` boxes on `threads` threads; after 90 steps (boxes 1 to
+// count - 1 held) the ball comes into its far end. Keeps the held counts of the 30 steps
+// after the ball is added and every body's state at the end.
+struct LongRowHit {
+    std::vector<int> held;
+    std::vector<RigidBody> end;
+};
+
+LongRowHit hitLongRow(int count, int threads) {
+    WorldSettings settings = withHolding(true);
+    settings.threads = threads;
+    World world(settings);
+    std::vector<BodyId> bodies = addFrictionlessRow(world, count);
+    for (int step = 0; step < 90; ++step) world.step(kDt);
+    LongRowHit out;
+    out.held.push_back(world.stats().heldBodies);
+    bodies.push_back(throwBall(world, count + 0.5));
     for (int step = 0; step < 30; ++step) {
         world.step(kDt);
         out.held.push_back(world.stats().heldBodies);
