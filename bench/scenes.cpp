@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -264,6 +265,20 @@ std::vector<std::string> splitSceneList(const std::string &list) {
     while (std::getline(stream, name, ','))
         if (!name.empty()) names.push_back(name);
     return names;
+}
+
+bool readSceneOption(const std::string &option, const std::string &value, std::vector<std::string> &scenes,
+                     int &steps, int &threads) {
+    if (option == "--scene") {
+        for (const std::string &name : splitSceneList(value)) scenes.push_back(name);
+    } else if (option == "--steps") {
+        steps = std::atoi(value.c_str());
+    } else if (option == "--threads") {
+        threads = std::atoi(value.c_str());
+    } else {
+        return false;
+    }
+    return true;
 }
 
 }  // namespace cyclone::bench

@@ -36,6 +36,11 @@ std::vector<std::string> sceneNames();
 /// The names in a comma-separated list ("pyramid10,pyramid20"), empty entries skipped.
 std::vector<std::string> splitSceneList(const std::string &list);
 
+/// Reads an option the scene tools share into its place: --scene (names added to
+/// `scenes`, comma-separated, repeatable), --steps or --threads. False for any other.
+bool readSceneOption(const std::string &option, const std::string &value, std::vector<std::string> &scenes,
+                     int &steps, int &threads);
+
 /// The scene called `name`; throws std::invalid_argument for an unknown name. `seed`
 /// picks mixed1000's shapes, sizes and orientations (0: the scene the tables show); the
 /// other scenes have no randomness.

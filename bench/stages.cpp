@@ -78,13 +78,8 @@ int run(int argc, char **argv) {
             continue;
         }
         if (!bench::readOption("cyclone-stages", argc, argv, i, arg, value)) return 2;
-        if (arg == "--scene") {
-            for (const std::string &name : bench::splitSceneList(value)) scenes.push_back(name);
-        } else if (arg == "--steps") {
-            steps = std::atoi(value.c_str());
-        } else if (arg == "--threads") {
-            threads = std::atoi(value.c_str());
-        } else if (arg == "--substeps") {
+        if (bench::readSceneOption(arg, value, scenes, steps, threads)) continue;
+        if (arg == "--substeps") {
             substeps = std::atoi(value.c_str());
         } else if (arg == "--iterations") {
             iterations = std::atoi(value.c_str());
