@@ -132,15 +132,13 @@ void Holding::clearHit(Workers &workers, const BodyStore &bodies, const PairCach
                        });
     if (walk_.empty()) return;
     // Then the flood through touching pairs, ring by ring on the threads. Each body goes
-    // to the one test that marks it reached: what the flood decides is the set reached,
-    // the same whichever thread comes first.
-    reached_.assign(bodies.size(), 0);
-    const auto reach = [&](std::uint32_t index) {
-        return __atomic_exchange_n(&reached_[index], char(1), __ATOMIC_RELAXED) == 0;
-    };
+    // to the one test that marks it reached (PassFlags::take): what the flood decides is
+    // the set reached, the same whichever thread comes first.
+    reached_.reserve(bodies.size());
+    reached_.begin();
     front_.clear();
     for (std::uint32_t index : walk_)
-        if (reach(index)) front_.push_back(index);
+        if (reached_.take(index)) front_.push_back(index);
     while (!front_.empty()) {
         const std::size_t count = front_.size();
         const std::size_t chunks = Workers::chunksOf(count);
@@ -152,7 +150,7 @@ void Holding::clearHit(Workers &workers, const BodyStore &bodies, const PairCach
                 still_[index] = 0;
                 for (std::uint32_t p : bodies[index].pairs) {
                     const std::uint32_t o = other(pairs[p], index);
-                    if (pairs[p].touching() && bodies[o].simulated && reach(o)) found.push_back(o);
+                    if (pairs[p].touching() && bodies[o].simulated && reached_.take(o)) found.push_back(o);
                 }
             }
             next_.close(chunk);

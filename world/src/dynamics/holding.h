@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cyclone/world/world.h"
+#include "solver/threads/pass_flags.h"
 #include "world/chunk_lists.h"
 
 namespace cyclone::detail {
@@ -53,7 +54,7 @@ private:
 
     std::vector<char> still_;  ///< By body index: could be held on its own, then ring by ring.
     std::vector<char> ring_;   ///< The next ring's marks.
-    std::vector<char> reached_;  ///< By body index: reached from a hit.
+    PassFlags reached_;          ///< By body index: reached from a hit, in this step's flood.
     std::vector<char> flags_;    ///< By place in `simulated`: struck by a hit (scratch).
     std::vector<std::uint32_t> walk_;   ///< The bodies of the hits.
     std::vector<std::uint32_t> front_;  ///< The flood's last ring.

@@ -369,7 +369,7 @@ void ConstraintSolver::reportImpulses(Workers &workers, const BodyStore &bodies,
                  stepImpulse_[s]};
     });
     const auto begin = out.begin() + static_cast<std::ptrdiff_t>(first);
-    out.erase(std::remove_if(begin, out.end(), [](const ContactImpulse &x) { return x.a.index == UINT32_MAX; }),
+    out.erase(std::remove_if(begin, out.end(), [](const ContactImpulse &x) { return x.a == BodyId(); }),
               out.end());
     std::sort(begin, out.end(), [](const ContactImpulse &x, const ContactImpulse &y) {
         return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;

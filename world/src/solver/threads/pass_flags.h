@@ -2,7 +2,8 @@
 // ordered share, a carrier run) is marked finished when its thread has solved it, and an
 // entry that reads what an entry of the other thread writes waits for that mark. A mark
 // holds the number of the pass that set it, so a new pass needs no clearing (but when the
-// number wraps).
+// number wraps). A walk shared by threads (the held bodies' hit flood) takes each entry
+// once: the one call of take() that marks it.
 #pragma once
 
 #include <atomic>
@@ -31,6 +32,8 @@ public:
     }
     void finish(std::size_t entry) { flags_[entry].store(pass_, std::memory_order_release); }
     bool finished(std::size_t entry) const { return flags_[entry].load(std::memory_order_acquire) == pass_; }
+    /// Marks `entry` finished; true for the one call that marked it first in this pass.
+    bool take(std::size_t entry) { return flags_[entry].exchange(pass_, std::memory_order_relaxed) != pass_; }
     /// Waits until the other thread has finished `entry` in this pass.
     void await(std::size_t entry) const {
         waitUntil([&] { return finished(entry); });
